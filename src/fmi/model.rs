@@ -1,0 +1,94 @@
+//! The seam between the FMI layer and a model: the FMI layer drives any [`CoSimModel`]
+//! and knows nothing of beams.
+
+/// FMI 2.0 causality of a variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Causality {
+    /// Fixed or tunable parameter, set before initialization.
+    Parameter,
+    /// Input, set by the host before each step.
+    Input,
+    /// Output, read by the host after each step.
+    Output,
+}
+
+/// FMI 2.0 variability of a variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variability {
+    /// Constant after initialization.
+    Fixed,
+    /// May change between steps (parameters only, through the host).
+    Tunable,
+    /// Changes continuously in time (inputs and outputs).
+    Continuous,
+}
+
+/// One real scalar variable of the model (all hybeam variables are fmi2Real).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variable {
+    /// Structured name, e.g. `tip.position.x` or `beam.diameter`.
+    pub name: String,
+    /// Value reference: stable across versions for the same scene.
+    pub vr: u32,
+    /// Causality.
+    pub causality: Causality,
+    /// Variability.
+    pub variability: Variability,
+    /// Start value (parameters and inputs; `None` for calculated outputs).
+    pub start: Option<f64>,
+    /// SI unit symbol as used in UnitDefinitions (`m`, `N`, `N.m`, `J`, `m/s`, `m/s2`, `rad`,
+    /// `s`, `Pa`, `kg/m3`, `1`, ...), `None` for dimensionless.
+    pub unit: Option<&'static str>,
+    /// One-line description.
+    pub description: String,
+}
+
+/// Identity and default experiment of a model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelInfo {
+    /// modelName attribute.
+    pub model_name: String,
+    /// description attribute.
+    pub description: String,
+    /// DefaultExperiment startTime [s].
+    pub start_time: f64,
+    /// DefaultExperiment stopTime [s].
+    pub stop_time: f64,
+    /// DefaultExperiment stepSize [s] (a preferred communication step).
+    pub step_size: f64,
+}
+
+/// What the FMI layer needs from a model.
+///
+/// Invariants the FMI layer relies on:
+/// - `variables()` is fixed for the life of the instance and its value references are unique.
+/// - `do_step` either advances the model to `t + h` and returns `Ok`, or returns `Err` and leaves
+///   the model exactly in its state before the call (last good state).
+/// - `save_state` bytes restored with `load_state` into a fresh instance built from the same scene
+///   continue bit for bit as the original would have.
+pub trait CoSimModel: Sized + Send + 'static {
+    /// Builds the model from the text of `resources/scene.toml`. The error names the field,
+    /// the value and what is allowed.
+    fn from_scene(scene_toml: &str) -> Result<Self, String>;
+    /// Model name, description and default experiment.
+    fn model_info(&self) -> ModelInfo;
+    /// The variable table (single source for the XML and the runtime).
+    fn variables(&self) -> &[Variable];
+    /// Value of a variable. Outputs are those of the current state.
+    fn get_real(&self, vr: u32) -> Result<f64, String>;
+    /// Sets a parameter or input. Refuses non-finite or out-of-range values with a message;
+    /// the model is unchanged on error.
+    fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String>;
+    /// Called at fmi2ExitInitializationMode: builds the model from the current parameters and
+    /// computes the initial state at `start_time`.
+    fn initialize(&mut self, start_time: f64) -> Result<(), String>;
+    /// Advances from `t` to `t + h` (internal substeps). On error the state is unchanged.
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String>;
+    /// Back to the state after `from_scene` (fmi2Reset).
+    fn reset(&mut self) -> Result<(), String>;
+    /// Self-contained bytes: format version, scene identity, parameters, inputs, coordinates,
+    /// velocities, accelerations, integrator memory.
+    fn save_state(&self) -> Vec<u8>;
+    /// Restores bytes from `save_state`; refuses bytes of another scene or format version.
+    fn load_state(&mut self, bytes: &[u8]) -> Result<(), String>;
+}
