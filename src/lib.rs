@@ -1,1 +1,16 @@
-//! hybeam
+//! # hybeam
+//!
+//! A planar flexible beam made of segments, each either a floating-frame body with modal
+//! coordinates or a chain of ANCF cable elements, joined rigidly (Sohn & Yoo), integrated by
+//! an index-3 generalized-α solver, and shipped as an FMI 2.0 co-simulation FMU.
+//!
+//! Data flow: [`scene`] (TOML, validated) → [`model`] (assembly: elements, modal bodies,
+//! joints) → [`integrator`] (generalized-α, statics) → [`simulator`] (run to a time, outputs,
+//! snapshots) → [`fmi`] (FMI 2.0 entry points, which know nothing of beams).
+
+pub mod fmi;
+pub mod integrator;
+pub mod linalg;
+pub mod model;
+pub mod scene;
+pub mod simulator;

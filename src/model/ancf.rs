@@ -1,0 +1,486 @@
+//! Planar ANCF cable element (gradient-deficient, 8 coordinates, cubic Hermite).
+//!
+//! Coordinates `e = [r0, r0′, r1, r1′]` (global x, y of the end positions [m] and of the slopes
+//! ∂r/∂x [-], x the arc length of the straight reference configuration). `r(x) = S(x) e` with
+//! the Hermite functions of the paper (eq. 6). Everything here is a pure function of `e`, `ė`.
+//!
+//! Elastic energy U = ½∫EA ε² dx + ½∫EI K² dx with, for [`StrainModel::Exact`],
+//! ε = |r′| − 1 and the signed material curvature K = e₃·(r′×r″)/|r′|² (Gerstmayr & Irschik 2008),
+//! 5 Gauss points for the axial part and 3 for bending (as Exudyn `ObjectANCFCable2D`).
+//! [`StrainModel::Paper`] uses ε = ½(r′ᵀr′ − 1) and κ ≈ |r″| (constant bending stiffness).
+//! Kelvin–Voigt damping (retardation time τ) adds EAτ ε̇ δε + EIτ K̇ δK.
+
+use crate::scene::StrainModel;
+use nalgebra::{SMatrix, SVector, Vector2};
+
+/// 8-vector of element coordinates.
+pub type Vec8 = SVector<f64, 8>;
+/// 8×8 element matrix.
+pub type Mat8 = SMatrix<f64, 8, 8>;
+
+const GAUSS3: [(f64, f64); 3] = [
+    (-0.774_596_669_241_483_4, 5.0 / 9.0),
+    (0.0, 8.0 / 9.0),
+    (0.774_596_669_241_483_4, 5.0 / 9.0),
+];
+const GAUSS5: [(f64, f64); 5] = [
+    (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+    (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (0.0, 0.568_888_888_888_888_9),
+    (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+];
+
+/// Hermite shape functions and their first and second x-derivatives at ξ = x/l.
+#[derive(Debug, Clone, Copy)]
+pub struct Shape {
+    /// s1..s4 [-, m, -, m].
+    pub s: [f64; 4],
+    /// ds/dx.
+    pub ds: [f64; 4],
+    /// d²s/dx².
+    pub dds: [f64; 4],
+}
+
+impl Shape {
+    /// Shape functions at ξ ∈ [0, 1] of an element of length `l`.
+    pub fn at(xi: f64, l: f64) -> Self {
+        let (x2, x3) = (xi * xi, xi * xi * xi);
+        Self {
+            s: [
+                1.0 - 3.0 * x2 + 2.0 * x3,
+                l * (xi - 2.0 * x2 + x3),
+                3.0 * x2 - 2.0 * x3,
+                l * (x3 - x2),
+            ],
+            ds: [
+                (-6.0 * xi + 6.0 * x2) / l,
+                1.0 - 4.0 * xi + 3.0 * x2,
+                (6.0 * xi - 6.0 * x2) / l,
+                3.0 * x2 - 2.0 * xi,
+            ],
+            dds: [
+                (-6.0 + 12.0 * xi) / (l * l),
+                (-4.0 + 6.0 * xi) / l,
+                (6.0 - 12.0 * xi) / (l * l),
+                (6.0 * xi - 2.0) / l,
+            ],
+        }
+    }
+
+    fn combine(w: &[f64; 4], e: &Vec8) -> Vector2<f64> {
+        let mut r = Vector2::zeros();
+        for k in 0..4 {
+            r += w[k] * Vector2::new(e[2 * k], e[2 * k + 1]);
+        }
+        r
+    }
+
+    /// Position r(x) = S e.
+    pub fn r(&self, e: &Vec8) -> Vector2<f64> {
+        Self::combine(&self.s, e)
+    }
+    /// Slope r′(x).
+    pub fn r1(&self, e: &Vec8) -> Vector2<f64> {
+        Self::combine(&self.ds, e)
+    }
+    /// r″(x).
+    pub fn r2(&self, e: &Vec8) -> Vector2<f64> {
+        Self::combine(&self.dds, e)
+    }
+}
+
+/// Element properties (constant).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AncfProps {
+    /// Element length [m].
+    pub length: f64,
+    /// Mass per length ρA [kg/m].
+    pub rho_a: f64,
+    /// Axial stiffness EA [N].
+    pub ea: f64,
+    /// Bending stiffness EI [N m²].
+    pub ei: f64,
+    /// Kelvin–Voigt retardation time τ [s] (0 = no damping).
+    pub damping_time: f64,
+    /// Strain measures.
+    pub strain: StrainModel,
+}
+
+/// Forces and matrices of one element at one state.
+#[derive(Debug, Clone)]
+pub struct ElasticOut {
+    /// Internal (elastic + damping) generalized force, positive = resisting [N].
+    pub force: Vec8,
+    /// ∂force/∂e.
+    pub stiffness: Mat8,
+    /// ∂force/∂ė (zero without damping).
+    pub damping: Mat8,
+}
+
+/// Kronecker expansion of a 4×4 scalar pattern with a 2×2 block.
+fn expand(pattern: &[[f64; 4]; 4], block: &nalgebra::Matrix2<f64>, out: &mut Mat8, scale: f64) {
+    for k in 0..4 {
+        for l in 0..4 {
+            let c = scale * pattern[k][l];
+            if c != 0.0 {
+                for i in 0..2 {
+                    for j in 0..2 {
+                        out[(2 * k + i, 2 * l + j)] += c * block[(i, j)];
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl AncfProps {
+    /// Consistent mass matrix (paper eq. 7), constant [kg, kg m, kg m²].
+    pub fn mass_matrix(&self) -> Mat8 {
+        let l = self.length;
+        let c = self.rho_a * l / 420.0;
+        let p = [
+            [156.0, 22.0 * l, 54.0, -13.0 * l],
+            [22.0 * l, 4.0 * l * l, 13.0 * l, -3.0 * l * l],
+            [54.0, 13.0 * l, 156.0, -22.0 * l],
+            [-13.0 * l, -3.0 * l * l, -22.0 * l, 4.0 * l * l],
+        ];
+        let mut m = Mat8::zeros();
+        expand(&p, &nalgebra::Matrix2::identity(), &mut m, c);
+        m
+    }
+
+    /// Generalized gravity force ∫ρA Sᵀ g dx (paper eq. 8) [N, N m].
+    pub fn gravity_force(&self, g: [f64; 2]) -> Vec8 {
+        let l = self.length;
+        let w = [0.5, l / 12.0, 0.5, -l / 12.0];
+        let mut f = Vec8::zeros();
+        for k in 0..4 {
+            f[2 * k] = self.rho_a * l * w[k] * g[0];
+            f[2 * k + 1] = self.rho_a * l * w[k] * g[1];
+        }
+        f
+    }
+
+    /// Strain energy [J].
+    pub fn strain_energy(&self, e: &Vec8) -> f64 {
+        let l = self.length;
+        let mut u = 0.0;
+        for (xg, wg) in GAUSS5 {
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            let r1 = sh.r1(e);
+            let eps = match self.strain {
+                StrainModel::Exact => r1.norm() - 1.0,
+                StrainModel::Paper => 0.5 * (r1.norm_squared() - 1.0),
+            };
+            u += 0.5 * wg * 0.5 * l * self.ea * eps * eps;
+        }
+        for (xg, wg) in GAUSS3 {
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            let (r1, r2) = (sh.r1(e), sh.r2(e));
+            let k2 = match self.strain {
+                StrainModel::Exact => {
+                    let k = cross(&r1, &r2) / r1.norm_squared();
+                    k * k
+                }
+                StrainModel::Paper => r2.norm_squared(),
+            };
+            u += 0.5 * wg * 0.5 * l * self.ei * k2;
+        }
+        u
+    }
+
+    /// Internal force, tangent stiffness and damping matrix at (e, ė).
+    pub fn elastic(&self, e: &Vec8, ed: &Vec8, with_matrices: bool) -> ElasticOut {
+        let l = self.length;
+        let tau = self.damping_time;
+        let damped = tau > 0.0;
+        let mut out = ElasticOut {
+            force: Vec8::zeros(),
+            stiffness: Mat8::zeros(),
+            damping: Mat8::zeros(),
+        };
+        // Axial part.
+        for (xg, wg) in GAUSS5 {
+            let w = wg * 0.5 * l * self.ea;
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            let r1 = sh.r1(e);
+            // ε, dε/dr′ (2-vector), d²ε/dr′² (2×2)
+            let (eps, g, h) = match self.strain {
+                StrainModel::Exact => {
+                    let n = r1.norm();
+                    let t = r1 / n;
+                    (
+                        n - 1.0,
+                        t,
+                        (nalgebra::Matrix2::identity() - t * t.transpose()) / n,
+                    )
+                }
+                StrainModel::Paper => (
+                    0.5 * (r1.norm_squared() - 1.0),
+                    r1,
+                    nalgebra::Matrix2::identity(),
+                ),
+            };
+            let mut de = Vec8::zeros(); // dε/de
+            for k in 0..4 {
+                de[2 * k] = sh.ds[k] * g[0];
+                de[2 * k + 1] = sh.ds[k] * g[1];
+            }
+            let eps_dot = if damped { de.dot(ed) } else { 0.0 };
+            let stress = eps + tau * eps_dot;
+            out.force += w * stress * de;
+            if with_matrices {
+                let pat = outer4(&sh.ds, &sh.ds);
+                out.stiffness += w * de * de.transpose();
+                expand(&pat, &h, &mut out.stiffness, w * stress);
+                if damped {
+                    out.damping += (w * tau) * de * de.transpose();
+                    // ∂ε̇/∂e = d²ε/de² ė
+                    let mut hed = Mat8::zeros();
+                    expand(&pat, &h, &mut hed, 1.0);
+                    let dedot = hed * ed;
+                    out.stiffness += (w * tau) * de * dedot.transpose();
+                }
+            }
+        }
+        // Bending part.
+        for (xg, wg) in GAUSS3 {
+            let w = wg * 0.5 * l * self.ei;
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            match self.strain {
+                StrainModel::Paper => {
+                    let r2 = sh.r2(e);
+                    let r2d = sh.r2(ed);
+                    let m = r2 + tau * r2d;
+                    for k in 0..4 {
+                        out.force[2 * k] += w * sh.dds[k] * m[0];
+                        out.force[2 * k + 1] += w * sh.dds[k] * m[1];
+                    }
+                    if with_matrices {
+                        let pat = outer4(&sh.dds, &sh.dds);
+                        expand(&pat, &nalgebra::Matrix2::identity(), &mut out.stiffness, w);
+                        if damped {
+                            expand(
+                                &pat,
+                                &nalgebra::Matrix2::identity(),
+                                &mut out.damping,
+                                w * tau,
+                            );
+                        }
+                    }
+                }
+                StrainModel::Exact => {
+                    let (r1, r2) = (sh.r1(e), sh.r2(e));
+                    let gg = r1.norm_squared();
+                    let c = cross(&r1, &r2);
+                    let kappa = c / gg;
+                    // ∂c/∂r′ = (r2y, −r2x), ∂c/∂r″ = (−r1y, r1x)
+                    let c1 = Vector2::new(r2[1], -r2[0]);
+                    let c2 = Vector2::new(-r1[1], r1[0]);
+                    let dk1 = c1 / gg - (2.0 * kappa / gg) * r1; // ∂K/∂r′
+                    let dk2 = c2 / gg; // ∂K/∂r″
+                    let mut dk = Vec8::zeros();
+                    for k in 0..4 {
+                        let v = sh.ds[k] * dk1 + sh.dds[k] * dk2;
+                        dk[2 * k] = v[0];
+                        dk[2 * k + 1] = v[1];
+                    }
+                    let k_dot = if damped { dk.dot(ed) } else { 0.0 };
+                    let moment = kappa + tau * k_dot;
+                    out.force += w * moment * dk;
+                    if with_matrices {
+                        // Hessian of K in (r′, r″): blocks H11, H12, H21, H22.
+                        let i2 = nalgebra::Matrix2::identity();
+                        let jt = nalgebra::Matrix2::new(0.0, 1.0, -1.0, 0.0); // ∂c1/∂r″
+                        let dg = 2.0 * r1;
+                        let h11 = -(c1 * dg.transpose() + dg * c1.transpose()) / (gg * gg)
+                            - (2.0 * c / (gg * gg)) * i2
+                            + (2.0 * c / (gg * gg * gg)) * dg * dg.transpose();
+                        let h12 = jt / gg - (dg * c2.transpose()) / (gg * gg);
+                        let h21 = h12.transpose();
+                        let mut hk = Mat8::zeros();
+                        expand(&outer4(&sh.ds, &sh.ds), &h11, &mut hk, 1.0);
+                        expand(&outer4(&sh.ds, &sh.dds), &h12, &mut hk, 1.0);
+                        expand(&outer4(&sh.dds, &sh.ds), &h21, &mut hk, 1.0);
+                        out.stiffness += w * dk * dk.transpose() + (w * moment) * hk;
+                        if damped {
+                            out.damping += (w * tau) * dk * dk.transpose();
+                            let dkdot = hk * ed;
+                            out.stiffness += (w * tau) * dk * dkdot.transpose();
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+fn outer4(a: &[f64; 4], b: &[f64; 4]) -> [[f64; 4]; 4] {
+    let mut p = [[0.0; 4]; 4];
+    for k in 0..4 {
+        for l in 0..4 {
+            p[k][l] = a[k] * b[l];
+        }
+    }
+    p
+}
+
+/// z-component of the planar cross product a × b.
+pub fn cross(a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// Coordinates of a straight, unstretched element from `p0` along `angle`.
+pub fn straight(p0: [f64; 2], angle: f64, l: f64) -> Vec8 {
+    let (s, c) = angle.sin_cos();
+    Vec8::from_column_slice(&[p0[0], p0[1], c, s, p0[0] + l * c, p0[1] + l * s, c, s])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn props(strain: StrainModel, tau: f64) -> AncfProps {
+        AncfProps {
+            length: 0.05,
+            rho_a: 0.0247,
+            ea: 6.6e5,
+            ei: 0.165,
+            damping_time: tau,
+            strain,
+        }
+    }
+
+    fn state() -> (Vec8, Vec8) {
+        let e = Vec8::from_column_slice(&[0.01, -0.02, 0.9, 0.3, 0.055, 0.01, 0.7, 0.75]);
+        let ed = Vec8::from_column_slice(&[0.1, -0.3, 0.5, 0.2, -0.4, 0.6, 0.3, -0.2]);
+        (e, ed)
+    }
+
+    #[test]
+    fn tangent_matches_central_differences() {
+        for strain in [StrainModel::Exact, StrainModel::Paper] {
+            for tau in [0.0, 1e-3] {
+                let p = props(strain, tau);
+                let (e, ed) = state();
+                let o = p.elastic(&e, &ed, true);
+                let h = 1e-7;
+                let scale = o.stiffness.abs().max();
+                for j in 0..8 {
+                    let (mut ep, mut em) = (e, e);
+                    ep[j] += h;
+                    em[j] -= h;
+                    let fd = (p.elastic(&ep, &ed, false).force - p.elastic(&em, &ed, false).force)
+                        / (2.0 * h);
+                    for i in 0..8 {
+                        let err = (fd[i] - o.stiffness[(i, j)]).abs();
+                        assert!(
+                            err <= 1e-6 * scale,
+                            "{strain:?} tau {tau} K[{i},{j}]: {err:e}"
+                        );
+                    }
+                    let (mut vp, mut vm) = (ed, ed);
+                    vp[j] += h;
+                    vm[j] -= h;
+                    let fd = (p.elastic(&e, &vp, false).force - p.elastic(&e, &vm, false).force)
+                        / (2.0 * h);
+                    for i in 0..8 {
+                        let err = (fd[i] - o.damping[(i, j)]).abs();
+                        assert!(
+                            err <= 1e-6 * scale.max(1.0) * tau.max(1e-12) + 1e-12,
+                            "C[{i},{j}]"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn force_is_gradient_of_energy() {
+        for strain in [StrainModel::Exact, StrainModel::Paper] {
+            let p = props(strain, 0.0);
+            let (e, _) = state();
+            let f = p.elastic(&e, &Vec8::zeros(), false).force;
+            let h = 1e-7;
+            for j in 0..8 {
+                let (mut ep, mut em) = (e, e);
+                ep[j] += h;
+                em[j] -= h;
+                let fd = (p.strain_energy(&ep) - p.strain_energy(&em)) / (2.0 * h);
+                assert!((fd - f[j]).abs() <= 1e-6 * f.abs().max(), "{strain:?} {j}");
+            }
+        }
+    }
+
+    #[test]
+    fn mass_and_gravity_match_closed_form() {
+        // Independent check: integrate ρA SᵀS and ρA Sᵀ by 5-point Gauss (exact for degree 6).
+        let p = props(StrainModel::Exact, 0.0);
+        let l = p.length;
+        let m = p.mass_matrix();
+        let q = p.gravity_force([0.3, -9.81]);
+        let mut mi = [[0.0; 4]; 4];
+        let mut qi = [0.0; 4];
+        for (xg, wg) in GAUSS5 {
+            let s = Shape::at(0.5 * (xg + 1.0), l).s;
+            for k in 0..4 {
+                qi[k] += wg * 0.5 * l * p.rho_a * s[k];
+                for j in 0..4 {
+                    mi[k][j] += wg * 0.5 * l * p.rho_a * s[k] * s[j];
+                }
+            }
+        }
+        for k in 0..4 {
+            assert!((q[2 * k] - qi[k] * 0.3).abs() < 1e-15);
+            assert!((q[2 * k + 1] + qi[k] * 9.81).abs() < 1e-14);
+            for j in 0..4 {
+                assert!((m[(2 * k, 2 * j)] - mi[k][j]).abs() < 1e-15);
+                assert!((m[(2 * k + 1, 2 * j + 1)] - mi[k][j]).abs() < 1e-15);
+                assert_eq!(m[(2 * k, 2 * j + 1)], 0.0);
+            }
+        }
+        // total mass: 1ᵀ M 1 over translation = ρA l
+        let mut tot = 0.0;
+        for k in [0, 2] {
+            for j in [0, 2] {
+                tot += mi[k][j];
+            }
+        }
+        assert!((tot - p.rho_a * l).abs() < 1e-15);
+    }
+
+    #[test]
+    fn rigid_motion_gives_zero_force() {
+        for strain in [StrainModel::Exact, StrainModel::Paper] {
+            let p = props(strain, 1e-3);
+            for angle in [0.0, 0.7, -2.5, 3.0] {
+                let e = straight([0.3, -0.1], angle, p.length);
+                // rigid rotation rate ω about the first node
+                let w = 2.0;
+                let (s, c) = (angle.sin(), angle.cos());
+                let l = p.length;
+                let ed = Vec8::from_column_slice(&[
+                    0.0,
+                    0.0,
+                    -w * s,
+                    w * c,
+                    -w * l * s,
+                    w * l * c,
+                    -w * s,
+                    w * c,
+                ]);
+                let o = p.elastic(&e, &ed, false);
+                // relative to the axial stiffness: round-off of ε is ~1e-16
+                assert!(
+                    o.force.abs().max() < 1e-14 * p.ea,
+                    "{strain:?} {angle} {}",
+                    o.force
+                );
+                assert!(p.strain_energy(&e) < 1e-20);
+            }
+        }
+    }
+}

@@ -1,0 +1,522 @@
+//! Scene files: one beam set-up in TOML (see `docs/scene-format.md`).
+//!
+//! A scene is parsed with serde (unknown fields are refused), then [`Scene::validate`] checks
+//! every value and names the field, the value and what is allowed. Nothing here panics on bad
+//! input. [`Scene::from_toml_with_overrides`] applies `--set key.path=value` overrides on the
+//! TOML tree before typing it, so any field can be overridden by its dotted path.
+
+mod overrides;
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+pub use overrides::apply_override;
+
+/// A scene error: a message that names the field and what to change.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneError(pub String);
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// How the beam root is held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Root {
+    /// Position and slope fixed (cantilever).
+    #[default]
+    Clamped,
+    /// Position fixed, free to rotate in the plane.
+    Pinned,
+}
+
+/// Kind of a segment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SegmentKind {
+    /// Floating frame with transverse modal coordinates (small elastic deformation).
+    Modal,
+    /// Chain of planar ANCF cable elements (large deformation).
+    Ancf,
+}
+
+/// Cross-section shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Section {
+    /// Solid round rod of `diameter`.
+    #[default]
+    Round,
+    /// Solid rectangle `width` (out of plane) × `height` (in the bending plane).
+    Rectangle,
+}
+
+/// Strain measures of the ANCF cable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum StrainModel {
+    /// ε = |r′| − 1 and signed material curvature e₃·(r′×r″)/|r′|² (Gerstmayr & Irschik).
+    #[default]
+    Exact,
+    /// The paper's simplified model: ε = ½(r′ᵀr′ − 1), κ ≈ |r″| (constant bending stiffness).
+    Paper,
+}
+
+/// One segment of the beam, root to tip.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Segment {
+    /// Unique name; prefixes the segment's FMU parameters.
+    pub name: String,
+    /// `modal` or `ancf`.
+    pub kind: SegmentKind,
+    /// Undeformed length [m].
+    pub length: f64,
+    /// Cross-section shape.
+    #[serde(default)]
+    pub section: Section,
+    /// Diameter of a round section [m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diameter: Option<f64>,
+    /// Width of a rectangle, out of the bending plane [m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// Height of a rectangle, in the bending plane [m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// Young's modulus E [Pa].
+    pub youngs_modulus: f64,
+    /// Density ρ [kg/m³].
+    pub density: f64,
+    /// Kelvin–Voigt retardation time τ [s]: stress E(ε + τ ε̇), bending likewise. On a modal
+    /// segment the same law acts on the modes (damping ratio τ ω_k / 2). 0 = none.
+    #[serde(default)]
+    pub damping_time: f64,
+    /// Modal damping ratio ζ applied to every mode (modal segments only). 0 = none.
+    #[serde(default)]
+    pub damping_ratio: f64,
+    /// Number of clamped–free bending modes (modal segments only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
+    /// Add the two static interface (Craig–Bampton constraint) modes at the tip end.
+    #[serde(default)]
+    pub interface_modes: bool,
+    /// Number of ANCF elements (ANCF segments only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements: Option<usize>,
+    /// Strain model of the ANCF elements.
+    #[serde(default)]
+    pub strain: StrainModel,
+}
+
+/// Initial state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum InitialState {
+    /// Straight at `angle`, at rest.
+    #[default]
+    Straight,
+    /// Static equilibrium under gravity and the tip force, at rest.
+    Static,
+}
+
+/// Initial condition.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Initial {
+    /// `straight` or `static`.
+    #[serde(default)]
+    pub state: InitialState,
+    /// Angle of the root (and of the straight beam) from the global x axis [rad], counter-clockwise.
+    #[serde(default)]
+    pub angle: f64,
+}
+
+/// Loads at the free end.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Tip {
+    /// Constant force at the tip, global axes [N].
+    #[serde(default)]
+    pub force: [f64; 2],
+}
+
+/// Integrator settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Solver {
+    /// Spectral radius at infinite frequency of generalized-α, in [0, 1).
+    #[serde(default = "Solver::default_rho_inf")]
+    pub rho_inf: f64,
+    /// Largest internal step [s].
+    #[serde(default = "Solver::default_max_step")]
+    pub max_step: f64,
+    /// Newton tolerance, relative to the beam length for positions (dimensionless).
+    #[serde(default = "Solver::default_tolerance")]
+    pub tolerance: f64,
+    /// Newton iteration limit per step.
+    #[serde(default = "Solver::default_max_iterations")]
+    pub max_iterations: usize,
+}
+
+impl Solver {
+    fn default_rho_inf() -> f64 {
+        0.9
+    }
+    fn default_max_step() -> f64 {
+        1e-3
+    }
+    fn default_tolerance() -> f64 {
+        1e-8
+    }
+    fn default_max_iterations() -> usize {
+        12
+    }
+}
+
+impl Default for Solver {
+    fn default() -> Self {
+        Self {
+            rho_inf: Self::default_rho_inf(),
+            max_step: Self::default_max_step(),
+            tolerance: Self::default_tolerance(),
+            max_iterations: Self::default_max_iterations(),
+        }
+    }
+}
+
+/// Run settings used by the command-line runner and as the FMU's default experiment.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Simulation {
+    /// End time [s].
+    #[serde(default = "Simulation::default_t_end")]
+    pub t_end: f64,
+    /// Output (communication) step [s].
+    #[serde(default = "Simulation::default_output_step")]
+    pub output_step: f64,
+}
+
+impl Simulation {
+    fn default_t_end() -> f64 {
+        2.0
+    }
+    fn default_output_step() -> f64 {
+        1e-3
+    }
+}
+
+impl Default for Simulation {
+    fn default() -> Self {
+        Self {
+            t_end: Self::default_t_end(),
+            output_step: Self::default_output_step(),
+        }
+    }
+}
+
+/// A beam set-up.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Scene name (model name of the FMU).
+    pub name: String,
+    /// Free text.
+    #[serde(default)]
+    pub description: String,
+    /// Gravity vector, global axes [m/s²].
+    #[serde(default)]
+    pub gravity: [f64; 2],
+    /// Root boundary condition.
+    #[serde(default)]
+    pub root: Root,
+    /// Initial condition.
+    #[serde(default)]
+    pub initial: Initial,
+    /// Tip loads.
+    #[serde(default)]
+    pub tip: Tip,
+    /// Integrator settings.
+    #[serde(default)]
+    pub solver: Solver,
+    /// Run settings.
+    #[serde(default)]
+    pub simulation: Simulation,
+    /// Segments from root to tip.
+    #[serde(default)]
+    pub segments: Vec<Segment>,
+}
+
+impl Segment {
+    /// Area A [m²] and second moment I [m⁴] of the cross-section (valid after `validate`).
+    pub fn area_inertia(&self) -> (f64, f64) {
+        match self.section {
+            Section::Round => {
+                let d = self.diameter.unwrap_or(0.0);
+                let a = std::f64::consts::PI * d * d / 4.0;
+                (a, a * d * d / 16.0)
+            }
+            Section::Rectangle => {
+                let (b, h) = (self.width.unwrap_or(0.0), self.height.unwrap_or(0.0));
+                (b * h, b * h * h * h / 12.0)
+            }
+        }
+    }
+}
+
+fn check_positive(field: &str, v: f64, what: &str) -> Result<(), SceneError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError(format!(
+            "{field} = {v}: must be a finite number > 0 ({what})"
+        )))
+    }
+}
+
+fn check_nonnegative(field: &str, v: f64, what: &str) -> Result<(), SceneError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError(format!(
+            "{field} = {v}: must be a finite number >= 0 ({what})"
+        )))
+    }
+}
+
+fn check_finite(field: &str, v: f64) -> Result<(), SceneError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(SceneError(format!(
+            "{field} = {v}: must be a finite number"
+        )))
+    }
+}
+
+/// Largest number of modes and elements accepted per segment.
+pub const MAX_MODES: usize = 12;
+/// Largest number of ANCF elements accepted per segment.
+pub const MAX_ELEMENTS: usize = 4096;
+
+impl Scene {
+    /// Parses and validates a scene.
+    pub fn from_toml(text: &str) -> Result<Self, SceneError> {
+        Self::from_toml_with_overrides(text, &[])
+    }
+
+    /// Parses a scene, applies `key.path=value` overrides, then validates.
+    pub fn from_toml_with_overrides(
+        text: &str,
+        overrides: &[(String, String)],
+    ) -> Result<Self, SceneError> {
+        let mut value: toml::Table = toml::from_str(text)
+            .map_err(|e| SceneError(format!("scene is not valid TOML: {e}")))?;
+        for (key, val) in overrides {
+            apply_override(&mut value, key, val)?;
+        }
+        let scene: Scene = Scene::deserialize(toml::Value::Table(value))
+            .map_err(|e| SceneError(format!("scene: {}", e.to_string().trim())))?;
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Serializes the scene back to TOML.
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).unwrap_or_default()
+    }
+
+    /// Checks every value; the error names the field, its value and what is allowed.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        if self.name.trim().is_empty() {
+            return Err(SceneError("name = \"\": give the scene a name".into()));
+        }
+        for (i, g) in self.gravity.iter().enumerate() {
+            check_finite(&format!("gravity[{i}]"), *g)?;
+        }
+        for (i, f) in self.tip.force.iter().enumerate() {
+            check_finite(&format!("tip.force[{i}]"), *f)?;
+        }
+        check_finite("initial.angle", self.initial.angle)?;
+        let s = &self.solver;
+        if !(s.rho_inf.is_finite() && (0.0..1.0).contains(&s.rho_inf)) {
+            return Err(SceneError(format!(
+                "solver.rho_inf = {}: must be in [0, 1) (index-3 constraints need numerical damping; 0.9 is the default)",
+                s.rho_inf
+            )));
+        }
+        check_positive("solver.max_step", s.max_step, "seconds")?;
+        if !(s.tolerance.is_finite() && s.tolerance > 0.0 && s.tolerance < 1e-2) {
+            return Err(SceneError(format!(
+                "solver.tolerance = {}: must be in (0, 0.01) (relative Newton tolerance; 1e-8 is the default)",
+                s.tolerance
+            )));
+        }
+        if s.max_iterations == 0 || s.max_iterations > 100 {
+            return Err(SceneError(format!(
+                "solver.max_iterations = {}: must be in 1..=100",
+                s.max_iterations
+            )));
+        }
+        check_positive("simulation.t_end", self.simulation.t_end, "seconds")?;
+        check_positive(
+            "simulation.output_step",
+            self.simulation.output_step,
+            "seconds",
+        )?;
+        if self.segments.is_empty() {
+            return Err(SceneError(
+                "segments: the list is empty: add at least one [[segments]] table with kind = \"modal\" or \"ancf\"".into(),
+            ));
+        }
+        for (i, seg) in self.segments.iter().enumerate() {
+            let p = format!("segments[{i}]");
+            if seg.name.trim().is_empty()
+                || !seg
+                    .name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_')
+            {
+                return Err(SceneError(format!(
+                    "{p}.name = {:?}: must be non-empty and use only letters, digits and '_' (it prefixes FMU variable names)",
+                    seg.name
+                )));
+            }
+            if self.segments[..i].iter().any(|o| o.name == seg.name) {
+                return Err(SceneError(format!(
+                    "{p}.name = {:?}: segment names must be unique",
+                    seg.name
+                )));
+            }
+            check_positive(&format!("{p}.length"), seg.length, "metres")?;
+            check_positive(&format!("{p}.youngs_modulus"), seg.youngs_modulus, "Pa")?;
+            check_positive(&format!("{p}.density"), seg.density, "kg/m3")?;
+            check_nonnegative(&format!("{p}.damping_time"), seg.damping_time, "seconds")?;
+            match seg.section {
+                Section::Round => {
+                    let d = seg.diameter.ok_or_else(|| {
+                        SceneError(format!(
+                            "{p}.diameter is missing: a round section needs diameter = <metres>"
+                        ))
+                    })?;
+                    check_positive(&format!("{p}.diameter"), d, "metres")?;
+                }
+                Section::Rectangle => {
+                    for (f, v) in [("width", seg.width), ("height", seg.height)] {
+                        let v = v.ok_or_else(|| {
+                            SceneError(format!(
+                                "{p}.{f} is missing: a rectangle section needs width and height in metres"
+                            ))
+                        })?;
+                        check_positive(&format!("{p}.{f}"), v, "metres")?;
+                    }
+                }
+            }
+            match seg.kind {
+                SegmentKind::Modal => {
+                    let n = seg.modes.ok_or_else(|| {
+                        SceneError(format!(
+                            "{p}.modes is missing: a modal segment needs modes = 1..={MAX_MODES}"
+                        ))
+                    })?;
+                    if n == 0 || n > MAX_MODES {
+                        return Err(SceneError(format!(
+                            "{p}.modes = {n}: must be in 1..={MAX_MODES}"
+                        )));
+                    }
+                    if seg.elements.is_some() {
+                        return Err(SceneError(format!(
+                            "{p}.elements: a modal segment has no elements; use modes, or kind = \"ancf\""
+                        )));
+                    }
+                    if !(seg.damping_ratio.is_finite() && (0.0..=1.0).contains(&seg.damping_ratio))
+                    {
+                        return Err(SceneError(format!(
+                            "{p}.damping_ratio = {}: must be in [0, 1]",
+                            seg.damping_ratio
+                        )));
+                    }
+                }
+                SegmentKind::Ancf => {
+                    let n = seg.elements.ok_or_else(|| {
+                        SceneError(format!(
+                            "{p}.elements is missing: an ancf segment needs elements = 1..={MAX_ELEMENTS}"
+                        ))
+                    })?;
+                    if n == 0 || n > MAX_ELEMENTS {
+                        return Err(SceneError(format!(
+                            "{p}.elements = {n}: must be in 1..={MAX_ELEMENTS}"
+                        )));
+                    }
+                    if seg.modes.is_some() || seg.interface_modes {
+                        return Err(SceneError(format!(
+                            "{p}.modes: an ancf segment has no modes; use elements, or kind = \"modal\""
+                        )));
+                    }
+                    if seg.damping_ratio != 0.0 {
+                        return Err(SceneError(format!(
+                            "{p}.damping_ratio = {}: only modal segments take a damping ratio; use damping_time (Kelvin-Voigt, seconds) on an ancf segment",
+                            seg.damping_ratio
+                        )));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Total undeformed length [m].
+    pub fn total_length(&self) -> f64 {
+        self.segments.iter().map(|s| s.length).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const OK: &str = r#"
+name = "t"
+gravity = [0.0, -9.81]
+[[segments]]
+name = "a"
+kind = "ancf"
+length = 0.4
+diameter = 0.002
+youngs_modulus = 2.1e11
+density = 7850.0
+elements = 4
+"#;
+
+    #[test]
+    fn parses_a_minimal_scene() {
+        let s = Scene::from_toml(OK).unwrap();
+        assert_eq!(s.segments[0].elements, Some(4));
+        assert_eq!(s.solver.rho_inf, 0.9);
+    }
+
+    fn err_of(overrides: &[(&str, &str)]) -> String {
+        let o: Vec<(String, String)> = overrides
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect();
+        Scene::from_toml_with_overrides(OK, &o).unwrap_err().0
+    }
+
+    #[test]
+    fn bad_values_name_the_field() {
+        assert!(err_of(&[("segments.0.length", "-0.2")]).contains("segments[0].length = -0.2"));
+        assert!(err_of(&[("segments.0.elements", "0")]).contains("segments[0].elements = 0"));
+        assert!(err_of(&[("segments.0.kind", "\"beam\"")]).contains("kind"));
+        assert!(err_of(&[("segments.0.youngs_modulus", "0.0")]).contains("youngs_modulus"));
+        assert!(err_of(&[("segments.0.density", "nan")]).contains("density = NaN"));
+        assert!(err_of(&[("solver.rho_inf", "1.0")]).contains("solver.rho_inf"));
+        assert!(err_of(&[("segments", "[]")]).contains("empty"));
+        assert!(err_of(&[("segments.0.lenght", "1.0")]).contains("lenght"));
+    }
+}

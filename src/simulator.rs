@@ -1,0 +1,153 @@
+//! A beam in time: model + integrator + state behind `advance` and `outputs`.
+//! This is what the command-line runner and the FMU adapter drive.
+
+use crate::integrator::{solve_static, Counters, GeneralizedAlpha, State};
+use crate::model::{Model, Outputs};
+use crate::scene::{InitialState, Scene};
+
+/// Largest number of halvings of the internal step before a communication step fails.
+pub const MAX_HALVINGS: u32 = 12;
+
+/// A running simulation.
+#[derive(Debug)]
+pub struct Simulator {
+    scene: Scene,
+    model: Model,
+    integ: GeneralizedAlpha,
+    state: State,
+    /// Smallest internal step used so far [s].
+    pub min_step_used: f64,
+}
+
+impl Simulator {
+    /// Builds the model and its initial state (straight, or static equilibrium) at t = 0, with
+    /// consistent accelerations.
+    pub fn new(scene: Scene) -> Result<Self, String> {
+        let mut model = Model::from_scene(&scene).map_err(|e| e.0)?;
+        let n = model.coordinates();
+        let m = model.constraints();
+        let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
+        let mut integ = GeneralizedAlpha::new(
+            scene.solver.rho_inf,
+            scene.solver.tolerance,
+            scene.solver.max_iterations,
+            n,
+            m,
+        );
+        if scene.initial.state == InitialState::Static {
+            solve_static(&mut model, &mut state, scene.solver.tolerance * 1e-2)
+                .map_err(|e| format!("initial.state = \"static\": {e}; try initial.state = \"straight\" or smaller loads"))?;
+        }
+        integ
+            .initialize(&mut model, &mut state)
+            .map_err(|e| format!("initial accelerations: {e}"))?;
+        Ok(Self {
+            scene,
+            model,
+            integ,
+            state,
+            min_step_used: f64::INFINITY,
+        })
+    }
+
+    /// The scene this simulator was built from.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The model.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// Current time [s].
+    pub fn time(&self) -> f64 {
+        self.state.t
+    }
+
+    /// Current state.
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// Replaces the state (same dimensions; e.g. restoring a snapshot).
+    pub fn set_state(&mut self, s: State) -> Result<(), String> {
+        if s.q.len() != self.state.q.len() || s.lambda.len() != self.state.lambda.len() {
+            return Err("state dimensions do not match this model".into());
+        }
+        self.state = s;
+        self.integ.invalidate();
+        Ok(())
+    }
+
+    /// Work counters.
+    pub fn counters(&self) -> Counters {
+        self.integ.counters
+    }
+
+    /// Input tip force on top of the scene's constant force [N], global axes.
+    pub fn set_tip_force(&mut self, f: [f64; 2]) {
+        self.model.tip_force = f;
+    }
+
+    /// Current input tip force [N].
+    pub fn tip_force(&self) -> [f64; 2] {
+        self.model.tip_force
+    }
+
+    /// Outputs of the current state.
+    pub fn outputs(&self) -> Outputs {
+        self.model.outputs(&self.state.q, &self.state.v)
+    }
+
+    /// Advances to `t_end` in equal internal steps no larger than `solver.max_step`, halving
+    /// a step that fails (at most [`MAX_HALVINGS`] times). On failure the state is the one at
+    /// the start of the call and the error says why and what to change.
+    pub fn advance(&mut self, t_end: f64) -> Result<(), String> {
+        let t0 = self.state.t;
+        let span = t_end - t0;
+        if !(span > 0.0) || !span.is_finite() {
+            return Err(format!("cannot advance from t = {t0} to t = {t_end}"));
+        }
+        let h_max = self.scene.solver.max_step;
+        let saved = self.state.clone();
+        let mut steps = (span / h_max * (1.0 - 1e-12)).ceil().max(1.0) as u64;
+        let mut done = 0u64;
+        let mut halvings = 0;
+        while done < steps {
+            let h = span / steps as f64;
+            match self.integ.step(&mut self.model, &mut self.state, h) {
+                Ok(_) => {
+                    done += 1;
+                    self.min_step_used = self.min_step_used.min(h);
+                    self.state.t = t0 + span * (done as f64 / steps as f64);
+                }
+                Err(e) => {
+                    self.integ.counters.rejected += 1;
+                    halvings += 1;
+                    if halvings > MAX_HALVINGS {
+                        self.state = saved;
+                        self.integ.invalidate();
+                        return Err(format!(
+                            "step from t = {:.6} s failed after {MAX_HALVINGS} halvings of the internal step: {e}. \
+                             Reduce the communication step or solver.max_step, add damping, or lower solver.rho_inf",
+                            self.state.t
+                        ));
+                    }
+                    steps *= 2;
+                    done *= 2;
+                }
+            }
+        }
+        self.state.t = t_end;
+        Ok(())
+    }
+
+    /// Solves the static equilibrium from the current state under the current loads.
+    pub fn solve_static(&mut self) -> Result<usize, String> {
+        let tol = self.scene.solver.tolerance * 1e-2;
+        let it = solve_static(&mut self.model, &mut self.state, tol).map_err(|e| e.to_string())?;
+        self.integ.invalidate();
+        Ok(it)
+    }
+}
