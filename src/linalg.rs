@@ -52,6 +52,13 @@ impl SparsePattern {
         self.row_idx.len()
     }
 
+    /// Row indices of column `col`.
+    pub fn column(&self, col: usize) -> impl Iterator<Item = usize> + '_ {
+        self.row_idx[self.col_ptr[col]..self.col_ptr[col + 1]]
+            .iter()
+            .copied()
+    }
+
     /// Position of entry (row, col) in the value array. Panics if it is not in the pattern
     /// (a bug in the assembly, never a consequence of input).
     pub fn slot(&self, row: usize, col: usize) -> u32 {

@@ -592,6 +592,18 @@ impl Model {
         }
     }
 
+    /// The matrix assembled by the last [`Model::eval`] with a matrix request, as dense rows
+    /// (for linearized analyses and tests; O((n + m)²) memory).
+    pub fn assembled_dense(&self) -> Vec<Vec<f64>> {
+        let p = self.lu.pattern();
+        let d = p.dim();
+        let mut out = vec![vec![0.0; d]; d];
+        for (c, row) in (0..d).flat_map(|c| p.column(c).map(move |r| (c, r))) {
+            out[row][c] = self.values[p.slot(row, c) as usize];
+        }
+        out
+    }
+
     /// Factorizes the matrix assembled by the last [`Model::eval`] with a matrix request.
     pub fn factorize(&mut self) -> Result<(), SingularMatrix> {
         self.lu.factorize(&self.values)

@@ -1,0 +1,94 @@
+//! Static cantilever against the elastica tables of physics.md §4 (independent shooting
+//! solutions), and the Case 1 beam against its linear self-weight deflection (§4c).
+
+mod common;
+use common::*;
+use hybeam::simulator::Simulator;
+
+/// Slender square steel cantilever, L = 1 m, b = 1 cm (EA L²/EI = 1.2e5: nearly inextensible).
+const L: f64 = 1.0;
+const B: f64 = 0.01;
+
+fn ei() -> f64 {
+    E_STEEL * B.powi(4) / 12.0
+}
+
+fn static_tip(header: &str, elements: usize) -> [f64; 2] {
+    let s = scene(header, &[ancf("rod", L, &square(B), elements, "")]);
+    let mut sim = Simulator::new(s).unwrap();
+    sim.solve_static().unwrap();
+    sim.outputs().tip_position
+}
+
+/// physics.md §4a: (α = PL²/EI, v/L, u/L).
+const ELASTICA: [(f64, f64, f64); 4] = [
+    (1.0, 0.30172, 0.05643),
+    (2.0, 0.49346, 0.16064),
+    (5.0, 0.71379, 0.38763),
+    (10.0, 0.81061, 0.55500),
+];
+
+/// physics.md §4b: (γ = qL³/EI, v/L, u/L).
+const SELF_WEIGHT: [(f64, f64, f64); 4] = [
+    (1.0, 0.12347, 0.00875),
+    (2.0, 0.23851, 0.03311),
+    (5.0, 0.49591, 0.15334),
+    (10.0, 0.70020, 0.34365),
+];
+
+#[test]
+fn tip_loaded_cantilever_matches_the_elastica() {
+    for (alpha, v, u) in ELASTICA {
+        let p = alpha * ei() / (L * L);
+        let tip = static_tip(&format!("[tip]\nforce = [0.0, {:e}]", -p), 32);
+        let (dv, du) = (-tip[1] / L - v, (L - tip[0]) / L - u);
+        assert!(
+            dv.abs() < 2e-4 && du.abs() < 2e-4,
+            "alpha {alpha}: v/L error {dv:e}, u/L error {du:e}"
+        );
+    }
+}
+
+#[test]
+fn cantilever_under_self_weight_matches_the_elastica() {
+    let rho_a = RHO_STEEL * B * B;
+    for (gamma, v, u) in SELF_WEIGHT {
+        let g = gamma * ei() / (rho_a * L.powi(3));
+        let tip = static_tip(&format!("gravity = [0.0, {:e}]", -g), 32);
+        let (dv, du) = (-tip[1] / L - v, (L - tip[0]) / L - u);
+        assert!(
+            dv.abs() < 2e-4 && du.abs() < 2e-4,
+            "gamma {gamma}: v/L error {dv:e}, u/L error {du:e}"
+        );
+    }
+}
+
+#[test]
+fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
+    // physics.md §4c: δ_static = 4.69 mm (Case 1 beam, steel). Linear theory qL⁴/(8EI) with the
+    // small geometric correction of the elastica (v/L ≈ γ/8 at γ ≈ 0.094) is 4.69 mm.
+    let d = 0.002;
+    let header = "gravity = [0.0, -9.81]";
+    for segs in [
+        vec![
+            modal("m", 0.2, &round(d), 4, true, ""),
+            ancf("a", 0.2, &round(d), 8, ""),
+        ],
+        vec![ancf("a", 0.4, &round(d), 16, "")],
+        vec![modal("m", 0.4, &round(d), 4, false, "")],
+    ] {
+        let mut sim = Simulator::new(scene(header, &segs)).unwrap();
+        sim.solve_static().unwrap();
+        let area = std::f64::consts::PI * d * d / 4.0;
+        let q = RHO_STEEL * area * 9.81;
+        let ei = E_STEEL * area * d * d / 16.0;
+        let linear = q * 0.4f64.powi(4) / (8.0 * ei);
+        let v = -sim.outputs().tip_position[1];
+        assert!(
+            (v / linear - 1.0).abs() < 2e-3,
+            "{} segments: {v} vs {linear}",
+            segs.len()
+        );
+        assert!((v - 4.69e-3).abs() < 0.01e-3);
+    }
+}
