@@ -106,7 +106,7 @@ impl Simulator {
     pub fn advance(&mut self, t_end: f64) -> Result<(), String> {
         let t0 = self.state.t;
         let span = t_end - t0;
-        if !(span > 0.0) || !span.is_finite() {
+        if span.is_nan() || span <= 0.0 || !span.is_finite() {
             return Err(format!("cannot advance from t = {t0} to t = {t_end}"));
         }
         let h_max = self.scene.solver.max_step;
