@@ -84,8 +84,37 @@ pub struct GeneralizedAlpha {
     pub counters: Counters,
     /// Step size of the held factorization (None = must refactor).
     factored_h: Option<f64>,
+    /// Where the held Jacobian was evaluated, so that a restored snapshot can rebuild the very
+    /// same factorization and continue bit for bit.
+    jac_at: Option<JacobianPoint>,
+    /// Newton convergence-rate estimate η = ρ/(1 − ρ) carried across steps.
+    eta: f64,
     res: Vec<f64>,
     trial: State,
+}
+
+/// The state and step size at which the held Newton matrix was evaluated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JacobianPoint {
+    /// Step size [s].
+    pub h: f64,
+    /// Coordinates, velocities, accelerations and scaled multipliers of the evaluation.
+    pub q: Vec<f64>,
+    /// q̇.
+    pub v: Vec<f64>,
+    /// q̈.
+    pub acc: Vec<f64>,
+    /// λ̃ = βh²λ.
+    pub lam: Vec<f64>,
+}
+
+/// Integrator memory beyond the state: what a snapshot must carry for a bit-identical restart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntegratorMemory {
+    /// Convergence-rate estimate.
+    pub eta: f64,
+    /// Jacobian evaluation point, if a factorization is held.
+    pub jacobian: Option<JacobianPoint>,
 }
 
 /// Contraction rate above which a stale Jacobian is refreshed.
@@ -100,6 +129,8 @@ impl GeneralizedAlpha {
             max_iter,
             counters: Counters::default(),
             factored_h: None,
+            jac_at: None,
+            eta: 1.0,
             res: vec![0.0; n + m],
             trial: State::at_rest(0.0, vec![0.0; n], m),
         }
@@ -108,6 +139,49 @@ impl GeneralizedAlpha {
     /// Forgets the held Jacobian (after the model or its parameters changed).
     pub fn invalidate(&mut self) {
         self.factored_h = None;
+        self.jac_at = None;
+    }
+
+    /// The memory a snapshot must carry.
+    pub fn memory(&self) -> IntegratorMemory {
+        IntegratorMemory {
+            eta: self.eta,
+            jacobian: if self.factored_h.is_some() {
+                self.jac_at.clone()
+            } else {
+                None
+            },
+        }
+    }
+
+    /// Restores memory: re-evaluates and factorizes the Newton matrix at its recorded point, so
+    /// that the next steps are bit-identical to those of the original run.
+    pub fn restore_memory(
+        &mut self,
+        model: &mut Model,
+        mem: &IntegratorMemory,
+    ) -> Result<(), StepFailure> {
+        self.invalidate();
+        self.eta = mem.eta;
+        if let Some(jp) = &mem.jacobian {
+            if jp.q.len() != self.trial.q.len() || jp.lam.len() != self.trial.lambda.len() {
+                return Err(StepFailure::Singular { h: jp.h });
+            }
+            let h = jp.h;
+            let p = self.p;
+            let bh2 = p.beta * h * h;
+            let coeffs = ((1.0 - p.alpha_m) / (1.0 - p.alpha_f), p.gamma * h, bh2);
+            let req = EvalRequest {
+                sd: bh2,
+                matrix: Some(coeffs),
+                lambda_hessian: true,
+            };
+            model.eval(&jp.q, &jp.v, &jp.acc, &jp.lam, 1.0, req, &mut self.res);
+            model.factorize().map_err(|_| StepFailure::Singular { h })?;
+            self.factored_h = Some(h);
+            self.jac_at = Some(jp.clone());
+        }
+        Ok(())
     }
 
     /// Consistent initial accelerations and multipliers at `s` (q, q̇ given); sets the
@@ -193,6 +267,8 @@ impl GeneralizedAlpha {
         let coeffs = ((1.0 - am) / (1.0 - af), ga * h, bh2);
         let mut fresh = false;
         let mut last = f64::INFINITY;
+        // the rate estimate of earlier steps is trusted less as steps go by (Hairer & Wanner)
+        let mut eta = self.eta.max(f64::EPSILON).powf(0.8);
         let scale = model.scales().to_vec();
         for it in 0..self.max_iter {
             let refresh = self.factored_h != Some(h);
@@ -210,6 +286,13 @@ impl GeneralizedAlpha {
                 }
                 self.counters.factorizations += 1;
                 self.factored_h = Some(h);
+                self.jac_at = Some(JacobianPoint {
+                    h,
+                    q: t.q.clone(),
+                    v: t.v.clone(),
+                    acc: t.acc.clone(),
+                    lam: t.lambda.clone(),
+                });
                 fresh = true;
             }
             for r in self.res.iter_mut() {
@@ -234,7 +317,17 @@ impl GeneralizedAlpha {
                 self.factored_h = None;
                 return Err(StepFailure::Singular { h });
             }
-            if norm <= 1.0 {
+            if it > 0 {
+                let rate = norm / last;
+                eta = if rate < 1.0 {
+                    rate / (1.0 - rate)
+                } else {
+                    f64::INFINITY
+                };
+            }
+            // converged when the estimated remaining error η‖Δq‖ is within tolerance
+            if eta * norm <= 1.0 || norm <= 1e-3 {
+                self.eta = eta;
                 for j in 0..m {
                     t.lambda[j] /= bh2;
                 }
@@ -251,7 +344,8 @@ impl GeneralizedAlpha {
                 break; // diverging with a fresh Jacobian
             }
         }
-        self.factored_h = None;
+        self.invalidate();
+        self.eta = 1.0;
         Err(StepFailure::NoConvergence { h, last_norm: last })
     }
 }

@@ -3,7 +3,9 @@
 mod generalized_alpha;
 mod statics;
 
-pub use generalized_alpha::{AlphaParams, GeneralizedAlpha, StepFailure};
+pub use generalized_alpha::{
+    AlphaParams, GeneralizedAlpha, IntegratorMemory, JacobianPoint, StepFailure,
+};
 pub use statics::{solve_static, StaticFailure};
 
 /// Dynamic state of the model.
