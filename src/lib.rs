@@ -8,6 +8,7 @@
 //! joints) → [`integrator`] (generalized-α, statics) → [`simulator`] (run to a time, outputs,
 //! snapshots) → [`fmi`] (FMI 2.0 entry points, which know nothing of beams).
 
+pub mod cosim;
 pub mod fmi;
 pub mod integrator;
 pub mod linalg;

@@ -1,7 +1,7 @@
 //! A beam in time: model + integrator + state behind `advance` and `outputs`.
 //! This is what the command-line runner and the FMU adapter drive.
 
-use crate::integrator::{solve_static, Counters, GeneralizedAlpha, State};
+use crate::integrator::{solve_static, Counters, GeneralizedAlpha, IntegratorMemory, State};
 use crate::model::{Model, Outputs};
 use crate::scene::{InitialState, Scene};
 
@@ -23,6 +23,15 @@ impl Simulator {
     /// Builds the model and its initial state (straight, or static equilibrium) at t = 0, with
     /// consistent accelerations.
     pub fn new(scene: Scene) -> Result<Self, String> {
+        Self::build(scene, true)
+    }
+
+    /// Builds the model without computing an initial state (the caller restores a snapshot).
+    pub fn for_restore(scene: Scene) -> Result<Self, String> {
+        Self::build(scene, false)
+    }
+
+    fn build(scene: Scene, initialize: bool) -> Result<Self, String> {
         let mut model = Model::from_scene(&scene).map_err(|e| e.0)?;
         let n = model.coordinates();
         let m = model.constraints();
@@ -34,13 +43,15 @@ impl Simulator {
             n,
             m,
         );
-        if scene.initial.state == InitialState::Static {
+        if initialize && scene.initial.state == InitialState::Static {
             solve_static(&mut model, &mut state, scene.solver.tolerance * 1e-2)
                 .map_err(|e| format!("initial.state = \"static\": {e}; try initial.state = \"straight\" or smaller loads"))?;
         }
-        integ
-            .initialize(&mut model, &mut state)
-            .map_err(|e| format!("initial accelerations: {e}"))?;
+        if initialize {
+            integ
+                .initialize(&mut model, &mut state)
+                .map_err(|e| format!("initial accelerations: {e}"))?;
+        }
         Ok(Self {
             scene,
             model,
@@ -70,14 +81,30 @@ impl Simulator {
         &self.state
     }
 
-    /// Replaces the state (same dimensions; e.g. restoring a snapshot).
-    pub fn set_state(&mut self, s: State) -> Result<(), String> {
-        if s.q.len() != self.state.q.len() || s.lambda.len() != self.state.lambda.len() {
+    /// The integrator memory a snapshot must carry besides the state.
+    pub fn memory(&self) -> IntegratorMemory {
+        self.integ.memory()
+    }
+
+    /// Restores a snapshot (state and integrator memory) taken from a simulator of the same
+    /// scene; the run then continues bit for bit as the original.
+    pub fn restore(&mut self, s: State, mem: &IntegratorMemory) -> Result<(), String> {
+        if s.q.len() != self.state.q.len()
+            || s.lambda.len() != self.state.lambda.len()
+            || [&s.v, &s.acc, &s.aux].iter().any(|x| x.len() != s.q.len())
+        {
             return Err("state dimensions do not match this model".into());
         }
+        self.integ
+            .restore_memory(&mut self.model, mem)
+            .map_err(|e| format!("cannot rebuild the Newton matrix of the snapshot: {e}"))?;
         self.state = s;
-        self.integ.invalidate();
         Ok(())
+    }
+
+    /// Sets gravity [m/s²] (takes effect at the next step).
+    pub fn set_gravity(&mut self, g: [f64; 2]) {
+        self.model.set_gravity(g);
     }
 
     /// Work counters.
@@ -97,7 +124,8 @@ impl Simulator {
 
     /// Outputs of the current state.
     pub fn outputs(&self) -> Outputs {
-        self.model.outputs(&self.state.q, &self.state.v)
+        let s = &self.state;
+        self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda)
     }
 
     /// Advances to `t_end` in equal internal steps no larger than `solver.max_step`, halving

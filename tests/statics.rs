@@ -92,3 +92,39 @@ fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
         assert!((v - 4.69e-3).abs() < 0.01e-3);
     }
 }
+
+#[test]
+fn root_reaction_balances_weight_and_tip_load() {
+    // statics: the support carries the whole weight and tip load, and their moment about the
+    // root (deformed lever arms; Case 1 beam, nearly straight, so compare with 1e-3 tolerance
+    // on the moment, exact on the force)
+    let d = 0.002;
+    let p = -0.05;
+    let header = format!("gravity = [0.0, -9.81]\n[tip]\nforce = [0.0, {p:e}]");
+    for segs in [
+        vec![
+            modal("m", 0.2, &round(d), 4, true, ""),
+            ancf("a", 0.2, &round(d), 8, ""),
+        ],
+        vec![ancf("a", 0.4, &round(d), 16, "")],
+        vec![modal("m", 0.4, &round(d), 4, false, "")],
+    ] {
+        let mut sim = Simulator::new(scene(&header, &segs)).unwrap();
+        sim.solve_static().unwrap();
+        let o = sim.outputs();
+        let area = std::f64::consts::PI * d * d / 4.0;
+        let w = RHO_STEEL * area * 0.4 * 9.81;
+        assert!(
+            (o.root_force[1] - (w - p)).abs() < 1e-9 * w,
+            "{:?}",
+            o.root_force
+        );
+        assert!(o.root_force[0].abs() < 1e-9 * w);
+        let m = w * 0.2 - p * o.tip_position[0];
+        assert!(
+            (o.root_moment / m - 1.0).abs() < 1e-3,
+            "{} vs {m}",
+            o.root_moment
+        );
+    }
+}

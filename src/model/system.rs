@@ -53,6 +53,11 @@ pub struct Outputs {
     pub strain: f64,
     /// Gravity potential energy −∫ρA gᵀr dx [J] (zero at the origin).
     pub potential: f64,
+    /// Force of the support on the beam at the root [N], global axes.
+    pub root_force: [f64; 2],
+    /// Moment of the support on the beam about the root point [N m], counter-clockwise
+    /// positive (zero for a pinned root).
+    pub root_moment: f64,
 }
 
 /// What [`Model::eval`] should produce.
@@ -614,8 +619,75 @@ impl Model {
         self.lu.solve(rhs)
     }
 
-    /// Outputs at a state.
-    pub fn outputs(&self, q: &[f64], v: &[f64]) -> Outputs {
+    /// Reaction of the support on the beam: the residual `M q̈ + f − f_ext + Φ_qᵀλ` of the
+    /// eliminated root coordinates (force on the root position, moment from the root slope or
+    /// frame angle).
+    fn root_reaction(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> ([f64; 2], f64) {
+        let gather = |idx: &[u32], fixed: &[f64], x: &[f64], use_fixed: bool| -> Vec<f64> {
+            idx.iter()
+                .zip(fixed)
+                .map(|(&i, &f)| {
+                    if i == FIXED {
+                        if use_fixed {
+                            f
+                        } else {
+                            0.0
+                        }
+                    } else {
+                        x[i as usize]
+                    }
+                })
+                .collect()
+        };
+        match &self.segments[0] {
+            SegmentCoords::Ancf(range) => {
+                let el = &self.elements[range.start];
+                let e = Vec8::from_column_slice(&gather(&el.idx, &el.fixed, q, true));
+                let ed = Vec8::from_column_slice(&gather(&el.idx, &el.fixed, v, false));
+                let ea = Vec8::from_column_slice(&gather(&el.idx, &el.fixed, acc, false));
+                let f = el.mass * ea + el.props.elastic(&e, &ed, false).force
+                    - self.gravity_forces[range.start];
+                let moment = if el.idx[2] == FIXED {
+                    e[2] * f[3] - e[3] * f[2]
+                } else {
+                    0.0
+                };
+                ([f[0], f[1]], moment)
+            }
+            SegmentCoords::Modal(bi) => {
+                let (body, idx, fixed) = &self.bodies[*bi];
+                let ql = gather(idx, fixed, q, true);
+                let vl = gather(idx, fixed, v, false);
+                let al = gather(idx, fixed, acc, false);
+                let mut out = BodyOut::new(body.dim());
+                body.eval(&ql, &vl, &al, self.gravity, false, &mut out);
+                let mut r = [out.res[0], out.res[1], out.res[2]];
+                let tip_here = End::ModalTip { body: *bi };
+                if self.tip == tip_here {
+                    let f = self.total_tip_force();
+                    let kin = end_kin(&self.tip, q, &self.bodies);
+                    for k in 0..3 {
+                        r[k] -= kin.dp[k][0] * f[0] + kin.dp[k][1] * f[1];
+                    }
+                }
+                for js in self.joints.iter().filter(|j| j.joint.up == tip_here) {
+                    let ku = end_kin(&js.joint.up, q, &self.bodies);
+                    let kd = end_kin(&js.joint.down, q, &self.bodies);
+                    let je = joint_eval(&ku, &kd, None);
+                    for row in 0..3 {
+                        for k in 0..3 {
+                            r[k] += je.jac[row][k] * lam[js.joint.row + row];
+                        }
+                    }
+                }
+                let moment = if idx[2] == FIXED { r[2] } else { 0.0 };
+                ([r[0], r[1]], moment)
+            }
+        }
+    }
+
+    /// Outputs at a state (q, q̇, q̈, λ).
+    pub fn outputs(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> Outputs {
         let kin = end_kin(&self.tip, q, &self.bodies);
         let mut vel = Vector2::zeros();
         for (k, &i) in kin.idx.iter().enumerate() {
@@ -659,6 +731,7 @@ impl Model {
             o.strain += body.strain_energy(&ql);
             o.potential += body.potential_energy(&ql, self.gravity);
         }
+        (o.root_force, o.root_moment) = self.root_reaction(q, v, acc, lam);
         o
     }
 }

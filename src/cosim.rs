@@ -1,0 +1,700 @@
+//! The beam as a co-simulation model: the variable table derived from the scene and its
+//! mapping onto a [`Simulator`]. Implements [`CoSimModel`] for the FMI layer.
+//!
+//! Value references are derived from the scene's structure, never from an enumeration order
+//! that could shift: inputs 1–2, outputs 10–22, gravity 100–101, solver 110–112, and segment i's
+//! field k at 1000·(i + 1) + k (k: length 1, diameter 2, width 3, height 4, youngs_modulus 5,
+//! density 6, damping_time 7, damping_ratio 8). A scene only gets the variables it needs: no
+//! damping parameters without damping, no width/height on a round section.
+
+use crate::fmi::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
+use crate::integrator::{IntegratorMemory, JacobianPoint, State};
+use crate::scene::{Scene, Section, SegmentKind};
+use crate::simulator::Simulator;
+
+/// What a value reference designates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Slot {
+    TipForce(usize),
+    TipPosition(usize),
+    TipVelocity(usize),
+    TipAngle,
+    RootForce(usize),
+    RootMoment,
+    Kinetic,
+    Strain,
+    Potential,
+    Gravity(usize),
+    RhoInf,
+    MaxStep,
+    Tolerance,
+    Segment(usize, Field),
+}
+
+/// Segment fields exposed as parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Field {
+    Length = 1,
+    Diameter = 2,
+    Width = 3,
+    Height = 4,
+    YoungsModulus = 5,
+    Density = 6,
+    DampingTime = 7,
+    DampingRatio = 8,
+}
+
+impl Field {
+    fn name(self) -> &'static str {
+        match self {
+            Field::Length => "length",
+            Field::Diameter => "diameter",
+            Field::Width => "width",
+            Field::Height => "height",
+            Field::YoungsModulus => "youngs_modulus",
+            Field::Density => "density",
+            Field::DampingTime => "damping_time",
+            Field::DampingRatio => "damping_ratio",
+        }
+    }
+    fn unit(self) -> Option<&'static str> {
+        match self {
+            Field::Length | Field::Diameter | Field::Width | Field::Height => Some("m"),
+            Field::YoungsModulus => Some("Pa"),
+            Field::Density => Some("kg/m3"),
+            Field::DampingTime => Some("s"),
+            Field::DampingRatio => None,
+        }
+    }
+}
+
+/// The beam FMU model.
+#[derive(Debug)]
+pub struct BeamFmu {
+    /// Scene text from resources (identity of the FMU).
+    scene_text: String,
+    /// Scene as built (parameters overridden through the variables).
+    base: Scene,
+    /// Scene with the current parameter values.
+    scene: Scene,
+    vars: Vec<Variable>,
+    slots: Vec<Slot>,
+    /// Input tip force [N].
+    input: [f64; 2],
+    sim: Simulator,
+    /// Scene tip force the simulator was built with (the input is the total force).
+    built_force: [f64; 2],
+}
+
+/// Magic and version of the snapshot bytes.
+const MAGIC: &[u8; 8] = b"HYBEAM01";
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= *b as u64;
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    h
+}
+
+fn var(
+    name: String,
+    vr: u32,
+    causality: Causality,
+    variability: Variability,
+    start: Option<f64>,
+    unit: Option<&'static str>,
+    description: &str,
+) -> Variable {
+    Variable {
+        name,
+        vr,
+        causality,
+        variability,
+        start,
+        unit,
+        description: description.to_string(),
+    }
+}
+
+fn table(scene: &Scene) -> (Vec<Variable>, Vec<Slot>) {
+    use Causality::*;
+    use Variability::*;
+    let mut v = Vec::new();
+    let mut s = Vec::new();
+    let mut add = |x: Variable, slot: Slot| {
+        v.push(x);
+        s.push(slot);
+    };
+    for (i, ax) in ["x", "y"].iter().enumerate() {
+        add(
+            var(
+                format!("tip.force.{ax}"),
+                1 + i as u32,
+                Input,
+                Continuous,
+                Some(scene.tip.force[i]),
+                Some("N"),
+                "force applied at the free end, global axes",
+            ),
+            Slot::TipForce(i),
+        );
+    }
+    let outs: [(&str, Slot, Option<&'static str>, &str); 11] = [
+        (
+            "tip.position.x",
+            Slot::TipPosition(0),
+            Some("m"),
+            "free end position, global x",
+        ),
+        (
+            "tip.position.y",
+            Slot::TipPosition(1),
+            Some("m"),
+            "free end position, global y",
+        ),
+        (
+            "tip.velocity.x",
+            Slot::TipVelocity(0),
+            Some("m/s"),
+            "free end velocity, global x",
+        ),
+        (
+            "tip.velocity.y",
+            Slot::TipVelocity(1),
+            Some("m/s"),
+            "free end velocity, global y",
+        ),
+        (
+            "tip.angle",
+            Slot::TipAngle,
+            Some("rad"),
+            "angle of the end tangent from global x, counter-clockwise, in (-pi, pi]",
+        ),
+        (
+            "root.force.x",
+            Slot::RootForce(0),
+            Some("N"),
+            "force of the support on the beam, global x",
+        ),
+        (
+            "root.force.y",
+            Slot::RootForce(1),
+            Some("N"),
+            "force of the support on the beam, global y",
+        ),
+        (
+            "root.moment.z",
+            Slot::RootMoment,
+            Some("N.m"),
+            "moment of the support on the beam about the root, counter-clockwise",
+        ),
+        ("energy.kinetic", Slot::Kinetic, Some("J"), "kinetic energy"),
+        (
+            "energy.strain",
+            Slot::Strain,
+            Some("J"),
+            "elastic strain energy",
+        ),
+        (
+            "energy.potential",
+            Slot::Potential,
+            Some("J"),
+            "gravity potential energy (zero at the origin)",
+        ),
+    ];
+    for (k, (name, slot, unit, desc)) in outs.iter().enumerate() {
+        add(
+            var(
+                name.to_string(),
+                10 + k as u32,
+                Output,
+                Continuous,
+                None,
+                *unit,
+                desc,
+            ),
+            *slot,
+        );
+    }
+    for (i, ax) in ["x", "y"].iter().enumerate() {
+        add(
+            var(
+                format!("gravity.{ax}"),
+                100 + i as u32,
+                Parameter,
+                Tunable,
+                Some(scene.gravity[i]),
+                Some("m/s2"),
+                "gravity, global axes",
+            ),
+            Slot::Gravity(i),
+        );
+    }
+    add(
+        var(
+            "solver.rho_inf".into(),
+            110,
+            Parameter,
+            Fixed,
+            Some(scene.solver.rho_inf),
+            None,
+            "generalized-alpha spectral radius at infinity, [0, 1)",
+        ),
+        Slot::RhoInf,
+    );
+    add(
+        var(
+            "solver.max_step".into(),
+            111,
+            Parameter,
+            Fixed,
+            Some(scene.solver.max_step),
+            Some("s"),
+            "largest internal step",
+        ),
+        Slot::MaxStep,
+    );
+    add(
+        var(
+            "solver.tolerance".into(),
+            112,
+            Parameter,
+            Fixed,
+            Some(scene.solver.tolerance),
+            None,
+            "relative Newton tolerance",
+        ),
+        Slot::Tolerance,
+    );
+    for (i, seg) in scene.segments.iter().enumerate() {
+        let mut fields = vec![(Field::Length, seg.length)];
+        match seg.section {
+            Section::Round => fields.push((Field::Diameter, seg.diameter.unwrap_or(0.0))),
+            Section::Rectangle => {
+                fields.push((Field::Width, seg.width.unwrap_or(0.0)));
+                fields.push((Field::Height, seg.height.unwrap_or(0.0)));
+            }
+        }
+        fields.push((Field::YoungsModulus, seg.youngs_modulus));
+        fields.push((Field::Density, seg.density));
+        if seg.damping_time > 0.0 {
+            fields.push((Field::DampingTime, seg.damping_time));
+        }
+        if seg.kind == SegmentKind::Modal && seg.damping_ratio > 0.0 {
+            fields.push((Field::DampingRatio, seg.damping_ratio));
+        }
+        for (f, val) in fields {
+            let vr = 1000 * (i as u32 + 1) + f as u32;
+            add(
+                var(
+                    format!("{}.{}", seg.name, f.name()),
+                    vr,
+                    Parameter,
+                    Fixed,
+                    Some(val),
+                    f.unit(),
+                    &format!("segment '{}' {}", seg.name, f.name()),
+                ),
+                Slot::Segment(i, f),
+            );
+        }
+    }
+    (v, s)
+}
+
+impl BeamFmu {
+    fn slot_of(&self, vr: u32) -> Result<(usize, Slot), String> {
+        self.vars
+            .iter()
+            .position(|v| v.vr == vr)
+            .map(|i| (i, self.slots[i]))
+            .ok_or_else(|| format!("value reference {vr} is not a variable of this model"))
+    }
+
+    fn parameter_value(scene: &Scene, slot: Slot) -> f64 {
+        match slot {
+            Slot::Gravity(i) => scene.gravity[i],
+            Slot::RhoInf => scene.solver.rho_inf,
+            Slot::MaxStep => scene.solver.max_step,
+            Slot::Tolerance => scene.solver.tolerance,
+            Slot::Segment(i, f) => {
+                let s = &scene.segments[i];
+                match f {
+                    Field::Length => s.length,
+                    Field::Diameter => s.diameter.unwrap_or(0.0),
+                    Field::Width => s.width.unwrap_or(0.0),
+                    Field::Height => s.height.unwrap_or(0.0),
+                    Field::YoungsModulus => s.youngs_modulus,
+                    Field::Density => s.density,
+                    Field::DampingTime => s.damping_time,
+                    Field::DampingRatio => s.damping_ratio,
+                }
+            }
+            _ => f64::NAN,
+        }
+    }
+
+    fn set_parameter(scene: &mut Scene, slot: Slot, x: f64) {
+        match slot {
+            Slot::Gravity(i) => scene.gravity[i] = x,
+            Slot::RhoInf => scene.solver.rho_inf = x,
+            Slot::MaxStep => scene.solver.max_step = x,
+            Slot::Tolerance => scene.solver.tolerance = x,
+            Slot::Segment(i, f) => {
+                let s = &mut scene.segments[i];
+                match f {
+                    Field::Length => s.length = x,
+                    Field::Diameter => s.diameter = Some(x),
+                    Field::Width => s.width = Some(x),
+                    Field::Height => s.height = Some(x),
+                    Field::YoungsModulus => s.youngs_modulus = x,
+                    Field::Density => s.density = x,
+                    Field::DampingTime => s.damping_time = x,
+                    Field::DampingRatio => s.damping_ratio = x,
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn apply_input(&mut self) {
+        self.sim.set_tip_force([
+            self.input[0] - self.built_force[0],
+            self.input[1] - self.built_force[1],
+        ]);
+    }
+
+    /// Slots of the parameters, in table order.
+    fn parameter_slots(&self) -> Vec<Slot> {
+        self.vars
+            .iter()
+            .zip(&self.slots)
+            .filter(|(v, _)| v.causality == Causality::Parameter)
+            .map(|(_, s)| *s)
+            .collect()
+    }
+
+    fn parameters(&self) -> Vec<f64> {
+        self.parameter_slots()
+            .into_iter()
+            .map(|s| Self::parameter_value(&self.scene, s))
+            .collect()
+    }
+
+    fn build_scene_with_parameters(&self, params: &[f64]) -> Result<Scene, String> {
+        let mut scene = self.base.clone();
+        let pslots = self.parameter_slots();
+        if pslots.len() != params.len() {
+            return Err("snapshot parameter count does not match this model".into());
+        }
+        for (s, x) in pslots.iter().zip(params) {
+            Self::set_parameter(&mut scene, *s, *x);
+        }
+        scene.validate().map_err(|e| e.0)?;
+        Ok(scene)
+    }
+}
+
+struct Writer(Vec<u8>);
+impl Writer {
+    fn f(&mut self, x: f64) {
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+    fn u(&mut self, x: u64) {
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+    fn v(&mut self, xs: &[f64]) {
+        self.u(xs.len() as u64);
+        for x in xs {
+            self.f(*x);
+        }
+    }
+}
+
+struct Reader<'a>(&'a [u8]);
+impl Reader<'_> {
+    fn take(&mut self, n: usize) -> Result<&[u8], String> {
+        if self.0.len() < n {
+            return Err("snapshot bytes are truncated".into());
+        }
+        let (a, b) = self.0.split_at(n);
+        self.0 = b;
+        Ok(a)
+    }
+    fn u(&mut self) -> Result<u64, String> {
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().expect("8 bytes"),
+        ))
+    }
+    fn f(&mut self) -> Result<f64, String> {
+        Ok(f64::from_le_bytes(
+            self.take(8)?.try_into().expect("8 bytes"),
+        ))
+    }
+    fn v(&mut self) -> Result<Vec<f64>, String> {
+        let n = self.u()? as usize;
+        if n > self.0.len() / 8 {
+            return Err("snapshot bytes are truncated".into());
+        }
+        (0..n).map(|_| self.f()).collect()
+    }
+}
+
+impl CoSimModel for BeamFmu {
+    fn from_scene(scene_toml: &str) -> Result<Self, String> {
+        let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
+        let (vars, slots) = table(&scene);
+        let sim = Simulator::new(scene.clone())?;
+        Ok(Self {
+            scene_text: scene_toml.to_string(),
+            base: scene.clone(),
+            input: scene.tip.force,
+            built_force: scene.tip.force,
+            scene,
+            vars,
+            slots,
+            sim,
+        })
+    }
+
+    fn model_info(&self) -> ModelInfo {
+        ModelInfo {
+            model_name: self.base.name.clone(),
+            description: self.base.description.clone(),
+            start_time: 0.0,
+            stop_time: self.base.simulation.t_end,
+            step_size: self.base.simulation.output_step,
+        }
+    }
+
+    fn variables(&self) -> &[Variable] {
+        &self.vars
+    }
+
+    fn get_real(&self, vr: u32) -> Result<f64, String> {
+        let (_, slot) = self.slot_of(vr)?;
+        let o = self.sim.outputs();
+        Ok(match slot {
+            Slot::TipForce(i) => self.input[i],
+            Slot::TipPosition(i) => o.tip_position[i],
+            Slot::TipVelocity(i) => o.tip_velocity[i],
+            Slot::TipAngle => o.tip_angle,
+            Slot::RootForce(i) => o.root_force[i],
+            Slot::RootMoment => o.root_moment,
+            Slot::Kinetic => o.kinetic,
+            Slot::Strain => o.strain,
+            Slot::Potential => o.potential,
+            other => Self::parameter_value(&self.scene, other),
+        })
+    }
+
+    fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
+        let (i, slot) = self.slot_of(vr)?;
+        let name = &self.vars[i].name;
+        if !value.is_finite() {
+            return Err(format!("{name} = {value}: must be a finite number"));
+        }
+        match slot {
+            Slot::TipForce(k) => {
+                self.input[k] = value;
+                self.apply_input();
+                Ok(())
+            }
+            Slot::Gravity(_)
+            | Slot::RhoInf
+            | Slot::MaxStep
+            | Slot::Tolerance
+            | Slot::Segment(..) => {
+                let mut scene = self.scene.clone();
+                Self::set_parameter(&mut scene, slot, value);
+                scene
+                    .validate()
+                    .map_err(|e| format!("{name} = {value}: {e}"))?;
+                self.scene = scene;
+                if let Slot::Gravity(_) = slot {
+                    self.sim.set_gravity(self.scene.gravity);
+                }
+                Ok(())
+            }
+            _ => Err(format!("{name} is an output and cannot be set")),
+        }
+    }
+
+    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+        let mut scene = self.scene.clone();
+        scene.tip.force = self.input;
+        self.sim = Simulator::new(scene)?;
+        self.built_force = self.input;
+        self.apply_input();
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+        // the FMI layer checked t against the current time; integrate from the model's time
+        let _ = t;
+        let t_end = self.sim.time() + h;
+        self.sim.advance(t_end)
+    }
+
+    fn reset(&mut self) -> Result<(), String> {
+        let fresh = Self::from_scene(&self.scene_text)?;
+        *self = fresh;
+        Ok(())
+    }
+
+    fn save_state(&self) -> Vec<u8> {
+        let mut w = Writer(Vec::with_capacity(4096));
+        w.0.extend_from_slice(MAGIC);
+        w.u(fnv1a(self.scene_text.as_bytes()));
+        w.v(&self.parameters());
+        w.v(&self.input);
+        w.v(&self.built_force);
+        let s = self.sim.state();
+        w.f(s.t);
+        for x in [&s.q, &s.v, &s.acc, &s.aux, &s.lambda] {
+            w.v(x);
+        }
+        let mem = self.sim.memory();
+        w.f(mem.eta);
+        match &mem.jacobian {
+            None => w.u(0),
+            Some(j) => {
+                w.u(1);
+                w.f(j.h);
+                for x in [&j.q, &j.v, &j.acc, &j.lam] {
+                    w.v(x);
+                }
+            }
+        }
+        w.0
+    }
+
+    fn load_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        let mut r = Reader(bytes);
+        if r.take(8)? != MAGIC {
+            return Err("not a hybeam snapshot (bad magic or format version)".into());
+        }
+        if r.u()? != fnv1a(self.scene_text.as_bytes()) {
+            return Err("snapshot belongs to another scene".into());
+        }
+        let params = r.v()?;
+        let input = r.v()?;
+        let built = r.v()?;
+        if input.len() != 2 || built.len() != 2 {
+            return Err("snapshot input block is malformed".into());
+        }
+        let t = r.f()?;
+        let q = r.v()?;
+        let v = r.v()?;
+        let acc = r.v()?;
+        let aux = r.v()?;
+        let lambda = r.v()?;
+        let eta = r.f()?;
+        let jacobian = match r.u()? {
+            0 => None,
+            1 => {
+                let h = r.f()?;
+                Some(JacobianPoint {
+                    h,
+                    q: r.v()?,
+                    v: r.v()?,
+                    acc: r.v()?,
+                    lam: r.v()?,
+                })
+            }
+            _ => return Err("snapshot integrator block is malformed".into()),
+        };
+        if !r.0.is_empty() {
+            return Err("snapshot has trailing bytes".into());
+        }
+        let mut scene = self.build_scene_with_parameters(&params)?;
+        let current = scene.clone();
+        scene.tip.force = [built[0], built[1]];
+        let mut sim = Simulator::for_restore(scene)?;
+        sim.restore(
+            State {
+                t,
+                q,
+                v,
+                acc,
+                aux,
+                lambda,
+            },
+            &IntegratorMemory { eta, jacobian },
+        )?;
+        self.scene = current;
+        self.sim = sim;
+        self.input = [input[0], input[1]];
+        self.built_force = [built[0], built[1]];
+        self.apply_input();
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case1() -> String {
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/case1.toml")).unwrap()
+    }
+
+    #[test]
+    fn variables_follow_the_scene() {
+        let m = BeamFmu::from_scene(&case1()).unwrap();
+        let names: Vec<&str> = m.variables().iter().map(|v| v.name.as_str()).collect();
+        assert!(names.contains(&"modal.diameter") && names.contains(&"ancf.youngs_modulus"));
+        assert!(
+            !names.iter().any(|n| n.contains("damping")),
+            "undamped scene has no damping parameters"
+        );
+        let case2 = case1().replace("modes = 4", "modes = 4\ndamping_time = 1e-3");
+        let m2 = BeamFmu::from_scene(&case2).unwrap();
+        assert!(m2
+            .variables()
+            .iter()
+            .any(|v| v.name == "modal.damping_time"));
+        let mut vrs: Vec<u32> = m.variables().iter().map(|v| v.vr).collect();
+        vrs.sort();
+        vrs.dedup();
+        assert_eq!(vrs.len(), m.variables().len());
+    }
+
+    #[test]
+    fn snapshot_restores_bit_for_bit_in_a_fresh_instance() {
+        let text = case1();
+        let mut a = BeamFmu::from_scene(&text).unwrap();
+        a.initialize(0.0).unwrap();
+        for k in 0..5 {
+            a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+        }
+        a.set_real(2, -0.01).unwrap();
+        let bytes = a.save_state();
+        let mut b = BeamFmu::from_scene(&text).unwrap();
+        b.load_state(&bytes).unwrap();
+        for k in 5..20 {
+            a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+            b.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+        }
+        for v in a.variables().iter().map(|v| v.vr) {
+            assert_eq!(
+                a.get_real(v).unwrap().to_bits(),
+                b.get_real(v).unwrap().to_bits(),
+                "vr {v}"
+            );
+        }
+        assert!(b.load_state(&bytes[..bytes.len() - 3]).is_err());
+        assert!(b.load_state(b"garbage").is_err());
+    }
+
+    #[test]
+    fn bad_parameter_is_refused_with_its_name() {
+        let mut m = BeamFmu::from_scene(&case1()).unwrap();
+        let e = m.set_real(1001, -0.2).unwrap_err();
+        assert!(e.contains("modal.length") && e.contains("> 0"), "{e}");
+        assert!(m.set_real(10, 1.0).unwrap_err().contains("output"));
+        assert!(m.set_real(1, f64::NAN).is_err());
+    }
+}
