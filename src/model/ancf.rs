@@ -190,6 +190,90 @@ impl AncfProps {
         u
     }
 
+    /// Internal (elastic + damping) force only: the residual path, without matrices. Same
+    /// quadrature and strain measures as [`AncfProps::elastic`].
+    pub fn internal_force(&self, e: &[f64; 8], ed: &[f64; 8]) -> [f64; 8] {
+        let l = self.length;
+        let tau = self.damping_time;
+        let mut f = [0.0; 8];
+        let comb = |w: &[f64; 4], x: &[f64; 8]| {
+            let mut r = [0.0; 2];
+            for k in 0..4 {
+                r[0] += w[k] * x[2 * k];
+                r[1] += w[k] * x[2 * k + 1];
+            }
+            r
+        };
+        for (xg, wg) in GAUSS5 {
+            let w = wg * 0.5 * l * self.ea;
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            let r1 = comb(&sh.ds, e);
+            // N (per EA) times dε/dr′
+            let (eps, g) = match self.strain {
+                StrainModel::Exact => {
+                    let n = (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
+                    (n - 1.0, [r1[0] / n, r1[1] / n])
+                }
+                StrainModel::Paper => (0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0), r1),
+            };
+            let mut stress = eps;
+            if tau > 0.0 {
+                let r1d = comb(&sh.ds, ed);
+                stress += tau * (g[0] * r1d[0] + g[1] * r1d[1]);
+            }
+            let c = w * stress;
+            for k in 0..4 {
+                f[2 * k] += c * sh.ds[k] * g[0];
+                f[2 * k + 1] += c * sh.ds[k] * g[1];
+            }
+        }
+        for (xg, wg) in GAUSS3 {
+            let w = wg * 0.5 * l * self.ei;
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            let r2 = comb(&sh.dds, e);
+            match self.strain {
+                StrainModel::Paper => {
+                    let mut m = r2;
+                    if tau > 0.0 {
+                        let r2d = comb(&sh.dds, ed);
+                        m[0] += tau * r2d[0];
+                        m[1] += tau * r2d[1];
+                    }
+                    for k in 0..4 {
+                        f[2 * k] += w * sh.dds[k] * m[0];
+                        f[2 * k + 1] += w * sh.dds[k] * m[1];
+                    }
+                }
+                StrainModel::Exact => {
+                    let r1 = comb(&sh.ds, e);
+                    let gg = r1[0] * r1[0] + r1[1] * r1[1];
+                    let kappa = (r1[0] * r2[1] - r1[1] * r2[0]) / gg;
+                    let dk1 = [
+                        (r2[1] - 2.0 * kappa * r1[0]) / gg,
+                        (-r2[0] - 2.0 * kappa * r1[1]) / gg,
+                    ];
+                    let dk2 = [-r1[1] / gg, r1[0] / gg];
+                    let mut moment = kappa;
+                    if tau > 0.0 {
+                        let r1d = comb(&sh.ds, ed);
+                        let r2d = comb(&sh.dds, ed);
+                        moment += tau
+                            * (dk1[0] * r1d[0]
+                                + dk1[1] * r1d[1]
+                                + dk2[0] * r2d[0]
+                                + dk2[1] * r2d[1]);
+                    }
+                    let c = w * moment;
+                    for k in 0..4 {
+                        f[2 * k] += c * (sh.ds[k] * dk1[0] + sh.dds[k] * dk2[0]);
+                        f[2 * k + 1] += c * (sh.ds[k] * dk1[1] + sh.dds[k] * dk2[1]);
+                    }
+                }
+            }
+        }
+        f
+    }
+
     /// Internal force, tangent stiffness and damping matrix at (e, ė).
     pub fn elastic(&self, e: &Vec8, ed: &Vec8, with_matrices: bool) -> ElasticOut {
         let l = self.length;
@@ -393,6 +477,24 @@ mod tests {
                             "C[{i},{j}]"
                         );
                     }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn residual_path_equals_the_full_kernel() {
+        for strain in [StrainModel::Exact, StrainModel::Paper] {
+            for tau in [0.0, 1e-3] {
+                let p = props(strain, tau);
+                let (e, ed) = state();
+                let full = p.elastic(&e, &ed, false).force;
+                let fast = p.internal_force(&e.into(), &ed.into());
+                for k in 0..8 {
+                    assert!(
+                        (full[k] - fast[k]).abs() <= 1e-12 * full.amax(),
+                        "{strain:?} {tau} {k}"
+                    );
                 }
             }
         }

@@ -17,6 +17,8 @@ use nalgebra::Vector2;
 struct Element {
     props: AncfProps,
     mass: Mat8,
+    /// 4×4 scalar pattern of the mass matrix (M = M4 ⊗ I₂).
+    mass4: [[f64; 4]; 4],
     idx: [u32; 8],
     fixed: [f64; 8],
     slots: Vec<u32>,
@@ -264,6 +266,16 @@ impl Model {
                         elements.push(Element {
                             props,
                             mass: props.mass_matrix(),
+                            mass4: {
+                                let m = props.mass_matrix();
+                                let mut m4 = [[0.0; 4]; 4];
+                                for k in 0..4 {
+                                    for j in 0..4 {
+                                        m4[k][j] = m[(2 * k, 2 * j)];
+                                    }
+                                }
+                                m4
+                            },
                             idx,
                             fixed,
                             slots: Vec::new(),
@@ -456,9 +468,9 @@ impl Model {
         let values = &mut self.values;
         // ANCF elements
         for (el, gf) in self.elements.iter().zip(&self.gravity_forces) {
-            let mut e = Vec8::zeros();
-            let mut ed = Vec8::zeros();
-            let mut ea = Vec8::zeros();
+            let mut e = [0.0; 8];
+            let mut ed = [0.0; 8];
+            let mut ea = [0.0; 8];
             for k in 0..8 {
                 let i = el.idx[k];
                 if i == FIXED {
@@ -470,15 +482,27 @@ impl Model {
                     ea[k] = a[i];
                 }
             }
-            let out = el.props.elastic(&e, &ed, want.is_some());
-            let f = el.mass * ea + out.force - load * gf;
-            for k in 0..8 {
-                let i = el.idx[k];
-                if i != FIXED {
-                    res[i as usize] += sd * f[k];
+            let (force, matrices) = if want.is_some() {
+                let out = el.props.elastic(&Vec8::from(e), &Vec8::from(ed), true);
+                (out.force.into(), Some(out))
+            } else {
+                (el.props.internal_force(&e, &ed), None)
+            };
+            // f = M ë + f_int − f_g, M = M4 ⊗ I₂
+            for k in 0..4 {
+                for c in 0..2 {
+                    let mut mk = 0.0;
+                    for j in 0..4 {
+                        mk += el.mass4[k][j] * ea[2 * j + c];
+                    }
+                    let r = 2 * k + c;
+                    let i = el.idx[r];
+                    if i != FIXED {
+                        res[i as usize] += sd * (mk + force[r] - load * gf[r]);
+                    }
                 }
             }
-            if let Some((ca, cv, cx)) = want {
+            if let (Some((ca, cv, cx)), Some(out)) = (want, matrices) {
                 for r in 0..8 {
                     for c in 0..8 {
                         let s = el.slots[r * 8 + c];
