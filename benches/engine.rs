@@ -1,5 +1,6 @@
 //! Engine kernels: one ANCF element (forces + tangent), one Newton iteration (assembly +
 //! factorization + solve) and one full step of Case 1.
+#![allow(missing_docs)] // criterion's macros generate undocumented items
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
