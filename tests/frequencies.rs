@@ -81,6 +81,10 @@ fn frequencies(segs: &[String]) -> Vec<f64> {
 fn check(name: &str, got: &[f64], want: &[f64], tol: f64) {
     for (i, (g, w)) in got.iter().zip(want).enumerate() {
         let rel = g / w - 1.0;
+        eprintln!(
+            "{name}: f{} = {g:.5} Hz, Euler-Bernoulli {w:.5} Hz, error {rel:+.2e}",
+            i + 1
+        );
         assert!(
             rel.abs() < tol,
             "{name}: f{} = {g:.5} Hz vs {w:.5} Hz ({:.3e})",

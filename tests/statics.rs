@@ -42,6 +42,7 @@ fn tip_loaded_cantilever_matches_the_elastica() {
         let p = alpha * ei() / (L * L);
         let tip = static_tip(&format!("[tip]\nforce = [0.0, {:e}]", -p), 32);
         let (dv, du) = (-tip[1] / L - v, (L - tip[0]) / L - u);
+        eprintln!("tip load alpha = {alpha}: v/L error {dv:+.2e}, u/L error {du:+.2e}");
         assert!(
             dv.abs() < 2e-4 && du.abs() < 2e-4,
             "alpha {alpha}: v/L error {dv:e}, u/L error {du:e}"
@@ -56,6 +57,7 @@ fn cantilever_under_self_weight_matches_the_elastica() {
         let g = gamma * ei() / (rho_a * L.powi(3));
         let tip = static_tip(&format!("gravity = [0.0, {:e}]", -g), 32);
         let (dv, du) = (-tip[1] / L - v, (L - tip[0]) / L - u);
+        eprintln!("self-weight gamma = {gamma}: v/L error {dv:+.2e}, u/L error {du:+.2e}");
         assert!(
             dv.abs() < 2e-4 && du.abs() < 2e-4,
             "gamma {gamma}: v/L error {dv:e}, u/L error {du:e}"
@@ -84,6 +86,10 @@ fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
         let ei = E_STEEL * area * d * d / 16.0;
         let linear = q * 0.4f64.powi(4) / (8.0 * ei);
         let v = -sim.outputs().tip_position[1];
+        eprintln!(
+            "Case 1 beam, {} segment(s): sag {v:.6e} m, linear {linear:.6e} m",
+            segs.len()
+        );
         assert!(
             (v / linear - 1.0).abs() < 2e-3,
             "{} segments: {v} vs {linear}",
