@@ -269,7 +269,6 @@ impl GeneralizedAlpha {
         let mut last = f64::INFINITY;
         // the rate estimate of earlier steps is trusted less as steps go by (Hairer & Wanner)
         let mut eta = self.eta.max(f64::EPSILON).powf(0.8);
-        let scale = model.scales().to_vec();
         for it in 0..self.max_iter {
             let refresh = self.factored_h != Some(h);
             let req = EvalRequest {
@@ -312,7 +311,7 @@ impl GeneralizedAlpha {
             for j in 0..m {
                 t.lambda[j] += self.res[n + j];
             }
-            let norm = scaled_norm(&self.res[..n], &scale) / self.tol;
+            let norm = scaled_norm(&self.res[..n], model.scales()) / self.tol;
             if !norm.is_finite() {
                 self.factored_h = None;
                 return Err(StepFailure::Singular { h });

@@ -107,6 +107,16 @@ pub struct AncfProps {
     pub strain: StrainModel,
 }
 
+/// Quadrature weights (times EA or EI and the Jacobian l/2) and shape derivatives of an
+/// element, for the residual path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QuadTables {
+    /// Axial points: (w·EA, ds/dx).
+    pub axial: [(f64, [f64; 4]); 5],
+    /// Bending points: (w·EI, ds/dx, d²s/dx²).
+    pub bending: [(f64, [f64; 4], [f64; 4]); 3],
+}
+
 /// Forces and matrices of one element at one state.
 #[derive(Debug, Clone)]
 pub struct ElasticOut {
@@ -190,10 +200,33 @@ impl AncfProps {
         u
     }
 
+    /// Weighted shape-function derivatives at the quadrature points, computed once per
+    /// element length (the residual path then does no division by l).
+    pub fn tables(&self) -> QuadTables {
+        let l = self.length;
+        let mut t = QuadTables {
+            axial: [(0.0, [0.0; 4]); 5],
+            bending: [(0.0, [0.0; 4], [0.0; 4]); 3],
+        };
+        for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            t.axial[k] = (wg * 0.5 * l * self.ea, sh.ds);
+        }
+        for (k, (xg, wg)) in GAUSS3.iter().enumerate() {
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            t.bending[k] = (wg * 0.5 * l * self.ei, sh.ds, sh.dds);
+        }
+        t
+    }
+
     /// Internal (elastic + damping) force only: the residual path, without matrices. Same
     /// quadrature and strain measures as [`AncfProps::elastic`].
     pub fn internal_force(&self, e: &[f64; 8], ed: &[f64; 8]) -> [f64; 8] {
-        let l = self.length;
+        self.internal_force_with(&self.tables(), e, ed)
+    }
+
+    /// [`AncfProps::internal_force`] with precomputed tables.
+    pub fn internal_force_with(&self, tab: &QuadTables, e: &[f64; 8], ed: &[f64; 8]) -> [f64; 8] {
         let tau = self.damping_time;
         let mut f = [0.0; 8];
         let comb = |w: &[f64; 4], x: &[f64; 8]| {
@@ -204,59 +237,56 @@ impl AncfProps {
             }
             r
         };
-        for (xg, wg) in GAUSS5 {
-            let w = wg * 0.5 * l * self.ea;
-            let sh = Shape::at(0.5 * (xg + 1.0), l);
-            let r1 = comb(&sh.ds, e);
-            // N (per EA) times dε/dr′
+        for (w, ds) in &tab.axial {
+            let r1 = comb(ds, e);
+            // stress (per EA) and dε/dr′
             let (eps, g) = match self.strain {
                 StrainModel::Exact => {
                     let n = (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
-                    (n - 1.0, [r1[0] / n, r1[1] / n])
+                    let inv = 1.0 / n;
+                    (n - 1.0, [r1[0] * inv, r1[1] * inv])
                 }
                 StrainModel::Paper => (0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0), r1),
             };
             let mut stress = eps;
             if tau > 0.0 {
-                let r1d = comb(&sh.ds, ed);
+                let r1d = comb(ds, ed);
                 stress += tau * (g[0] * r1d[0] + g[1] * r1d[1]);
             }
             let c = w * stress;
             for k in 0..4 {
-                f[2 * k] += c * sh.ds[k] * g[0];
-                f[2 * k + 1] += c * sh.ds[k] * g[1];
+                f[2 * k] += c * ds[k] * g[0];
+                f[2 * k + 1] += c * ds[k] * g[1];
             }
         }
-        for (xg, wg) in GAUSS3 {
-            let w = wg * 0.5 * l * self.ei;
-            let sh = Shape::at(0.5 * (xg + 1.0), l);
-            let r2 = comb(&sh.dds, e);
+        for (w, ds, dds) in &tab.bending {
+            let r2 = comb(dds, e);
             match self.strain {
                 StrainModel::Paper => {
                     let mut m = r2;
                     if tau > 0.0 {
-                        let r2d = comb(&sh.dds, ed);
+                        let r2d = comb(dds, ed);
                         m[0] += tau * r2d[0];
                         m[1] += tau * r2d[1];
                     }
                     for k in 0..4 {
-                        f[2 * k] += w * sh.dds[k] * m[0];
-                        f[2 * k + 1] += w * sh.dds[k] * m[1];
+                        f[2 * k] += w * dds[k] * m[0];
+                        f[2 * k + 1] += w * dds[k] * m[1];
                     }
                 }
                 StrainModel::Exact => {
-                    let r1 = comb(&sh.ds, e);
-                    let gg = r1[0] * r1[0] + r1[1] * r1[1];
-                    let kappa = (r1[0] * r2[1] - r1[1] * r2[0]) / gg;
+                    let r1 = comb(ds, e);
+                    let inv = 1.0 / (r1[0] * r1[0] + r1[1] * r1[1]);
+                    let kappa = (r1[0] * r2[1] - r1[1] * r2[0]) * inv;
                     let dk1 = [
-                        (r2[1] - 2.0 * kappa * r1[0]) / gg,
-                        (-r2[0] - 2.0 * kappa * r1[1]) / gg,
+                        (r2[1] - 2.0 * kappa * r1[0]) * inv,
+                        (-r2[0] - 2.0 * kappa * r1[1]) * inv,
                     ];
-                    let dk2 = [-r1[1] / gg, r1[0] / gg];
+                    let dk2 = [-r1[1] * inv, r1[0] * inv];
                     let mut moment = kappa;
                     if tau > 0.0 {
-                        let r1d = comb(&sh.ds, ed);
-                        let r2d = comb(&sh.dds, ed);
+                        let r1d = comb(ds, ed);
+                        let r2d = comb(dds, ed);
                         moment += tau
                             * (dk1[0] * r1d[0]
                                 + dk1[1] * r1d[1]
@@ -265,8 +295,8 @@ impl AncfProps {
                     }
                     let c = w * moment;
                     for k in 0..4 {
-                        f[2 * k] += c * (sh.ds[k] * dk1[0] + sh.dds[k] * dk2[0]);
-                        f[2 * k + 1] += c * (sh.ds[k] * dk1[1] + sh.dds[k] * dk2[1]);
+                        f[2 * k] += c * (ds[k] * dk1[0] + dds[k] * dk2[0]);
+                        f[2 * k + 1] += c * (ds[k] * dk1[1] + dds[k] * dk2[1]);
                     }
                 }
             }

@@ -6,7 +6,7 @@
 //! correspondingly scaled multiplier. [`Model::eval`] returns these residuals and, on request,
 //! the Newton matrix `c_a·M + c_v·C + c_x·K + Σλ̃_i ∂²Φ_i` in a sparse pattern fixed at build.
 
-use super::ancf::{AncfProps, Mat8, Vec8};
+use super::ancf::{AncfProps, Mat8, QuadTables, Vec8};
 use super::joint::{end_kin, joint_eval, End, Joint, FIXED};
 use super::modal::{BodyOut, ModalBasis, ModalBody};
 use crate::linalg::{SingularMatrix, SparseLu, SparsePattern, NO_SLOT};
@@ -19,6 +19,7 @@ struct Element {
     mass: Mat8,
     /// 4×4 scalar pattern of the mass matrix (M = M4 ⊗ I₂).
     mass4: [[f64; 4]; 4],
+    tables: QuadTables,
     idx: [u32; 8],
     fixed: [f64; 8],
     slots: Vec<u32>,
@@ -30,6 +31,9 @@ struct JointSlot {
     /// slots of (local q, row) for Φ_qᵀ, (row, local q) for Φ_q, Hessian computed on the fly.
     idx: Vec<u32>,
 }
+
+/// Largest local coordinate count of a modal body: 3 frame + modes + 2 interface shapes.
+const MAX_BODY_DIM: usize = 3 + crate::scene::MAX_MODES + 2;
 
 /// Which coordinates a segment owns (for outputs and tests).
 #[derive(Debug, Clone, PartialEq)]
@@ -266,6 +270,7 @@ impl Model {
                         elements.push(Element {
                             props,
                             mass: props.mass_matrix(),
+                            tables: props.tables(),
                             mass4: {
                                 let m = props.mass_matrix();
                                 let mut m4 = [[0.0; 4]; 4];
@@ -486,7 +491,7 @@ impl Model {
                 let out = el.props.elastic(&Vec8::from(e), &Vec8::from(ed), true);
                 (out.force.into(), Some(out))
             } else {
-                (el.props.internal_force(&e, &ed), None)
+                (el.props.internal_force_with(&el.tables, &e, &ed), None)
             };
             // f = M ë + f_int − f_g, M = M4 ⊗ I₂
             for k in 0..4 {
@@ -520,9 +525,9 @@ impl Model {
         // modal bodies
         for (bi, (body, idx, fixed)) in self.bodies.iter().enumerate() {
             let d = idx.len();
-            let mut ql = vec![0.0; d];
-            let mut vl = vec![0.0; d];
-            let mut al = vec![0.0; d];
+            let mut ql = [0.0; MAX_BODY_DIM];
+            let mut vl = [0.0; MAX_BODY_DIM];
+            let mut al = [0.0; MAX_BODY_DIM];
             for k in 0..d {
                 if idx[k] == FIXED {
                     ql[k] = fixed[k];
@@ -535,7 +540,7 @@ impl Model {
             }
             let out = &mut self.body_out[bi];
             let g = [load * self.gravity[0], load * self.gravity[1]];
-            body.eval(&ql, &vl, &al, g, want.is_some(), out);
+            body.eval(&ql[..d], &vl[..d], &al[..d], g, want.is_some(), out);
             for k in 0..d {
                 if idx[k] != FIXED {
                     res[idx[k] as usize] += sd * out.res[k];
