@@ -8,6 +8,10 @@ use crate::scene::{InitialState, Scene};
 /// Largest number of halvings of the internal step before a communication step fails.
 pub const MAX_HALVINGS: u32 = 12;
 
+/// Largest axial strain accepted: beyond it the linear elastic law of the model has no meaning
+/// for a metal rod, and the step is refused rather than returning a number.
+pub const MAX_AXIAL_STRAIN: f64 = 0.05;
+
 /// A running simulation.
 #[derive(Debug)]
 pub struct Simulator {
@@ -158,7 +162,7 @@ impl Simulator {
                         self.integ.invalidate();
                         return Err(format!(
                             "step from t = {:.6} s failed after {MAX_HALVINGS} halvings of the internal step: {e}. \
-                             Reduce the communication step or solver.max_step, add damping, or lower solver.rho_inf",
+                             Reduce the communication step or solver.max_step, add damping, lower solver.rho_inf, or reduce the loads",
                             self.state.t
                         ));
                     }
@@ -168,6 +172,26 @@ impl Simulator {
             }
         }
         self.state.t = t_end;
+        let strain = self.model.max_axial_strain(&self.state.q);
+        let finite = self
+            .state
+            .q
+            .iter()
+            .chain(&self.state.v)
+            .all(|x| x.is_finite());
+        if !finite || strain > MAX_AXIAL_STRAIN {
+            self.state = saved;
+            self.integ.invalidate();
+            return Err(if finite {
+                format!(
+                    "step to t = {t_end:.6} s refused: axial strain {:.1} % exceeds the {:.0} % validity limit of the linear elastic rod; the loads (tip force or gravity) are too large for this beam",
+                    100.0 * strain,
+                    100.0 * MAX_AXIAL_STRAIN
+                )
+            } else {
+                format!("step to t = {t_end:.6} s produced non-finite coordinates; reduce the communication step or solver.max_step")
+            });
+        }
         Ok(())
     }
 

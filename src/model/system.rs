@@ -715,6 +715,30 @@ impl Model {
         }
     }
 
+    /// Largest |axial strain| over the ANCF quadrature points (0 without ANCF segments).
+    pub fn max_axial_strain(&self, q: &[f64]) -> f64 {
+        let mut worst: f64 = 0.0;
+        for el in &self.elements {
+            let mut e = [0.0; 8];
+            for k in 0..8 {
+                e[k] = if el.idx[k] == FIXED {
+                    el.fixed[k]
+                } else {
+                    q[el.idx[k] as usize]
+                };
+            }
+            for (_, ds) in &el.tables.axial {
+                let (mut x, mut y) = (0.0, 0.0);
+                for k in 0..4 {
+                    x += ds[k] * e[2 * k];
+                    y += ds[k] * e[2 * k + 1];
+                }
+                worst = worst.max(((x * x + y * y).sqrt() - 1.0).abs());
+            }
+        }
+        worst
+    }
+
     /// Outputs at a state (q, q̇, q̈, λ).
     pub fn outputs(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> Outputs {
         let kin = end_kin(&self.tip, q, &self.bodies);
