@@ -52,3 +52,37 @@ pub fn write_fmu(
     zip.finish().map_err(|e| fail(&e))?;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layout_and_determinism() {
+        let dir = std::env::temp_dir().join(format!("fmu-build-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let lib = dir.join("libx.so");
+        std::fs::write(&lib, b"\x7fELF").unwrap();
+        let (a, b) = (dir.join("a.fmu"), dir.join("b.fmu"));
+        for p in [&a, &b] {
+            write_fmu(p, "<xml/>", "linux64", "x", &lib, b"scene").unwrap();
+        }
+        let bytes = std::fs::read(&a).unwrap();
+        assert_eq!(bytes, std::fs::read(&b).unwrap(), "byte-identical archives");
+        let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bytes)).unwrap();
+        let names: Vec<String> = zip.file_names().map(|n| n.unwrap().into_owned()).collect();
+        assert_eq!(
+            names,
+            [
+                "modelDescription.xml",
+                "binaries/linux64/x.so",
+                "resources/scene.toml"
+            ]
+        );
+        let mut s = String::new();
+        std::io::Read::read_to_string(&mut zip.by_name("resources/scene.toml").unwrap(), &mut s)
+            .unwrap();
+        assert_eq!(s, "scene");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
