@@ -12,7 +12,8 @@ cargo test --workspace
 echo "== packaging FMUs"
 mkdir -p target/fmu
 FMUS=()
-for scene in scenes/*.toml; do
+# FMU_SCENES="scenes/a.toml scenes/b.toml" restricts the scenes packaged and tested.
+for scene in ${FMU_SCENES:-scenes/*.toml}; do
     FMUS+=("$(cargo fmu-build "$scene" --out target/fmu | tail -n 1)")
 done
 

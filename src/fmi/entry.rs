@@ -6,7 +6,7 @@
 //! 1. checks the `fmi2Component` (NULL or not a live instance → fmi2Error, nothing to log to);
 //! 2. runs the rest inside `catch_unwind`: a panic sets the state to `fatal`, is logged, and
 //!    returns fmi2Fatal (or NULL / nothing); no panic unwinds into the host;
-//! 3. checks the state against the one table [`Function::allowed`];
+//! 3. checks the state against the one table [`Function::allowed`](super::state::Function::allowed);
 //! 4. checks NULL arrays with a non-zero length, sizes and values, naming the argument and value
 //!    in the logged message.
 //!
@@ -448,7 +448,12 @@ pub unsafe fn setup_experiment<M: CoSimModel>(
             inst.time = start_time;
             inst.last_successful_time = start_time;
             inst.trace(|| {
-                format!("fmi2SetupExperiment: tolerance {tolerance:?}, start {start_time}, stop {stop:?}")
+                let opt = |x: Option<f64>| x.map_or("undefined".to_owned(), |x| x.to_string());
+                format!(
+                    "fmi2SetupExperiment: tolerance {}, startTime {start_time}, stopTime {}",
+                    opt(tolerance),
+                    opt(stop)
+                )
             });
             Status::Ok
         })
