@@ -12,8 +12,13 @@ cargo test --workspace
 echo "== packaging FMUs"
 mkdir -p target/fmu
 FMUS=()
-# FMU_SCENES="scenes/a.toml scenes/b.toml" restricts the scenes packaged and tested.
-for scene in ${FMU_SCENES:-scenes/*.toml}; do
+# The shipped scenes are those with a golden modelDescription/<id>.xml;
+# FMU_SCENES="scenes/a.toml scenes/b.toml" overrides the list.
+DEFAULT_SCENES=""
+for golden in modelDescription/*.xml; do
+    DEFAULT_SCENES+=" scenes/$(basename "$golden" .xml).toml"
+done
+for scene in ${FMU_SCENES:-$DEFAULT_SCENES}; do
     FMUS+=("$(cargo fmu-build "$scene" --out target/fmu | tail -n 1)")
 done
 
