@@ -6,7 +6,8 @@
 //!
 //! Data flow: [`scene`] (TOML, validated) → [`model`] (assembly: elements, modal bodies,
 //! joints) → [`integrator`] (generalized-α, statics) → [`simulator`] (run to a time, outputs,
-//! snapshots) → [`fmi`] (FMI 2.0 entry points, which know nothing of beams).
+//! snapshots) → [`cosim`] (the beam's FMU variables) → [`fmi`] (FMI 2.0 entry points, which
+//! know nothing of beams).
 
 pub mod cosim;
 pub mod fmi;
@@ -15,3 +16,9 @@ pub mod linalg;
 pub mod model;
 pub mod scene;
 pub mod simulator;
+pub mod toy;
+
+/// The model this library exports as an FMU (and that `fmu-build` packages).
+pub type FmuModel = cosim::BeamFmu;
+
+export_fmi2!(FmuModel);

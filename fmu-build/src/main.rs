@@ -1,1 +1,187 @@
-fn main() {}
+//! `fmu-build`: packages a scene as an FMI 2.0 co-simulation FMU.
+//!
+//! ```text
+//! fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]
+//! ```
+//!
+//! 1. reads the scene and builds the model with `from_scene` (a bad scene fails here, with the
+//!    scene's message and exit code 1);
+//! 2. computes the GUID and writes modelDescription.xml from the model's variable table;
+//! 3. runs `cargo build --release -p hybeam --lib` in this workspace and takes the cdylib that
+//!    cargo reports (so `CARGO_TARGET_DIR` and cargo config are honoured);
+//! 4. zips `modelDescription.xml`, `binaries/linux64/<id>.so`, `resources/scene.toml` into
+//!    `DIR/<id>.fmu`.
+//!
+//! `--xml-only` skips 3–4 and writes `DIR/<id>.xml` (the golden files in `modelDescription/`).
+//! `<id>` (modelIdentifier) defaults to the scene file stem made a C identifier.
+//! Alias: `cargo fmu-build ...` (see `.cargo/config.toml`).
+
+mod package;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode, Stdio};
+
+use hybeam::fmi::model::CoSimModel;
+use hybeam::fmi::{guid, xml};
+use hybeam::FmuModel;
+
+const USAGE: &str = "usage: fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]";
+
+struct Args {
+    scene: PathBuf,
+    out: PathBuf,
+    id: Option<String>,
+    xml_only: bool,
+}
+
+fn parse_args(mut it: impl Iterator<Item = String>) -> Result<Args, String> {
+    let (mut scene, mut out, mut id, mut xml_only) = (None, PathBuf::from("."), None, false);
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--out" => out = it.next().ok_or("--out needs a directory")?.into(),
+            "--id" => id = Some(it.next().ok_or("--id needs a name")?),
+            "--xml-only" => xml_only = true,
+            "-h" | "--help" => return Err(String::new()),
+            s if s.starts_with('-') => return Err(format!("unknown option {s}")),
+            s if scene.is_none() => scene = Some(PathBuf::from(s)),
+            s => return Err(format!("unexpected argument {s}")),
+        }
+    }
+    let scene = scene.ok_or("missing SCENE.toml")?;
+    Ok(Args {
+        scene,
+        out,
+        id,
+        xml_only,
+    })
+}
+
+fn main() -> ExitCode {
+    let args = match parse_args(std::env::args().skip(1)) {
+        Ok(a) => a,
+        Err(e) => {
+            if !e.is_empty() {
+                eprintln!("fmu-build: {e}");
+            }
+            eprintln!("{USAGE}");
+            return ExitCode::from(2);
+        }
+    };
+    match run(&args) {
+        Ok(path) => {
+            println!("{}", path.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("fmu-build: error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(args: &Args) -> Result<PathBuf, String> {
+    let scene_path = &args.scene;
+    let scene = std::fs::read(scene_path)
+        .map_err(|e| format!("cannot read {}: {e}", scene_path.display()))?;
+    let text = std::str::from_utf8(&scene)
+        .map_err(|_| format!("{} is not valid UTF-8", scene_path.display()))?;
+    let model = FmuModel::from_scene(text)
+        .map_err(|e| format!("invalid scene {}: {e}", scene_path.display()))?;
+    let id = match &args.id {
+        Some(id) if xml::is_c_identifier(id) => id.clone(),
+        Some(id) => return Err(format!("--id {id}: not a valid C identifier")),
+        None => {
+            let stem = scene_path.file_stem().unwrap_or_default().to_string_lossy();
+            xml::model_identifier_from_stem(&stem)
+        }
+    };
+    let guid = guid::guid(&scene);
+    let description = xml::model_description_of(&model, &id, &guid)?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    if args.xml_only {
+        let path = args.out.join(format!("{id}.xml"));
+        std::fs::write(&path, description)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        return Ok(path);
+    }
+    let platform = package::platform()?;
+    let library = build_cdylib()?;
+    let path = args.out.join(format!("{id}.fmu"));
+    package::write_fmu(&path, &description, platform, &id, &library, &scene)?;
+    Ok(path)
+}
+
+/// The workspace this tool was built from (the hybeam sources matching the linked library).
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."))
+}
+
+/// Runs `cargo build --release -p hybeam --lib` and returns the cdylib path cargo reports.
+fn build_cdylib() -> Result<PathBuf, String> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let root = workspace_root();
+    eprintln!(
+        "fmu-build: building the hybeam cdylib (release) in {}",
+        root.display()
+    );
+    let output = Command::new(&cargo)
+        .current_dir(&root)
+        .args(["build", "--release", "-p", "hybeam", "--lib"])
+        .arg("--message-format=json-render-diagnostics")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", Path::new(&cargo).display()))?;
+    if !output.status.success() {
+        return Err(format!("cargo build failed ({})", output.status));
+    }
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let suffix = std::env::consts::DLL_SUFFIX;
+    for line in stdout.lines() {
+        let Ok(msg) = serde_json::from_str::<serde_json::Value>(line) else {
+            continue;
+        };
+        let is_lib = msg["reason"] == "compiler-artifact"
+            && msg["target"]["name"] == "hybeam"
+            && msg["target"]["kind"]
+                .as_array()
+                .is_some_and(|k| k.iter().any(|k| k == "cdylib"));
+        if !is_lib {
+            continue;
+        }
+        let files = msg["filenames"].as_array().into_iter().flatten();
+        if let Some(f) = files
+            .filter_map(|f| f.as_str())
+            .find(|f| f.ends_with(suffix))
+        {
+            return Ok(PathBuf::from(f));
+        }
+    }
+    Err("cargo did not report a hybeam cdylib artifact".into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(a: &[&str]) -> Result<Args, String> {
+        parse_args(a.iter().map(|s| s.to_string()))
+    }
+
+    #[test]
+    fn parses_options() {
+        let a = args(&["s.toml", "--out", "o", "--id", "x", "--xml-only"]).unwrap();
+        assert_eq!(a.scene, PathBuf::from("s.toml"));
+        assert_eq!(a.out, PathBuf::from("o"));
+        assert_eq!(a.id.as_deref(), Some("x"));
+        assert!(a.xml_only);
+        assert!(args(&[]).is_err());
+        assert!(args(&["a", "b"]).is_err());
+        assert!(args(&["a", "--bogus"]).is_err());
+        assert!(args(&["a", "--out"]).is_err());
+    }
+}

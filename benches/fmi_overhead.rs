@@ -1,0 +1,80 @@
+//! FMI overhead of one fmi2DoStep: the generic entry point (pointer check, catch_unwind, state
+//! table, argument and communication-point checks, logging off) against the toy model's own
+//! `do_step`, with one internal substep per call. Overhead = difference of the two times.
+//!
+//! `cargo bench --bench fmi_overhead`
+
+use std::ffi::CString;
+use std::hint::black_box;
+use std::ptr;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use hybeam::fmi::entry;
+use hybeam::fmi::model::CoSimModel;
+use hybeam::fmi::types::fmi2CallbackFunctions;
+use hybeam::toy::Toy;
+
+const SCENE: &str = include_str!("../scenes/toy.toml");
+/// Equal to the toy's internal step: one substep per call.
+const H: f64 = 1e-3;
+
+fn fmi_overhead(c: &mut Criterion) {
+    let mut group = c.benchmark_group("fmi_overhead");
+
+    let mut model = Toy::from_scene(SCENE).unwrap();
+    model.initialize(0.0).unwrap();
+    let mut t = 0.0;
+    group.bench_function("model do_step (direct)", |b| {
+        b.iter(|| {
+            model.do_step(black_box(t), black_box(H)).unwrap();
+            t += H;
+        })
+    });
+
+    let dir = std::env::temp_dir().join(format!("hybeam-bench-{}", std::process::id()));
+    let resources = dir.join("resources");
+    std::fs::create_dir_all(&resources).unwrap();
+    std::fs::write(resources.join("scene.toml"), SCENE).unwrap();
+    let callbacks = fmi2CallbackFunctions {
+        logger: None,
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: ptr::null_mut(),
+    };
+    let name = CString::new("bench").unwrap();
+    let guid = CString::new(hybeam::fmi::guid::guid(SCENE.as_bytes())).unwrap();
+    let uri = CString::new(format!("file://{}", resources.display())).unwrap();
+    // SAFETY: valid arguments per the FMI 2.0 contract; the instance is freed below.
+    unsafe {
+        let inst = entry::instantiate::<Toy>(
+            name.as_ptr(),
+            1,
+            guid.as_ptr(),
+            uri.as_ptr(),
+            &callbacks,
+            0,
+            0,
+        );
+        assert!(!inst.is_null());
+        assert_eq!(entry::setup_experiment::<Toy>(inst, 0, 0.0, 0.0, 0, 0.0), 0);
+        assert_eq!(entry::enter_initialization_mode::<Toy>(inst), 0);
+        assert_eq!(entry::exit_initialization_mode::<Toy>(inst), 0);
+        let mut t = 0.0;
+        let mut failures = 0u64;
+        group.bench_function("fmi2DoStep (FMI layer + model)", |b| {
+            b.iter(|| {
+                let s = entry::do_step::<Toy>(black_box(inst), black_box(t), black_box(H), 1);
+                failures += (s != 0) as u64;
+                t += H;
+            })
+        });
+        assert_eq!(failures, 0, "fmi2DoStep failed during the benchmark");
+        entry::free_instance::<Toy>(inst);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    group.finish();
+}
+
+criterion_group!(benches, fmi_overhead);
+criterion_main!(benches);

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Idempotent setup on a fresh Debian machine with rustup's toolchain and python3 (3.11):
+# libclang-dev (fmi-sys runs bindgen), a .venv with the pinned Python test tools, cargo build.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+FMPY_VERSION=0.3.32
+
+if ! dpkg -s libclang-dev >/dev/null 2>&1; then
+    echo "setup: installing libclang-dev (needed by fmi-sys/bindgen)"
+    SUDO=""
+    if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq libclang-dev
+fi
+
+PY=${PYTHON:-python3}
+if [ ! -x .venv/bin/python ]; then
+    echo "setup: creating .venv with $($PY --version)"
+    "$PY" -m venv .venv
+fi
+if ! .venv/bin/python -c "import fmpy, pytest, numpy, sys; sys.exit(fmpy.__version__ != '$FMPY_VERSION')" 2>/dev/null; then
+    echo "setup: installing fmpy==$FMPY_VERSION, pytest, numpy into .venv"
+    .venv/bin/python -m pip install --quiet --upgrade pip
+    .venv/bin/python -m pip install --quiet "fmpy==$FMPY_VERSION" "pytest>=8,<9" "numpy>=1.26,<3"
+fi
+
+cargo build --workspace

@@ -1,0 +1,264 @@
+//! FMU states: owned copies made by fmi2GetFMUstate, and their self-contained serialized form.
+//!
+//! Serialized format, version 1 (all integers and floats little-endian):
+//!
+//! | bytes | field |
+//! |---|---|
+//! | 8 | magic `HYBFMI2S` |
+//! | 4 | format version (`1`) |
+//! | 4 + n | GUID length, GUID (UTF-8): the state only loads into an FMU of the same scene and build |
+//! | 4 | FMI state bits ([`ModelState::bits`]) |
+//! | 8 × 3 | time, start time, last successful time |
+//! | 1 + 8 | stop time defined (0/1), stop time |
+//! | 1 + 8 | tolerance defined (0/1), tolerance |
+//! | 1 | terminated (0/1) |
+//! | 8 + m | model byte count, model bytes ([`CoSimModel::save_state`]) |
+//! | 8 | FNV-1a 64 checksum of everything before it |
+//!
+//! [`CoSimModel::save_state`]: super::model::CoSimModel::save_state
+
+use super::state::{Function, ModelState};
+
+const MAGIC: &[u8; 8] = b"HYBFMI2S";
+const FORMAT_VERSION: u32 = 1;
+/// Marks a live [`FmuState`] allocation (checked on every pointer the host hands back).
+pub(crate) const LIVE: u64 = 0x4859_4246_4d55_5354;
+
+/// The FMI layer's part of an FMU state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LayerState {
+    /// FMI state-machine state.
+    pub state: ModelState,
+    /// Current time.
+    pub time: f64,
+    /// Start time from fmi2SetupExperiment.
+    pub start_time: f64,
+    /// Stop time, if defined.
+    pub stop_time: Option<f64>,
+    /// Tolerance, if defined.
+    pub tolerance: Option<f64>,
+    /// Time reached by the last successful step.
+    pub last_successful_time: f64,
+    /// fmi2Terminated status.
+    pub terminated: bool,
+}
+
+/// An owned FMU state (what an `fmi2FMUstate` points to).
+#[derive(Debug, Clone)]
+pub struct FmuState {
+    pub(crate) live: u64,
+    /// FMI layer part.
+    pub layer: LayerState,
+    /// Model bytes from `save_state`.
+    pub model: Vec<u8>,
+}
+
+impl FmuState {
+    /// A state from its parts.
+    pub fn new(layer: LayerState, model: Vec<u8>) -> Self {
+        Self {
+            live: LIVE,
+            layer,
+            model,
+        }
+    }
+
+    /// Length of [`FmuState::serialize`]'s output.
+    pub fn serialized_len(&self, guid: &str) -> usize {
+        8 + 4 + 4 + guid.len() + 4 + 24 + 9 + 9 + 1 + 8 + self.model.len() + 8
+    }
+
+    /// The self-contained bytes of this state for an FMU with this GUID.
+    pub fn serialize(&self, guid: &str) -> Vec<u8> {
+        let l = &self.layer;
+        let mut b = Vec::with_capacity(self.serialized_len(guid));
+        b.extend_from_slice(MAGIC);
+        b.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        b.extend_from_slice(&(guid.len() as u32).to_le_bytes());
+        b.extend_from_slice(guid.as_bytes());
+        b.extend_from_slice(&l.state.bits().to_le_bytes());
+        for x in [l.time, l.start_time, l.last_successful_time] {
+            b.extend_from_slice(&x.to_le_bytes());
+        }
+        for opt in [l.stop_time, l.tolerance] {
+            b.push(opt.is_some() as u8);
+            b.extend_from_slice(&opt.unwrap_or(0.0).to_le_bytes());
+        }
+        b.push(l.terminated as u8);
+        b.extend_from_slice(&(self.model.len() as u64).to_le_bytes());
+        b.extend_from_slice(&self.model);
+        let sum = fnv1a64(&b);
+        b.extend_from_slice(&sum.to_le_bytes());
+        debug_assert_eq!(b.len(), self.serialized_len(guid));
+        b
+    }
+
+    /// Parses and validates bytes from [`FmuState::serialize`] for an FMU with this GUID.
+    /// The model bytes are checked later by `load_state` (at fmi2SetFMUstate).
+    pub fn deserialize(bytes: &[u8], guid: &str) -> Result<Self, String> {
+        if bytes.len() < 8 + 4 || &bytes[..8] != MAGIC {
+            return Err("the bytes are not a serialized hybeam FMU state (bad magic)".into());
+        }
+        let (body, sum) = bytes.split_at(bytes.len().saturating_sub(8).max(12));
+        if sum.len() != 8 {
+            return Err(format!(
+                "serialized state truncated ({} bytes)",
+                bytes.len()
+            ));
+        }
+        let mut r = Reader { b: body, at: 8 };
+        let version = r.u32()?;
+        if version != FORMAT_VERSION {
+            return Err(format!(
+                "serialized state format version {version} is not supported (this FMU reads version {FORMAT_VERSION})"
+            ));
+        }
+        let stored = u64::from_le_bytes(sum.try_into().map_err(|_| "truncated")?);
+        if fnv1a64(body) != stored {
+            return Err("serialized state is corrupted (checksum mismatch)".into());
+        }
+        let n = r.u32()? as usize;
+        let g = r.take(n)?;
+        if g != guid.as_bytes() {
+            return Err(format!(
+                "serialized state belongs to the FMU with GUID {}, this FMU has GUID {guid}",
+                String::from_utf8_lossy(g)
+            ));
+        }
+        let bits = r.u32()?;
+        let state = ModelState::from_bits(bits)
+            .filter(|s| s.is_in(Function::SetFMUstate.allowed()))
+            .ok_or_else(|| format!("serialized state has an invalid FMI state (bits {bits:#x})"))?;
+        let time = r.f64()?;
+        let start_time = r.f64()?;
+        let last_successful_time = r.f64()?;
+        let stop_time = r.opt_f64()?;
+        let tolerance = r.opt_f64()?;
+        let terminated = r.flag()?;
+        let m = usize::try_from(r.u64()?).map_err(|_| "model length overflows")?;
+        let model = r.take(m)?.to_vec();
+        if r.at != body.len() {
+            return Err(format!(
+                "serialized state has {} unexpected trailing bytes",
+                body.len() - r.at
+            ));
+        }
+        let all = [time, start_time, last_successful_time];
+        if all
+            .iter()
+            .chain(stop_time.iter())
+            .chain(tolerance.iter())
+            .any(|x| !x.is_finite())
+        {
+            return Err("serialized state holds a non-finite time".into());
+        }
+        Ok(Self::new(
+            LayerState {
+                state,
+                time,
+                start_time,
+                stop_time,
+                tolerance,
+                last_successful_time,
+                terminated,
+            },
+            model,
+        ))
+    }
+}
+
+struct Reader<'a> {
+    b: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
+        let end = self.at.checked_add(n).filter(|&e| e <= self.b.len());
+        let end = end.ok_or_else(|| format!("serialized state truncated at byte {}", self.at))?;
+        let s = &self.b[self.at..end];
+        self.at = end;
+        Ok(s)
+    }
+    fn u32(&mut self) -> Result<u32, String> {
+        Ok(u32::from_le_bytes(
+            self.take(4)?.try_into().unwrap_or_default(),
+        ))
+    }
+    fn u64(&mut self) -> Result<u64, String> {
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().unwrap_or_default(),
+        ))
+    }
+    fn f64(&mut self) -> Result<f64, String> {
+        Ok(f64::from_bits(self.u64()?))
+    }
+    fn flag(&mut self) -> Result<bool, String> {
+        match self.take(1)?[0] {
+            0 => Ok(false),
+            1 => Ok(true),
+            v => Err(format!(
+                "serialized state has flag byte {v} at {}",
+                self.at - 1
+            )),
+        }
+    }
+    fn opt_f64(&mut self) -> Result<Option<f64>, String> {
+        let defined = self.flag()?;
+        let x = self.f64()?;
+        Ok(defined.then_some(x))
+    }
+}
+
+/// FNV-1a, 64 bit.
+fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> FmuState {
+        FmuState::new(
+            LayerState {
+                state: ModelState::STEP_COMPLETE,
+                time: 0.3,
+                start_time: 0.0,
+                stop_time: Some(2.0),
+                tolerance: None,
+                last_successful_time: 0.3,
+                terminated: false,
+            },
+            vec![1, 2, 3, 4, 5],
+        )
+    }
+
+    #[test]
+    fn round_trip() {
+        let s = sample();
+        let b = s.serialize("{g}");
+        assert_eq!(b.len(), s.serialized_len("{g}"));
+        let t = FmuState::deserialize(&b, "{g}").unwrap();
+        assert_eq!(t.layer, s.layer);
+        assert_eq!(t.model, s.model);
+    }
+
+    #[test]
+    fn refuses_garbage_other_guid_and_corruption() {
+        let b = sample().serialize("{g}");
+        assert!(FmuState::deserialize(&b, "{h}")
+            .unwrap_err()
+            .contains("GUID"));
+        assert!(FmuState::deserialize(b"garbage", "{g}").is_err());
+        assert!(FmuState::deserialize(&[], "{g}").is_err());
+        assert!(FmuState::deserialize(&b[..b.len() - 1], "{g}").is_err());
+        for i in 8..b.len() {
+            let mut c = b.clone();
+            c[i] ^= 0x40;
+            assert!(FmuState::deserialize(&c, "{g}").is_err(), "flip at {i}");
+        }
+    }
+}

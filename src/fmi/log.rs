@@ -1,0 +1,174 @@
+//! Log categories (declared in modelDescription.xml) and the call into the host's logger.
+//!
+//! The FMI 2.0 logger is a C-variadic, printf-style function. This layer always calls it with
+//! the fixed format `"%s"` and the message as the one argument, so text from users or models is
+//! never interpreted as a format.
+//!
+//! Filtering: each category has an on/off flag. At fmi2Instantiate the four status categories are
+//! on and `logAll` follows `loggingOn`. fmi2SetDebugLogging(on, 0, NULL) sets every category to
+//! `on`; with a list it sets only the listed ones. A message is sent iff its category is on.
+
+use std::ffi::{c_char, CStr, CString};
+
+use super::types::{fmi2CallbackFunctions, Status};
+
+/// A log category of this FMU.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LogCategory {
+    /// Warnings.
+    StatusWarning,
+    /// Steps that returned fmi2Discard.
+    StatusDiscard,
+    /// Errors: illegal calls, bad arguments, model failures.
+    StatusError,
+    /// Fatal errors (internal faults).
+    StatusFatal,
+    /// Every call, with its arguments (debug trace).
+    All,
+}
+
+impl LogCategory {
+    /// Every category, in the order of the XML.
+    pub const ALL: [LogCategory; 5] = [
+        LogCategory::StatusWarning,
+        LogCategory::StatusDiscard,
+        LogCategory::StatusError,
+        LogCategory::StatusFatal,
+        LogCategory::All,
+    ];
+
+    /// The category name as it appears in the XML and the logger calls.
+    pub const fn c_name(self) -> &'static CStr {
+        match self {
+            LogCategory::StatusWarning => c"logStatusWarning",
+            LogCategory::StatusDiscard => c"logStatusDiscard",
+            LogCategory::StatusError => c"logStatusError",
+            LogCategory::StatusFatal => c"logStatusFatal",
+            LogCategory::All => c"logAll",
+        }
+    }
+
+    /// The category name as a Rust string.
+    pub fn name(self) -> &'static str {
+        // The literals above are ASCII.
+        self.c_name().to_str().unwrap_or("logAll")
+    }
+
+    /// The category's description in the XML.
+    pub const fn description(self) -> &'static str {
+        match self {
+            LogCategory::StatusWarning => "Warnings",
+            LogCategory::StatusDiscard => "Communication steps refused with fmi2Discard",
+            LogCategory::StatusError => {
+                "Errors: illegal call sequences, invalid arguments, model failures"
+            }
+            LogCategory::StatusFatal => "Fatal internal faults",
+            LogCategory::All => "Every call with its arguments (debug trace)",
+        }
+    }
+
+    /// The index of the category in [`LogCategory::ALL`].
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The category by name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|c| c.name() == name)
+    }
+
+    /// The category of a message with this status (`All` for fmi2OK).
+    pub const fn for_status(status: Status) -> Self {
+        match status {
+            Status::Ok => LogCategory::All,
+            Status::Warning => LogCategory::StatusWarning,
+            Status::Discard => LogCategory::StatusDiscard,
+            Status::Error => LogCategory::StatusError,
+            Status::Fatal => LogCategory::StatusFatal,
+        }
+    }
+}
+
+/// The enabled categories of one instance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LogFilter([bool; 5]);
+
+impl LogFilter {
+    /// Status categories on, `logAll` = `logging_on`.
+    pub const fn new(logging_on: bool) -> Self {
+        Self([true, true, true, true, logging_on])
+    }
+
+    /// True if messages of `category` are sent.
+    #[inline]
+    pub const fn enabled(&self, category: LogCategory) -> bool {
+        self.0[category.index()]
+    }
+
+    /// Turns one category on or off.
+    pub fn set(&mut self, category: LogCategory, on: bool) {
+        self.0[category.index()] = on;
+    }
+
+    /// Turns every category on or off.
+    pub fn set_all(&mut self, on: bool) {
+        self.0 = [on; 5];
+    }
+}
+
+/// A C string of `text` (interior NUL bytes are replaced by `?`).
+pub fn c_string(text: &str) -> CString {
+    CString::new(text.replace('\0', "?")).unwrap_or_default()
+}
+
+/// Sends one message to the host's logger, if there is one: format `"%s"`, message as argument.
+///
+/// # Safety
+/// `callbacks.logger`, if set, must be a valid FMI 2.0 logger function.
+pub unsafe fn send(
+    callbacks: &fmi2CallbackFunctions,
+    instance_name: *const c_char,
+    status: Status,
+    category: LogCategory,
+    message: &str,
+) {
+    if let Some(logger) = callbacks.logger {
+        let message = c_string(message);
+        let name = if instance_name.is_null() {
+            c"".as_ptr()
+        } else {
+            instance_name
+        };
+        // SAFETY: the logger is the host's; every pointer is a valid NUL-terminated string that
+        // lives across the call, and "%s" consumes exactly the one argument passed.
+        unsafe {
+            logger(
+                callbacks.componentEnvironment,
+                name,
+                status.to_c(),
+                category.c_name().as_ptr(),
+                c"%s".as_ptr(),
+                message.as_ptr(),
+            )
+        };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_filter() {
+        for c in LogCategory::ALL {
+            assert_eq!(LogCategory::from_name(c.name()), Some(c));
+        }
+        let mut f = LogFilter::new(false);
+        assert!(f.enabled(LogCategory::StatusError) && !f.enabled(LogCategory::All));
+        f.set(LogCategory::All, true);
+        assert!(f.enabled(LogCategory::All));
+        f.set_all(false);
+        assert!(!f.enabled(LogCategory::StatusError));
+        assert_eq!(c_string("a\0b").to_str().unwrap(), "a?b");
+    }
+}

@@ -1,0 +1,103 @@
+//! The generic entry points with a model that panics: the panic is caught, logged as fmi2Fatal,
+//! the instance goes to state `fatal` (only FreeInstance is allowed) and nothing unwinds.
+
+mod host;
+
+use std::ffi::{c_void, CString};
+
+use host::{file_uri, guid_of, resources_with, test_logger, Callbacks, Log, FATAL, OK};
+use hybeam::fmi::entry;
+use hybeam::fmi::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
+use hybeam::fmi::types::fmi2CallbackFunctions;
+
+struct Panicky {
+    vars: Vec<Variable>,
+}
+
+impl CoSimModel for Panicky {
+    fn from_scene(_: &str) -> Result<Self, String> {
+        Ok(Self {
+            vars: vec![Variable {
+                name: "y".into(),
+                vr: 0,
+                causality: Causality::Output,
+                variability: Variability::Continuous,
+                start: None,
+                unit: None,
+                description: String::new(),
+            }],
+        })
+    }
+    fn model_info(&self) -> ModelInfo {
+        ModelInfo {
+            model_name: "panicky".into(),
+            description: String::new(),
+            start_time: 0.0,
+            stop_time: 1.0,
+            step_size: 0.1,
+        }
+    }
+    fn variables(&self) -> &[Variable] {
+        &self.vars
+    }
+    fn get_real(&self, _: u32) -> Result<f64, String> {
+        Ok(0.0)
+    }
+    fn set_real(&mut self, _: u32, _: f64) -> Result<(), String> {
+        Ok(())
+    }
+    fn initialize(&mut self, _: f64) -> Result<(), String> {
+        Ok(())
+    }
+    fn do_step(&mut self, _: f64, _: f64) -> Result<(), String> {
+        panic!("model bug in do_step")
+    }
+    fn reset(&mut self) -> Result<(), String> {
+        Ok(())
+    }
+    fn save_state(&self) -> Vec<u8> {
+        Vec::new()
+    }
+    fn load_state(&mut self, _: &[u8]) -> Result<(), String> {
+        Ok(())
+    }
+}
+
+#[test]
+fn panic_in_do_step_is_fatal_not_an_unwind() {
+    let scene = "anything";
+    let log = Box::new(Log::default());
+    let callbacks = Callbacks {
+        logger: Some(test_logger),
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: &*log as *const Log as *mut c_void,
+    };
+    let name = CString::new("panicky").unwrap();
+    let guid = CString::new(guid_of(scene)).unwrap();
+    let location = CString::new(file_uri(&resources_with(scene, "panic"))).unwrap();
+    unsafe {
+        let c = entry::instantiate::<Panicky>(
+            name.as_ptr(),
+            1,
+            guid.as_ptr(),
+            location.as_ptr(),
+            &callbacks as *const Callbacks as *const fmi2CallbackFunctions,
+            0,
+            0,
+        );
+        assert!(!c.is_null(), "{:?}", log.entries());
+        assert_eq!(entry::enter_initialization_mode::<Panicky>(c), OK);
+        assert_eq!(entry::exit_initialization_mode::<Panicky>(c), OK);
+        assert_eq!(entry::do_step::<Panicky>(c, 0.0, 0.1, 0), FATAL);
+        log.assert_last(
+            FATAL,
+            "logStatusFatal",
+            &["fmi2DoStep", "panic: model bug in do_step"],
+        );
+        // Fatal: every other call is refused, FreeInstance still frees.
+        assert_eq!(entry::terminate::<Panicky>(c), host::ERROR);
+        entry::free_instance::<Panicky>(c);
+    }
+}

@@ -1,0 +1,46 @@
+//! The golden files in `modelDescription/` are up to date: for every `modelDescription/<id>.xml`
+//! the XML generated now from `scenes/<id>.toml` is byte-identical. The shipped scenes are those
+//! with a golden file (`scripts/test.sh` packages exactly these).
+//! After a deliberate change (variables, units, crate version → GUID), regenerate with
+//! `cargo fmu-build scenes/<id>.toml --xml-only --out modelDescription`.
+
+use std::path::Path;
+
+use hybeam::fmi::model::CoSimModel;
+use hybeam::fmi::{guid, xml};
+
+#[test]
+fn golden_model_descriptions_are_current() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut goldens: Vec<_> = std::fs::read_dir(root.join("modelDescription"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .collect();
+    goldens.sort();
+    assert!(!goldens.is_empty(), "no golden modelDescription/*.xml");
+    for golden_path in goldens {
+        let id = golden_path
+            .file_stem()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        let scene = root.join("scenes").join(format!("{id}.toml"));
+        let bytes = std::fs::read(&scene).unwrap_or_else(|e| {
+            panic!(
+                "{} has no scene {}: {e}",
+                golden_path.display(),
+                scene.display()
+            )
+        });
+        let model = hybeam::FmuModel::from_scene(std::str::from_utf8(&bytes).unwrap())
+            .unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
+        let now = xml::model_description_of(&model, &id, &guid::guid(&bytes)).unwrap();
+        let golden = std::fs::read_to_string(&golden_path).unwrap();
+        assert!(
+            now == golden,
+            "{} is stale: run `cargo fmu-build scenes/{id}.toml --xml-only --out modelDescription`",
+            golden_path.display()
+        );
+    }
+}
