@@ -19,10 +19,10 @@ if [ ! -x .venv/bin/python ]; then
     echo "setup: creating .venv with $($PY --version)"
     "$PY" -m venv .venv
 fi
-if ! .venv/bin/python -c "import fmpy, pytest, numpy, sys; sys.exit(fmpy.__version__ != '$FMPY_VERSION')" 2>/dev/null; then
-    echo "setup: installing fmpy==$FMPY_VERSION, pytest, numpy into .venv"
+if ! .venv/bin/python -c "import fmpy, pytest, numpy, matplotlib, sys; sys.exit(fmpy.__version__ != '$FMPY_VERSION')" 2>/dev/null; then
+    echo "setup: installing fmpy==$FMPY_VERSION, pytest, numpy, matplotlib into .venv"
     .venv/bin/python -m pip install --quiet --upgrade pip
-    .venv/bin/python -m pip install --quiet "fmpy==$FMPY_VERSION" "pytest>=8,<9" "numpy>=1.26,<3"
+    .venv/bin/python -m pip install --quiet "fmpy==$FMPY_VERSION" "pytest>=8,<9" "numpy>=1.26,<3" "matplotlib>=3.8,<4"
 fi
 
 cargo build --workspace

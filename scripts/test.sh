@@ -9,6 +9,9 @@ bash scripts/setup.sh
 echo "== cargo test --workspace"
 cargo test --workspace
 
+echo "== release runner (the fmpy tests compare the FMU with it)"
+cargo build --release --bin hybeam
+
 echo "== packaging FMUs"
 mkdir -p target/fmu
 FMUS=()
