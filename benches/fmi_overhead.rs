@@ -3,6 +3,7 @@
 //! `do_step`, with one internal substep per call. Overhead = difference of the two times.
 //!
 //! `cargo bench --bench fmi_overhead`
+#![allow(missing_docs)] // criterion's macros generate undocumented items
 
 use std::ffi::CString;
 use std::hint::black_box;
