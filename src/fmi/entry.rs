@@ -89,13 +89,13 @@ unsafe fn with_instance<M: CoSimModel>(
     let result = catch_unwind(AssertUnwindSafe(|| {
         // SAFETY: live instance; the standard forbids concurrent calls on one instance.
         let inst = unsafe { &mut *p };
-        if !inst.state.is_in(f.allowed()) {
+        if !inst.layer.state.is_in(f.allowed()) {
             return inst.error(
                 f,
                 format!(
                     "illegal call sequence: allowed in {}, but the instance is in {}",
                     f.allowed(),
-                    inst.state
+                    inst.layer.state
                 ),
             );
         }
@@ -109,7 +109,7 @@ unsafe fn with_instance<M: CoSimModel>(
             let logged = catch_unwind(AssertUnwindSafe(|| {
                 // SAFETY: the borrow inside the closure above ended with the unwind.
                 let inst = unsafe { &mut *p };
-                inst.state = ModelState::FATAL;
+                inst.layer.state = ModelState::FATAL;
                 inst.log(
                     Status::Fatal,
                     &format!(
@@ -442,11 +442,11 @@ pub unsafe fn setup_experiment<M: CoSimModel>(
                     format!("stopTime = {s} must be finite and >= startTime = {start_time}"),
                 );
             }
-            inst.tolerance = tolerance;
-            inst.start_time = start_time;
-            inst.stop_time = stop;
-            inst.time = start_time;
-            inst.last_successful_time = start_time;
+            inst.layer.tolerance = tolerance;
+            inst.layer.start_time = start_time;
+            inst.layer.stop_time = stop;
+            inst.layer.time = start_time;
+            inst.layer.last_successful_time = start_time;
             inst.trace(|| {
                 let opt = |x: Option<f64>| x.map_or("undefined".to_owned(), |x| x.to_string());
                 format!(
@@ -468,7 +468,7 @@ pub unsafe fn enter_initialization_mode<M: CoSimModel>(c: fmi2Component) -> fmi2
     // SAFETY: forwarded contract.
     unsafe {
         with_instance::<M>(c, F::EnterInitializationMode, |inst| {
-            inst.state = ModelState::INIT_MODE;
+            inst.layer.state = ModelState::INIT_MODE;
             inst.trace(|| "fmi2EnterInitializationMode".to_owned());
             Status::Ok
         })
@@ -483,16 +483,20 @@ pub unsafe fn exit_initialization_mode<M: CoSimModel>(c: fmi2Component) -> fmi2S
     let f = F::ExitInitializationMode;
     // SAFETY: forwarded contract.
     unsafe {
-        with_instance::<M>(c, f, |inst| match inst.model.initialize(inst.start_time) {
-            Ok(()) => {
-                inst.state = ModelState::STEP_COMPLETE;
-                inst.time = inst.start_time;
-                inst.last_successful_time = inst.start_time;
-                inst.terminated = false;
-                inst.trace(|| format!("fmi2ExitInitializationMode: t = {}", inst.start_time));
-                Status::Ok
+        with_instance::<M>(c, f, |inst| {
+            match inst.model.initialize(inst.layer.start_time) {
+                Ok(()) => {
+                    inst.layer.state = ModelState::STEP_COMPLETE;
+                    inst.layer.time = inst.layer.start_time;
+                    inst.layer.last_successful_time = inst.layer.start_time;
+                    inst.layer.terminated = false;
+                    inst.trace(|| {
+                        format!("fmi2ExitInitializationMode: t = {}", inst.layer.start_time)
+                    });
+                    Status::Ok
+                }
+                Err(e) => inst.model_error(f, format!("model initialization failed: {e}")),
             }
-            Err(e) => inst.model_error(f, format!("model initialization failed: {e}")),
         })
     }
 }
@@ -505,8 +509,8 @@ pub unsafe fn terminate<M: CoSimModel>(c: fmi2Component) -> fmi2Status {
     // SAFETY: forwarded contract.
     unsafe {
         with_instance::<M>(c, F::Terminate, |inst| {
-            inst.state = ModelState::TERMINATED;
-            inst.trace(|| format!("fmi2Terminate at t = {}", inst.time));
+            inst.layer.state = ModelState::TERMINATED;
+            inst.trace(|| format!("fmi2Terminate at t = {}", inst.layer.time));
             Status::Ok
         })
     }
@@ -589,7 +593,7 @@ pub unsafe fn set_real<M: CoSimModel>(
                         format!("value reference {r} is not a variable of this model"),
                     );
                 };
-                if let Err(e) = check_settable(var, inst.state) {
+                if let Err(e) = check_settable(var, inst.layer.state) {
                     return inst.error(f, e);
                 }
                 if !v.is_finite() {
@@ -773,7 +777,7 @@ pub unsafe fn get_fmu_state<M: CoSimModel>(
                 s.layer = layer;
                 s.model = bytes;
             }
-            inst.trace(|| format!("fmi2GetFMUstate at t = {}", inst.time));
+            inst.trace(|| format!("fmi2GetFMUstate at t = {}", inst.layer.time));
             Status::Ok
         })
     }
@@ -796,7 +800,7 @@ pub unsafe fn set_fmu_state<M: CoSimModel>(
                 return inst.error(f, format!("the model refused the FMU state: {e}"));
             }
             inst.set_layer_state(&s.layer);
-            inst.trace(|| format!("fmi2SetFMUstate: t = {}", inst.time));
+            inst.trace(|| format!("fmi2SetFMUstate: t = {}", inst.layer.time));
             Status::Ok
         })
     }
@@ -1025,20 +1029,20 @@ pub unsafe fn do_step<M: CoSimModel>(
                     format!("communicationStepSize = {h} must be finite and > 0"),
                 );
             }
-            let tol = TIME_RTOL * t.abs().max(inst.time.abs()).max(h);
-            if !t.is_finite() || (t - inst.time).abs() > tol {
+            let tol = TIME_RTOL * t.abs().max(inst.layer.time.abs()).max(h);
+            if !t.is_finite() || (t - inst.layer.time).abs() > tol {
                 return inst.error(
                     f,
                     format!(
                         "currentCommunicationPoint = {t} differs from the FMU time {} by {:e} \
                          (tolerance {tol:e}): each step must start where the last one ended",
-                        inst.time,
-                        t - inst.time
+                        inst.layer.time,
+                        t - inst.layer.time
                     ),
                 );
             }
             let end = t + h;
-            if let Some(stop) = inst.stop_time {
+            if let Some(stop) = inst.layer.stop_time {
                 if end > stop + TIME_RTOL * stop.abs().max(h) {
                     return inst.error(
                         f,
@@ -1052,22 +1056,22 @@ pub unsafe fn do_step<M: CoSimModel>(
             inst.trace(|| format!("fmi2DoStep: t = {t}, h = {h}"));
             match inst.model.do_step(t, h) {
                 Ok(()) => {
-                    inst.time = end;
-                    inst.last_successful_time = end;
+                    inst.layer.time = end;
+                    inst.layer.last_successful_time = end;
                     inst.last_do_step_status = Status::Ok;
                     Status::Ok
                 }
                 Err(e) => {
-                    inst.state = ModelState::STEP_FAILED;
-                    inst.terminated = true;
-                    inst.last_successful_time = inst.time;
+                    inst.layer.state = ModelState::STEP_FAILED;
+                    inst.layer.terminated = true;
+                    inst.layer.last_successful_time = inst.layer.time;
                     inst.last_do_step_status = Status::Discard;
                     inst.log(
                         Status::Discard,
                         &format!(
                             "fmi2DoStep: the step from t = {t} with h = {h} failed: {e}; the model \
                              keeps its state at t = {} (fmi2Terminated = true)",
-                            inst.time
+                            inst.layer.time
                         ),
                     );
                     Status::Discard
@@ -1133,7 +1137,7 @@ pub unsafe fn get_real_status<M: CoSimModel>(
         with_instance::<M>(c, f, |inst| {
             let out = tri!(out_ptr(inst, f, "value", value));
             if s == FMI2_LAST_SUCCESSFUL_TIME {
-                *out = inst.last_successful_time;
+                *out = inst.layer.last_successful_time;
                 Status::Ok
             } else {
                 inst.error(
@@ -1181,7 +1185,7 @@ pub unsafe fn get_boolean_status<M: CoSimModel>(
         with_instance::<M>(c, f, |inst| {
             let out = tri!(out_ptr(inst, f, "value", value));
             if s == FMI2_TERMINATED {
-                *out = if inst.terminated {
+                *out = if inst.layer.terminated {
                     FMI2_TRUE
                 } else {
                     FMI2_FALSE

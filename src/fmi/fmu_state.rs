@@ -43,6 +43,21 @@ pub struct LayerState {
     pub terminated: bool,
 }
 
+impl LayerState {
+    /// The values right after fmi2Instantiate.
+    pub fn instantiated() -> Self {
+        Self {
+            state: ModelState::INSTANTIATED,
+            time: 0.0,
+            start_time: 0.0,
+            stop_time: None,
+            tolerance: None,
+            last_successful_time: 0.0,
+            terminated: false,
+        }
+    }
+}
+
 /// An owned FMU state (what an `fmi2FMUstate` points to).
 #[derive(Debug, Clone)]
 pub struct FmuState {

@@ -20,20 +20,8 @@ pub struct Instance<M> {
     callbacks: fmi2CallbackFunctions,
     /// Enabled log categories.
     pub log_filter: LogFilter,
-    /// FMI state-machine state.
-    pub state: ModelState,
-    /// Current communication time.
-    pub time: f64,
-    /// Start time from fmi2SetupExperiment (0 if not called).
-    pub start_time: f64,
-    /// Stop time from fmi2SetupExperiment, if defined.
-    pub stop_time: Option<f64>,
-    /// Tolerance from fmi2SetupExperiment, if defined (informative: the model steps with its own).
-    pub tolerance: Option<f64>,
-    /// Time reached by the last successful step (fmi2LastSuccessfulTime).
-    pub last_successful_time: f64,
-    /// fmi2Terminated: set when a step failed and the simulation cannot go on.
-    pub terminated: bool,
+    /// State machine, times and termination flags: the FMI layer's part of an FMU state.
+    pub layer: LayerState,
     /// Status of the last fmi2DoStep (fmi2GetStatus(fmi2DoStepStatus)).
     pub last_do_step_status: Status,
     /// GUID of the instance (from the scene and crate version).
@@ -73,13 +61,7 @@ impl<M: CoSimModel> Instance<M> {
             name,
             callbacks,
             log_filter: LogFilter::new(logging_on),
-            state: ModelState::INSTANTIATED,
-            time: 0.0,
-            start_time: 0.0,
-            stop_time: None,
-            tolerance: None,
-            last_successful_time: 0.0,
-            terminated: false,
+            layer: LayerState::instantiated(),
             last_do_step_status: Status::Ok,
             guid,
             vr_index,
@@ -138,43 +120,23 @@ impl<M: CoSimModel> Instance<M> {
 
     /// Like [`Instance::error`] for a failure of the model: the instance goes to state `error`.
     pub fn model_error(&mut self, function: Function, message: impl AsRef<str>) -> Status {
-        self.state = ModelState::ERROR;
+        self.layer.state = ModelState::ERROR;
         self.error(function, message)
     }
 
     /// The FMI layer's part of an FMU state.
     pub fn layer_state(&self) -> LayerState {
-        LayerState {
-            state: self.state,
-            time: self.time,
-            start_time: self.start_time,
-            stop_time: self.stop_time,
-            tolerance: self.tolerance,
-            last_successful_time: self.last_successful_time,
-            terminated: self.terminated,
-        }
+        self.layer
     }
 
     /// Restores the FMI layer's part of an FMU state.
     pub fn set_layer_state(&mut self, l: &LayerState) {
-        self.state = l.state;
-        self.time = l.time;
-        self.start_time = l.start_time;
-        self.stop_time = l.stop_time;
-        self.tolerance = l.tolerance;
-        self.last_successful_time = l.last_successful_time;
-        self.terminated = l.terminated;
+        self.layer = *l;
     }
 
     /// Back to the values right after fmi2Instantiate (the model is reset separately).
     pub fn reset_layer(&mut self) {
-        self.state = ModelState::INSTANTIATED;
-        self.time = 0.0;
-        self.start_time = 0.0;
-        self.stop_time = None;
-        self.tolerance = None;
-        self.last_successful_time = 0.0;
-        self.terminated = false;
+        self.layer = LayerState::instantiated();
         self.last_do_step_status = Status::Ok;
     }
 
