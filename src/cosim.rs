@@ -10,7 +10,7 @@
 use crate::fmi::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
 use crate::integrator::{IntegratorMemory, JacobianPoint, State};
 use crate::scene::{Scene, Section, SegmentKind};
-use crate::simulator::Simulator;
+use crate::simulator::{Memory, Simulator, StepControl};
 
 /// What a value reference designates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,7 +87,7 @@ pub struct BeamFmu {
 }
 
 /// Magic and version of the snapshot bytes.
-const MAGIC: &[u8; 8] = b"HYBEAM01";
+const MAGIC: &[u8; 8] = b"HYBEAM02";
 
 fn fnv1a(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -557,6 +557,9 @@ impl CoSimModel for BeamFmu {
             w.v(x);
         }
         let mem = self.sim.memory();
+        w.f(mem.step.h_ok);
+        w.u(mem.step.calm as u64);
+        let mem = mem.integrator;
         w.f(mem.eta);
         match &mem.jacobian {
             None => w.u(0),
@@ -591,6 +594,8 @@ impl CoSimModel for BeamFmu {
         let acc = r.v()?;
         let aux = r.v()?;
         let lambda = r.v()?;
+        let h_ok = r.f()?;
+        let calm = r.u()?.min(u32::MAX as u64) as u32;
         let eta = r.f()?;
         let jacobian = match r.u()? {
             0 => None,
@@ -622,7 +627,10 @@ impl CoSimModel for BeamFmu {
                 aux,
                 lambda,
             },
-            &IntegratorMemory { eta, jacobian },
+            &Memory {
+                integrator: IntegratorMemory { eta, jacobian },
+                step: StepControl { h_ok, calm },
+            },
         )?;
         self.scene = current;
         self.sim = sim;

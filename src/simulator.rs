@@ -12,6 +12,27 @@ pub const MAX_HALVINGS: u32 = 12;
 /// for a metal rod, and the step is refused rather than returning a number.
 pub const MAX_AXIAL_STRAIN: f64 = 0.05;
 
+/// Internal step control carried from one communication step to the next.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepControl {
+    /// Largest internal step that recently succeeded [s] (≤ `solver.max_step`).
+    pub h_ok: f64,
+    /// Communication steps completed without a rejected attempt since `h_ok` last changed.
+    pub calm: u32,
+}
+
+/// Successful calls at a reduced step before it is doubled again.
+const CALM_BEFORE_GROWTH: u32 = 4;
+
+/// Everything beyond the state that a snapshot must carry for a bit-identical restart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Memory {
+    /// Integrator memory.
+    pub integrator: IntegratorMemory,
+    /// Step control.
+    pub step: StepControl,
+}
+
 /// A running simulation.
 #[derive(Debug)]
 pub struct Simulator {
@@ -19,6 +40,7 @@ pub struct Simulator {
     model: Model,
     integ: GeneralizedAlpha,
     state: State,
+    step: StepControl,
     /// Smallest internal step used so far [s].
     pub min_step_used: f64,
 }
@@ -56,11 +78,16 @@ impl Simulator {
                 .initialize(&mut model, &mut state)
                 .map_err(|e| format!("initial accelerations: {e}"))?;
         }
+        let step = StepControl {
+            h_ok: scene.solver.max_step,
+            calm: 0,
+        };
         Ok(Self {
             scene,
             model,
             integ,
             state,
+            step,
             min_step_used: f64::INFINITY,
         })
     }
@@ -85,24 +112,34 @@ impl Simulator {
         &self.state
     }
 
-    /// The integrator memory a snapshot must carry besides the state.
-    pub fn memory(&self) -> IntegratorMemory {
-        self.integ.memory()
+    /// The memory a snapshot must carry besides the state.
+    pub fn memory(&self) -> Memory {
+        Memory {
+            integrator: self.integ.memory(),
+            step: self.step,
+        }
     }
 
     /// Restores a snapshot (state and integrator memory) taken from a simulator of the same
     /// scene; the run then continues bit for bit as the original.
-    pub fn restore(&mut self, s: State, mem: &IntegratorMemory) -> Result<(), String> {
+    pub fn restore(&mut self, s: State, mem: &Memory) -> Result<(), String> {
         if s.q.len() != self.state.q.len()
             || s.lambda.len() != self.state.lambda.len()
             || [&s.v, &s.acc, &s.aux].iter().any(|x| x.len() != s.q.len())
         {
             return Err("state dimensions do not match this model".into());
         }
+        let h = mem.step.h_ok;
+        if !(h.is_finite() && h > 0.0 && h <= self.scene.solver.max_step) {
+            return Err(format!(
+                "snapshot step size {h} is not in (0, solver.max_step]"
+            ));
+        }
         self.integ
-            .restore_memory(&mut self.model, mem)
+            .restore_memory(&mut self.model, &mem.integrator)
             .map_err(|e| format!("cannot rebuild the Newton matrix of the snapshot: {e}"))?;
         self.state = s;
+        self.step = mem.step;
         Ok(())
     }
 
@@ -142,8 +179,18 @@ impl Simulator {
             return Err(format!("cannot advance from t = {t0} to t = {t_end}"));
         }
         let h_max = self.scene.solver.max_step;
+        // start from the step that last worked; grow back after a few calm calls
+        if self.step.h_ok < h_max && self.step.calm >= CALM_BEFORE_GROWTH {
+            self.step = StepControl {
+                h_ok: (2.0 * self.step.h_ok).min(h_max),
+                calm: 0,
+            };
+        }
+        let h_start = self.step.h_ok;
         let saved = self.state.clone();
-        let mut steps = (span / h_max * (1.0 - 1e-12)).ceil().max(1.0) as u64;
+        let saved_step = self.step;
+        // 1e-9 relative guard: span = k·dt − (k−1)·dt carries rounding of that order
+        let mut steps = (span / h_start * (1.0 - 1e-9)).ceil().max(1.0) as u64;
         let mut done = 0u64;
         let mut halvings = 0;
         while done < steps {
@@ -159,6 +206,7 @@ impl Simulator {
                     halvings += 1;
                     if halvings > MAX_HALVINGS {
                         self.state = saved;
+                        self.step = saved_step;
                         self.integ.invalidate();
                         return Err(format!(
                             "step from t = {:.6} s failed after {MAX_HALVINGS} halvings of the internal step: {e}. \
@@ -181,6 +229,7 @@ impl Simulator {
             .all(|x| x.is_finite());
         if !finite || strain > MAX_AXIAL_STRAIN {
             self.state = saved;
+            self.step = saved_step;
             self.integ.invalidate();
             return Err(if finite {
                 format!(
@@ -191,6 +240,14 @@ impl Simulator {
             } else {
                 format!("step to t = {t_end:.6} s produced non-finite coordinates; reduce the communication step or solver.max_step")
             });
+        }
+        if halvings > 0 {
+            self.step = StepControl {
+                h_ok: span / steps as f64,
+                calm: 0,
+            };
+        } else {
+            self.step.calm = self.step.calm.saturating_add(1);
         }
         Ok(())
     }

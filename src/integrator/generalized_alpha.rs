@@ -270,7 +270,9 @@ impl GeneralizedAlpha {
         // the rate estimate of earlier steps is trusted less as steps go by (Hairer & Wanner)
         let mut eta = self.eta.max(f64::EPSILON).powf(0.8);
         for it in 0..self.max_iter {
-            let refresh = self.factored_h != Some(h);
+            // the held matrix steers modified Newton only: a step size that differs in its last
+            // bits (t_end − t0 of consecutive communication steps) does not call for a new one
+            let refresh = !self.factored_h.is_some_and(|hf| (hf - h).abs() <= 1e-9 * h);
             let req = EvalRequest {
                 sd: bh2,
                 matrix: if refresh { Some(coeffs) } else { None },

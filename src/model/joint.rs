@@ -55,20 +55,48 @@ pub struct EndKin {
     pub dp: Vec<Vector2<f64>>,
     /// Orientation.
     pub orient: Orientation,
-    /// For the curvature of p (modal tip only): (local index of θ, A u_tip, [A J e_y φ_k(1)]).
-    /// μ·∂²p/∂θ² = −μ·A u_tip and μ·∂²p/∂θ∂a_k = μ·(A J e_y φ_k(1)).
-    pub curv: Option<(usize, Vector2<f64>, Vec<Vector2<f64>>)>,
+    /// Curvature of p (modal tip only).
+    pub curv: Option<TipCurvature>,
+}
+
+/// Second derivatives of a modal tip position p = R + A(θ)[L − ½aᵀGa/L; φ(1)ᵀa]:
+/// ∂²p/∂θ² = −A u, ∂²p/∂θ∂a_k = J ∂p/∂a_k, ∂²p/∂a_j∂a_k = −A e_x G_jk / L.
+#[derive(Debug, Clone)]
+pub struct TipCurvature {
+    /// Local index of θ (the modal amplitudes follow it).
+    pub theta: usize,
+    /// A u_tip.
+    pub au: Vector2<f64>,
+    /// J ∂p/∂a_k.
+    pub j_dp_da: Vec<Vector2<f64>>,
+    /// A e_x / L.
+    pub ax_over_l: Vector2<f64>,
+    /// G (row-major n × n).
+    pub gram: Vec<f64>,
 }
 
 impl EndKin {
     /// Adds μ·∂²p/∂q∂q (local × local) through `add(i, j, value)`.
     pub fn add_point_hessian(&self, mu: Vector2<f64>, mut add: impl FnMut(usize, usize, f64)) {
-        if let Some((it, au, ajk)) = &self.curv {
-            add(*it, *it, -mu.dot(au));
-            for (k, v) in ajk.iter().enumerate() {
+        if let Some(c) = &self.curv {
+            let it = c.theta;
+            add(it, it, -mu.dot(&c.au));
+            let n = c.j_dp_da.len();
+            for (k, v) in c.j_dp_da.iter().enumerate() {
                 let h = mu.dot(v);
-                add(*it, it + 1 + k, h);
-                add(it + 1 + k, *it, h);
+                add(it, it + 1 + k, h);
+                add(it + 1 + k, it, h);
+            }
+            let m = -mu.dot(&c.ax_over_l);
+            if m != 0.0 {
+                for j in 0..n {
+                    for k in 0..n {
+                        let g = c.gram[j * n + k];
+                        if g != 0.0 {
+                            add(it + 1 + j, it + 1 + k, m * g);
+                        }
+                    }
+                }
             }
         }
     }
@@ -132,10 +160,11 @@ pub fn end_kin(end: &End, q: &[f64], bodies: &[(ModalBody, Vec<u32>, Vec<f64>)])
             let a = super::modal::rot(ql[2]);
             let u = b.tip_local(&ql);
             let au = a * u;
+            let gk = b.foreshortening_gradient(&ql);
             let mut dp = vec![Vector2::x(), Vector2::y(), Vector2::new(-au[1], au[0])];
             let mut ajk = Vec::with_capacity(n);
             for k in 0..n {
-                let c = a * Vector2::new(0.0, b.basis.tip[k]);
+                let c = a * Vector2::new(-gk[k], b.basis.tip[k]);
                 dp.push(c);
                 ajk.push(Vector2::new(-c[1], c[0]));
                 dpsi[3 + k] = b.basis.tip_slope[k] / b.length;
@@ -145,7 +174,13 @@ pub fn end_kin(end: &End, q: &[f64], bodies: &[(ModalBody, Vec<u32>, Vec<f64>)])
                 p: r + au,
                 dp,
                 orient: Orientation::Angle(ql[2] + b.tip_slope(&ql), dpsi),
-                curv: Some((2, au, ajk)),
+                curv: Some(TipCurvature {
+                    theta: 2,
+                    au,
+                    j_dp_da: ajk,
+                    ax_over_l: a.column(0).into_owned() / b.length,
+                    gram: b.basis.slope_gram.clone(),
+                }),
             }
         }
     }

@@ -88,6 +88,8 @@ pub struct ModalBasis {
     pub tip: Vec<f64>,
     /// φ_j′(1) (per ξ).
     pub tip_slope: Vec<f64>,
+    /// ∫₀¹ φ_i′φ_j′ dξ (row-major n × n): the tip foreshortening is ½ aᵀ G a / L.
+    pub slope_gram: Vec<f64>,
 }
 
 /// Composite Gauss–Legendre rule on [0, 1]: (points, weights).
@@ -166,6 +168,7 @@ impl ModalBasis {
             ix: vec![0.0; n],
             tip: vec![0.0; n],
             tip_slope: vec![0.0; n],
+            slope_gram: vec![0.0; n * n],
         };
         // Deterministic sign: φ_j(1) > 0 (or φ_j′(1) > 0 if the tip value vanishes).
         for j in 0..n {
@@ -177,10 +180,13 @@ impl ModalBasis {
             }
         }
         for &(xi, w) in &quad {
+            let vals: Vec<[f64; 3]> = (0..n).map(|j| basis.eval_one(j, xi)).collect();
             for j in 0..n {
-                let [v, _, _] = basis.eval_one(j, xi);
-                basis.i1[j] += w * v;
-                basis.ix[j] += w * xi * v;
+                basis.i1[j] += w * vals[j][0];
+                basis.ix[j] += w * xi * vals[j][0];
+                for i in 0..n {
+                    basis.slope_gram[i * n + j] += w * vals[i][1] * vals[j][1];
+                }
             }
         }
         for j in 0..n {
@@ -242,6 +248,15 @@ mod tests {
                 "slope {j}: {}",
                 b.tip_slope[j]
             );
+        }
+    }
+
+    #[test]
+    fn slope_gram_matches_the_table() {
+        // physics.md §3: ∫φ′² dξ = 4.647778, 32.417399, 77.298891 for modes 1–3
+        let b = ModalBasis::new(3, false);
+        for (j, want) in [4.647778, 32.417399, 77.298891].iter().enumerate() {
+            assert!((b.slope_gram[j * 3 + j] - want).abs() < 2e-5, "{j}");
         }
     }
 

@@ -276,10 +276,28 @@ impl ModalBody {
         -(g[0] * first[0] + g[1] * first[1])
     }
 
-    /// Local position [x; w(x)] of the tip in the body frame.
+    /// (G a)_k / L: gradient of the tip foreshortening ½ aᵀ G a / L with respect to a_k [-].
+    pub fn foreshortening_gradient(&self, q: &[f64]) -> Vec<f64> {
+        let n = self.modes();
+        let a = &q[3..];
+        (0..n)
+            .map(|k| {
+                (0..n)
+                    .map(|j| self.basis.slope_gram[k * n + j] * a[j])
+                    .sum::<f64>()
+                    / self.length
+            })
+            .collect()
+    }
+
+    /// Local position of the tip in the body frame: [L − ½ aᵀ G a / L; Σ φ_k(1) a_k], with
+    /// the second-order foreshortening of the deflected segment (G = ∫φ′φ′ dξ), so that the
+    /// tip moves inward as the segment bends and an axial tip load stiffens the modes.
     pub fn tip_local(&self, q: &[f64]) -> Vector2<f64> {
         let w: f64 = self.basis.tip.iter().zip(&q[3..]).map(|(p, a)| p * a).sum();
-        Vector2::new(self.length, w)
+        let g = self.foreshortening_gradient(q);
+        let short: f64 = 0.5 * g.iter().zip(&q[3..]).map(|(g, a)| g * a).sum::<f64>();
+        Vector2::new(self.length - short, w)
     }
 
     /// Elastic slope angle at the tip θ_J = Σ φ_k′(1) a_k / L [rad].
