@@ -19,6 +19,8 @@ mod plot;
 mod stability;
 #[path = "report/statics.rs"]
 mod statics;
+#[path = "report/suite.rs"]
+mod suite;
 
 use std::process::ExitCode;
 

@@ -442,7 +442,7 @@ const TABLE_HEAD: &[&str] = &[
     "status",
 ];
 
-fn cheapest<'a>(rows: &'a [Row], err: impl Fn(&Row) -> f64) -> Option<&'a Row> {
+fn cheapest(rows: &[Row], err: impl Fn(&Row) -> f64) -> Option<&Row> {
     rows.iter()
         .filter(|r| err(r) <= GOAL)
         .min_by(|a, b| a.wall.total_cmp(&b.wall))

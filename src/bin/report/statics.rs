@@ -224,7 +224,7 @@ pub fn run(quick: bool) -> Result<String, String> {
         &csv,
     )?;
     for (kind, series) in &plots {
-        let file = format!("statics_{}.svg", kind.replace(' ', "_").replace('-', "_"));
+        let file = format!("statics_{}.svg", kind.replace([' ', '-'], "_"));
         plot::plot(
             &file,
             &Axes {
@@ -264,7 +264,7 @@ pub fn run(quick: bool) -> Result<String, String> {
                 "parameter",
                 "table",
                 "inextensible shooting",
-                "|shooting − table|",
+                "\\|shooting − table\\|",
                 "extensible shooting (this rod)"
             ],
             &check_rows,
