@@ -235,7 +235,7 @@ fn plan(spec: &Spec, main: &Scene, quick: bool) -> Result<Vec<Point>, String> {
         }
         for &n in modes {
             push(
-                "modes, no interface",
+                "modes (no interface)",
                 main_form,
                 spec.main,
                 format!("modes={n}"),
@@ -648,8 +648,9 @@ pub fn run(opts: &Opts) -> Result<(), String> {
                 .collect();
             let best_h = hybrid
                 .iter()
-                .filter(|r| r.err_max <= GOAL)
-                .min_by(|a, b| a.wall.total_cmp(&b.wall));
+                .filter(|r| r.own_max <= GOAL)
+                .min_by(|a, b| a.wall.total_cmp(&b.wall))
+                .copied();
             let best_hyb_err = hybrid
                 .iter()
                 .map(|r| r.err_max)
@@ -664,7 +665,8 @@ pub fn run(opts: &Opts) -> Result<(), String> {
                 case1_target,
                 "**Project target (Case 1 tip error ≤ 1e-5 m in < 0.03 s wall for 2 s simulated): {}.** \
                  Cheapest measured run reaching 1e-5 m: {}. Smallest error of any hybrid run: {} m. \
-                 Best error among runs under 0.03 s: {}.",
+                 Best error among runs under 0.03 s: {}. Cheapest hybrid run within 1e-5 m of the \
+                 hybrid's own converged model (discretization error only): {}.",
                 if yes { "MET" } else { "NOT MET" },
                 describe(best),
                 e3(best_hyb_err),
@@ -676,9 +678,9 @@ pub fn run(opts: &Opts) -> Result<(), String> {
                         r.p.param,
                         r.wall
                     ))
-                    .unwrap_or_else(|| "no run was that fast".into())
+                    .unwrap_or_else(|| "no run was that fast".into()),
+                describe(best_h)
             );
-            let _ = best_h;
         }
         let all_rows: Vec<Vec<String>> = rows.iter().map(table_row).collect();
         let _ = writeln!(
@@ -720,7 +722,7 @@ refined mesh and step 1e-5 s. The error against it is the discretization error o
 distance between it and the physical reference is the model error of the formulation (the linear \
 floating-frame modal segments have no foreshortening and no geometric stiffening).\n\
 - Families: `step` (solver.max_step), `elements` (ANCF elements of the swept scene, spread over \
-its ANCF segments by length), `modes+interface` and `modes, no interface` (every modal segment), \
+its ANCF segments by length), `modes+interface` and `modes (no interface)` (every modal segment), \
 `rho_inf`, one step sweep per twin formulation, and a small `combined` grid.\n\n";
 
 fn cost_per_step(opts: &Opts) -> Result<String, String> {
