@@ -1,0 +1,79 @@
+//! Fast subset of the stability suite (`src/bin/report/suite.rs`, the same cases as
+//! `report stability`): every case ends without panic and without NaN, and either completes with
+//! bounded outputs (|tip − root| ≤ 1.02 × length, finite energies) or refuses with a non-empty
+//! message.
+
+#[path = "../src/bin/report/suite.rs"]
+mod suite;
+
+use suite::{Case, Status};
+
+fn check(case: &Case) -> Result<(), String> {
+    let o = suite::run(case);
+    match &o.status {
+        Status::Completed => {
+            if !o.finite || !o.energies_finite {
+                return Err(format!("{}: non-finite outputs", case.name));
+            }
+            if !o.bounded() {
+                return Err(format!(
+                    "{}: tip reached {:.4} × the length from the root",
+                    case.name,
+                    o.max_tip_dist / o.length
+                ));
+            }
+            Ok(())
+        }
+        Status::Refused(m) if !m.trim().is_empty() => Ok(()),
+        Status::Refused(_) => Err(format!("{}: refused with an empty message", case.name)),
+        Status::NonFinite(t) => Err(format!("{}: NaN in outputs at t = {t}", case.name)),
+        Status::Panicked(m) => Err(format!("{}: panicked: {m}", case.name)),
+    }
+}
+
+fn run_matching(pred: impl Fn(&Case) -> bool) {
+    let cases: Vec<Case> = suite::cases(true)
+        .into_iter()
+        .filter(|c| c.fast && pred(c))
+        .collect();
+    assert!(!cases.is_empty(), "no case selected");
+    let failures: Vec<String> = cases.iter().filter_map(|c| check(c).err()).collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+const HYBRID_SPIN: &str = "pinned spin-up, hybrid";
+
+#[test]
+fn stiff_thin_rod_at_every_step_size() {
+    run_matching(|c| c.name.starts_with("stiff"));
+}
+
+#[test]
+fn very_stiff_material_at_every_step_size() {
+    run_matching(|c| c.name.starts_with("E = 1e13"));
+}
+
+#[test]
+fn spin_up_and_soft_rod() {
+    run_matching(|c| {
+        (c.name.starts_with("pinned") && c.name != HYBRID_SPIN) || c.name.starts_with("soft")
+    });
+}
+
+#[test]
+fn communication_steps_random_input_and_mesh_extremes() {
+    run_matching(|c| {
+        c.name.starts_with("output step")
+            || c.name.starts_with("random")
+            || c.name.contains("element")
+    });
+}
+
+/// Known engine weakness (docs/stability.md): the linear floating-frame modal segment has no
+/// geometric stiffening, so under fast spin its deflection grows without bound and the tip
+/// leaves the rod's length; the engine neither refuses nor stays physical.
+#[test]
+#[ignore = "engine weakness: hybrid spin-up leaves the rod length (no geometric stiffening in the modal segment)"]
+fn hybrid_spin_up_stays_bounded() {
+    run_matching(|c| c.name == HYBRID_SPIN);
+}
