@@ -2,6 +2,7 @@
 tip the right way, and a static tip force settles at the elastica (physics.md §4a)."""
 
 import csv
+import os
 import pathlib
 import subprocess
 import tempfile
@@ -12,7 +13,7 @@ import pytest
 from fmpy import read_model_description, simulate_fmu
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-RUNNER = ROOT / "target" / "release" / "hybeam"
+RUNNER = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "release" / "hybeam"
 OUTPUTS = ["tip.position.x", "tip.position.y", "tip.angle",
            "energy.kinetic", "energy.strain", "energy.potential"]
 
