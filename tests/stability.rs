@@ -69,11 +69,10 @@ fn communication_steps_random_input_and_mesh_extremes() {
     });
 }
 
-/// Known engine weakness (docs/stability.md): the linear floating-frame modal segment has no
-/// geometric stiffening, so under fast spin its deflection grows without bound and the tip
-/// leaves the rod's length; the engine neither refuses nor stays physical.
+/// The hybrid under fast spin: the modal tip's foreshortening lets the centrifugal pull of the
+/// ANCF segment stiffen the modes, so the rod keeps its length (without it the tip left the
+/// rod length at 1.2 L, docs/engine-findings.md §4).
 #[test]
-#[ignore = "engine weakness: hybrid spin-up leaves the rod length (no geometric stiffening in the modal segment)"]
 fn hybrid_spin_up_stays_bounded() {
     run_matching(|c| c.name == HYBRID_SPIN);
 }
