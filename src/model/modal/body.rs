@@ -4,7 +4,9 @@
 //! frame angle θ [rad] (counter-clockwise from global x), modal amplitudes a [m]. A material
 //! point at x ∈ [0, L] is at r = R + A(θ)[x; Σ φ_k(x/L) a_k]. The shapes are mass-orthonormal
 //! (∫ρA φ_iφ_j dx = ρAL δ_ij) and stiffness-diagonal, so M_ff = ρAL·I and K_ff = diag(EIΛ_k/L³).
-//! Linear FFRF: no geometric stiffening.
+//! Linear FFRF inside the segment (no distributed geometric stiffening); the tip position used
+//! by joints and tip loads includes the second-order foreshortening ½aᵀGa/L
+//! ([`ModalBody::tip_local`]), through which axial tip loads stiffen the modes.
 //!
 //! [`ModalBody::eval`] returns the residual of the equations of motion
 //! `F = M(q) q̈ − Q_v(q, q̇) − Q_g(q) + K a + D ȧ` and its exact partial derivatives
