@@ -172,7 +172,7 @@ impl Solver {
         1e-3
     }
     fn default_tolerance() -> f64 {
-        1e-9
+        1e-11
     }
     fn default_max_iterations() -> usize {
         12
@@ -353,7 +353,7 @@ impl Scene {
         check_positive("solver.max_step", s.max_step, "seconds")?;
         if !(s.tolerance.is_finite() && s.tolerance > 0.0 && s.tolerance < 1e-2) {
             return Err(SceneError(format!(
-                "solver.tolerance = {}: must be in (0, 0.01) (relative Newton tolerance; 1e-9 is the default)",
+                "solver.tolerance = {}: must be in (0, 0.01) (relative Newton tolerance; 1e-11 is the default)",
                 s.tolerance
             )));
         }
