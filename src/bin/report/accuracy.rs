@@ -307,7 +307,7 @@ fn plan(spec: &Spec, main: &Scene, quick: bool) -> Result<Vec<Point>, String> {
 }
 
 /// Reference tip history of a scene file refined: elements × `refine`, 12 modes, step
-/// `h`, tolerance 1e-10.
+/// `h`, tolerance 1e-12.
 fn reference(file: &str, refine: usize, h: f64, fresh: bool) -> Result<Vec<[f64; 2]>, String> {
     let base = scene(file, &[])?;
     let mut sets = refine_sets(&base, refine);
@@ -315,7 +315,7 @@ fn reference(file: &str, refine: usize, h: f64, fresh: bool) -> Result<Vec<[f64;
         sets.extend(modes_sets(&base, 12, None));
     }
     sets.push(format!("solver.max_step={h:e}"));
-    sets.push("solver.tolerance=1e-10".into());
+    sets.push("solver.tolerance=1e-12".into());
     let s = scene(file, &sets)?;
     common::cached(&format!("{file}-x{refine}-h{h:e}"), &s, T_END, OUT, fresh)
 }
@@ -596,7 +596,7 @@ pub fn run(opts: &Opts) -> Result<(), String> {
         let _ = writeln!(md, "## {}\n", spec.title);
         let _ = writeln!(
             md,
-            "Reference: `scenes/{}.toml` with {}× the elements, step {H_REF:e} s, tolerance 1e-10 \
+            "Reference: `scenes/{}.toml` with {}× the elements, step {H_REF:e} s, tolerance 1e-12 \
              (cached). Its own error, estimated as the distance to the run with half the refinement \
              and twice the step: **{} m**.",
             spec.ancf,

@@ -131,7 +131,7 @@ impl Outcome {
 const STEEL: &str = "youngs_modulus = 2.1e11\ndensity = 7850.0";
 
 fn solver(h: f64, rho: f64) -> String {
-    format!("[solver]\nrho_inf = {rho}\nmax_step = {h:e}\ntolerance = 1e-9\nmax_iterations = 12\n")
+    format!("[solver]\nrho_inf = {rho}\nmax_step = {h:e}\ntolerance = 1e-11\nmax_iterations = 12\n")
 }
 
 fn ancf(name: &str, l: f64, d: f64, n: usize, material: &str) -> String {
