@@ -8,6 +8,10 @@ use crate::scene::{InitialState, Scene};
 /// Largest number of halvings of the internal step before a communication step fails.
 pub const MAX_HALVINGS: u32 = 12;
 
+/// Largest elastic deflection of a modal segment accepted, as tip deflection over length or tip
+/// slope [rad]: a linear floating frame is a small-deformation model.
+pub const MAX_MODAL_DEFLECTION: f64 = 0.3;
+
 /// Largest axial strain accepted: beyond it the linear elastic law of the model has no meaning
 /// for a metal rod, and the step is refused rather than returning a number.
 pub const MAX_AXIAL_STRAIN: f64 = 0.05;
@@ -227,6 +231,21 @@ impl Simulator {
             .iter()
             .chain(&self.state.v)
             .all(|x| x.is_finite());
+        let modal = self
+            .model
+            .max_modal_deflection(&self.state.q)
+            .filter(|&(_, d)| finite && d > MAX_MODAL_DEFLECTION);
+        if let Some((si, d)) = modal {
+            self.state = saved;
+            self.step = saved_step;
+            self.integ.invalidate();
+            return Err(format!(
+                "step to t = {t_end:.6} s refused: modal segment '{}' deflects {:.1} % of its length (or 1/100 rad of tip slope), beyond the {:.0} % validity of a linear floating frame; make it kind = \"ancf\", shorten it, or reduce the loads",
+                self.scene.segments[si].name,
+                100.0 * d,
+                100.0 * MAX_MODAL_DEFLECTION
+            ));
+        }
         if !finite || strain > MAX_AXIAL_STRAIN {
             self.state = saved;
             self.step = saved_step;

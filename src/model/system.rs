@@ -715,6 +715,28 @@ impl Model {
         }
     }
 
+    /// Largest elastic deflection of a modal segment: (segment index in the scene,
+    /// max(|w(L)|/L, |θ_J|)), the tip deflection over the length or the tip slope [rad].
+    pub fn max_modal_deflection(&self, q: &[f64]) -> Option<(usize, f64)> {
+        let mut worst: Option<(usize, f64)> = None;
+        for (si, seg) in self.segments.iter().enumerate() {
+            if let SegmentCoords::Modal(bi) = seg {
+                let (body, idx, fixed) = &self.bodies[*bi];
+                let ql: Vec<f64> = idx
+                    .iter()
+                    .zip(fixed)
+                    .map(|(&i, &f)| if i == FIXED { f } else { q[i as usize] })
+                    .collect();
+                let w = body.tip_local(&ql)[1].abs() / body.length;
+                let d = w.max(body.tip_slope(&ql).abs());
+                if worst.is_none_or(|(_, x)| d > x) {
+                    worst = Some((si, d));
+                }
+            }
+        }
+        worst
+    }
+
     /// Largest |axial strain| over the ANCF quadrature points (0 without ANCF segments).
     pub fn max_axial_strain(&self, q: &[f64]) -> f64 {
         let mut worst: f64 = 0.0;

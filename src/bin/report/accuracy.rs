@@ -323,7 +323,8 @@ fn reference(file: &str, refine: usize, h: f64, fresh: bool) -> Result<Vec<[f64;
 struct SceneResult {
     rows: Vec<Row>,
     ref_check: f64,
-    floors: Vec<(String, f64)>,
+    /// Model error floor of each formulation, or why its converged model could not be run.
+    floors: Vec<(String, Result<f64, String>)>,
 }
 
 fn measure(spec: &Spec, opts: &Opts, prog: &mut Progress) -> Result<SceneResult, String> {
@@ -340,9 +341,14 @@ fn measure(spec: &Spec, opts: &Opts, prog: &mut Progress) -> Result<SceneResult,
         if own.contains_key(file) {
             continue;
         }
-        let r = reference(file, spec.refine, H_REF, opts.fresh)?;
-        floors.push((file.to_string(), tip_errors(&r, &phys, 1).0));
-        own.insert(file, r);
+        match reference(file, spec.refine, H_REF, opts.fresh) {
+            Ok(r) => {
+                floors.push((file.to_string(), Ok(tip_errors(&r, &phys, 1).0)));
+                own.insert(file, r);
+            }
+            // e.g. a modal segment beyond its validity: the engine refuses the run
+            Err(e) => floors.push((file.to_string(), Err(e))),
+        }
     }
     let reps = if opts.quick { 1 } else { 3 };
     let mut rows = Vec::new();
@@ -364,7 +370,9 @@ fn measure(spec: &Spec, opts: &Opts, prog: &mut Progress) -> Result<SceneResult,
             continue;
         }
         let (err_max, err_end, err_max_y) = tip_errors(&r.tip, &phys, stride);
-        let own_max = tip_errors(&r.tip, &own[p.file], stride).0;
+        let own_max = own
+            .get(p.file)
+            .map_or(f64::NAN, |o| tip_errors(&r.tip, o, stride).0);
         rows.push(Row {
             p,
             wall: r.wall,
@@ -604,13 +612,16 @@ pub fn run(opts: &Opts) -> Result<(), String> {
             e3(res.ref_check)
         );
         for (file, floor) in &res.floors {
-            let _ = writeln!(
-                md,
-                "Model error floor of `{file}` (its own converged model: 12 modes, {}× elements, \
-                 step {H_REF:e} s) against this reference: **{} m**.",
-                spec.refine,
-                e3(*floor)
-            );
+            let _ = match floor {
+                Ok(f) => writeln!(
+                    md,
+                    "Model error floor of `{file}` (its own converged model: 12 modes, {}× elements, \
+                     step {H_REF:e} s) against this reference: **{} m**.",
+                    spec.refine,
+                    e3(*f)
+                ),
+                Err(e) => writeln!(md, "Converged model of `{file}` not run: {e}."),
+            };
         }
         let _ = writeln!(
             md,
