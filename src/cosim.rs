@@ -9,6 +9,7 @@
 
 use crate::fmi::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
 use crate::integrator::{IntegratorMemory, JacobianPoint, State};
+use crate::model::Outputs;
 use crate::scene::{Scene, Section, SegmentKind};
 use crate::simulator::{Memory, Simulator, StepControl};
 
@@ -82,6 +83,9 @@ pub struct BeamFmu {
     /// Input tip force [N].
     input: [f64; 2],
     sim: Simulator,
+    /// Outputs of the current state, computed once per state change (no direct feedthrough:
+    /// setting an input does not change them).
+    outputs: Outputs,
     /// Scene tip force the simulator was built with (the input is the total force).
     built_force: [f64; 2],
 }
@@ -359,6 +363,10 @@ impl BeamFmu {
         }
     }
 
+    fn refresh_outputs(&mut self) {
+        self.outputs = self.sim.outputs();
+    }
+
     fn apply_input(&mut self) {
         self.sim.set_tip_force([
             self.input[0] - self.built_force[0],
@@ -447,6 +455,7 @@ impl CoSimModel for BeamFmu {
         let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
         let (vars, slots) = table(&scene);
         let sim = Simulator::new(scene.clone())?;
+        let outputs = sim.outputs();
         Ok(Self {
             scene_text: scene_toml.to_string(),
             base: scene.clone(),
@@ -456,6 +465,7 @@ impl CoSimModel for BeamFmu {
             vars,
             slots,
             sim,
+            outputs,
         })
     }
 
@@ -475,7 +485,7 @@ impl CoSimModel for BeamFmu {
 
     fn get_real(&self, vr: u32) -> Result<f64, String> {
         let (_, slot) = self.slot_of(vr)?;
-        let o = self.sim.outputs();
+        let o = &self.outputs;
         Ok(match slot {
             Slot::TipForce(i) => self.input[i],
             Slot::TipPosition(i) => o.tip_position[i],
@@ -515,6 +525,7 @@ impl CoSimModel for BeamFmu {
                 self.scene = scene;
                 if let Slot::Gravity(_) = slot {
                     self.sim.set_gravity(self.scene.gravity);
+                    self.refresh_outputs();
                 }
                 Ok(())
             }
@@ -528,6 +539,7 @@ impl CoSimModel for BeamFmu {
         self.sim = Simulator::new(scene)?;
         self.built_force = self.input;
         self.apply_input();
+        self.refresh_outputs();
         Ok(())
     }
 
@@ -535,7 +547,9 @@ impl CoSimModel for BeamFmu {
         // the FMI layer checked t against the current time; integrate from the model's time
         let _ = t;
         let t_end = self.sim.time() + h;
-        self.sim.advance(t_end)
+        self.sim.advance(t_end)?;
+        self.refresh_outputs();
+        Ok(())
     }
 
     fn reset(&mut self) -> Result<(), String> {
@@ -637,6 +651,7 @@ impl CoSimModel for BeamFmu {
         self.input = [input[0], input[1]];
         self.built_force = [built[0], built[1]];
         self.apply_input();
+        self.refresh_outputs();
         Ok(())
     }
 }

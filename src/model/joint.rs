@@ -158,9 +158,8 @@ pub fn end_kin(end: &End, q: &[f64], bodies: &[(ModalBody, Vec<u32>, Vec<f64>)])
                 };
             }
             let a = super::modal::rot(ql[2]);
-            let u = b.tip_local(&ql);
+            let (u, gk) = b.tip_local_and_gradient(&ql);
             let au = a * u;
-            let gk = b.foreshortening_gradient(&ql);
             let mut dp = vec![Vector2::x(), Vector2::y(), Vector2::new(-au[1], au[0])];
             let mut ajk = Vec::with_capacity(n);
             for k in 0..n {

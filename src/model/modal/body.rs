@@ -296,10 +296,15 @@ impl ModalBody {
     /// the second-order foreshortening of the deflected segment (G = ∫φ′φ′ dξ), so that the
     /// tip moves inward as the segment bends and an axial tip load stiffens the modes.
     pub fn tip_local(&self, q: &[f64]) -> Vector2<f64> {
+        self.tip_local_and_gradient(q).0
+    }
+
+    /// [`ModalBody::tip_local`] and [`ModalBody::foreshortening_gradient`] in one pass.
+    pub fn tip_local_and_gradient(&self, q: &[f64]) -> (Vector2<f64>, Vec<f64>) {
         let w: f64 = self.basis.tip.iter().zip(&q[3..]).map(|(p, a)| p * a).sum();
         let g = self.foreshortening_gradient(q);
         let short: f64 = 0.5 * g.iter().zip(&q[3..]).map(|(g, a)| g * a).sum::<f64>();
-        Vector2::new(self.length - short, w)
+        (Vector2::new(self.length - short, w), g)
     }
 
     /// Elastic slope angle at the tip θ_J = Σ φ_k′(1) a_k / L [rad].
