@@ -65,20 +65,25 @@ fn cantilever_under_self_weight_matches_the_elastica() {
     });
 }
 
-#[test]
-fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
-    // physics.md §4c: δ_static = 4.69 mm (Case 1 beam, steel). Linear theory qL⁴/(8EI) with the
-    // small geometric correction of the elastica (v/L ≈ γ/8 at γ ≈ 0.094) is 4.69 mm.
-    let d = 0.002;
-    let header = "gravity = [0.0, -9.81]";
-    for segs in [
+/// The Case 1 rod (L = 0.4 m) as hybrid, all-ANCF and all-modal segment lists.
+fn case1_formulations(d: f64) -> [Vec<String>; 3] {
+    [
         vec![
             modal("m", 0.2, &round(d), 4, true, ""),
             ancf("a", 0.2, &round(d), 8, ""),
         ],
         vec![ancf("a", 0.4, &round(d), 16, "")],
         vec![modal("m", 0.4, &round(d), 4, false, "")],
-    ] {
+    ]
+}
+
+#[test]
+fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
+    // physics.md §4c: δ_static = 4.69 mm (Case 1 beam, steel). Linear theory qL⁴/(8EI) with the
+    // small geometric correction of the elastica (v/L ≈ γ/8 at γ ≈ 0.094) is 4.69 mm.
+    let d = 0.002;
+    let header = "gravity = [0.0, -9.81]";
+    for segs in case1_formulations(d) {
         let mut sim = Simulator::new(scene(header, &segs)).unwrap();
         sim.solve_static().unwrap();
         let area = std::f64::consts::PI * d * d / 4.0;
@@ -107,14 +112,7 @@ fn root_reaction_balances_weight_and_tip_load() {
     let d = 0.002;
     let p = -0.05;
     let header = format!("gravity = [0.0, -9.81]\n[tip]\nforce = [0.0, {p:e}]");
-    for segs in [
-        vec![
-            modal("m", 0.2, &round(d), 4, true, ""),
-            ancf("a", 0.2, &round(d), 8, ""),
-        ],
-        vec![ancf("a", 0.4, &round(d), 16, "")],
-        vec![modal("m", 0.4, &round(d), 4, false, "")],
-    ] {
+    for segs in case1_formulations(d) {
         let mut sim = Simulator::new(scene(&header, &segs)).unwrap();
         sim.solve_static().unwrap();
         let o = sim.outputs();

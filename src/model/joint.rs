@@ -13,6 +13,19 @@ use nalgebra::Vector2;
 /// Marker of a fixed (eliminated) coordinate in index lists.
 pub const FIXED: u32 = u32::MAX;
 
+/// Local values of the global vector `x` at the indices `idx`. An eliminated coordinate takes
+/// its value from `fixed` (positions), or 0 when `fixed` is `None` (rates: it does not move).
+pub fn gather(idx: &[u32], fixed: Option<&[f64]>, x: &[f64]) -> Vec<f64> {
+    idx.iter()
+        .enumerate()
+        .map(|(k, &i)| match (i, fixed) {
+            (FIXED, Some(f)) => f[k],
+            (FIXED, None) => 0.0,
+            _ => x[i as usize],
+        })
+        .collect()
+}
+
 /// Where an end lives.
 #[derive(Debug, Clone, PartialEq)]
 pub enum End {
@@ -135,11 +148,7 @@ pub fn end_kin(end: &End, q: &[f64], bodies: &[(ModalBody, Vec<u32>, Vec<f64>)])
         }
         End::ModalTip { body } | End::ModalRoot { body } => {
             let (b, idx, fixed) = &bodies[*body];
-            let ql: Vec<f64> = idx
-                .iter()
-                .zip(fixed)
-                .map(|(&i, &f)| if i == FIXED { f } else { q[i as usize] })
-                .collect();
+            let ql = gather(idx, Some(fixed), q);
             let n = b.modes();
             let r = Vector2::new(ql[0], ql[1]);
             let z = Vector2::zeros();

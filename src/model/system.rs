@@ -7,7 +7,7 @@
 //! the Newton matrix `c_a·M + c_v·C + c_x·K + Σλ̃_i ∂²Φ_i` in a sparse pattern fixed at build.
 
 use super::ancf::{AncfProps, Mat8, QuadTables, Vec8};
-use super::joint::{end_kin, joint_eval, End, Joint, FIXED};
+use super::joint::{end_kin, gather, joint_eval, End, Joint, FIXED};
 use super::modal::{BodyOut, ModalBasis, ModalBody};
 use crate::linalg::{SingularMatrix, SparseLu, SparsePattern, NO_SLOT};
 use crate::scene::{Root, Scene, SceneError, SegmentKind};
@@ -652,28 +652,12 @@ impl Model {
     /// eliminated root coordinates (force on the root position, moment from the root slope or
     /// frame angle).
     fn root_reaction(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> ([f64; 2], f64) {
-        let gather = |idx: &[u32], fixed: &[f64], x: &[f64], use_fixed: bool| -> Vec<f64> {
-            idx.iter()
-                .zip(fixed)
-                .map(|(&i, &f)| {
-                    if i == FIXED {
-                        if use_fixed {
-                            f
-                        } else {
-                            0.0
-                        }
-                    } else {
-                        x[i as usize]
-                    }
-                })
-                .collect()
-        };
         match &self.segments[0] {
             SegmentCoords::Ancf(range) => {
                 let el = &self.elements[range.start];
-                let e = Vec8::from_column_slice(&gather(&el.idx, &el.fixed, q, true));
-                let ed = Vec8::from_column_slice(&gather(&el.idx, &el.fixed, v, false));
-                let ea = Vec8::from_column_slice(&gather(&el.idx, &el.fixed, acc, false));
+                let e = Vec8::from_column_slice(&gather(&el.idx, Some(&el.fixed), q));
+                let ed = Vec8::from_column_slice(&gather(&el.idx, None, v));
+                let ea = Vec8::from_column_slice(&gather(&el.idx, None, acc));
                 let f = el.mass * ea + el.props.elastic(&e, &ed, false).force
                     - self.gravity_forces[range.start];
                 let moment = if el.idx[2] == FIXED {
@@ -685,9 +669,9 @@ impl Model {
             }
             SegmentCoords::Modal(bi) => {
                 let (body, idx, fixed) = &self.bodies[*bi];
-                let ql = gather(idx, fixed, q, true);
-                let vl = gather(idx, fixed, v, false);
-                let al = gather(idx, fixed, acc, false);
+                let ql = gather(idx, Some(fixed), q);
+                let vl = gather(idx, None, v);
+                let al = gather(idx, None, acc);
                 let mut out = BodyOut::new(body.dim());
                 body.eval(&ql, &vl, &al, self.gravity, false, &mut out);
                 let mut r = [out.res[0], out.res[1], out.res[2]];
@@ -722,11 +706,7 @@ impl Model {
         for (si, seg) in self.segments.iter().enumerate() {
             if let SegmentCoords::Modal(bi) = seg {
                 let (body, idx, fixed) = &self.bodies[*bi];
-                let ql: Vec<f64> = idx
-                    .iter()
-                    .zip(fixed)
-                    .map(|(&i, &f)| if i == FIXED { f } else { q[i as usize] })
-                    .collect();
+                let ql = gather(idx, Some(fixed), q);
                 let w = body.tip_local(&ql)[1].abs() / body.length;
                 let d = w.max(body.tip_slope(&ql).abs());
                 if worst.is_none_or(|(_, x)| d > x) {
@@ -793,15 +773,8 @@ impl Model {
             o.potential -= gf.dot(&e);
         }
         for (body, idx, fixed) in &self.bodies {
-            let ql: Vec<f64> = idx
-                .iter()
-                .zip(fixed)
-                .map(|(&i, &f)| if i == FIXED { f } else { q[i as usize] })
-                .collect();
-            let vl: Vec<f64> = idx
-                .iter()
-                .map(|&i| if i == FIXED { 0.0 } else { v[i as usize] })
-                .collect();
+            let ql = gather(idx, Some(fixed), q);
+            let vl = gather(idx, None, v);
             o.kinetic += body.kinetic_energy(&ql, &vl);
             o.strain += body.strain_energy(&ql);
             o.potential += body.potential_energy(&ql, self.gravity);
