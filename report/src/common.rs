@@ -5,12 +5,13 @@ use hybeam::integrator::Counters;
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Repository root (where `scenes/` and `docs/` live).
+/// Repository root (where `scenes/` and `docs/` live): the parent of this crate's folder.
 pub fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    let krate = Path::new(env!("CARGO_MANIFEST_DIR"));
+    krate.parent().unwrap_or(krate).to_path_buf()
 }
 
 /// Output folder of CSVs, plots and fragments.

@@ -1,7 +1,6 @@
 //! The stability suite: extreme scenes and inputs, each run to its end or to a clean refusal.
-//! Shared by the report binary (`report stability`) and by `tests/stability.rs` (the fast
+//! Shared by the report binary (`report stability`) and by the crate's `tests/stability.rs` (the fast
 //! subset), so both run exactly the same cases. Depends only on the hybeam library.
-#![allow(dead_code)]
 
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;

@@ -1,12 +1,9 @@
-//! Fast subset of the stability suite (`src/bin/report/suite.rs`, the same cases as
+//! Fast subset of the stability suite (`hybeam_report::suite`, the same cases as
 //! `report stability`): every case ends without panic and without NaN, and either completes with
 //! bounded outputs (|tip − root| ≤ 1.02 × length, finite energies) or refuses with a non-empty
 //! message.
 
-#[path = "../src/bin/report/suite.rs"]
-mod suite;
-
-use suite::{Case, Status};
+use hybeam_report::suite::{self, Case, Status};
 
 fn check(case: &Case) -> Result<(), String> {
     let o = suite::run(case);

@@ -7,20 +7,12 @@
 //! cargo run --release --bin report -- stability [--quick|--full]
 //! ```
 
-#[path = "report/accuracy.rs"]
 mod accuracy;
-#[path = "report/common.rs"]
 mod common;
-#[path = "report/paper.rs"]
 mod paper;
-#[path = "report/plot.rs"]
 mod plot;
-#[path = "report/stability.rs"]
 mod stability;
-#[path = "report/statics.rs"]
 mod statics;
-#[path = "report/suite.rs"]
-mod suite;
 
 use std::process::ExitCode;
 
