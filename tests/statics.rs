@@ -1,9 +1,10 @@
-//! Static cantilever against the elastica tables of physics.md §4 (independent shooting
-//! solutions), and the Case 1 beam against its linear self-weight deflection (§4c).
+//! Static cantilever against the elastica tables of docs/references.md §4a/§4b (independent
+//! shooting solutions), and the Case 1 beam against its linear self-weight deflection (§4c).
 
 mod common;
 use common::*;
 use hybeam::simulator::Simulator;
+use hybeam_references::{Deflection, CASE1_BEAM, ELASTICA, SELF_WEIGHT};
 
 /// Slender square steel cantilever, L = 1 m, b = 1 cm (EA L²/EI = 1.2e5: nearly inextensible).
 const L: f64 = 1.0;
@@ -20,26 +21,10 @@ fn static_tip(header: &str, elements: usize) -> [f64; 2] {
     sim.outputs().tip_position
 }
 
-/// physics.md §4a: (α = PL²/EI, v/L, u/L).
-const ELASTICA: [(f64, f64, f64); 4] = [
-    (1.0, 0.30172, 0.05643),
-    (2.0, 0.49346, 0.16064),
-    (5.0, 0.71379, 0.38763),
-    (10.0, 0.81061, 0.55500),
-];
-
-/// physics.md §4b: (γ = qL³/EI, v/L, u/L).
-const SELF_WEIGHT: [(f64, f64, f64); 4] = [
-    (1.0, 0.12347, 0.00875),
-    (2.0, 0.23851, 0.03311),
-    (5.0, 0.49591, 0.15334),
-    (10.0, 0.70020, 0.34365),
-];
-
 /// Solves each row of a (load, v/L, u/L) table with the load applied by `header(load)` and
 /// checks the tip within 2e-4 of the table.
-fn check_table(label: &str, table: &[(f64, f64, f64)], header: impl Fn(f64) -> String) {
-    for &(load, v, u) in table {
+fn check_table(label: &str, table: &[Deflection], header: impl Fn(f64) -> String) {
+    for &Deflection { load, v, u } in table {
         let tip = static_tip(&header(load), 32);
         let (dv, du) = (-tip[1] / L - v, (L - tip[0]) / L - u);
         eprintln!("{label} = {load}: v/L error {dv:+.2e}, u/L error {du:+.2e}");
@@ -79,8 +64,8 @@ fn case1_formulations(d: f64) -> [Vec<String>; 3] {
 
 #[test]
 fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
-    // physics.md §4c: δ_static = 4.69 mm (Case 1 beam, steel). Linear theory qL⁴/(8EI) with the
-    // small geometric correction of the elastica (v/L ≈ γ/8 at γ ≈ 0.094) is 4.69 mm.
+    // docs/references.md §4c: δ_static = 4.69 mm (Case 1 beam, steel). Linear theory qL⁴/(8EI)
+    // with the small geometric correction of the elastica (v/L ≈ γ/8 at γ ≈ 0.094) is 4.69 mm.
     let d = 0.002;
     let header = "gravity = [0.0, -9.81]";
     for segs in case1_formulations(d) {
@@ -100,7 +85,7 @@ fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
             "{} segments: {v} vs {linear}",
             segs.len()
         );
-        assert!((v - 4.69e-3).abs() < 0.01e-3);
+        assert!((v - CASE1_BEAM.sag).abs() < 0.01e-3);
     }
 }
 

@@ -1,9 +1,10 @@
 //! The paper's figures for Cases 1–3: vertical deflection of the end node over 2 s (hybrid,
 //! all-modal, all-ANCF on one plot) and the tip's amplitude spectrum with the Euler–Bernoulli
-//! frequencies of physics.md §4c marked.
+//! frequencies of docs/references.md §4c marked.
 
 use super::common::{self, e3, md_table, scene, simulate, Progress, Run};
 use super::plot::{self, Axes, Extras, Series};
+use hybeam_references::{PaperBeam, CASE1_BEAM, CASE3_BEAM};
 use std::fmt::Write as _;
 
 const FORMS: [(&str, &str); 3] = [
@@ -17,33 +18,29 @@ const T_SPECTRUM: f64 = 10.0;
 struct Case {
     key: &'static str,
     title: &'static str,
-    eb: [f64; 4],
+    /// The beam's Euler–Bernoulli frequencies and static sag (docs/references.md §4c).
+    beam: PaperBeam,
     f_max: f64,
-    /// Static sag under self-weight [m] (physics.md §4c).
-    sag: f64,
 }
 
 const CASES: [Case; 3] = [
     Case {
         key: "case1",
         title: "Case 1 (d = 2 mm, L = 40 cm, undamped)",
-        eb: [9.045, 56.68, 158.71, 311.01],
+        beam: CASE1_BEAM,
         f_max: 400.0,
-        sag: 4.69e-3,
     },
     Case {
         key: "case2",
         title: "Case 2 (Case 1 + Kelvin-Voigt damping tau = 0.7 ms)",
-        eb: [9.045, 56.68, 158.71, 311.01],
+        beam: CASE1_BEAM,
         f_max: 400.0,
-        sag: 4.69e-3,
     },
     Case {
         key: "case3",
         title: "Case 3 (2 mm x 20 cm + 1 mm x 40 cm, damped)",
-        eb: [4.064, 20.47, 41.27, 83.48],
+        beam: CASE3_BEAM,
         f_max: 100.0,
-        sag: 24.35e-3,
     },
 ];
 
@@ -156,7 +153,7 @@ pub fn run() -> Result<(), String> {
          position of the end node (tip y) over 2 s; the spectra are the single-sided amplitude \
          spectra of tip y minus its mean (Hann window, 4× zero padding) from {T_SPECTRUM} s runs \
          sampled every {OUT} s. Peaks are located by parabolic interpolation within ±15 % of each \
-         Euler–Bernoulli frequency of physics.md §4c (steel assumed). All numbers below are measured by \
+         Euler–Bernoulli frequency of docs/references.md §4c (steel assumed). All numbers below are measured by \
          the command above.\n\n",
         common::machine()
     );
@@ -213,7 +210,7 @@ pub fn run() -> Result<(), String> {
             },
             &series,
             &Extras {
-                hlines: vec![(-case.sag * 1e3, "linear static sag".into())],
+                hlines: vec![(-case.beam.sag * 1e3, "linear static sag".into())],
                 ..Default::default()
             },
         )?;
@@ -259,9 +256,9 @@ pub fn run() -> Result<(), String> {
         let _ = writeln!(
             md,
             "## {}\n\n![{k} deflection](report/paper_{k}_deflection.svg)\n\nCSV: `docs/report/paper_{k}_deflection.csv`. \
-             Linear static sag (physics.md §4c): {:.2} mm.\n\n{}",
+             Linear static sag (docs/references.md §4c): {:.2} mm.\n\n{}",
             case.title,
-            case.sag * 1e3,
+            case.beam.sag * 1e3,
             md_table(
                 &[
                     "formulation",
@@ -348,7 +345,7 @@ pub fn run() -> Result<(), String> {
                 let r = run_or_err(&file, &sets, T_SPECTRUM)?;
                 let sp = spectrum(&ys(&r), OUT, case.f_max);
                 let mut row = vec![form.to_string()];
-                for &f0 in &case.eb {
+                for &f0 in &case.beam.frequencies {
                     let (f, a) = peak(&sp, f0);
                     row.push(format!(
                         "{f:.3} ({:+.2} %), {}",
@@ -395,7 +392,12 @@ pub fn run() -> Result<(), String> {
                 },
                 &spec_series,
                 &Extras {
-                    vlines: case.eb.iter().map(|f| (*f, format!("EB {f}"))).collect(),
+                    vlines: case
+                        .beam
+                        .frequencies
+                        .iter()
+                        .map(|f| (*f, format!("EB {f}")))
+                        .collect(),
                     ..Default::default()
                 },
             )?;
@@ -406,7 +408,8 @@ pub fn run() -> Result<(), String> {
                      (ωh)²/12 (trapezoidal-rule estimate): "
                 );
                 let items: Vec<String> = case
-                    .eb
+                    .beam
+                    .frequencies
                     .iter()
                     .map(|f| {
                         format!(
@@ -421,7 +424,7 @@ pub fn run() -> Result<(), String> {
                     let al: Vec<String> = [(5, 14.137_168), (6, 17.278_760)]
                         .iter()
                         .map(|&(k, lam)| {
-                            let f = case.eb[0] * (lam / 1.875_104_07f64).powi(2);
+                            let f = case.beam.frequencies[0] * (lam / 1.875_104_07f64).powi(2);
                             let fa = f * (1.0 - (2.0 * std::f64::consts::PI * f * h).powi(2) / 12.0);
                             format!("mode {k} (EB {f:.0} Hz, about {fa:.0} Hz after elongation) appears aliased at {:.0} Hz", (1.0 / OUT - fa).abs())
                         })
@@ -441,7 +444,8 @@ pub fn run() -> Result<(), String> {
             };
             let head: Vec<String> = std::iter::once("formulation".to_string())
                 .chain(
-                    case.eb
+                    case.beam
+                        .frequencies
                         .iter()
                         .map(|f| format!("peak near EB {f} Hz: f [Hz] (vs EB), amplitude [m]")),
                 )

@@ -1,11 +1,12 @@
 //! Static references: tip-loaded cantilever (elastica, α = PL²/EI) and cantilever under its own
-//! weight (γ = qL³/EI), error vs number of ANCF elements, against the tables of physics.md §4a/b
-//! and against an extensible-elastica shooting solution computed here.
+//! weight (γ = qL³/EI), error vs number of ANCF elements, against the tables of
+//! docs/references.md §4a/§4b and against an extensible-elastica shooting solution computed here.
 
 use super::common::{self, e3, md_table, Progress};
 use super::plot::{self, Axes, Extras, Series};
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
+use hybeam_references::{Deflection, ELASTICA, SELF_WEIGHT};
 use std::fmt::Write as _;
 
 /// Slender square steel cantilever of the physics tests: L = 1 m, b = 1 cm.
@@ -13,21 +14,6 @@ const L: f64 = 1.0;
 const B: f64 = 0.01;
 const E: f64 = 2.1e11;
 const RHO: f64 = 7850.0;
-
-/// physics.md §4a: (α, v/L, u/L).
-const ELASTICA: [(f64, f64, f64); 4] = [
-    (1.0, 0.30172, 0.05643),
-    (2.0, 0.49346, 0.16064),
-    (5.0, 0.71379, 0.38763),
-    (10.0, 0.81061, 0.55500),
-];
-/// physics.md §4b: (γ, v/L, u/L).
-const SELF_WEIGHT: [(f64, f64, f64); 4] = [
-    (1.0, 0.12347, 0.00875),
-    (2.0, 0.23851, 0.03311),
-    (5.0, 0.49591, 0.15334),
-    (10.0, 0.70020, 0.34365),
-];
 
 fn ei() -> f64 {
     E * B.powi(4) / 12.0
@@ -116,7 +102,7 @@ pub fn run(quick: bool) -> Result<String, String> {
     let mut md = String::new();
     let _ = writeln!(
         md,
-        "## Static references (physics.md §4a, §4b)\n\nSquare steel cantilever L = 1 m, b = 1 cm \
+        "## Static references (docs/references.md §4a, §4b)\n\nSquare steel cantilever L = 1 m, b = 1 cm \
          (EA·L²/EI = {:.0}), all-ANCF, `Simulator::solve_static()` after loading through the scene \
          (`tip.force` for the elastica, `gravity` for the self-weight). Errors are max(|Δv|, |Δu|)/L of \
          the tip. *vs table*: against the 5-digit tables (inextensible theory; their rounding and \
@@ -130,7 +116,12 @@ pub fn run(quick: bool) -> Result<String, String> {
     let mut plots: Vec<(String, Vec<Series>)> = Vec::new();
     for (kind, table) in [("tip load", ELASTICA), ("self-weight", SELF_WEIGHT)] {
         let mut series = Vec::new();
-        for (p, v_tab, u_tab) in table {
+        for Deflection {
+            load: p,
+            v: v_tab,
+            u: u_tab,
+        } in table
+        {
             let (header, f, q) = if kind == "tip load" {
                 let fy = -p * ei() / (L * L);
                 (

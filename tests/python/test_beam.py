@@ -1,5 +1,5 @@
 """Beam physics through fmpy: the FMU agrees with the in-process runner, a force step moves the
-tip the right way, and a static tip force settles at the elastica (physics.md §4a)."""
+tip the right way, and a static tip force settles at the elastica (docs/references.md §4a)."""
 
 import csv
 import os
