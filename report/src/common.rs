@@ -5,6 +5,7 @@ use hybeam::integrator::Counters;
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
 use std::fmt::Write as _;
+use std::hash::Hasher as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -139,13 +140,11 @@ pub fn median(v: &mut [f64]) -> f64 {
     }
 }
 
+/// 64-bit FNV-1a of the bytes of `s` (the cache file names; stable across runs and builds).
 fn fnv1a(s: &str) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in s.bytes() {
-        h ^= b as u64;
-        h = h.wrapping_mul(0x0100_0000_01b3);
-    }
-    h
+    let mut h = fnv::FnvHasher::default();
+    h.write(s.as_bytes());
+    h.finish()
 }
 
 /// Bump when the engine changes in a way that invalidates cached references.
@@ -311,4 +310,16 @@ pub fn tip_errors(run: &[[f64; 2]], reference: &[[f64; 2]], stride: usize) -> (f
         end = d;
     }
     (max, end, max_y)
+}
+
+#[cfg(test)]
+mod tests {
+    /// The cache keys name files under `target/report-cache/`: the hash must stay FNV-1a 64
+    /// (published test vectors of the FNV reference page) so existing caches keep their names.
+    #[test]
+    fn cache_hash_is_fnv1a_64() {
+        assert_eq!(super::fnv1a(""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(super::fnv1a("a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(super::fnv1a("foobar"), 0x8594_4171_f739_67e8);
+    }
 }
