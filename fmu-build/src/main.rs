@@ -18,6 +18,7 @@
 
 mod package;
 
+use clap::Parser;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 
@@ -25,48 +26,25 @@ use hybeam::fmi::model::CoSimModel;
 use hybeam::fmi::{guid, xml};
 use hybeam::FmuModel;
 
-const USAGE: &str = "usage: fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]";
-
+/// Package a hybeam scene as an FMI 2.0 co-simulation FMU.
+#[derive(Debug, Parser)]
+#[command(name = "fmu-build", version)]
 struct Args {
+    /// Scene file (TOML); packaged as resources/scene.toml.
     scene: PathBuf,
+    /// Output directory (created if missing).
+    #[arg(long, value_name = "DIR", default_value = ".")]
     out: PathBuf,
+    /// modelIdentifier, a C identifier [default: the scene file stem made a C identifier].
+    #[arg(long, value_name = "NAME")]
     id: Option<String>,
+    /// Write only DIR/<id>.xml (the golden files in modelDescription/), no build, no .fmu.
+    #[arg(long)]
     xml_only: bool,
 }
 
-fn parse_args(mut it: impl Iterator<Item = String>) -> Result<Args, String> {
-    let (mut scene, mut out, mut id, mut xml_only) = (None, PathBuf::from("."), None, false);
-    while let Some(a) = it.next() {
-        match a.as_str() {
-            "--out" => out = it.next().ok_or("--out needs a directory")?.into(),
-            "--id" => id = Some(it.next().ok_or("--id needs a name")?),
-            "--xml-only" => xml_only = true,
-            "-h" | "--help" => return Err(String::new()),
-            s if s.starts_with('-') => return Err(format!("unknown option {s}")),
-            s if scene.is_none() => scene = Some(PathBuf::from(s)),
-            s => return Err(format!("unexpected argument {s}")),
-        }
-    }
-    let scene = scene.ok_or("missing SCENE.toml")?;
-    Ok(Args {
-        scene,
-        out,
-        id,
-        xml_only,
-    })
-}
-
 fn main() -> ExitCode {
-    let args = match parse_args(std::env::args().skip(1)) {
-        Ok(a) => a,
-        Err(e) => {
-            if !e.is_empty() {
-                eprintln!("fmu-build: {e}");
-            }
-            eprintln!("{USAGE}");
-            return ExitCode::from(2);
-        }
-    };
+    let args = Args::parse();
     match run(&args) {
         Ok(path) => {
             println!("{}", path.display());
@@ -168,8 +146,8 @@ fn build_cdylib() -> Result<PathBuf, String> {
 mod tests {
     use super::*;
 
-    fn args(a: &[&str]) -> Result<Args, String> {
-        parse_args(a.iter().map(|s| s.to_string()))
+    fn args(a: &[&str]) -> Result<Args, clap::Error> {
+        Args::try_parse_from(std::iter::once("fmu-build").chain(a.iter().copied()))
     }
 
     #[test]
@@ -179,6 +157,8 @@ mod tests {
         assert_eq!(a.out, PathBuf::from("o"));
         assert_eq!(a.id.as_deref(), Some("x"));
         assert!(a.xml_only);
+        let a = args(&["scenes/case1.toml"]).unwrap();
+        assert_eq!((a.out, a.id, a.xml_only), (PathBuf::from("."), None, false));
         assert!(args(&[]).is_err());
         assert!(args(&["a", "b"]).is_err());
         assert!(args(&["a", "--bogus"]).is_err());

@@ -2,10 +2,12 @@
 //! the stability suite (stability). Writes CSV, SVG and markdown under `docs/`.
 //!
 //! ```text
-//! cargo run --release --bin report -- accuracy [--quick|--full] [--fresh]
-//! cargo run --release --bin report -- paper
-//! cargo run --release --bin report -- stability [--quick|--full]
+//! cargo run --release -p hybeam-report -- accuracy [--quick|--full] [--fresh]
+//! cargo run --release -p hybeam-report -- paper
+//! cargo run --release -p hybeam-report -- stability [--quick|--full]
 //! ```
+//!
+//! `report --help` prints the generated help.
 
 mod accuracy;
 mod common;
@@ -14,43 +16,104 @@ mod plot;
 mod stability;
 mod statics;
 
+use clap::{Args, Parser, Subcommand};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage:
-  report accuracy [--quick|--full] [--fresh]   work-precision, cost per step, statics -> docs/accuracy.md
-  report paper                                  paper figures (Cases 1-3) -> docs/paper-figures.md
-  report stability [--quick|--full]             extreme cases -> docs/stability.md
-(--fresh recomputes the cached references under target/report-cache/)";
+/// Regenerate hybeam's reports (docs/accuracy.md, docs/paper-figures.md, docs/stability.md and
+/// their CSV/SVG under docs/report/).
+#[derive(Debug, Parser)]
+#[command(name = "report", version)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Work-precision, cost per step and static references -> docs/accuracy.md.
+    Accuracy {
+        #[command(flatten)]
+        depth: Depth,
+        /// Recompute the cached references under target/report-cache/.
+        #[arg(long)]
+        fresh: bool,
+    },
+    /// The paper's figures (Cases 1-3) -> docs/paper-figures.md.
+    Paper,
+    /// Extreme cases -> docs/stability.md.
+    Stability {
+        #[command(flatten)]
+        depth: Depth,
+    },
+}
+
+/// How much to run: `--quick` (the default) or `--full`.
+#[derive(Debug, Args)]
+struct Depth {
+    /// Short sweeps, one repetition (the default).
+    #[arg(long, conflicts_with = "full")]
+    quick: bool,
+    /// Complete run: denser sweeps and the median of 3 runs (accuracy), the long variants
+    /// (stability). Slow.
+    #[arg(long)]
+    full: bool,
+}
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let flag = |f: &str| args.iter().any(|a| a == f);
-    let quick = !flag("--full");
-    if let Some(bad) = args
-        .iter()
-        .skip(1)
-        .find(|a| !["--quick", "--full", "--fresh"].contains(&a.as_str()))
-    {
-        eprintln!("error: unknown option {bad}\n{USAGE}");
-        return ExitCode::from(2);
-    }
-    let r = match args.first().map(String::as_str) {
-        Some("accuracy") => accuracy::run(&accuracy::Opts {
-            quick,
-            fresh: flag("--fresh"),
+    let r = match Cli::parse().command {
+        Command::Accuracy { depth, fresh } => accuracy::run(&accuracy::Opts {
+            quick: !depth.full,
+            fresh,
         }),
-        Some("paper") => paper::run(),
-        Some("stability") => stability::run(quick),
-        _ => {
-            eprintln!("{USAGE}");
-            return ExitCode::from(2);
-        }
+        Command::Paper => paper::run(),
+        Command::Stability { depth } => stability::run(!depth.full),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(args: &[&str]) -> Result<Cli, clap::Error> {
+        Cli::try_parse_from(std::iter::once("report").chain(args.iter().copied()))
+    }
+
+    #[test]
+    fn parses_the_documented_invocations() {
+        let full = |args: &[&str]| match parse(args).unwrap().command {
+            Command::Accuracy { depth, .. } | Command::Stability { depth } => depth.full,
+            Command::Paper => panic!("{args:?}: not a depth command"),
+        };
+        assert!(!full(&["accuracy"]));
+        assert!(!full(&["accuracy", "--quick"]));
+        assert!(full(&["accuracy", "--full", "--fresh"]));
+        assert!(!full(&["stability", "--quick"]));
+        assert!(full(&["stability", "--full"]));
+        assert!(matches!(
+            parse(&["accuracy", "--fresh"]).unwrap().command,
+            Command::Accuracy { fresh: true, .. }
+        ));
+        assert!(matches!(parse(&["paper"]).unwrap().command, Command::Paper));
+    }
+
+    #[test]
+    fn rejects_bad_command_lines() {
+        for bad in [
+            &[][..],
+            &["accuracy", "--quick", "--full"],
+            &["stability", "--fresh"],
+            &["paper", "--full"],
+            &["accuracy", "--bogus"],
+            &["figures"],
+        ] {
+            assert!(parse(bad).is_err(), "{bad:?} accepted");
         }
     }
 }

@@ -1,0 +1,274 @@
+//! Command-line runner: simulate a scene without any FMI host.
+//!
+//! ```text
+//! hybeam run SCENE.toml --out tip.csv [--set KEY=VALUE ...] [--t-end T] [--output-step H] [--quiet]
+//! hybeam static SCENE.toml [--set KEY=VALUE ...]
+//! ```
+//!
+//! `hybeam --help` and `hybeam run --help` print the generated help. Exit code 2 for a bad
+//! command line, 1 for a bad scene or a failed simulation.
+
+use clap::{Args, Parser, Subcommand};
+use hybeam::scene::Scene;
+use hybeam::simulator::Simulator;
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Simulate a hybeam scene (docs/scene-format.md) without an FMI host.
+#[derive(Debug, Parser)]
+#[command(name = "hybeam", version)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Simulate to the end time and write the tip history as CSV.
+    Run(RunArgs),
+    /// Solve the static equilibrium and print the outputs as CSV on stdout.
+    Static(SceneArgs),
+}
+
+/// The scene file and its overrides, common to both commands.
+#[derive(Debug, Args)]
+struct SceneArgs {
+    /// Scene file (TOML).
+    scene: PathBuf,
+    /// Override a scene value before validation (TOML syntax, repeatable),
+    /// e.g. --set segments.1.elements=16.
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = key_value)]
+    sets: Vec<(String, String)>,
+}
+
+#[derive(Debug, Args)]
+struct RunArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Output CSV file.
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
+    /// End time [s] (replaces simulation.t_end).
+    #[arg(long, value_name = "T", value_parser = positive_seconds, allow_negative_numbers = true)]
+    t_end: Option<f64>,
+    /// Output interval [s] (replaces simulation.output_step).
+    #[arg(long, value_name = "H", value_parser = positive_seconds, allow_negative_numbers = true)]
+    output_step: Option<f64>,
+    /// No progress line on stderr.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// `KEY=VALUE` of `--set`, both trimmed.
+fn key_value(kv: &str) -> Result<(String, String), String> {
+    let (k, v) = kv
+        .split_once('=')
+        .ok_or("expected KEY=VALUE, e.g. segments.1.elements=16")?;
+    Ok((k.trim().to_string(), v.trim().to_string()))
+}
+
+/// A finite, positive time in seconds.
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        Ok(_) => Err("must be a finite, positive time in seconds".into()),
+        Err(_) => Err("not a number (seconds, e.g. 2 or 1e-3)".into()),
+    }
+}
+
+impl SceneArgs {
+    /// Reads the scene and applies the `--set` overrides (validated).
+    fn load(&self) -> Result<Scene, String> {
+        let path = self.scene.display();
+        let text =
+            std::fs::read_to_string(&self.scene).map_err(|e| format!("cannot read {path}: {e}"))?;
+        Scene::from_toml_with_overrides(&text, &self.sets).map_err(|e| format!("{path}: {e}"))
+    }
+}
+
+/// A CSV column: its name and how its value is read.
+type Column = (&'static str, fn(&Simulator) -> f64);
+
+/// Columns of the CSV after `time`. The one place the CLI names its outputs (the names are the
+/// FMU's output variables; docs/fmu-variables.md).
+const COLUMNS: [Column; 6] = [
+    ("tip.position.x", |s| s.outputs().tip_position[0]),
+    ("tip.position.y", |s| s.outputs().tip_position[1]),
+    ("tip.angle", |s| s.outputs().tip_angle),
+    ("energy.kinetic", |s| s.outputs().kinetic),
+    ("energy.strain", |s| s.outputs().strain),
+    ("energy.potential", |s| s.outputs().potential),
+];
+
+/// The CSV header line.
+fn header() -> String {
+    std::iter::once("time")
+        .chain(COLUMNS.iter().map(|(name, _)| *name))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// The CSV row of the current state: time to 10 digits, outputs to 18 (round trip).
+fn row(sim: &Simulator) -> String {
+    let mut s = format!("{:.9e}", sim.time());
+    for (_, value) in COLUMNS {
+        s.push_str(&format!(",{:.17e}", value(sim)));
+    }
+    s
+}
+
+fn run(args: &RunArgs) -> Result<(), String> {
+    let mut scene = args.scene.load()?;
+    if let Some(t) = args.t_end {
+        scene.simulation.t_end = t;
+    }
+    if let Some(h) = args.output_step {
+        scene.simulation.output_step = h;
+    }
+    let t_end = scene.simulation.t_end;
+    let dt = scene.simulation.output_step;
+    let wall = Instant::now();
+    let mut sim = Simulator::new(scene)?;
+    let mut out = Vec::with_capacity(64 * 1024);
+    writeln!(out, "{}", header()).map_err(|e| e.to_string())?;
+    writeln!(out, "{}", row(&sim)).map_err(|e| e.to_string())?;
+    let n_out = (t_end / dt - 1e-9).ceil() as u64;
+    let mut last_report = Instant::now();
+    for k in 1..=n_out {
+        let t = (k as f64 * dt).min(t_end);
+        sim.advance(t)
+            .map_err(|e| format!("at t = {:.6} s: {e}", sim.time()))?;
+        writeln!(out, "{}", row(&sim)).map_err(|e| e.to_string())?;
+        if !args.quiet && last_report.elapsed().as_secs_f64() > 1.0 {
+            eprint!("\r  t = {t:.4} / {t_end} s ({:.0} %)", 100.0 * t / t_end);
+            last_report = Instant::now();
+        }
+    }
+    let elapsed = wall.elapsed().as_secs_f64();
+    let out_path = args.out.display();
+    std::fs::write(&args.out, out).map_err(|e| format!("cannot write {out_path}: {e}"))?;
+    let c = sim.counters();
+    let o = sim.outputs();
+    if !args.quiet {
+        eprint!("\r");
+    }
+    println!(
+        "{}: t = {:.4} s, {} steps ({} rejected), {} Newton iterations, {} factorizations, wall {:.4} s; tip = ({:.6e}, {:.6e}) m -> {out_path}",
+        args.scene.scene.display(), sim.time(), c.steps, c.rejected, c.iterations, c.factorizations, elapsed,
+        o.tip_position[0], o.tip_position[1]
+    );
+    Ok(())
+}
+
+fn statics(args: &SceneArgs) -> Result<(), String> {
+    let scene = args.load()?;
+    let wall = Instant::now();
+    let mut sim = Simulator::new(scene)?;
+    let it = sim.solve_static()?;
+    println!("{}", header());
+    println!("{}", row(&sim));
+    eprintln!(
+        "static equilibrium: {it} Newton iterations, wall {:.4} s",
+        wall.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let r = match &cli.command {
+        Command::Run(a) => run(a),
+        Command::Static(a) => statics(a),
+    };
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    fn parse(args: &[&str]) -> Result<Cli, clap::Error> {
+        Cli::try_parse_from(std::iter::once("hybeam").chain(args.iter().copied()))
+    }
+
+    #[test]
+    fn parses_the_documented_invocations() {
+        // README.md, docs/*.md, tests/python/test_beam.py
+        let cli = parse(&[
+            "run",
+            "scenes/case1.toml",
+            "--out",
+            "tip.csv",
+            "--set",
+            "segments.1.elements=16",
+            "--set",
+            " solver.max_step = 5e-5",
+            "--t-end",
+            "0.3",
+            "--output-step",
+            "1e-3",
+            "--quiet",
+        ])
+        .unwrap();
+        let Command::Run(a) = cli.command else {
+            panic!("not run: {cli:?}")
+        };
+        assert_eq!(a.scene.scene, Path::new("scenes/case1.toml"));
+        assert_eq!(a.out, Path::new("tip.csv"));
+        assert_eq!(
+            a.scene.sets,
+            [
+                ("segments.1.elements".into(), "16".into()),
+                ("solver.max_step".into(), "5e-5".into())
+            ]
+        );
+        assert_eq!(
+            (a.t_end, a.output_step, a.quiet),
+            (Some(0.3), Some(1e-3), true)
+        );
+        let cli = parse(&["static", "scenes/case3.toml"]).unwrap();
+        assert!(matches!(cli.command, Command::Static(s) if s.sets.is_empty()));
+    }
+
+    #[test]
+    fn rejects_bad_command_lines() {
+        for bad in [
+            &["run", "s.toml"][..],                           // no --out
+            &["run", "s.toml", "--out", "a", "--t-end", "x"], // not a number
+            &["run", "s.toml", "--out", "a", "--t-end", "0"], // not positive
+            &["run", "s.toml", "--out", "a", "--t-end", "-1"],
+            &["run", "s.toml", "--out", "a", "--output-step", "inf"],
+            &["static", "s.toml", "--set", "no-equals-sign"],
+            &["static", "s.toml", "--bogus"],
+            &["static"],
+            &["simulate", "s.toml"],
+        ] {
+            assert!(parse(bad).is_err(), "{bad:?} accepted");
+        }
+    }
+
+    #[test]
+    fn header_names_every_column_of_a_row() {
+        assert_eq!(
+            header(),
+            "time,tip.position.x,tip.position.y,tip.angle,energy.kinetic,energy.strain,energy.potential"
+        );
+        let scene = Scene::from_toml(
+            "name = \"t\"\n[[segments]]\nname = \"a\"\nkind = \"ancf\"\nlength = 0.4\n\
+             section = \"round\"\ndiameter = 0.002\nyoungs_modulus = 2.1e11\ndensity = 7850.0\n\
+             elements = 2\n",
+        )
+        .unwrap();
+        let sim = Simulator::new(scene).unwrap();
+        assert_eq!(row(&sim).split(',').count(), header().split(',').count());
+    }
+}
