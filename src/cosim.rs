@@ -7,7 +7,7 @@
 //! density 6, damping_time 7, damping_ratio 8). A scene only gets the variables it needs: no
 //! damping parameters without damping, no width/height on a round section.
 
-use crate::fmi::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
+use crate::fmi::model::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
 use crate::integrator::{IntegratorMemory, JacobianPoint, State};
 use crate::model::Outputs;
 use crate::scene::{Scene, Section, SegmentKind};
@@ -543,7 +543,9 @@ impl CoSimModel for BeamFmu {
         Ok(())
     }
 
-    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+    /// Every failure of the beam is recoverable: the simulator keeps its state at the start of
+    /// the step, and a smaller step, other inputs or a restored state can continue.
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), StepError> {
         // the FMI layer checked t against the current time; integrate from the model's time
         let _ = t;
         let t_end = self.sim.time() + h;

@@ -3,7 +3,7 @@
 
 use crate::integrator::{solve_static, Counters, GeneralizedAlpha, IntegratorMemory, State};
 use crate::model::{Model, Outputs};
-use crate::scene::{InitialState, Scene};
+use crate::scene::{InitialState, Scene, MIN_STEP};
 
 /// Largest number of halvings of the internal step before a communication step fails.
 pub const MAX_HALVINGS: u32 = 12;
@@ -24,6 +24,11 @@ pub struct StepControl {
     /// Communication steps completed without a rejected attempt since `h_ok` last changed.
     pub calm: u32,
 }
+
+/// Relative rounding guard of the step count: a span of k·h_max computed as a difference of
+/// times carries rounding of this order, so an internal step may exceed `solver.max_step` by
+/// this fraction.
+const STEP_ROUNDING: f64 = 1e-9;
 
 /// Successful calls at a reduced step before it is doubled again.
 const CALM_BEFORE_GROWTH: u32 = 4;
@@ -133,11 +138,29 @@ impl Simulator {
         {
             return Err("state dimensions do not match this model".into());
         }
+        let h_max = self.scene.solver.max_step;
         let h = mem.step.h_ok;
-        if !(h.is_finite() && h > 0.0 && h <= self.scene.solver.max_step) {
+        if !(h >= MIN_STEP && h <= h_max) {
             return Err(format!(
-                "snapshot step size {h} is not in (0, solver.max_step]"
+                "snapshot step size {h:e} s is not in [{MIN_STEP:e}, solver.max_step = {h_max:e}] s (the smallest internal step is {MIN_STEP:e} s)"
             ));
+        }
+        if let Some(j) = &mem.integrator.jacobian {
+            // the step of the held Newton matrix may be a communication step below MIN_STEP
+            if !(j.h > 0.0 && j.h <= h_max * (1.0 + 2.0 * STEP_ROUNDING)) {
+                return Err(format!(
+                    "snapshot Newton-matrix step size {:e} s is not in (0, solver.max_step = {h_max:e}] s",
+                    j.h
+                ));
+            }
+        }
+        let finite = |x: &[f64]| x.iter().all(|x| x.is_finite());
+        if !(s.t.is_finite()
+            && [&s.q, &s.v, &s.acc, &s.aux, &s.lambda]
+                .iter()
+                .all(|x| finite(x)))
+        {
+            return Err("snapshot state holds non-finite values".into());
         }
         self.integ
             .restore_memory(&mut self.model, &mem.integrator)
@@ -174,8 +197,11 @@ impl Simulator {
     }
 
     /// Advances to `t_end` in equal internal steps no larger than `solver.max_step`, halving
-    /// a step that fails (at most [`MAX_HALVINGS`] times). On failure the state is the one at
-    /// the start of the call and the error says why and what to change.
+    /// a step that fails (at most [`MAX_HALVINGS`] times, never below [`MIN_STEP`]), with at
+    /// most `solver.max_internal_steps` internal steps, accepted or rejected, in the call. A
+    /// span that needs more steps of `solver.max_step` is refused before any work. On failure
+    /// the state is the one at the start of the call and the error says why and what to
+    /// change.
     pub fn advance(&mut self, t_end: f64) -> Result<(), String> {
         let t0 = self.state.t;
         let span = t_end - t0;
@@ -183,6 +209,14 @@ impl Simulator {
             return Err(format!("cannot advance from t = {t0} to t = {t_end}"));
         }
         let h_max = self.scene.solver.max_step;
+        let cap = self.scene.solver.max_internal_steps;
+        let needed = (span / h_max * (1.0 - STEP_ROUNDING)).ceil();
+        if needed > cap as f64 {
+            return Err(format!(
+                "step from t = {t0:.6} s to {t_end:.6} s refused: it needs {needed:.0} internal steps of solver.max_step = {h_max:e} s, more than the cap solver.max_internal_steps = {cap}; split it into communication steps of at most {:e} s, or raise solver.max_step (or solver.max_internal_steps in the scene)",
+                cap as f64 * h_max
+            ));
+        }
         // start from the step that last worked; grow back after a few calm calls
         if self.step.h_ok < h_max && self.step.calm >= CALM_BEFORE_GROWTH {
             self.step = StepControl {
@@ -193,12 +227,14 @@ impl Simulator {
         let h_start = self.step.h_ok;
         let saved = self.state.clone();
         let saved_step = self.step;
-        // 1e-9 relative guard: span = k·dt − (k−1)·dt carries rounding of that order
-        let mut steps = (span / h_start * (1.0 - 1e-9)).ceil().max(1.0) as u64;
+        // more steps of a reduced h_ok than the cap allows: start from span / cap (≤ h_max)
+        let mut steps = ((span / h_start * (1.0 - STEP_ROUNDING)).ceil().max(1.0) as u64).min(cap);
         let mut done = 0u64;
+        let mut attempts = 0u64;
         let mut halvings = 0;
         while done < steps {
             let h = span / steps as f64;
+            attempts += 1;
             match self.integ.step(&mut self.model, &mut self.state, h) {
                 Ok(_) => {
                     done += 1;
@@ -208,12 +244,29 @@ impl Simulator {
                 Err(e) => {
                     self.integ.counters.rejected += 1;
                     halvings += 1;
-                    if halvings > MAX_HALVINGS {
+                    // a halving doubles the steps still to go
+                    let limit = if halvings > MAX_HALVINGS {
+                        Some(format!(
+                            "after {MAX_HALVINGS} halvings of the internal step"
+                        ))
+                    } else if 0.5 * h < MIN_STEP {
+                        Some(format!(
+                            "at an internal step of {h:e} s (halving it would go below the smallest internal step {MIN_STEP:e} s)"
+                        ))
+                    } else if attempts + 2 * (steps - done) > cap {
+                        Some(format!(
+                            "after {} halvings of the internal step (another would exceed solver.max_internal_steps = {cap} internal steps in one communication step)",
+                            halvings - 1
+                        ))
+                    } else {
+                        None
+                    };
+                    if let Some(limit) = limit {
                         self.state = saved;
                         self.step = saved_step;
                         self.integ.invalidate();
                         return Err(format!(
-                            "step from t = {:.6} s failed after {MAX_HALVINGS} halvings of the internal step: {e}. \
+                            "step from t = {:.6} s failed {limit}: {e}. \
                              Reduce the communication step or solver.max_step, add damping, lower solver.rho_inf, or reduce the loads",
                             self.state.t
                         ));

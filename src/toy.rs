@@ -5,7 +5,10 @@
 
 use serde::Deserialize;
 
-use crate::fmi::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
+use crate::fmi::model::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+
+/// Work cap of one communication step (substeps).
+const MAX_SUBSTEPS: f64 = 1e6;
 
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -365,17 +368,23 @@ impl CoSimModel for Toy {
         Ok(())
     }
 
-    fn do_step(&mut self, _t: f64, h: f64) -> Result<(), String> {
+    fn do_step(&mut self, _t: f64, h: f64) -> Result<(), StepError> {
         let p = &self.p;
         let f = self.force;
         let f_abs = f[0].hypot(f[1]);
         if f_abs > p.max_force {
-            return Err(format!(
+            return Err(StepError::Discard(format!(
                 "|tip.force| = {f_abs} N exceeds max_force = {} N",
                 p.max_force
-            ));
+            )));
         }
         let n = (h / p.internal_step - 1e-9).ceil().max(1.0);
+        if n > MAX_SUBSTEPS {
+            return Err(StepError::Discard(format!(
+                "h = {h} s needs {n:e} substeps of internal_step = {} s, more than {MAX_SUBSTEPS:e}: split the communication step",
+                p.internal_step
+            )));
+        }
         let dt = h / n;
         let (mut x, mut v) = (self.x, self.v);
         for _ in 0..n as u64 {
@@ -386,7 +395,7 @@ impl CoSimModel for Toy {
             }
         }
         if x.iter().chain(&v).any(|z| !z.is_finite()) {
-            return Err("the state became non-finite".into());
+            return Err(StepError::Discard("the state became non-finite".into()));
         }
         self.x = x;
         self.v = v;
@@ -461,7 +470,11 @@ mod tests {
         m.do_step(0.0, 0.01).unwrap();
         let saved = m.save_state();
         m.set_real(vr::FORCE_Y, 1e6).unwrap();
-        assert!(m.do_step(0.01, 0.01).unwrap_err().contains("max_force"));
+        assert!(m
+            .do_step(0.01, 0.01)
+            .unwrap_err()
+            .message()
+            .contains("max_force"));
         assert_eq!(m.save_state()[..STATE_LEN - 64], saved[..STATE_LEN - 64]);
         let mut n = Toy::from_scene(SCENE).unwrap();
         n.load_state(&saved).unwrap();

@@ -420,21 +420,30 @@ impl NoProblemsExceptErrors for Inst {
     }
 }
 
+/// Issue 8 item 4: a failing step (no convergence, or a refusal) is a recoverable fmi2Discard:
+/// the model keeps its state, fmi2Terminated stays false (a master that honours it would stop
+/// instead of retrying), and rolling back with fmi2SetFMUstate continues bit for bit.
 #[test]
-fn failing_step_discards_terminates_and_keeps_state() {
+fn failing_step_is_a_recoverable_discard_that_keeps_the_state() {
     let inst = Inst::initialized("discard", None);
-    run(&inst, 0, 20);
-    let before = inst.get_real(&outputs()).unwrap();
+    run(&inst, 0, 10);
     let saved = inst.get_state();
+    let expected = run(&inst, 10, 10);
+    let before = inst.get_real(&outputs()).unwrap();
     let t = 20.0 * H;
     assert_eq!(inst.set_real(&forces(), &[HUGE_FORCE, 0.0]), OK);
     assert_eq!(inst.do_step(t, H), DISCARD);
-    inst.log
-        .assert_last(DISCARD, "logStatusDiscard", &["fmi2DoStep", "failed"]);
-    assert_eq!(inst.terminated(), (OK, true));
-    let (s, last) = inst.last_successful_time();
-    assert_eq!(s, OK);
-    assert_eq!(last, t);
+    inst.log.assert_last(
+        DISCARD,
+        "logStatusDiscard",
+        &["fmi2DoStep", "t = 0.2", "failed", "fmi2Terminated = false"],
+    );
+    assert_eq!(
+        inst.terminated(),
+        (OK, false),
+        "recoverable: not terminated"
+    );
+    assert_eq!(inst.last_successful_time(), (OK, t));
     let mut status: fmi2Status = 99;
     assert_eq!(
         unsafe { inst.api.get_status.unwrap()(inst.c, 0, &mut status) },
@@ -443,10 +452,10 @@ fn failing_step_discards_terminates_and_keeps_state() {
     assert_eq!(status, DISCARD);
     assert_eq!(bits(&[inst.get_real(&outputs()).unwrap()]), bits(&[before]));
     assert_eq!(inst.do_step(t, H), ERROR, "no DoStep in stepFailed");
-    // Rollback to the saved state: the simulation can go on.
+    // Roll back ten steps and go again: the same bits as the first time.
     assert_eq!(inst.set_state(saved), OK);
     assert_eq!(inst.terminated(), (OK, false));
-    run(&inst, 20, 5);
+    assert_eq!(bits(&run(&inst, 10, 10)), bits(&expected));
     let mut s = saved;
     assert_eq!(inst.free_state(&mut s), OK);
     // Terminate is legal after a failed step.
@@ -545,22 +554,6 @@ fn unsupported_functions_exist_and_return_error() {
                 api.set_string.unwrap()(c, vr0.as_ptr(), 1, s.as_ptr()),
                 "fmi2SetString",
             ),
-            (
-                api.get_integer_status.unwrap()(c, 0, i.as_mut_ptr()),
-                "fmi2GetIntegerStatus",
-            ),
-            (
-                api.get_string_status.unwrap()(c, 1, s.as_mut_ptr()),
-                "fmi2GetStringStatus",
-            ),
-            (
-                api.get_real_status.unwrap()(c, 0, x.as_mut_ptr()),
-                "fmi2GetRealStatus: status kind 0",
-            ),
-            (
-                api.get_boolean_status.unwrap()(c, 0, b.as_mut_ptr()),
-                "fmi2GetBooleanStatus: status kind 0",
-            ),
         ];
         for (status, part) in calls {
             assert_eq!(status, ERROR, "{part}");
@@ -601,18 +594,7 @@ fn debug_logging_categories() {
     inst.log.clear();
     assert_eq!(inst.do_step(0.0, H), OK);
     assert!(inst.log.entries().is_empty(), "logging off: no trace");
-    let set = |on: bool, cats: &[&str]| {
-        let owned: Vec<CString> = cats.iter().map(|c| CString::new(*c).unwrap()).collect();
-        let ptrs: Vec<*const c_char> = owned.iter().map(|c| c.as_ptr()).collect();
-        unsafe {
-            inst.api.set_debug_logging.unwrap()(
-                inst.c,
-                on as fmi2Boolean,
-                ptrs.len(),
-                ptrs.as_ptr(),
-            )
-        }
-    };
+    let set = |on: bool, cats: &[&str]| inst.set_logging(on, cats);
     assert_eq!(set(true, &["logAll"]), OK);
     assert_eq!(inst.do_step(H, H), OK);
     inst.log
@@ -634,4 +616,427 @@ fn debug_logging_categories() {
     assert!(!c.is_null());
     log.assert_last(OK, "logAll", &["fmi2Instantiate"]);
     unsafe { api().free_instance.unwrap()(c) };
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 8: hardening after the outside FMI audit
+// ---------------------------------------------------------------------------------------------
+
+/// The smallest `solver.max_step` (and held internal step) the model accepts [s]
+/// (docs/fmi-layer.md, "Step-size bounds").
+const MIN_STEP: f64 = 1e-8;
+
+/// Item 1: `solver.max_step` below the bound is refused by the scene validation, the parameter
+/// setter and the snapshot reader alike, each with a message naming the bound.
+#[test]
+fn step_size_below_the_bound_is_refused_by_scene_setter_and_snapshot() {
+    let below = [1e-12, 1e-300, 5e-324, 0.999 * MIN_STEP];
+    // scene validation
+    for h in below {
+        let scene = SCENE.replace("max_step = 1e-4", &format!("max_step = {h:e}"));
+        assert_ne!(scene, SCENE);
+        let e = hybeam::scene::Scene::from_toml(&scene).unwrap_err().0;
+        assert!(e.contains("solver.max_step") && e.contains("1e-8"), "{e}");
+    }
+    // parameter setter (fixed parameter, before initialization)
+    let inst = Inst::new("minstep-set");
+    let p = vr("solver.max_step");
+    for h in below {
+        assert_eq!(inst.set_real(&[p], &[h]), ERROR, "max_step = {h:e}");
+        inst.log
+            .assert_last(ERROR, "logStatusError", &["solver.max_step", "1e-8"]);
+    }
+    assert_eq!(
+        inst.set_real(&[p], &[MIN_STEP]),
+        OK,
+        "the bound itself is allowed"
+    );
+    // snapshot reader: a saved state whose held internal step is below the bound (checksum
+    // recomputed, as anyone can), and one whose max_step parameter is
+    let inst = Inst::initialized("minstep-snap", None);
+    run(&inst, 0, 3);
+    let mut s = inst.get_state();
+    let bytes = inst.serialize(s);
+    let guid = guid_of(SCENE);
+    let max_step = start_of(p);
+    for (what, skip) in [("held step", 1), ("max_step parameter", 0)] {
+        for h in below {
+            let mut st = hybeam::fmi::fmu_state::FmuState::deserialize(&bytes, &guid).unwrap();
+            let n = replace_f64(&mut st.model, max_step, h, skip);
+            assert!(n >= 1, "{what}: no field holds {max_step:e}");
+            let (status, mut crafted) = inst.deserialize(&st.serialize(&guid));
+            assert_eq!(status, OK, "the envelope is valid");
+            assert_eq!(inst.set_state(crafted), ERROR, "{what} = {h:e}");
+            inst.log
+                .assert_last(ERROR, "logStatusError", &["fmi2SetFMUstate", "1e-8"]);
+            assert_eq!(inst.free_state(&mut crafted), OK);
+        }
+    }
+    assert_eq!(inst.do_step(3.0 * H, H), OK, "the instance is unchanged");
+    assert_eq!(inst.free_state(&mut s), OK);
+}
+
+/// Items 1 and 4: a communication step that needs more internal steps than the cap is refused
+/// at once with fmi2Discard (a message that says what to change, the state kept, not
+/// terminated); restoring the FMU state and retrying with a smaller step continues.
+#[test]
+fn work_cap_discards_a_long_step_and_a_smaller_retry_continues() {
+    let inst = Inst::initialized("cap", None);
+    run(&inst, 0, 5);
+    let t = 5.0 * H;
+    let before = inst.get_real(&outputs()).unwrap();
+    let mut saved = inst.get_state();
+    let start = std::time::Instant::now();
+    assert_eq!(inst.do_step(t, 100.0), DISCARD);
+    eprintln!("refused 100 s step in {:?}", start.elapsed());
+    inst.log.assert_last(
+        DISCARD,
+        "logStatusDiscard",
+        &[
+            "fmi2DoStep",
+            "solver.max_internal_steps",
+            "split",
+            "solver.max_step",
+        ],
+    );
+    assert_eq!(inst.terminated(), (OK, false));
+    assert_eq!(inst.last_successful_time(), (OK, t));
+    assert_eq!(bits(&[inst.get_real(&outputs()).unwrap()]), bits(&[before]));
+    assert_eq!(inst.do_step(t, H), ERROR, "no DoStep in stepFailed");
+    // retry with a smaller step after restoring the state at the start of the failed step
+    assert_eq!(inst.set_state(saved), OK);
+    let rows = run(&inst, 5, 5);
+    // the same as an instance that never tried the long step
+    let other = Inst::initialized("cap-other", None);
+    run(&other, 0, 5);
+    assert_eq!(bits(&run(&other, 5, 5)), bits(&rows));
+    assert_eq!(inst.free_state(&mut saved), OK);
+}
+
+/// Item 2: a status kind that is not available is fmi2Discard (FMI 2.0 §4.2.3), logged in
+/// `logStatusDiscard`; a value that is no status kind at all is a bad argument (fmi2Error).
+#[test]
+fn unavailable_status_kinds_are_discard() {
+    let inst = Inst::initialized("status", None);
+    assert_eq!(inst.do_step(0.0, H), OK);
+    let (api, c) = (inst.api, inst.c);
+    let mut st: fmi2Status = 99;
+    let mut x = 0.0f64;
+    let mut i: fmi2Integer = 0;
+    let mut b: fmi2Boolean = 0;
+    let mut s: fmi2String = ptr::null();
+    // kinds: 0 fmi2DoStepStatus, 1 fmi2PendingStatus, 2 fmi2LastSuccessfulTime, 3 fmi2Terminated
+    for kind in 0..4u32 {
+        for (name, available) in [
+            ("fmi2GetStatus", kind == 0),
+            ("fmi2GetRealStatus", kind == 2),
+            ("fmi2GetIntegerStatus", false),
+            ("fmi2GetBooleanStatus", kind == 3),
+            ("fmi2GetStringStatus", false),
+        ] {
+            let status = unsafe {
+                match name {
+                    "fmi2GetStatus" => api.get_status.unwrap()(c, kind, &mut st),
+                    "fmi2GetRealStatus" => api.get_real_status.unwrap()(c, kind, &mut x),
+                    "fmi2GetIntegerStatus" => api.get_integer_status.unwrap()(c, kind, &mut i),
+                    "fmi2GetBooleanStatus" => api.get_boolean_status.unwrap()(c, kind, &mut b),
+                    _ => api.get_string_status.unwrap()(c, kind, &mut s),
+                }
+            };
+            if available {
+                assert_eq!(status, OK, "{name}({kind})");
+            } else {
+                assert_eq!(status, DISCARD, "{name}({kind})");
+                inst.log.assert_last(
+                    DISCARD,
+                    "logStatusDiscard",
+                    &[name, &format!("status kind {kind}"), "not available"],
+                );
+            }
+        }
+    }
+    assert_eq!(unsafe { api.get_real_status.unwrap()(c, 7, &mut x) }, ERROR);
+    inst.log
+        .assert_last(ERROR, "logStatusError", &["fmi2GetRealStatus", "7"]);
+    assert_eq!(inst.do_step(H, H), OK, "status queries change no state");
+}
+
+/// Item 3: the shared library exports exactly the 34 fmi2 functions (nothing from dependencies,
+/// e.g. `callback_log` of the FMI header bindings, that could clash between FMUs loaded with
+/// `RTLD_GLOBAL`).
+#[test]
+fn exports_exactly_the_34_fmi2_functions() {
+    use object::{Object, ObjectSymbol};
+    let path = library_path();
+    let data = std::fs::read(&path).unwrap();
+    let file = object::File::parse(&*data).unwrap();
+    let mut exported: Vec<String> = file
+        .dynamic_symbols()
+        .filter(|s| s.is_definition() && s.is_global())
+        .map(|s| s.name().unwrap().to_owned())
+        .collect();
+    exported.sort();
+    let mut want: Vec<&str> = hybeam::fmi::state::Function::ALL
+        .iter()
+        .map(|f| f.name())
+        .collect();
+    want.sort();
+    assert_eq!(want.len(), 34);
+    assert_eq!(exported, want, "{}", path.display());
+}
+
+/// Item 5: `logAll` means all messages (FMI 2.0 §2.2.4): selecting it after logging was switched
+/// off brings the error messages back, not only the call trace.
+#[test]
+fn log_all_brings_back_every_message() {
+    let inst = Inst::initialized("logall", None);
+    assert_eq!(inst.set_logging(false, &[]), OK);
+    inst.log.clear();
+    assert_eq!(inst.do_step(5.0, H), ERROR);
+    assert!(inst.log.entries().is_empty(), "everything off");
+    assert_eq!(inst.set_logging(true, &["logAll"]), OK);
+    assert_eq!(inst.do_step(5.0, H), ERROR);
+    inst.log.assert_last(
+        ERROR,
+        "logStatusError",
+        &["fmi2DoStep", "currentCommunicationPoint = 5"],
+    );
+    assert_eq!(inst.do_step(0.0, H), OK);
+    inst.log.assert_last(OK, "logAll", &["fmi2DoStep: t = 0"]);
+    // logAll off again: the status categories keep their own (off) setting
+    assert_eq!(inst.set_logging(false, &["logAll"]), OK);
+    inst.log.clear();
+    assert_eq!(inst.do_step(5.0, H), ERROR);
+    assert!(inst.log.entries().is_empty());
+    // one status category alone: its messages, no trace
+    assert_eq!(inst.set_logging(true, &["logStatusError"]), OK);
+    assert_eq!(inst.do_step(5.0, H), ERROR);
+    inst.log
+        .assert_last(ERROR, "logStatusError", &["fmi2DoStep"]);
+    assert_eq!(inst.do_step(H, H), OK);
+    assert_eq!(
+        inst.log.entries().len(),
+        1,
+        "no trace: {:?}",
+        inst.log.entries()
+    );
+}
+
+/// Item 6: a step with `t + h == t` in floating point, or from a start time so large that steps
+/// no longer advance time, is a bad argument (fmi2Error, state unchanged), not accepted
+/// silently or reported as a model failure.
+#[test]
+fn steps_that_do_not_advance_time_are_bad_arguments() {
+    let inst = Inst::initialized("noadvance", None);
+    run(&inst, 0, 50);
+    let t = 50.0 * H;
+    let before = inst.get_real(&outputs()).unwrap();
+    assert_eq!(t + 1e-17, t);
+    assert_eq!(inst.do_step(t, 1e-17), ERROR);
+    inst.log.assert_last(
+        ERROR,
+        "logStatusError",
+        &[
+            "fmi2DoStep",
+            "communicationStepSize = 1e-17",
+            "does not advance",
+        ],
+    );
+    assert_eq!(bits(&[inst.get_real(&outputs()).unwrap()]), bits(&[before]));
+    assert_eq!(inst.do_step(t, H), OK, "still stepComplete");
+
+    let big = Inst::new("bigstart");
+    assert_eq!(big.setup(1e20, None), OK);
+    assert_eq!(big.enter_init(), OK);
+    assert_eq!(big.exit_init(), OK);
+    let x0 = big.get_real(&outputs()).unwrap();
+    assert_eq!(big.do_step(1e20, 1e-3), ERROR);
+    big.log.assert_last(
+        ERROR,
+        "logStatusError",
+        &["currentCommunicationPoint = 1e20", "does not advance"],
+    );
+    assert_eq!(bits(&[big.get_real(&outputs()).unwrap()]), bits(&[x0]));
+    assert_eq!(big.last_successful_time(), (OK, 1e20));
+}
+
+/// Item 7: the URI scheme of the resource location is case-insensitive (RFC 3986 §3.1).
+#[test]
+fn resource_uri_scheme_is_case_insensitive() {
+    let dir = resources_with(SCENE, "scheme");
+    for scheme in ["FILE", "File", "fIlE"] {
+        let mut args = InstantiateArgs::valid("scheme");
+        args.location = Some(format!("{scheme}://{}", dir.display()));
+        let (c, log) = instantiate_raw(&args);
+        assert!(!c.is_null(), "{scheme}: {:?}", log.entries());
+        unsafe { api().free_instance.unwrap()(c) };
+    }
+}
+
+/// One timed FMI call of the acceptance run.
+struct Timed {
+    label: String,
+    call: &'static str,
+    status: fmi2Status,
+    seconds: f64,
+}
+
+/// Times `f` and records its status.
+fn timed(
+    log: &mut Vec<Timed>,
+    label: &str,
+    call: &'static str,
+    f: impl FnOnce() -> fmi2Status,
+) -> fmi2Status {
+    let start = std::time::Instant::now();
+    let status = f();
+    log.push(Timed {
+        label: label.to_owned(),
+        call,
+        status,
+        seconds: start.elapsed().as_secs_f64(),
+    });
+    status
+}
+
+/// Timed steps of H, 1 s and 1000 s from `t` until one does not return fmi2OK. Each either is
+/// refused (fmi2Discard/fmi2Error) or completes within the work cap: at most `cap` internal
+/// steps of at most `solver.max_step`, so `h ≤ cap · max_step` (rounding guard 1e-9).
+fn steps_within_cap(log: &mut Vec<Timed>, label: &str, inst: &Inst, mut t: f64, cap: u64) {
+    let max_step = inst.get1(vr("solver.max_step"));
+    for h in [H, 1.0, 1000.0] {
+        let status = timed(log, label, "fmi2DoStep", || inst.do_step(t, h));
+        match status {
+            DISCARD | ERROR => return,
+            OK => assert!(
+                h <= cap as f64 * max_step * (1.0 + 1e-9),
+                "{label}: a step of {h} s completed with more than {cap} internal steps of {max_step:e} s"
+            ),
+            other => panic!("{label}: fmi2DoStep returned {other}"),
+        }
+        t += h;
+    }
+}
+
+/// Issue 8 acceptance: extreme parameter values and crafted snapshots (tiny, huge, subnormal,
+/// NaN step sizes and tolerances, and extreme physical parameters). Every call returns a
+/// refusal (fmi2Error), an fmi2Discard, or completes within the work cap. Each call's wall time
+/// is printed (`--nocapture`), never asserted (speed is not asserted in tests).
+#[test]
+fn extreme_values_and_crafted_snapshots_return_promptly() {
+    let cap = hybeam::scene::Scene::from_toml(SCENE)
+        .unwrap()
+        .solver
+        .max_internal_steps;
+    let extremes = [
+        1e-12,
+        1e-300,
+        5e-324,
+        0.0,
+        -1e-4,
+        f64::NAN,
+        f64::INFINITY,
+        1e300,
+        MIN_STEP,
+        1.0,
+    ];
+    let mut calls = Vec::new();
+    let p_step = vr("solver.max_step");
+    // parameters set before initialization, then steps of H, 1 s and 1000 s
+    let params = [
+        "solver.max_step",
+        "solver.tolerance",
+        "solver.rho_inf",
+        "gravity.y",
+        "modal.length",
+        "ancf.length",
+        "modal.youngs_modulus",
+        "ancf.density",
+        "ancf.diameter",
+    ];
+    for name in params {
+        for x in extremes {
+            let label = format!("{name} = {x:e}");
+            let inst = Inst::new("extreme");
+            let l = &mut calls;
+            let set = timed(l, &label, "fmi2SetReal", || {
+                inst.set_real(&[vr(name)], &[x])
+            });
+            assert!(set == OK || set == ERROR, "{label}: {set}");
+            if set != OK {
+                continue;
+            }
+            assert_eq!(inst.setup(0.0, None), OK);
+            assert_eq!(inst.enter_init(), OK);
+            let init = timed(l, &label, "fmi2ExitInitializationMode", || inst.exit_init());
+            assert!(init == OK || init == ERROR, "{label}: {init}");
+            if init != OK {
+                continue;
+            }
+            steps_within_cap(l, &label, &inst, 0.0, cap);
+        }
+    }
+    // crafted snapshots: the held step, max_step and tolerance replaced, checksum recomputed
+    let base = Inst::initialized("crafted", None);
+    run(&base, 0, 3);
+    let mut s = base.get_state();
+    let bytes = base.serialize(s);
+    assert_eq!(base.free_state(&mut s), OK);
+    let guid = guid_of(SCENE);
+    let max_step = start_of(p_step);
+    let tolerance = start_of(vr("solver.tolerance"));
+    for (what, old, skip) in [
+        ("held step", max_step, 1),
+        ("max_step", max_step, 0),
+        ("tolerance", tolerance, 0),
+    ] {
+        for x in extremes {
+            let label = format!("snapshot {what} = {x:e}");
+            let mut st = hybeam::fmi::fmu_state::FmuState::deserialize(&bytes, &guid).unwrap();
+            assert!(replace_f64(&mut st.model, old, x, skip) >= 1, "{label}");
+            let crafted = st.serialize(&guid);
+            let inst = Inst::new("crafted-into");
+            let l = &mut calls;
+            let mut p: fmi2FMUstate = ptr::null_mut();
+            let d = timed(l, &label, "fmi2DeSerializeFMUstate", || {
+                let (st, q) = inst.deserialize(&crafted);
+                p = q;
+                st
+            });
+            assert_eq!(d, OK, "{label}: the envelope is valid");
+            let set = timed(l, &label, "fmi2SetFMUstate", || inst.set_state(p));
+            assert!(set == OK || set == ERROR, "{label}: {set}");
+            if set == OK {
+                steps_within_cap(l, &label, &inst, 3.0 * H, cap);
+            }
+            assert_eq!(inst.free_state(&mut p), OK);
+        }
+    }
+    let name = |s| match s {
+        OK => "OK",
+        DISCARD => "Discard",
+        ERROR => "Error",
+        _ => "other",
+    };
+    for c in &calls {
+        eprintln!(
+            "{:>10.3} ms  {:<8} {:<27} {}",
+            1e3 * c.seconds,
+            name(c.status),
+            c.call,
+            c.label
+        );
+    }
+    let worst = calls
+        .iter()
+        .max_by(|a, b| a.seconds.total_cmp(&b.seconds))
+        .unwrap();
+    eprintln!(
+        "{} calls; the longest: {:.3} ms ({} {} -> {})",
+        calls.len(),
+        1e3 * worst.seconds,
+        worst.call,
+        worst.label,
+        name(worst.status)
+    );
 }

@@ -1,22 +1,30 @@
-//! The generic entry points with a model that panics: the panic is caught, logged as fmi2Fatal,
-//! the instance goes to state `fatal` (only FreeInstance is allowed) and nothing unwinds.
+//! The generic entry points with a misbehaving test model, chosen by its scene text: `panic`
+//! panics in do_step (caught, logged as fmi2Fatal, state `fatal`, only FreeInstance allowed,
+//! nothing unwinds); `terminate` ends with [`StepError::Terminate`] (fmi2Discard with
+//! fmi2Terminated = true).
 
 mod host;
 
 use std::ffi::{c_void, CString};
 
-use host::{file_uri, guid_of, resources_with, test_logger, Callbacks, Log, FATAL, OK};
+use host::{file_uri, guid_of, resources_with, test_logger, Callbacks, Log, DISCARD, FATAL, OK};
 use hybeam::fmi::entry;
-use hybeam::fmi::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
-use hybeam::fmi::types::fmi2CallbackFunctions;
+use hybeam::fmi::model::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+use hybeam::fmi::types::{
+    fmi2CallbackFunctions, fmi2Component, FMI2_FALSE, FMI2_LAST_SUCCESSFUL_TIME, FMI2_TERMINATED,
+    FMI2_TRUE,
+};
 
 struct Panicky {
     vars: Vec<Variable>,
+    /// Ends with StepError::Terminate instead of panicking.
+    terminate: bool,
 }
 
 impl CoSimModel for Panicky {
-    fn from_scene(_: &str) -> Result<Self, String> {
+    fn from_scene(scene: &str) -> Result<Self, String> {
         Ok(Self {
+            terminate: scene == "terminate",
             vars: vec![Variable {
                 name: "y".into(),
                 vr: 0,
@@ -49,7 +57,10 @@ impl CoSimModel for Panicky {
     fn initialize(&mut self, _: f64) -> Result<(), String> {
         Ok(())
     }
-    fn do_step(&mut self, _: f64, _: f64) -> Result<(), String> {
+    fn do_step(&mut self, _: f64, _: f64) -> Result<(), StepError> {
+        if self.terminate {
+            return Err(StepError::Terminate("the model reached its end".into()));
+        }
         panic!("model bug in do_step")
     }
     fn reset(&mut self) -> Result<(), String> {
@@ -63,9 +74,8 @@ impl CoSimModel for Panicky {
     }
 }
 
-#[test]
-fn panic_in_do_step_is_fatal_not_an_unwind() {
-    let scene = "anything";
+/// An initialized instance of `Panicky` built from `scene`, with its log.
+unsafe fn initialized(scene: &str) -> (fmi2Component, Box<Log>) {
     let log = Box::new(Log::default());
     let callbacks = Callbacks {
         logger: Some(test_logger),
@@ -90,6 +100,14 @@ fn panic_in_do_step_is_fatal_not_an_unwind() {
         assert!(!c.is_null(), "{:?}", log.entries());
         assert_eq!(entry::enter_initialization_mode::<Panicky>(c), OK);
         assert_eq!(entry::exit_initialization_mode::<Panicky>(c), OK);
+        (c, log)
+    }
+}
+
+#[test]
+fn panic_in_do_step_is_fatal_not_an_unwind() {
+    unsafe {
+        let (c, log) = initialized("panic");
         assert_eq!(entry::do_step::<Panicky>(c, 0.0, 0.1, 0), FATAL);
         log.assert_last(
             FATAL,
@@ -98,6 +116,33 @@ fn panic_in_do_step_is_fatal_not_an_unwind() {
         );
         // Fatal: every other call is refused, FreeInstance still frees.
         assert_eq!(entry::terminate::<Panicky>(c), host::ERROR);
+        entry::free_instance::<Panicky>(c);
+    }
+}
+
+#[test]
+fn terminate_error_is_discard_with_terminated_true() {
+    unsafe {
+        let (c, log) = initialized("terminate");
+        assert_eq!(entry::do_step::<Panicky>(c, 0.0, 0.1, 0), DISCARD);
+        log.assert_last(
+            DISCARD,
+            "logStatusDiscard",
+            &["reached its end", "fmi2Terminated = true"],
+        );
+        let mut terminated = FMI2_FALSE;
+        assert_eq!(
+            entry::get_boolean_status::<Panicky>(c, FMI2_TERMINATED, &mut terminated),
+            OK
+        );
+        assert_eq!(terminated, FMI2_TRUE);
+        let mut last = f64::NAN;
+        assert_eq!(
+            entry::get_real_status::<Panicky>(c, FMI2_LAST_SUCCESSFUL_TIME, &mut last),
+            OK
+        );
+        assert_eq!(last, 0.0);
+        assert_eq!(entry::terminate::<Panicky>(c), OK);
         entry::free_instance::<Panicky>(c);
     }
 }

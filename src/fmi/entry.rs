@@ -24,18 +24,19 @@ use super::fmu_state::{self, FmuState};
 use super::guid;
 use super::instance::{self, Instance};
 use super::log::LogCategory;
-use super::model::{Causality, CoSimModel, Variability, Variable};
+use super::model::{Causality, CoSimModel, StepError, Variability, Variable};
 use super::resources;
 use super::state::{Function as F, ModelState};
 use super::types::*;
 
 /// Relative tolerance of the communication-point and stop-time checks of fmi2DoStep.
 ///
-/// `currentCommunicationPoint` is accepted if `|t − time| ≤ TIME_RTOL · max(|t|, |time|, h)`.
+/// `currentCommunicationPoint` is accepted if
+/// `|t − time| ≤ min(TIME_RTOL · max(|t|, |time|, h), h/2)`.
 /// Hosts compute `t0 + n·h` or a running sum, which differ from the FMU's `t + h` by a few ulps
-/// of `|t|` per step; 1e-9 covers ~10⁶ accumulated roundings while staying a tiny fraction of any
-/// step (it can only exceed h/2 when h < 2e-9·|t|, a step that is lost in the time's own rounding).
-/// After a successful step the FMU's time is set to the host's `t + h`, so no drift builds up.
+/// of `|t|` per step; 1e-9 covers ~10⁶ accumulated roundings, and the h/2 cap keeps consecutive
+/// communication points apart even at large times. After a successful step the FMU's time is
+/// set to the host's `t + h`, so no drift builds up.
 pub const TIME_RTOL: f64 = 1e-9;
 
 /// Returns early from a closure returning [`Status`] with the error status of a `Result`.
@@ -1006,9 +1007,11 @@ pub unsafe fn get_real_output_derivatives<M: CoSimModel>(
 }
 
 /// fmi2DoStep: checks the step (`h` finite and > 0, `t` equal to the FMU time within
-/// [`TIME_RTOL`], `t + h` not beyond stopTime), then `model.do_step(t, h)`.
-/// Ok → fmi2OK and time = `t + h`. Err → fmi2Discard, state `stepFailed`, fmi2Terminated = true,
-/// fmi2LastSuccessfulTime = the time before the step (the model keeps its last good state).
+/// [`TIME_RTOL`], `t + h` finite, later than `t` in floating point, and not beyond stopTime),
+/// then `model.do_step(t, h)`. Ok → fmi2OK and time = `t + h`. Err → fmi2Discard, state
+/// `stepFailed`, fmi2LastSuccessfulTime = the time before the step (the model keeps its last
+/// good state), fmi2Terminated = true only for [`StepError::Terminate`]; after a recoverable
+/// [`StepError::Discard`] fmi2SetFMUstate resumes, e.g. to retry with a smaller step.
 ///
 /// # Safety
 /// FMI 2.0 calling contract.
@@ -1029,7 +1032,7 @@ pub unsafe fn do_step<M: CoSimModel>(
                     format!("communicationStepSize = {h} must be finite and > 0"),
                 );
             }
-            let tol = TIME_RTOL * t.abs().max(inst.layer.time.abs()).max(h);
+            let tol = (TIME_RTOL * t.abs().max(inst.layer.time.abs()).max(h)).min(0.5 * h);
             if !t.is_finite() || (t - inst.layer.time).abs() > tol {
                 return inst.error(
                     f,
@@ -1042,6 +1045,19 @@ pub unsafe fn do_step<M: CoSimModel>(
                 );
             }
             let end = t + h;
+            if !(end.is_finite() && end > t) {
+                let spacing = t.abs().next_up() - t.abs();
+                return inst.error(
+                    f,
+                    format!(
+                        "communicationStepSize = {h:e} does not advance time from \
+                         currentCommunicationPoint = {t:e}: t + h = {end:e} in double precision \
+                         (at |t| = {:e} s consecutive times are {spacing:e} s apart); use a \
+                         larger step, or a start time nearer 0",
+                        t.abs()
+                    ),
+                );
+            }
             if let Some(stop) = inst.layer.stop_time {
                 if end > stop + TIME_RTOL * stop.abs().max(h) {
                     return inst.error(
@@ -1062,15 +1078,23 @@ pub unsafe fn do_step<M: CoSimModel>(
                     Status::Ok
                 }
                 Err(e) => {
+                    let terminate = matches!(e, StepError::Terminate(_));
                     inst.layer.state = ModelState::STEP_FAILED;
-                    inst.layer.terminated = true;
+                    inst.layer.terminated = terminate;
                     inst.layer.last_successful_time = inst.layer.time;
                     inst.last_do_step_status = Status::Discard;
+                    let next = if terminate {
+                        "fmi2Terminated = true: the model cannot continue"
+                    } else {
+                        "fmi2Terminated = false: fmi2SetFMUstate to a saved state continues, e.g. \
+                         with a smaller step or other inputs"
+                    };
                     inst.log(
                         Status::Discard,
                         &format!(
-                            "fmi2DoStep: the step from t = {t} with h = {h} failed: {e}; the model \
-                             keeps its state at t = {} (fmi2Terminated = true)",
+                            "fmi2DoStep: the step from t = {t} with h = {h} failed: {}; the model \
+                             keeps its state at t = {} ({next})",
+                            e.message(),
                             inst.layer.time
                         ),
                     );
@@ -1095,6 +1119,37 @@ pub unsafe fn cancel_step<M: CoSimModel>(c: fmi2Component) -> fmi2Status {
     }
 }
 
+/// The name of a status kind, or `None` if `s` is no fmi2StatusKind.
+fn status_kind_name(s: fmi2StatusKind) -> Option<&'static str> {
+    match s {
+        FMI2_DO_STEP_STATUS => Some("fmi2DoStepStatus"),
+        FMI2_PENDING_STATUS => Some("fmi2PendingStatus"),
+        FMI2_LAST_SUCCESSFUL_TIME => Some("fmi2LastSuccessfulTime"),
+        FMI2_TERMINATED => Some("fmi2Terminated"),
+        _ => None,
+    }
+}
+
+/// A status query for a kind this function does not provide: fmi2Discard (FMI 2.0 §4.2.3) for
+/// a kind that exists, fmi2Error for a value that is no status kind.
+fn unavailable_status<M: CoSimModel>(
+    inst: &Instance<M>,
+    f: F,
+    s: fmi2StatusKind,
+    available: &str,
+) -> Status {
+    match status_kind_name(s) {
+        Some(name) => inst.discard(
+            f,
+            format!("status kind {s} ({name}) is not available ({available})"),
+        ),
+        None => inst.error(
+            f,
+            format!("s = {s} is not an fmi2StatusKind (0 to 3); {available}"),
+        ),
+    }
+}
+
 /// fmi2GetStatus: `fmi2DoStepStatus` gives the status of the last fmi2DoStep.
 ///
 /// # Safety
@@ -1113,10 +1168,7 @@ pub unsafe fn get_status<M: CoSimModel>(
                 *out = inst.last_do_step_status.to_c();
                 Status::Ok
             } else {
-                inst.error(
-                    f,
-                    format!("status kind {s} is not available (only fmi2DoStepStatus = 0)"),
-                )
+                unavailable_status(inst, f, s, "only fmi2DoStepStatus = 0")
             }
         })
     }
@@ -1140,10 +1192,7 @@ pub unsafe fn get_real_status<M: CoSimModel>(
                 *out = inst.layer.last_successful_time;
                 Status::Ok
             } else {
-                inst.error(
-                    f,
-                    format!("status kind {s} is not available (only fmi2LastSuccessfulTime = 2)"),
-                )
+                unavailable_status(inst, f, s, "only fmi2LastSuccessfulTime = 2")
             }
         })
     }
@@ -1162,10 +1211,7 @@ pub unsafe fn get_integer_status<M: CoSimModel>(
     // SAFETY: forwarded contract.
     unsafe {
         with_instance::<M>(c, f, |inst| {
-            inst.error(
-                f,
-                format!("status kind {s} is not available (no Integer status exists)"),
-            )
+            unavailable_status(inst, f, s, "FMI 2.0 defines no Integer status")
         })
     }
 }
@@ -1192,10 +1238,7 @@ pub unsafe fn get_boolean_status<M: CoSimModel>(
                 };
                 Status::Ok
             } else {
-                inst.error(
-                    f,
-                    format!("status kind {s} is not available (only fmi2Terminated = 3)"),
-                )
+                unavailable_status(inst, f, s, "only fmi2Terminated = 3")
             }
         })
     }
@@ -1215,10 +1258,7 @@ pub unsafe fn get_string_status<M: CoSimModel>(
     // SAFETY: forwarded contract.
     unsafe {
         with_instance::<M>(c, f, |inst| {
-            inst.error(
-                f,
-                format!("status kind {s} is not available (this FMU never has a pending step)"),
-            )
+            unavailable_status(inst, f, s, "this FMU never has a pending step")
         })
     }
 }

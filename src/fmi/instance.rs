@@ -118,6 +118,16 @@ impl<M: CoSimModel> Instance<M> {
         Status::Error
     }
 
+    /// Logs `"{function}: {message}"` as a discard and returns [`Status::Discard`] (the state is
+    /// unchanged).
+    pub fn discard(&self, function: Function, message: impl AsRef<str>) -> Status {
+        self.log(
+            Status::Discard,
+            &format!("{}: {}", function.name(), message.as_ref()),
+        );
+        Status::Discard
+    }
+
     /// Like [`Instance::error`] for a failure of the model: the instance goes to state `error`.
     pub fn model_error(&mut self, function: Function, message: impl AsRef<str>) -> Status {
         self.layer.state = ModelState::ERROR;

@@ -6,7 +6,9 @@
 //!
 //! Filtering: each category has an on/off flag. At fmi2Instantiate the four status categories are
 //! on and `logAll` follows `loggingOn`. fmi2SetDebugLogging(on, 0, NULL) sets every category to
-//! `on`; with a list it sets only the listed ones. A message is sent iff its category is on.
+//! `on`; with a list it sets only the listed ones. `logAll` means "all messages" (FMI 2.0
+//! §2.2.4): a message is sent iff its own category or `logAll` is on. The call trace has no
+//! category of its own: it is sent iff `logAll` is on.
 
 use std::ffi::{c_char, CStr, CString};
 
@@ -23,7 +25,7 @@ pub enum LogCategory {
     StatusError,
     /// Fatal errors (internal faults).
     StatusFatal,
-    /// Every call, with its arguments (debug trace).
+    /// All messages: every status category and the trace of every call with its arguments.
     All,
 }
 
@@ -63,7 +65,7 @@ impl LogCategory {
                 "Errors: illegal call sequences, invalid arguments, model failures"
             }
             LogCategory::StatusFatal => "Fatal internal faults",
-            LogCategory::All => "Every call with its arguments (debug trace)",
+            LogCategory::All => "All messages: every status category and the trace of every call",
         }
     }
 
@@ -99,10 +101,10 @@ impl LogFilter {
         Self([true, true, true, true, logging_on])
     }
 
-    /// True if messages of `category` are sent.
+    /// True if messages of `category` are sent: its own flag or `logAll` is on.
     #[inline]
     pub const fn enabled(&self, category: LogCategory) -> bool {
-        self.0[category.index()]
+        self.0[category.index()] || self.0[LogCategory::All.index()]
     }
 
     /// Turns one category on or off.
@@ -168,6 +170,12 @@ mod tests {
         f.set(LogCategory::All, true);
         assert!(f.enabled(LogCategory::All));
         f.set_all(false);
+        f.set(LogCategory::All, true);
+        assert!(
+            f.enabled(LogCategory::StatusError),
+            "logAll means all messages"
+        );
+        f.set(LogCategory::All, false);
         assert!(!f.enabled(LogCategory::StatusError));
         assert_eq!(c_string("a\0b").to_str().unwrap(), "a?b");
     }

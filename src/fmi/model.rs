@@ -58,6 +58,36 @@ pub struct ModelInfo {
     pub step_size: f64,
 }
 
+/// Why a communication step did not complete. Either way the model is still in its state at
+/// the start of the step (its last good state), and fmi2DoStep returns fmi2Discard with
+/// fmi2LastSuccessfulTime = the start of the step.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum StepError {
+    /// Recoverable (no convergence, a refusal, too much work for one call): the model can go on
+    /// from its last good state with a smaller step or other inputs after fmi2SetFMUstate.
+    /// fmi2Terminated stays false.
+    Discard(String),
+    /// The model cannot continue from its last good state at all (whatever the step or inputs):
+    /// fmi2Terminated = true.
+    Terminate(String),
+}
+
+impl StepError {
+    /// The message.
+    pub fn message(&self) -> &str {
+        match self {
+            StepError::Discard(m) | StepError::Terminate(m) => m,
+        }
+    }
+}
+
+/// A model error message is a recoverable [`StepError::Discard`].
+impl From<String> for StepError {
+    fn from(message: String) -> Self {
+        StepError::Discard(message)
+    }
+}
+
 /// What the FMI layer needs from a model.
 ///
 /// Invariants the FMI layer relies on:
@@ -82,8 +112,9 @@ pub trait CoSimModel: Sized + Send + 'static {
     /// Called at fmi2ExitInitializationMode: builds the model from the current parameters and
     /// computes the initial state at `start_time`.
     fn initialize(&mut self, start_time: f64) -> Result<(), String>;
-    /// Advances from `t` to `t + h` (internal substeps). On error the state is unchanged.
-    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String>;
+    /// Advances from `t` to `t + h` (internal substeps). On error the state is unchanged, and
+    /// the error says whether the model can continue ([`StepError`]).
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), StepError>;
     /// Back to the state after `from_scene` (fmi2Reset).
     fn reset(&mut self) -> Result<(), String>;
     /// Self-contained bytes: format version, scene identity, parameters, inputs, coordinates,

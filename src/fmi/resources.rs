@@ -8,10 +8,14 @@ pub const SCENE_FILE: &str = "scene.toml";
 /// The local directory named by an FMI 2.0 resource location.
 ///
 /// Accepted forms: `file:///abs/dir`, `file://localhost/abs/dir`, `file:/abs/dir` (each with or
-/// without a trailing slash, percent-encoded bytes such as `%20` decoded), and, leniently, a plain
-/// absolute path `/abs/dir` (some hosts pass one). Anything else is refused with a message.
+/// without a trailing slash, percent-encoded bytes such as `%20` decoded; scheme and host
+/// case-insensitive, RFC 3986), and, leniently, a plain absolute path `/abs/dir` (some hosts
+/// pass one). Anything else is refused with a message.
 pub fn resource_dir(location: &str) -> Result<PathBuf, String> {
-    let path = if let Some(rest) = location.strip_prefix("file:") {
+    let scheme = location
+        .get(..5)
+        .filter(|s| s.eq_ignore_ascii_case("file:"));
+    let path = if let Some(rest) = scheme.map(|_| &location[5..]) {
         if let Some(after) = rest.strip_prefix("//") {
             // Authority: empty or "localhost".
             let slash = after.find('/').ok_or_else(|| {
@@ -102,6 +106,8 @@ mod tests {
             ("file://localhost/tmp/x", "/tmp/x"),
             ("file:/tmp/x", "/tmp/x"),
             ("file:///tmp/my%20dir/r", "/tmp/my dir/r"),
+            ("FILE:///tmp/x", "/tmp/x"),
+            ("File://LocalHost/tmp/x", "/tmp/x"),
             ("/tmp/plain", "/tmp/plain"),
         ] {
             assert_eq!(resource_dir(uri).unwrap(), PathBuf::from(want), "{uri}");

@@ -292,6 +292,27 @@ impl InstantiateArgs {
     }
 }
 
+/// Replaces the little-endian bytes of `old` by those of `new` in `bytes`, leaving the first
+/// `skip` occurrences alone; returns how many were replaced. Used to craft snapshots without
+/// depending on the model's byte layout beyond the order of its fields.
+pub fn replace_f64(bytes: &mut [u8], old: f64, new: f64, skip: usize) -> usize {
+    let (old, new) = (old.to_le_bytes(), new.to_le_bytes());
+    let mut seen = 0;
+    let mut i = 0;
+    while i + 8 <= bytes.len() {
+        if bytes[i..i + 8] == old {
+            if seen >= skip {
+                bytes[i..i + 8].copy_from_slice(&new);
+            }
+            seen += 1;
+            i += 8;
+        } else {
+            i += 1;
+        }
+    }
+    seen.saturating_sub(skip)
+}
+
 /// A live instance with its log; frees the instance on drop.
 pub struct Inst {
     pub c: fmi2Component,
@@ -389,6 +410,21 @@ impl Inst {
             Ok(out)
         } else {
             Err(s)
+        }
+    }
+    pub fn set_logging(&self, on: bool, categories: &[&str]) -> fmi2Status {
+        let owned: Vec<CString> = categories
+            .iter()
+            .map(|c| CString::new(*c).unwrap())
+            .collect();
+        let ptrs: Vec<*const c_char> = owned.iter().map(|c| c.as_ptr()).collect();
+        unsafe {
+            self.api.set_debug_logging.unwrap()(
+                self.c,
+                on as fmi2Boolean,
+                ptrs.len(),
+                ptrs.as_ptr(),
+            )
         }
     }
     pub fn get1(&self, vr: u32) -> f64 {

@@ -1,8 +1,8 @@
 """pytest options for the FMU tests.
 
 The FMU under test is given by ``--fmu PATH`` or the ``HYBEAM_FMU`` environment variable
-(default: ``target/fmu/toy.fmu``), so the same tests run on the beam FMU. The tests rely only
-on the variable names the toy and the beam share: inputs ``tip.force.x``/``tip.force.y`` and
+(default: ``target/fmu/case1.fmu``). The tests rely only
+on the variable names every beam FMU has: inputs ``tip.force.x``/``tip.force.y`` and
 outputs ``tip.position.x``/``tip.position.y``. ``--huge-force`` (default 1e9 N) must make a
 step fail (fmi2Discard).
 """

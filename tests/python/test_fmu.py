@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2LastSuccessfulTime, fmi2Terminated
+from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2Error, fmi2LastSuccessfulTime, fmi2Terminated
 from fmpy.validation import validate_fmu
 
 FORCES = ["tip.force.x", "tip.force.y"]
@@ -110,24 +110,35 @@ def test_rollback_with_fmu_state_reproduces_outputs(slave, vrs, fmu_path, md):
         slave.deSerializeFMUstate(b"not a state at all")
 
 
-def test_huge_force_discards_and_terminates(slave, vrs, huge_force):
+def test_huge_force_discards_recoverably_and_rollback_continues(slave, vrs, huge_force):
+    """A failing step is a recoverable fmi2Discard: fmi2Terminated = false, the FMU keeps its
+    state at lastSuccessfulTime, and fmi2SetFMUstate to a saved state continues."""
     h = 0.01
     for k in range(10):
         slave.doStep(currentCommunicationPoint=k * h, communicationStepSize=h)
     kept = slave.getReal([vrs[n] for n in POSITIONS])
+    saved = slave.getFMUstate()
     slave.setReal([vrs["tip.force.x"]], [huge_force])
     with pytest.raises(FMICallException) as failure:
         slave.doStep(currentCommunicationPoint=10 * h, communicationStepSize=h)
     assert failure.value.status == fmi2Discard
-    assert slave.getBooleanStatus(fmi2Terminated)
+    assert not slave.getBooleanStatus(fmi2Terminated)
     assert slave.getRealStatus(fmi2LastSuccessfulTime) == pytest.approx(10 * h, abs=1e-12)
     assert slave.getReal([vrs[n] for n in POSITIONS]) == kept
+    slave.setFMUstate(saved)
+    slave.doStep(currentCommunicationPoint=10 * h, communicationStepSize=h)
+    assert slave.getReal([vrs[n] for n in POSITIONS]) != kept
+    slave.freeFMUstate(saved)
     slave.terminate()
 
 
-def test_simulate_fmu_stops_cleanly_on_discard(fmu_path, huge_force):
+def test_simulate_fmu_does_not_pass_a_recoverable_discard(fmu_path, huge_force):
+    """fmpy's simulate_fmu stops only on fmi2Discard with fmi2Terminated = true; on a recoverable
+    one it neither restores a state nor stops, and calls fmi2DoStep again in stepFailed, which the
+    FMU refuses (fmi2Error, as FMI 2.0 requires): the run ends with an exception, not with
+    silently wrong results."""
     inp = np.array([(0.0, 0.0), (0.5, 0.0), (0.5, huge_force), (1.0, huge_force)],
                    dtype=[("time", "f8"), ("tip.force.x", "f8")])
-    res = simulate_fmu(fmu_path, stop_time=1.0, output_interval=0.01, input=inp, output=POSITIONS)
-    assert res["time"][-1] == pytest.approx(0.5, abs=1e-9)
-    assert np.all(np.isfinite(res["tip.position.x"]))
+    with pytest.raises(FMICallException) as failure:
+        simulate_fmu(fmu_path, stop_time=1.0, output_interval=0.01, input=inp, output=POSITIONS)
+    assert failure.value.status == fmi2Error
