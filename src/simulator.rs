@@ -1,7 +1,9 @@
 //! A beam in time: model + integrator + state behind `advance` and `outputs`.
 //! This is what the command-line runner and the FMU adapter drive.
 
-use crate::integrator::{solve_static, Counters, GeneralizedAlpha, IntegratorMemory, State};
+use crate::integrator::{
+    solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
+};
 use crate::model::{Model, Outputs};
 use crate::scene::{InitialState, Scene};
 

@@ -5,4 +5,4 @@ pub mod joint;
 pub mod modal;
 mod system;
 
-pub use system::{EvalRequest, Model, Outputs, SegmentCoords};
+pub use system::{Model, Outputs, SegmentCoords};

@@ -9,6 +9,7 @@
 use super::ancf::{AncfProps, Mat8, QuadTables, Vec8};
 use super::joint::{end_kin, gather, joint_eval, End, Joint, FIXED};
 use super::modal::{BodyOut, ModalBasis, ModalBody};
+use crate::integrator::{EvalRequest, Integrable, StateRef};
 use crate::linalg::{SingularMatrix, SparseLu, SparsePattern, NO_SLOT};
 use crate::scene::{Root, Scene, SceneError, SegmentKind};
 use nalgebra::Vector2;
@@ -64,17 +65,6 @@ pub struct Outputs {
     /// Moment of the support on the beam about the root point [N m], counter-clockwise
     /// positive (zero for a pinned root).
     pub root_moment: f64,
-}
-
-/// What [`Model::eval`] should produce.
-#[derive(Debug, Clone, Copy)]
-pub struct EvalRequest {
-    /// Row scale of the dynamic equations.
-    pub sd: f64,
-    /// Matrix coefficients (c_a, c_v, c_x) if the Newton matrix is wanted.
-    pub matrix: Option<(f64, f64, f64)>,
-    /// Include Σλ̃ ∂²Φ in the matrix.
-    pub lambda_hessian: bool,
 }
 
 /// The assembled beam model.
@@ -387,16 +377,6 @@ impl Model {
         })
     }
 
-    /// Number of free coordinates n.
-    pub fn coordinates(&self) -> usize {
-        self.n
-    }
-
-    /// Number of constraint rows m.
-    pub fn constraints(&self) -> usize {
-        self.m
-    }
-
     /// Number of ANCF elements.
     pub fn element_count(&self) -> usize {
         self.elements.len()
@@ -410,12 +390,6 @@ impl Model {
     /// Coordinates of the straight initial configuration.
     pub fn initial_coordinates(&self) -> &[f64] {
         &self.q0
-    }
-
-    /// Characteristic magnitude of each coordinate (total length for positions and modal
-    /// amplitudes, 1 for slopes and angles), for Newton norms.
-    pub fn scales(&self) -> &[f64] {
-        &self.scale
     }
 
     /// Gravity [m/s²].
@@ -450,18 +424,15 @@ impl Model {
     }
 
     /// Evaluates residuals into `res` (length n + m) and, if requested, the Newton matrix.
-    /// `load` scales gravity and the tip force (1 = full load; load stepping in statics).
-    #[allow(clippy::too_many_arguments)]
-    pub fn eval(
-        &mut self,
-        q: &[f64],
-        v: &[f64],
-        a: &[f64],
-        lam: &[f64],
-        load: f64,
-        req: EvalRequest,
-        res: &mut [f64],
-    ) {
+    /// `x.load` scales gravity and the tip force (1 = full load; load stepping in statics).
+    fn eval_impl(&mut self, x: StateRef<'_>, req: EvalRequest, res: &mut [f64]) {
+        let StateRef {
+            q,
+            v,
+            a,
+            lambda: lam,
+            load,
+        } = x;
         let n = self.n;
         res.fill(0.0);
         let want = req.matrix;
@@ -638,16 +609,6 @@ impl Model {
         out
     }
 
-    /// Factorizes the matrix assembled by the last [`Model::eval`] with a matrix request.
-    pub fn factorize(&mut self) -> Result<(), SingularMatrix> {
-        self.lu.factorize(&self.values)
-    }
-
-    /// Solves with the current factorization; false if the result is not finite.
-    pub fn solve(&mut self, rhs: &mut [f64]) -> bool {
-        self.lu.solve(rhs)
-    }
-
     /// Reaction of the support on the beam: the residual `M q̈ + f − f_ext + Φ_qᵀλ` of the
     /// eliminated root coordinates (force on the root position, moment from the root slope or
     /// frame angle).
@@ -781,5 +742,26 @@ impl Model {
         }
         (o.root_force, o.root_moment) = self.root_reaction(q, v, acc, lam);
         o
+    }
+}
+
+impl Integrable for Model {
+    fn coordinates(&self) -> usize {
+        self.n
+    }
+    fn constraints(&self) -> usize {
+        self.m
+    }
+    fn scales(&self) -> &[f64] {
+        &self.scale
+    }
+    fn eval(&mut self, x: StateRef<'_>, req: EvalRequest, res: &mut [f64]) {
+        self.eval_impl(x, req, res)
+    }
+    fn factorize(&mut self) -> Result<(), SingularMatrix> {
+        self.lu.factorize(&self.values)
+    }
+    fn solve(&mut self, rhs: &mut [f64]) -> bool {
+        self.lu.solve(rhs)
     }
 }
