@@ -1,0 +1,383 @@
+//! The assembled model: components on numbered coordinates, the sparse pattern built once, and
+//! [`Integrable::eval`] as loops over components. Dimension-free: a [`Space`] supplies the
+//! vector types, the components supply the physics.
+//!
+//! Unknowns: `q` (n free coordinates, held ones eliminated), `λ` (m constraint multipliers).
+//! Equations: `s_d·(M(q) q̈ + f(q, q̇) − f_ext(q)) + Φ_qᵀ λ̃ = 0` and `Φ(q) = 0`, where `s_d` is a
+//! row scale chosen by the integrator (βh² for generalized-α, 1 for statics) and λ̃ the
+//! correspondingly scaled multiplier. The Newton matrix is
+//! `c_a·M + c_v·C + c_x·K + Σλ̃_i ∂²Φ_i` in a pattern fixed at build.
+//!
+//! Summation order (fixed, so that the same inputs give the same bits): elements in their
+//! stored order, then the tip force, then the constraints in row order.
+
+use super::component::{
+    Constraint, ConstraintOut, Element, ElementOut, Env, LocalState, Port, Support,
+};
+use super::dofs::{LocalDofs, Numbering};
+use super::load::{point_force_residual, point_force_stiffness};
+use super::planar::Planar;
+use super::space::{is_nonzero, scaled, Space};
+use crate::integrator::{EvalRequest, Integrable, StateRef};
+use crate::linalg::{SingularMatrix, SparseLu, SparsePattern};
+
+/// A component on its local coordinates.
+#[derive(Debug)]
+pub(crate) struct Placed<C: ?Sized> {
+    pub(crate) dofs: LocalDofs,
+    pub(crate) part: Box<C>,
+}
+
+/// An element with the index of the scene segment it belongs to.
+#[derive(Debug)]
+pub(crate) struct PlacedElement<S: Space> {
+    pub(crate) at: Placed<dyn Element<S>>,
+    pub(crate) segment: usize,
+}
+
+/// A constraint with its first row (0-based among the constraint rows) and its value slots.
+#[derive(Debug)]
+pub(crate) struct PlacedConstraint {
+    pub(crate) at: Placed<dyn Constraint>,
+    pub(crate) rows: usize,
+    pub(crate) row: usize,
+    /// Slots of (row r, local k) and (local k, row r), row-major rows × d (`None` if held).
+    pub(crate) jac_slots: Vec<Option<(usize, usize)>>,
+}
+
+/// What a build hands to [`Model::assemble`].
+#[derive(Debug)]
+pub struct Parts<S: Space> {
+    /// Coordinate numbering (free and held).
+    pub numbering: Numbering,
+    /// Elements in summation order, each with its scene segment index.
+    pub elements: Vec<(LocalDofs, Box<dyn Element<S>>, usize)>,
+    /// Constraints in row order.
+    pub constraints: Vec<(LocalDofs, Box<dyn Constraint>)>,
+    /// Where the tip force acts and the tip outputs are read.
+    pub tip: (LocalDofs, Box<dyn Port<S>>),
+    /// The support at the root.
+    pub support: Box<dyn Support<S>>,
+    /// Gravity [m/s²].
+    pub gravity: S::Vec,
+    /// Constant tip force of the scene [N].
+    pub scene_tip_force: S::Vec,
+}
+
+/// Reused local work arrays of the assembly (sized for the largest component).
+#[derive(Debug, Clone, Default)]
+struct Work {
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    r: Vec<f64>,
+    m: Vec<f64>,
+    con: ConstraintOut,
+}
+
+/// The assembled beam model in space `S`.
+pub struct Model<S: Space = Planar> {
+    n: usize,
+    m: usize,
+    pub(crate) elements: Vec<PlacedElement<S>>,
+    pub(crate) constraints: Vec<PlacedConstraint>,
+    pub(crate) tip: Placed<dyn Port<S>>,
+    pub(crate) support: Box<dyn Support<S>>,
+    pub(crate) held: Vec<f64>,
+    pub(crate) gravity: S::Vec,
+    /// Tip force applied on top of the scene's [N], global axes.
+    pub tip_force: S::Vec,
+    scene_tip_force: S::Vec,
+    scale: Vec<f64>,
+    q0: Vec<f64>,
+    lu: SparseLu,
+    values: Vec<f64>,
+    work: Work,
+}
+
+impl<S: Space> std::fmt::Debug for Model<S> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Model")
+            .field("coordinates", &self.n)
+            .field("constraints", &self.m)
+            .field("elements", &self.elements.len())
+            .field("constraint_blocks", &self.constraints.len())
+            .finish()
+    }
+}
+
+impl<S: Space> Model<S> {
+    /// Numbers the constraint rows, builds the sparse pattern and the slot tables, and sets up
+    /// the LU (symbolic analysis once).
+    pub fn assemble(parts: Parts<S>) -> Self {
+        let Parts {
+            numbering,
+            elements,
+            constraints,
+            tip,
+            support,
+            gravity,
+            scene_tip_force,
+        } = parts;
+        let (q0, scale, held) = numbering.finish();
+        let n = q0.len();
+        let mut row = 0;
+        let mut constraints: Vec<PlacedConstraint> = constraints
+            .into_iter()
+            .map(|(dofs, part)| {
+                let rows = part.rows();
+                row += rows;
+                PlacedConstraint {
+                    at: Placed { dofs, part },
+                    rows,
+                    row: row - rows,
+                    jac_slots: Vec::new(),
+                }
+            })
+            .collect();
+        let m = row;
+        let mut elements: Vec<PlacedElement<S>> = elements
+            .into_iter()
+            .map(|(dofs, part, segment)| PlacedElement {
+                at: Placed { dofs, part },
+                segment,
+            })
+            .collect();
+        let mut tip = Placed {
+            dofs: tip.0,
+            part: tip.1,
+        };
+        let mut entries = Vec::new();
+        for e in &elements {
+            e.at.dofs.block_entries(&mut entries);
+        }
+        for c in &constraints {
+            c.at.dofs.block_entries(&mut entries);
+            for r in 0..c.rows {
+                for i in (0..c.at.dofs.len()).filter_map(|k| c.at.dofs.free(k)) {
+                    entries.push((n + c.row + r, i));
+                    entries.push((i, n + c.row + r));
+                }
+            }
+        }
+        tip.dofs.block_entries(&mut entries);
+        let pattern = SparsePattern::new(n + m, entries);
+        for e in &mut elements {
+            e.at.dofs.bind(&pattern);
+        }
+        for c in &mut constraints {
+            c.at.dofs.bind(&pattern);
+            let d = c.at.dofs.len();
+            c.jac_slots = (0..c.rows * d)
+                .map(|rk| {
+                    let (r, k) = (rk / d, rk % d);
+                    c.at.dofs.free(k).map(|i| {
+                        let row = n + c.row + r;
+                        (pattern.slot(row, i) as usize, pattern.slot(i, row) as usize)
+                    })
+                })
+                .collect();
+        }
+        tip.dofs.bind(&pattern);
+        let dmax = elements
+            .iter()
+            .map(|e| e.at.dofs.len())
+            .chain(constraints.iter().map(|c| c.at.dofs.len()))
+            .chain([tip.dofs.len()])
+            .max()
+            .unwrap_or(0);
+        let work = Work {
+            q: vec![0.0; dmax],
+            v: vec![0.0; dmax],
+            a: vec![0.0; dmax],
+            r: vec![0.0; dmax],
+            m: vec![0.0; dmax * dmax],
+            con: ConstraintOut::default(),
+        };
+        let nnz = pattern.nnz();
+        let mut model = Self {
+            n,
+            m,
+            elements,
+            constraints,
+            tip,
+            support,
+            held,
+            gravity,
+            tip_force: S::Vec::default(),
+            scene_tip_force,
+            scale,
+            q0,
+            lu: SparseLu::new(pattern),
+            values: vec![0.0; nnz],
+            work,
+        };
+        model.set_gravity(gravity);
+        model
+    }
+
+    /// Coordinates of the initial configuration.
+    pub fn initial_coordinates(&self) -> &[f64] {
+        &self.q0
+    }
+
+    /// Whether any damping term is present.
+    pub fn is_damped(&self) -> bool {
+        self.elements.iter().any(|e| e.at.part.is_damped())
+    }
+
+    /// Gravity [m/s²].
+    pub fn gravity(&self) -> S::Vec {
+        self.gravity
+    }
+
+    /// Sets gravity [m/s²].
+    pub fn set_gravity(&mut self, g: S::Vec) {
+        self.gravity = g;
+        for e in &mut self.elements {
+            e.at.part.set_gravity(&g);
+        }
+    }
+
+    /// Total tip force: scene constant + [`Model::tip_force`] [N].
+    pub fn total_tip_force(&self) -> S::Vec {
+        let mut f = self.scene_tip_force;
+        for (f, d) in f.as_mut().iter_mut().zip(self.tip_force.as_ref()) {
+            *f += d;
+        }
+        f
+    }
+
+    /// The matrix assembled by the last [`Integrable::eval`] with a matrix request, as dense
+    /// rows (for linearized analyses and tests; O((n + m)²) memory).
+    pub fn assembled_dense(&self) -> Vec<Vec<f64>> {
+        let p = self.lu.pattern();
+        let d = p.dim();
+        let mut out = vec![vec![0.0; d]; d];
+        for (c, row) in (0..d).flat_map(|c| p.column(c).map(move |r| (c, r))) {
+            out[row][c] = self.values[p.slot(row, c) as usize];
+        }
+        out
+    }
+}
+
+impl<S: Space> Integrable for Model<S> {
+    fn coordinates(&self) -> usize {
+        self.n
+    }
+
+    fn constraints(&self) -> usize {
+        self.m
+    }
+
+    fn scales(&self) -> &[f64] {
+        &self.scale
+    }
+
+    fn eval(&mut self, x: StateRef<'_>, req: EvalRequest, res: &mut [f64]) {
+        let n = self.n;
+        res.fill(0.0);
+        let matrix = req.matrix;
+        if matrix.is_some() {
+            self.values.fill(0.0);
+        }
+        let force = self.total_tip_force();
+        let Self {
+            elements,
+            constraints,
+            tip,
+            held,
+            gravity,
+            values,
+            work,
+            ..
+        } = self;
+        let env = Env {
+            gravity: *gravity,
+            load: x.load,
+        };
+        for e in elements.iter_mut() {
+            let dofs = &e.at.dofs;
+            let d = dofs.len();
+            dofs.gather(x.q, held, &mut work.q[..d]);
+            dofs.gather_rate(x.v, &mut work.v[..d]);
+            dofs.gather_rate(x.a, &mut work.a[..d]);
+            let local = LocalState {
+                q: &work.q[..d],
+                v: &work.v[..d],
+                a: &work.a[..d],
+            };
+            let mat = if matrix.is_some() {
+                &mut work.m[..d * d]
+            } else {
+                &mut work.m[..0]
+            };
+            let out = ElementOut {
+                matrix,
+                res: &mut work.r[..d],
+                mat: &mut *mat,
+            };
+            e.at.part.eval(&local, &env, out);
+            dofs.scatter_add(req.sd, &work.r[..d], res);
+            if matrix.is_some() {
+                dofs.add_block(mat, values);
+            }
+        }
+        if is_nonzero::<S>(&force) {
+            let f = scaled::<S>(x.load, &force);
+            let dofs = &tip.dofs;
+            let d = dofs.len();
+            dofs.gather(x.q, held, &mut work.q[..d]);
+            let kin = tip.part.kinematics(&work.q[..d]);
+            point_force_residual::<S>(&kin, &f, &mut work.r[..d]);
+            dofs.scatter_add(req.sd, &work.r[..d], res);
+            if let Some((_, _, cx)) = matrix {
+                point_force_stiffness::<S>(&kin, &f, |i, j, h| {
+                    if let Some(s) = dofs.slot(i, j) {
+                        values[s] += cx * h;
+                    }
+                });
+            }
+        }
+        let hessian = req.lambda_hessian && matrix.is_some();
+        for c in constraints.iter() {
+            let dofs = &c.at.dofs;
+            let d = dofs.len();
+            dofs.gather(x.q, held, &mut work.q[..d]);
+            let lam = &x.lambda[c.row..c.row + c.rows];
+            let out = &mut work.con;
+            out.reset(c.rows, d);
+            c.at.part.eval(&work.q[..d], hessian.then_some(lam), out);
+            for r in 0..c.rows {
+                res[n + c.row + r] = out.phi[r];
+                let jac = &out.jac[r * d..(r + 1) * d];
+                for (k, j) in jac.iter().enumerate() {
+                    if let Some(i) = dofs.free(k) {
+                        res[i] += j * lam[r];
+                    }
+                }
+            }
+            if matrix.is_some() {
+                for (j, s) in out.jac.iter().zip(&c.jac_slots) {
+                    if let (Some((a, b)), true) = (s, *j != 0.0) {
+                        values[*a] += j;
+                        values[*b] += j;
+                    }
+                }
+                for &(i, j, h) in &out.hess {
+                    if let Some(s) = dofs.slot(i, j) {
+                        values[s] += h;
+                    }
+                }
+            }
+        }
+    }
+
+    fn factorize(&mut self) -> Result<(), SingularMatrix> {
+        self.lu.factorize(&self.values)
+    }
+
+    fn solve(&mut self, rhs: &mut [f64]) -> bool {
+        self.lu.solve(rhs)
+    }
+}

@@ -1,0 +1,181 @@
+//! What a state means: tip kinematics, energies, the support reaction and the validity checks
+//! of the elements. Dimension-free, read through ports, elements and the support.
+
+use super::assembly::Model;
+use super::component::{ConstraintOut, Element, Env, LocalState};
+use super::dofs::LocalDofs;
+use super::load::point_force_residual;
+use super::planar::Planar;
+use super::space::{PortKin, Space};
+
+/// Scalar results of one state.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Outputs<S: Space = Planar> {
+    /// Tip position [m], global.
+    pub tip_position: S::Vec,
+    /// Tip velocity [m/s], global.
+    pub tip_velocity: S::Vec,
+    /// Orientation of the tip section: in the plane the angle of the tip tangent from global x
+    /// [rad], in (−π, π].
+    pub tip_angle: S::Attitude,
+    /// Kinetic energy [J].
+    pub kinetic: f64,
+    /// Strain energy [J].
+    pub strain: f64,
+    /// Gravity potential energy −∫ρA gᵀr dx [J] (zero at the origin).
+    pub potential: f64,
+    /// Force of the support on the beam at the root [N], global axes.
+    pub root_force: S::Vec,
+    /// Moment of the support on the beam about the root point [N m] (in the plane:
+    /// counter-clockwise positive; zero for a pinned root).
+    pub root_moment: S::Moment,
+}
+
+/// Reused local copies of a component's coordinates, rates and accelerations.
+#[derive(Default)]
+struct Gathered {
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+}
+
+impl Gathered {
+    /// Gathers q of `dofs` and, if given, (q̇, q̈); without them the rates are zero.
+    fn fill(&mut self, dofs: &LocalDofs, held: &[f64], q: &[f64], rates: Option<(&[f64], &[f64])>) {
+        let d = dofs.len();
+        for g in [&mut self.q, &mut self.v, &mut self.a] {
+            g.clear();
+            g.resize(d, 0.0);
+        }
+        dofs.gather(q, held, &mut self.q);
+        if let Some((v, a)) = rates {
+            dofs.gather_rate(v, &mut self.v);
+            dofs.gather_rate(a, &mut self.a);
+        }
+    }
+
+    fn local(&self) -> LocalState<'_> {
+        LocalState {
+            q: &self.q,
+            v: &self.v,
+            a: &self.a,
+        }
+    }
+}
+
+impl<S: Space> Model<S> {
+    /// Outputs at a state (q, q̇, q̈, λ).
+    pub fn outputs(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> Outputs<S> {
+        let mut x = Gathered::default();
+        let tip = &self.tip.dofs;
+        x.fill(tip, &self.held, q, None);
+        let kin = self.tip.part.kinematics(&x.q);
+        let mut vel = S::Vec::default();
+        for k in 0..tip.len() {
+            if let Some(i) = tip.free(k) {
+                let dp = kin.jacobian(k);
+                for c in 0..S::DIM {
+                    vel[c] += dp[c] * v[i];
+                }
+            }
+        }
+        let mut o = Outputs {
+            tip_position: kin.position(),
+            tip_velocity: vel,
+            tip_angle: kin.attitude(),
+            ..Default::default()
+        };
+        for e in &self.elements {
+            x.fill(&e.at.dofs, &self.held, q, Some((v, acc)));
+            let en = e.at.part.energies(&x.local(), &self.gravity);
+            o.kinetic += en.kinetic;
+            o.strain += en.strain;
+            o.potential += en.potential;
+        }
+        let r = self.held_residual(q, v, acc, lam, &mut x);
+        (o.root_force, o.root_moment) = self.support.reaction(&r, &self.held);
+        o
+    }
+
+    /// Residual `M q̈ + f − f_ext + Φ_qᵀλ` of the held coordinates at full load: the generalized
+    /// force the support exerts on the beam, summed in the order of the assembly.
+    fn held_residual(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        acc: &[f64],
+        lam: &[f64],
+        x: &mut Gathered,
+    ) -> Vec<f64> {
+        // −0 is the exact additive identity: a coordinate reached once gets its term's bits
+        let mut r = vec![-0.0; self.held.len()];
+        let env = Env {
+            gravity: self.gravity,
+            load: 1.0,
+        };
+        let mut local = Vec::new();
+        for e in self.elements.iter().filter(|e| e.at.dofs.has_held()) {
+            x.fill(&e.at.dofs, &self.held, q, Some((v, acc)));
+            local.resize(x.q.len(), 0.0);
+            e.at.part.residual(&x.local(), &env, &mut local);
+            e.at.dofs.scatter_held(&local, &mut r);
+        }
+        let tip = &self.tip.dofs;
+        if tip.has_held() {
+            x.fill(tip, &self.held, q, None);
+            let kin = self.tip.part.kinematics(&x.q);
+            local.resize(tip.len(), 0.0);
+            point_force_residual::<S>(&kin, &self.total_tip_force(), &mut local);
+            tip.scatter_held(&local, &mut r);
+        }
+        let mut out = ConstraintOut::default();
+        for c in self.constraints.iter().filter(|c| c.at.dofs.has_held()) {
+            let dofs = &c.at.dofs;
+            let d = dofs.len();
+            x.fill(dofs, &self.held, q, None);
+            out.reset(c.rows, d);
+            c.at.part.eval(&x.q, None, &mut out);
+            for row in 0..c.rows {
+                let l = lam[c.row + row];
+                local.clear();
+                local.extend(out.jac[row * d..(row + 1) * d].iter().map(|j| j * l));
+                dofs.scatter_held(&local, &mut r);
+            }
+        }
+        r
+    }
+
+    /// Largest elastic deflection of a modal segment: (segment index in the scene, the
+    /// element's deflection measure), for the validity limit of a linear floating frame.
+    pub fn max_modal_deflection(&self, q: &[f64]) -> Option<(usize, f64)> {
+        let mut x = Gathered::default();
+        let mut worst: Option<(usize, f64)> = None;
+        for e in &self.elements {
+            x.fill(&e.at.dofs, &self.held, q, None);
+            if let Some(d) = e.at.part.modal_deflection(&x.q) {
+                if worst.is_none_or(|(_, w)| d > w) {
+                    worst = Some((e.segment, d));
+                }
+            }
+        }
+        worst
+    }
+
+    /// Largest |axial strain| over the elements (0 without elements that measure it).
+    pub fn max_axial_strain(&self, q: &[f64]) -> f64 {
+        let mut x = Gathered::default();
+        let mut worst: f64 = 0.0;
+        for e in &self.elements {
+            x.fill(&e.at.dofs, &self.held, q, None);
+            worst = worst.max(e.at.part.max_axial_strain(&x.q));
+        }
+        worst
+    }
+
+    /// The elements of one kind `E` in summation order (e.g. the modal bodies).
+    pub fn elements_of<E: Element<S>>(&self) -> impl Iterator<Item = &E> + '_ {
+        self.elements
+            .iter()
+            .filter_map(|e| e.at.part.as_any().downcast_ref::<E>())
+    }
+}
