@@ -122,7 +122,7 @@ fn hybrid_rod_within_0_1_percent() {
 #[test]
 fn hybrid_without_interface_modes_converges_slower() {
     // clamped–free modes have zero moment at the joint end: the same count without interface
-    // modes is less accurate (physics.md §3 interface warning)
+    // modes is less accurate (docs/references.md §3 interface warning)
     let d = 0.002;
     let eb = euler_bernoulli(d, 0.4);
     let with = frequencies(&[

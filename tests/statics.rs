@@ -1,4 +1,4 @@
-//! Static cantilever against the elastica tables of physics.md §4 (independent shooting
+//! Static cantilever against the elastica tables of docs/references.md §4 (independent shooting
 //! solutions), and the Case 1 beam against its linear self-weight deflection (§4c).
 
 mod common;
@@ -20,7 +20,7 @@ fn static_tip(header: &str, elements: usize) -> [f64; 2] {
     sim.outputs().tip_position
 }
 
-/// physics.md §4a: (α = PL²/EI, v/L, u/L).
+/// docs/references.md §4a: (α = PL²/EI, v/L, u/L).
 const ELASTICA: [(f64, f64, f64); 4] = [
     (1.0, 0.30172, 0.05643),
     (2.0, 0.49346, 0.16064),
@@ -28,7 +28,7 @@ const ELASTICA: [(f64, f64, f64); 4] = [
     (10.0, 0.81061, 0.55500),
 ];
 
-/// physics.md §4b: (γ = qL³/EI, v/L, u/L).
+/// docs/references.md §4b: (γ = qL³/EI, v/L, u/L).
 const SELF_WEIGHT: [(f64, f64, f64); 4] = [
     (1.0, 0.12347, 0.00875),
     (2.0, 0.23851, 0.03311),
@@ -79,7 +79,7 @@ fn case1_formulations(d: f64) -> [Vec<String>; 3] {
 
 #[test]
 fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
-    // physics.md §4c: δ_static = 4.69 mm (Case 1 beam, steel). Linear theory qL⁴/(8EI) with the
+    // docs/references.md §4c: δ_static = 4.69 mm (Case 1 beam, steel). Linear theory qL⁴/(8EI) with the
     // small geometric correction of the elastica (v/L ≈ γ/8 at γ ≈ 0.094) is 4.69 mm.
     let d = 0.002;
     let header = "gravity = [0.0, -9.81]";
