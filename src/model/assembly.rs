@@ -248,6 +248,11 @@ impl<S: Space> Model<S> {
         f
     }
 
+    /// Largest number of local coordinates of a component.
+    pub(crate) fn max_local_len(&self) -> usize {
+        self.work.q.len()
+    }
+
     /// The matrix assembled by the last [`Integrable::eval`] with a matrix request, as dense
     /// rows (for linearized analyses and tests; O((n + m)²) memory).
     pub fn assembled_dense(&self) -> Vec<Vec<f64>> {
@@ -299,9 +304,8 @@ impl<S: Space> Integrable for Model<S> {
         for e in elements.iter_mut() {
             let dofs = &e.at.dofs;
             let d = dofs.len();
-            dofs.gather(x.q, held, &mut work.q[..d]);
-            dofs.gather_rate(x.v, &mut work.v[..d]);
-            dofs.gather_rate(x.a, &mut work.a[..d]);
+            let (ql, vl, al) = (&mut work.q[..d], &mut work.v[..d], &mut work.a[..d]);
+            dofs.gather_state((x.q, x.v, x.a), held, (ql, vl, al));
             let local = LocalState {
                 q: &work.q[..d],
                 v: &work.v[..d],

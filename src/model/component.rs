@@ -54,6 +54,17 @@ pub struct ElementOut<'a> {
     pub mat: &'a mut [f64],
 }
 
+/// Measures of an element's configuration that its model may not be valid for; the simulator
+/// refuses a step that exceeds its limits.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Validity {
+    /// Largest |axial strain| [-] (0 where not measured).
+    pub axial_strain: f64,
+    /// Elastic deflection of a small-deformation (modal) element, to be compared with the
+    /// validity limit of a linear floating frame; `None` for large-deformation elements.
+    pub modal_deflection: Option<f64>,
+}
+
 /// A body of the model: ANCF element, modal body.
 pub trait Element<S: Space>: Debug + Send + Sync + 'static {
     /// Residual `r = M q̈ + f(q, q̇) − env.load·f_ext(q)` on every local coordinate into
@@ -74,15 +85,9 @@ pub trait Element<S: Space>: Debug + Send + Sync + 'static {
     /// Whether the element carries damping.
     fn is_damped(&self) -> bool;
 
-    /// Largest |axial strain| [-] at `q` (0 for elements without an axial strain measure).
-    fn max_axial_strain(&self, _q: &[f64]) -> f64 {
-        0.0
-    }
-
-    /// Elastic deflection measure of a small-deformation (modal) element at `q`, compared with
-    /// the validity limit of a linear floating frame; `None` for large-deformation elements.
-    fn modal_deflection(&self, _q: &[f64]) -> Option<f64> {
-        None
+    /// Validity measures at `q` (none by default).
+    fn validity(&self, _q: &[f64]) -> Validity {
+        Validity::default()
     }
 
     /// The element as [`Any`], for inspection of a concrete kind (tests, analyses).

@@ -129,7 +129,31 @@ impl LocalDofs {
         }
     }
 
+    /// Local (q, q̇, q̈) from the global vectors in one pass: held coordinates at their held
+    /// values, not moving.
+    #[inline]
+    pub fn gather_state(
+        &self,
+        (q, v, a): (&[f64], &[f64], &[f64]),
+        held: &[f64],
+        (ql, vl, al): (&mut [f64], &mut [f64], &mut [f64]),
+    ) {
+        // equal lengths let one bounds check on q cover q̇ and q̈
+        let (v, a) = (&v[..q.len()], &a[..q.len()]);
+        let out = ql.iter_mut().zip(vl.iter_mut()).zip(al.iter_mut());
+        for (((qk, vk), ak), d) in out.zip(&self.dofs) {
+            (*qk, *vk, *ak) = match *d {
+                Dof::Free(i) => {
+                    let i = i as usize;
+                    (q[i], v[i], a[i])
+                }
+                Dof::Held(j) => (held[j as usize], 0.0, 0.0),
+            };
+        }
+    }
+
     /// `global[i] += s·local[k]` for every free local coordinate k at global index i.
+    #[inline]
     pub fn scatter_add(&self, s: f64, local: &[f64], global: &mut [f64]) {
         for (x, d) in local.iter().zip(&self.dofs) {
             if let Dof::Free(i) = *d {

@@ -27,8 +27,9 @@ pub mod space;
 pub use assembly::{Model, Parts};
 pub use component::{
     Constraint, ConstraintOut, Element, ElementOut, Energies, Env, LocalState, Port, Support,
+    Validity,
 };
 pub use dofs::{Dof, LocalDofs, Numbering};
-pub use outputs::Outputs;
+pub use outputs::{ModelValidity, Outputs};
 pub use planar::Planar;
 pub use space::{PortKin, Space};

@@ -31,6 +31,16 @@ pub struct Outputs<S: Space = Planar> {
     pub root_moment: S::Moment,
 }
 
+/// Validity measures of a model at one configuration.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ModelValidity {
+    /// Largest |axial strain| over the elements [-] (0 without elements that measure it).
+    pub max_axial_strain: f64,
+    /// Largest elastic deflection of a modal segment: (segment index in the scene, the
+    /// element's deflection measure).
+    pub modal_deflection: Option<(usize, f64)>,
+}
+
 /// Reused local copies of a component's coordinates, rates and accelerations.
 #[derive(Default)]
 struct Gathered {
@@ -145,31 +155,30 @@ impl<S: Space> Model<S> {
         r
     }
 
-    /// Largest elastic deflection of a modal segment: (segment index in the scene, the
-    /// element's deflection measure), for the validity limit of a linear floating frame.
-    pub fn max_modal_deflection(&self, q: &[f64]) -> Option<(usize, f64)> {
-        let mut x = Gathered::default();
-        let mut worst: Option<(usize, f64)> = None;
+    /// The validity measures of all elements at `q`, in one pass.
+    pub fn validity(&self, q: &[f64]) -> ModelValidity {
+        let mut out = ModelValidity::default();
+        // on the stack when it fits: this runs after every step
+        let mut stack = [0.0; 32];
+        let mut heap = Vec::new();
+        let buf = if self.max_local_len() <= stack.len() {
+            &mut stack[..]
+        } else {
+            heap.resize(self.max_local_len(), 0.0);
+            &mut heap[..]
+        };
         for e in &self.elements {
-            x.fill(&e.at.dofs, &self.held, q, None);
-            if let Some(d) = e.at.part.modal_deflection(&x.q) {
-                if worst.is_none_or(|(_, w)| d > w) {
-                    worst = Some((e.segment, d));
+            let x = &mut buf[..e.at.dofs.len()];
+            e.at.dofs.gather(q, &self.held, x);
+            let v = e.at.part.validity(x);
+            out.max_axial_strain = out.max_axial_strain.max(v.axial_strain);
+            if let Some(d) = v.modal_deflection {
+                if out.modal_deflection.is_none_or(|(_, w)| d > w) {
+                    out.modal_deflection = Some((e.segment, d));
                 }
             }
         }
-        worst
-    }
-
-    /// Largest |axial strain| over the elements (0 without elements that measure it).
-    pub fn max_axial_strain(&self, q: &[f64]) -> f64 {
-        let mut x = Gathered::default();
-        let mut worst: f64 = 0.0;
-        for e in &self.elements {
-            x.fill(&e.at.dofs, &self.held, q, None);
-            worst = worst.max(e.at.part.max_axial_strain(&x.q));
-        }
-        worst
+        out
     }
 
     /// The elements of one kind `E` in summation order (e.g. the modal bodies).

@@ -3,7 +3,7 @@
 
 use super::Planar;
 use crate::model::ancf::{AncfProps, Mat8, QuadTables, Vec8};
-use crate::model::component::{Element, ElementOut, Energies, Env, LocalState};
+use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
 use crate::model::modal::{BodyOut, ModalBody};
 use std::any::Any;
 use std::sync::Arc;
@@ -41,7 +41,7 @@ impl AncfElement {
     }
 }
 
-fn array8(x: &[f64]) -> [f64; 8] {
+fn array8(x: &[f64]) -> &[f64; 8] {
     x.try_into()
         .expect("an ANCF element has 8 local coordinates")
 }
@@ -49,24 +49,25 @@ fn array8(x: &[f64]) -> [f64; 8] {
 impl Element<Planar> for AncfElement {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, out: ElementOut<'_>) {
         let ElementOut { matrix, res, mat } = out;
-        let (e, ed, ea) = (array8(x.q), array8(x.v), array8(x.a));
+        let (e, ed, ea) = (array8(x.q), array8(x.v), *array8(x.a));
         let (force, matrices) = if matrix.is_some() {
-            let out = self.props.elastic(&Vec8::from(e), &Vec8::from(ed), true);
+            let out = self.props.elastic(&Vec8::from(*e), &Vec8::from(*ed), true);
             (out.force.into(), Some(out))
         } else {
-            (self.props.internal_force_with(&self.tables, &e, &ed), None)
+            (self.props.internal_force_with(&self.tables, e, ed), None)
         };
         let gf = &self.gravity_force;
         // r = M ë + f_int − load·f_g, M = M4 ⊗ I₂
+        let res: &mut [f64; 8] = res.try_into().expect("8 local coordinates");
         for k in 0..4 {
-            for c in 0..2 {
-                let mut mk = 0.0;
-                for j in 0..4 {
-                    mk += self.mass4[k][j] * ea[2 * j + c];
-                }
-                let r = 2 * k + c;
-                res[r] = mk + force[r] - env.load * gf[r];
+            let (mut mx, mut my) = (0.0, 0.0);
+            for j in 0..4 {
+                mx += self.mass4[k][j] * ea[2 * j];
+                my += self.mass4[k][j] * ea[2 * j + 1];
             }
+            let (x, y) = (2 * k, 2 * k + 1);
+            res[x] = mx + force[x] - env.load * gf[x];
+            res[y] = my + force[y] - env.load * gf[y];
         }
         if let (Some((ca, cv, cx)), Some(out)) = (matrix, matrices) {
             let damped = cv != 0.0 && self.props.damping_time > 0.0;
@@ -108,7 +109,7 @@ impl Element<Planar> for AncfElement {
         self.props.damping_time > 0.0
     }
 
-    fn max_axial_strain(&self, q: &[f64]) -> f64 {
+    fn validity(&self, q: &[f64]) -> Validity {
         let mut worst: f64 = 0.0;
         for (_, ds) in &self.tables.axial {
             let (mut x, mut y) = (0.0, 0.0);
@@ -118,7 +119,10 @@ impl Element<Planar> for AncfElement {
             }
             worst = worst.max(((x * x + y * y).sqrt() - 1.0).abs());
         }
-        worst
+        Validity {
+            axial_strain: worst,
+            modal_deflection: None,
+        }
     }
 
     fn as_any(&self) -> &dyn Any {
@@ -178,11 +182,15 @@ impl Element<Planar> for ModalElement {
         !self.body.d.is_empty()
     }
 
-    /// max(|w(L)|/L, |θ_J|): the tip deflection over the length or the tip slope [rad].
-    fn modal_deflection(&self, q: &[f64]) -> Option<f64> {
+    /// Modal deflection max(|w(L)|/L, |θ_J|): the tip deflection over the length or the tip
+    /// slope [rad].
+    fn validity(&self, q: &[f64]) -> Validity {
         let b = &self.body;
         let w = b.tip_local(q)[1].abs() / b.length;
-        Some(w.max(b.tip_slope(q).abs()))
+        Validity {
+            axial_strain: 0.0,
+            modal_deflection: Some(w.max(b.tip_slope(q).abs())),
+        }
     }
 
     fn as_any(&self) -> &dyn Any {
