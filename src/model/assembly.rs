@@ -64,14 +64,12 @@ pub struct Parts<S: Space> {
     pub scene_tip_force: S::Vec,
 }
 
-/// Reused local work arrays of the assembly (sized for the largest component).
+/// Reused local work arrays of the assembly's ports and constraints (sized for the largest
+/// component).
 #[derive(Debug, Clone, Default)]
 struct Work {
     q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
     r: Vec<f64>,
-    m: Vec<f64>,
     con: ConstraintOut,
 }
 
@@ -188,10 +186,7 @@ impl<S: Space> Model<S> {
             .unwrap_or(0);
         let work = Work {
             q: vec![0.0; dmax],
-            v: vec![0.0; dmax],
-            a: vec![0.0; dmax],
             r: vec![0.0; dmax],
-            m: vec![0.0; dmax * dmax],
             con: ConstraintOut::default(),
         };
         let nnz = pattern.nnz();
@@ -302,30 +297,9 @@ impl<S: Space> Integrable for Model<S> {
             load: x.load,
         };
         for e in elements.iter_mut() {
-            let dofs = &e.at.dofs;
-            let d = dofs.len();
-            let (ql, vl, al) = (&mut work.q[..d], &mut work.v[..d], &mut work.a[..d]);
-            dofs.gather_state((x.q, x.v, x.a), held, (ql, vl, al));
-            let local = LocalState {
-                q: &work.q[..d],
-                v: &work.v[..d],
-                a: &work.a[..d],
-            };
-            let mat = if matrix.is_some() {
-                &mut work.m[..d * d]
-            } else {
-                &mut work.m[..0]
-            };
-            let out = ElementOut {
-                matrix,
-                res: &mut work.r[..d],
-                mat: &mut *mat,
-            };
+            let local = LocalState::new(&e.at.dofs, held, (x.q, x.v, x.a));
+            let out = ElementOut::new(matrix, &e.at.dofs, req.sd, res, values);
             e.at.part.eval(&local, &env, out);
-            dofs.scatter_add(req.sd, &work.r[..d], res);
-            if matrix.is_some() {
-                dofs.add_block(mat, values);
-            }
         }
         if is_nonzero::<S>(&force) {
             let f = scaled::<S>(x.load, &force);
@@ -405,25 +379,26 @@ mod tests {
     struct PointMass(f64);
 
     impl Element<Planar> for PointMass {
-        fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, out: ElementOut<'_>) {
+        fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, mut out: ElementOut<'_>) {
             let m = self.0;
-            for k in 0..2 {
-                out.res[k] = m * x.a[k] - env.load * m * env.gravity[k];
-            }
+            let (_, _, a) = x.arrays::<2>();
+            out.add_residual(&[0, 1].map(|k| m * a[k] - env.load * m * env.gravity[k]));
             if let Some((ca, _, _)) = out.matrix {
-                out.mat.copy_from_slice(&[ca * m, 0.0, 0.0, ca * m]);
+                out.add_block(|i, j| if i == j { ca * m } else { 0.0 });
             }
         }
         fn residual(&self, x: &LocalState<'_>, env: &Env<Planar>, res: &mut [f64]) {
+            let (_, _, a) = x.arrays::<2>();
             for k in 0..2 {
-                res[k] = self.0 * (x.a[k] - env.gravity[k]);
+                res[k] = self.0 * (a[k] - env.gravity[k]);
             }
         }
         fn energies(&self, x: &LocalState<'_>, g: &[f64; 2]) -> Energies {
+            let (q, v, _) = x.arrays::<2>();
             Energies {
-                kinetic: 0.5 * self.0 * (x.v[0] * x.v[0] + x.v[1] * x.v[1]),
+                kinetic: 0.5 * self.0 * (v[0] * v[0] + v[1] * v[1]),
                 strain: 0.0,
-                potential: -self.0 * (g[0] * x.q[0] + g[1] * x.q[1]),
+                potential: -self.0 * (g[0] * q[0] + g[1] * q[1]),
             }
         }
         fn is_damped(&self) -> bool {

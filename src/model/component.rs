@@ -8,19 +8,70 @@
 //! * a [`Port`] (ANCF node, modal tip or root): where joints, loads and outputs attach;
 //! * a [`Support`]: the reaction from the residual of the held (eliminated) coordinates.
 
+use super::dofs::LocalDofs;
 use super::space::Space;
 use std::any::Any;
 use std::fmt::Debug;
 
-/// Local coordinates, rates and accelerations of one component.
+/// A component's view of one state: its local coordinates, rates and accelerations, gathered
+/// into storage the component chooses (fixed-size arrays for a fixed-size element).
 #[derive(Debug, Clone, Copy)]
 pub struct LocalState<'a> {
-    /// q (held coordinates at their held values).
-    pub q: &'a [f64],
-    /// q̇ (0 where held).
-    pub v: &'a [f64],
-    /// q̈ (0 where held).
-    pub a: &'a [f64],
+    dofs: &'a LocalDofs,
+    held: &'a [f64],
+    q: &'a [f64],
+    v: &'a [f64],
+    a: &'a [f64],
+}
+
+impl<'a> LocalState<'a> {
+    /// The view through `dofs` of the global (q, q̇, q̈) and the held values.
+    pub fn new(
+        dofs: &'a LocalDofs,
+        held: &'a [f64],
+        (q, v, a): (&'a [f64], &'a [f64], &'a [f64]),
+    ) -> Self {
+        Self {
+            dofs,
+            held,
+            q,
+            v,
+            a,
+        }
+    }
+
+    /// Number of local coordinates d.
+    pub fn len(&self) -> usize {
+        self.dofs.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.dofs.is_empty()
+    }
+
+    /// (q, q̇, q̈) into slices of length d (held coordinates at their values, not moving).
+    #[inline]
+    pub fn gather(&self, q: &mut [f64], v: &mut [f64], a: &mut [f64]) {
+        let global = (self.q, self.v, self.a);
+        self.dofs.gather_state(global, self.held, (q, v, a));
+    }
+
+    /// (q, q̇, q̈) as arrays of a component with `D` local coordinates.
+    #[inline]
+    pub fn arrays<const D: usize>(&self) -> ([f64; D], [f64; D], [f64; D]) {
+        let (mut q, mut v, mut a) = ([0.0; D], [0.0; D], [0.0; D]);
+        self.gather(&mut q, &mut v, &mut a);
+        (q, v, a)
+    }
+
+    /// (q, q̇, q̈) as vectors.
+    pub fn vectors(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let d = self.len();
+        let (mut q, mut v, mut a) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
+        self.gather(&mut q, &mut v, &mut a);
+        (q, v, a)
+    }
 }
 
 /// The environment of an evaluation.
@@ -43,15 +94,47 @@ pub struct Energies {
     pub potential: f64,
 }
 
-/// Where an element writes: its residual and, if requested, its Newton block.
+/// Where an element writes its residual and, if requested, its Newton block, on local indices;
+/// the assembly's numbering takes them to the free rows and columns.
 #[derive(Debug)]
 pub struct ElementOut<'a> {
     /// Matrix coefficients (c_a, c_v, c_x), if the block is wanted.
     pub matrix: Option<(f64, f64, f64)>,
-    /// Residual, one entry per local coordinate.
-    pub res: &'a mut [f64],
-    /// Block, d × d row-major (empty without a matrix request).
-    pub mat: &'a mut [f64],
+    dofs: &'a LocalDofs,
+    sd: f64,
+    res: &'a mut [f64],
+    values: &'a mut [f64],
+}
+
+impl<'a> ElementOut<'a> {
+    /// Writes into the global residual `res` (rows scaled by `sd`) and matrix `values`.
+    pub fn new(
+        matrix: Option<(f64, f64, f64)>,
+        dofs: &'a LocalDofs,
+        sd: f64,
+        res: &'a mut [f64],
+        values: &'a mut [f64],
+    ) -> Self {
+        Self {
+            matrix,
+            dofs,
+            sd,
+            res,
+            values,
+        }
+    }
+
+    /// Adds the residual `r` (one entry per local coordinate).
+    #[inline]
+    pub fn add_residual(&mut self, r: &[f64]) {
+        self.dofs.scatter_add(self.sd, r, self.res);
+    }
+
+    /// Adds the block entries `h(i, j)` of every pair of free local coordinates, row by row.
+    #[inline]
+    pub fn add_block(&mut self, h: impl FnMut(usize, usize) -> f64) {
+        self.dofs.add_block_with(self.values, h);
+    }
 }
 
 /// Measures of an element's configuration that its model may not be valid for; the simulator
@@ -67,9 +150,9 @@ pub struct Validity {
 
 /// A body of the model: ANCF element, modal body.
 pub trait Element<S: Space>: Debug + Send + Sync + 'static {
-    /// Residual `r = M q̈ + f(q, q̇) − env.load·f_ext(q)` on every local coordinate into
-    /// `out.res` and, with `out.matrix = Some((c_a, c_v, c_x))`, the block `c_a M +
-    /// c_v ∂f/∂q̇ + c_x ∂(M q̈ + f − f_ext)/∂q` into `out.mat` (every entry written).
+    /// Residual `r = M q̈ + f(q, q̇) − env.load·f_ext(q)` on the local coordinates and, with
+    /// `out.matrix = Some((c_a, c_v, c_x))`, the block `c_a M + c_v ∂f/∂q̇ +
+    /// c_x ∂(M q̈ + f − f_ext)/∂q`, each added once through `out`.
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<S>, out: ElementOut<'_>);
 
     /// The residual at full load on every local coordinate, by the element's reference path

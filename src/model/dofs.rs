@@ -119,16 +119,6 @@ impl LocalDofs {
         }
     }
 
-    /// Local rates from the global `v` (a held coordinate does not move: 0).
-    pub fn gather_rate(&self, v: &[f64], out: &mut [f64]) {
-        for (o, d) in out.iter_mut().zip(&self.dofs) {
-            *o = match *d {
-                Dof::Free(i) => v[i as usize],
-                Dof::Held(_) => 0.0,
-            };
-        }
-    }
-
     /// Local (q, q̇, q̈) from the global vectors in one pass: held coordinates at their held
     /// values, not moving.
     #[inline]
@@ -200,11 +190,15 @@ impl LocalDofs {
         (s != NO_SLOT).then_some(s as usize)
     }
 
-    /// `values[slot] += block[i·d + j]` over the free × free entries of a row-major local block.
-    pub fn add_block(&self, block: &[f64], values: &mut [f64]) {
-        for (x, &s) in block.iter().zip(&self.slots) {
-            if s != NO_SLOT {
-                values[s as usize] += x;
+    /// `values[slot(i, j)] += h(i, j)` over the free × free local pairs, row by row.
+    #[inline]
+    pub fn add_block_with(&self, values: &mut [f64], mut h: impl FnMut(usize, usize) -> f64) {
+        let d = self.dofs.len();
+        for (i, row) in self.slots.chunks_exact(d.max(1)).enumerate() {
+            for (j, &s) in row.iter().enumerate() {
+                if s != NO_SLOT {
+                    values[s as usize] += h(i, j);
+                }
             }
         }
     }
@@ -232,8 +226,16 @@ mod tests {
         let mut x = [0.0; 3];
         dofs.gather(&q0, &held, &mut x);
         assert_eq!(x, [2.0, 0.5, 3.0]);
-        dofs.gather_rate(&[7.0, 8.0], &mut x);
-        assert_eq!(x, [7.0, 0.0, 8.0]);
+        let (mut v, mut a) = ([0.0; 3], [0.0; 3]);
+        dofs.gather_state(
+            (&q0, &[7.0, 8.0], &[5.0, 6.0]),
+            &held,
+            (&mut x, &mut v, &mut a),
+        );
+        assert_eq!(
+            (x, v, a),
+            ([2.0, 0.5, 3.0], [7.0, 0.0, 8.0], [5.0, 0.0, 6.0])
+        );
         let mut g = [1.0, 1.0];
         dofs.scatter_add(2.0, &[1.0, 10.0, 3.0], &mut g);
         assert_eq!(g, [3.0, 7.0]);
@@ -248,7 +250,8 @@ mod tests {
         assert_eq!(dofs.slot(0, 2), Some(p.slot(0, 1) as usize));
         assert_eq!(dofs.slot(1, 0), None);
         let mut vals = vec![0.0; p.nnz()];
-        dofs.add_block(&[1.0, 9.0, 2.0, 9.0, 9.0, 9.0, 3.0, 9.0, 4.0], &mut vals);
+        let block = [1.0, 9.0, 2.0, 9.0, 9.0, 9.0, 3.0, 9.0, 4.0];
+        dofs.add_block_with(&mut vals, |i, j| block[3 * i + j]);
         assert_eq!(vals[p.slot(1, 0) as usize], 3.0);
         assert_eq!(vals[p.slot(1, 1) as usize], 4.0);
     }

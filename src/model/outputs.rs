@@ -3,7 +3,6 @@
 
 use super::assembly::Model;
 use super::component::{ConstraintOut, Element, Env, LocalState};
-use super::dofs::LocalDofs;
 use super::load::point_force_residual;
 use super::planar::Planar;
 use super::space::{PortKin, Space};
@@ -41,45 +40,14 @@ pub struct ModelValidity {
     pub modal_deflection: Option<(usize, f64)>,
 }
 
-/// Reused local copies of a component's coordinates, rates and accelerations.
-#[derive(Default)]
-struct Gathered {
-    q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-}
-
-impl Gathered {
-    /// Gathers q of `dofs` and, if given, (q̇, q̈); without them the rates are zero.
-    fn fill(&mut self, dofs: &LocalDofs, held: &[f64], q: &[f64], rates: Option<(&[f64], &[f64])>) {
-        let d = dofs.len();
-        for g in [&mut self.q, &mut self.v, &mut self.a] {
-            g.clear();
-            g.resize(d, 0.0);
-        }
-        dofs.gather(q, held, &mut self.q);
-        if let Some((v, a)) = rates {
-            dofs.gather_rate(v, &mut self.v);
-            dofs.gather_rate(a, &mut self.a);
-        }
-    }
-
-    fn local(&self) -> LocalState<'_> {
-        LocalState {
-            q: &self.q,
-            v: &self.v,
-            a: &self.a,
-        }
-    }
-}
-
 impl<S: Space> Model<S> {
     /// Outputs at a state (q, q̇, q̈, λ).
     pub fn outputs(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> Outputs<S> {
-        let mut x = Gathered::default();
+        let mut buf = vec![0.0; self.max_local_len()];
         let tip = &self.tip.dofs;
-        x.fill(tip, &self.held, q, None);
-        let kin = self.tip.part.kinematics(&x.q);
+        let x = &mut buf[..tip.len()];
+        tip.gather(q, &self.held, x);
+        let kin = self.tip.part.kinematics(x);
         let mut vel = S::Vec::default();
         for k in 0..tip.len() {
             if let Some(i) = tip.free(k) {
@@ -96,13 +64,13 @@ impl<S: Space> Model<S> {
             ..Default::default()
         };
         for e in &self.elements {
-            x.fill(&e.at.dofs, &self.held, q, Some((v, acc)));
-            let en = e.at.part.energies(&x.local(), &self.gravity);
+            let x = LocalState::new(&e.at.dofs, &self.held, (q, v, acc));
+            let en = e.at.part.energies(&x, &self.gravity);
             o.kinetic += en.kinetic;
             o.strain += en.strain;
             o.potential += en.potential;
         }
-        let r = self.held_residual(q, v, acc, lam, &mut x);
+        let r = self.held_residual((q, v, acc), lam, &mut buf);
         (o.root_force, o.root_moment) = self.support.reaction(&r, &self.held);
         o
     }
@@ -111,11 +79,9 @@ impl<S: Space> Model<S> {
     /// force the support exerts on the beam, summed in the order of the assembly.
     fn held_residual(
         &self,
-        q: &[f64],
-        v: &[f64],
-        acc: &[f64],
+        (q, v, acc): (&[f64], &[f64], &[f64]),
         lam: &[f64],
-        x: &mut Gathered,
+        buf: &mut [f64],
     ) -> Vec<f64> {
         // −0 is the exact additive identity: a coordinate reached once gets its term's bits
         let mut r = vec![-0.0; self.held.len()];
@@ -125,15 +91,16 @@ impl<S: Space> Model<S> {
         };
         let mut local = Vec::new();
         for e in self.elements.iter().filter(|e| e.at.dofs.has_held()) {
-            x.fill(&e.at.dofs, &self.held, q, Some((v, acc)));
-            local.resize(x.q.len(), 0.0);
-            e.at.part.residual(&x.local(), &env, &mut local);
+            let x = LocalState::new(&e.at.dofs, &self.held, (q, v, acc));
+            local.resize(x.len(), 0.0);
+            e.at.part.residual(&x, &env, &mut local);
             e.at.dofs.scatter_held(&local, &mut r);
         }
         let tip = &self.tip.dofs;
         if tip.has_held() {
-            x.fill(tip, &self.held, q, None);
-            let kin = self.tip.part.kinematics(&x.q);
+            let x = &mut buf[..tip.len()];
+            tip.gather(q, &self.held, x);
+            let kin = self.tip.part.kinematics(x);
             local.resize(tip.len(), 0.0);
             point_force_residual::<S>(&kin, &self.total_tip_force(), &mut local);
             tip.scatter_held(&local, &mut r);
@@ -142,9 +109,10 @@ impl<S: Space> Model<S> {
         for c in self.constraints.iter().filter(|c| c.at.dofs.has_held()) {
             let dofs = &c.at.dofs;
             let d = dofs.len();
-            x.fill(dofs, &self.held, q, None);
+            let x = &mut buf[..d];
+            dofs.gather(q, &self.held, x);
             out.reset(c.rows, d);
-            c.at.part.eval(&x.q, None, &mut out);
+            c.at.part.eval(x, None, &mut out);
             for row in 0..c.rows {
                 let l = lam[c.row + row];
                 local.clear();

@@ -41,24 +41,18 @@ impl AncfElement {
     }
 }
 
-fn array8(x: &[f64]) -> &[f64; 8] {
-    x.try_into()
-        .expect("an ANCF element has 8 local coordinates")
-}
-
 impl Element<Planar> for AncfElement {
-    fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, out: ElementOut<'_>) {
-        let ElementOut { matrix, res, mat } = out;
-        let (e, ed, ea) = (array8(x.q), array8(x.v), *array8(x.a));
-        let (force, matrices) = if matrix.is_some() {
-            let out = self.props.elastic(&Vec8::from(*e), &Vec8::from(*ed), true);
+    fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, mut out: ElementOut<'_>) {
+        let (e, ed, ea) = x.arrays::<8>();
+        let (force, matrices) = if out.matrix.is_some() {
+            let out = self.props.elastic(&Vec8::from(e), &Vec8::from(ed), true);
             (out.force.into(), Some(out))
         } else {
-            (self.props.internal_force_with(&self.tables, e, ed), None)
+            (self.props.internal_force_with(&self.tables, &e, &ed), None)
         };
         let gf = &self.gravity_force;
         // r = M ë + f_int − load·f_g, M = M4 ⊗ I₂
-        let res: &mut [f64; 8] = res.try_into().expect("8 local coordinates");
+        let mut res = [0.0; 8];
         for k in 0..4 {
             let (mut mx, mut my) = (0.0, 0.0);
             for j in 0..4 {
@@ -69,31 +63,29 @@ impl Element<Planar> for AncfElement {
             res[x] = mx + force[x] - env.load * gf[x];
             res[y] = my + force[y] - env.load * gf[y];
         }
-        if let (Some((ca, cv, cx)), Some(out)) = (matrix, matrices) {
+        out.add_residual(&res);
+        if let (Some((ca, cv, cx)), Some(m)) = (out.matrix, matrices) {
             let damped = cv != 0.0 && self.props.damping_time > 0.0;
-            for r in 0..8 {
-                for c in 0..8 {
-                    let mut val = ca * self.mass[(r, c)] + cx * out.stiffness[(r, c)];
-                    if damped {
-                        val += cv * out.damping[(r, c)];
-                    }
-                    mat[r * 8 + c] = val;
+            out.add_block(|r, c| {
+                let mut val = ca * self.mass[(r, c)] + cx * m.stiffness[(r, c)];
+                if damped {
+                    val += cv * m.damping[(r, c)];
                 }
-            }
+                val
+            });
         }
     }
 
     fn residual(&self, x: &LocalState<'_>, _env: &Env<Planar>, res: &mut [f64]) {
-        let e = Vec8::from_column_slice(x.q);
-        let ed = Vec8::from_column_slice(x.v);
-        let ea = Vec8::from_column_slice(x.a);
+        let (e, ed, ea) = x.arrays::<8>();
+        let (e, ed, ea) = (Vec8::from(e), Vec8::from(ed), Vec8::from(ea));
         let f = self.mass * ea + self.props.elastic(&e, &ed, false).force - self.gravity_force;
         res.copy_from_slice(f.as_slice());
     }
 
     fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 2]) -> Energies {
-        let e = Vec8::from_column_slice(x.q);
-        let ed = Vec8::from_column_slice(x.v);
+        let (e, ed, _) = x.arrays::<8>();
+        let (e, ed) = (Vec8::from(e), Vec8::from(ed));
         Energies {
             kinetic: 0.5 * ed.dot(&(self.mass * ed)),
             strain: self.props.strain_energy(&e),
@@ -136,45 +128,49 @@ pub struct ModalElement {
     /// The body (shared with its ports).
     pub body: Arc<ModalBody>,
     out: BodyOut,
+    /// Local (q, q̇, q̈) of the last evaluation.
+    x: [Vec<f64>; 3],
 }
 
 impl ModalElement {
     /// Component of `body`.
     pub fn new(body: Arc<ModalBody>) -> Self {
-        let out = BodyOut::new(body.dim());
-        Self { body, out }
+        let d = body.dim();
+        let out = BodyOut::new(d);
+        Self {
+            body,
+            out,
+            x: [vec![0.0; d], vec![0.0; d], vec![0.0; d]],
+        }
     }
 }
 
 impl Element<Planar> for ModalElement {
-    fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, out: ElementOut<'_>) {
-        let ElementOut { matrix, res, mat } = out;
+    fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, mut out: ElementOut<'_>) {
         let g = [env.load * env.gravity[0], env.load * env.gravity[1]];
+        let [q, v, a] = &mut self.x;
+        x.gather(q, v, a);
         let body = &mut self.out;
-        self.body.eval(x.q, x.v, x.a, g, matrix.is_some(), body);
-        res.copy_from_slice(body.res.as_slice());
-        if let Some((ca, cv, cx)) = matrix {
-            let d = res.len();
-            for r in 0..d {
-                for c in 0..d {
-                    mat[r * d + c] =
-                        ca * body.m[(r, c)] + cv * body.c[(r, c)] + cx * body.k[(r, c)];
-                }
-            }
+        self.body.eval(q, v, a, g, out.matrix.is_some(), body);
+        out.add_residual(body.res.as_slice());
+        if let Some((ca, cv, cx)) = out.matrix {
+            out.add_block(|r, c| ca * body.m[(r, c)] + cv * body.c[(r, c)] + cx * body.k[(r, c)]);
         }
     }
 
     fn residual(&self, x: &LocalState<'_>, env: &Env<Planar>, res: &mut [f64]) {
+        let (q, v, a) = x.vectors();
         let mut out = BodyOut::new(self.body.dim());
-        self.body.eval(x.q, x.v, x.a, env.gravity, false, &mut out);
+        self.body.eval(&q, &v, &a, env.gravity, false, &mut out);
         res.copy_from_slice(out.res.as_slice());
     }
 
     fn energies(&self, x: &LocalState<'_>, gravity: &[f64; 2]) -> Energies {
+        let (q, v, _) = x.vectors();
         Energies {
-            kinetic: self.body.kinetic_energy(x.q, x.v),
-            strain: self.body.strain_energy(x.q),
-            potential: self.body.potential_energy(x.q, *gravity),
+            kinetic: self.body.kinetic_energy(&q, &v),
+            strain: self.body.strain_energy(&q),
+            potential: self.body.potential_energy(&q, *gravity),
         }
     }
 
