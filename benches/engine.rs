@@ -3,8 +3,9 @@
 #![allow(missing_docs)] // criterion's macros generate undocumented items
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
-use hybeam::model::{EvalRequest, Model};
+use hybeam::model::Model;
 use hybeam::scene::{Scene, StrainModel};
 use hybeam::simulator::Simulator;
 use std::hint::black_box;
@@ -53,7 +54,7 @@ fn newton(c: &mut Criterion) {
         "case 1 newton iteration: assemble + factorize + solve",
         |b| {
             b.iter(|| {
-                model.eval(&q, &z, &z, &lam, 1.0, req, &mut res);
+                model.eval(StateRef::new(&q, &z, &z, &lam), req, &mut res);
                 model.factorize().unwrap();
                 black_box(model.solve(&mut res));
             })
@@ -66,7 +67,7 @@ fn newton(c: &mut Criterion) {
     };
     c.bench_function("case 1 modified newton iteration: residual + solve", |b| {
         b.iter(|| {
-            model.eval(&q, &z, &z, &lam, 1.0, req, &mut res);
+            model.eval(StateRef::new(&q, &z, &z, &lam), req, &mut res);
             black_box(model.solve(&mut res));
         })
     });

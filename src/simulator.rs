@@ -1,7 +1,9 @@
 //! A beam in time: model + integrator + state behind `advance` and `outputs`.
 //! This is what the command-line runner and the FMU adapter drive.
 
-use crate::integrator::{solve_static, Counters, GeneralizedAlpha, IntegratorMemory, State};
+use crate::integrator::{
+    solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
+};
 use crate::model::{Model, Outputs};
 use crate::scene::{InitialState, Scene, MIN_STEP};
 
@@ -277,16 +279,16 @@ impl Simulator {
             }
         }
         self.state.t = t_end;
-        let strain = self.model.max_axial_strain(&self.state.q);
+        let validity = self.model.validity(&self.state.q);
+        let strain = validity.max_axial_strain;
         let finite = self
             .state
             .q
             .iter()
             .chain(&self.state.v)
             .all(|x| x.is_finite());
-        let modal = self
-            .model
-            .max_modal_deflection(&self.state.q)
+        let modal = validity
+            .modal_deflection
             .filter(|&(_, d)| finite && d > MAX_MODAL_DEFLECTION);
         if let Some((si, d)) = modal {
             self.state = saved;

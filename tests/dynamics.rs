@@ -1,5 +1,5 @@
-//! Case 1 (physics.md §1) in time: the three formulations against each other, conservation of
-//! energy without damping, and convergence of the hybrid under refinement.
+//! Case 1 (docs/references.md §1) in time: the three formulations against each other,
+//! conservation of energy without damping, and convergence of the hybrid under refinement.
 
 mod common;
 use common::*;

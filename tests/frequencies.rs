@@ -4,7 +4,8 @@
 
 mod common;
 use common::*;
-use hybeam::model::{EvalRequest, Model};
+use hybeam::integrator::{EvalRequest, Integrable, StateRef};
+use hybeam::model::Model;
 use nalgebra::DMatrix;
 
 const LAMBDA: [f64; 3] = [
@@ -40,7 +41,7 @@ fn frequencies(segs: &[String]) -> Vec<f64> {
             matrix: Some((ca, 0.0, cx)),
             lambda_hessian: true,
         };
-        model.eval(&q, &z, &z, &lam, 1.0, req, &mut res);
+        model.eval(StateRef::new(&q, &z, &z, &lam), req, &mut res);
         let a = model.assembled_dense();
         DMatrix::from_fn(n + m, n + m, |i, j| a[i][j])
     };

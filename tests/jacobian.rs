@@ -3,7 +3,8 @@
 
 mod common;
 use common::*;
-use hybeam::model::{EvalRequest, Model};
+use hybeam::integrator::{EvalRequest, Integrable, StateRef};
+use hybeam::model::Model;
 
 fn check(header: &str, segs: &[String]) {
     let s = scene(header, segs);
@@ -29,7 +30,7 @@ fn check(header: &str, segs: &[String]) {
             matrix: Some(c),
             lambda_hessian: c.2 != 0.0,
         };
-        model.eval(&q, &v, &a, &lam, 1.0, req, &mut res);
+        model.eval(StateRef::new(&q, &v, &a, &lam), req, &mut res);
         model.assembled_dense()
     };
     let mats = [
@@ -44,7 +45,7 @@ fn check(header: &str, segs: &[String]) {
             matrix: None,
             lambda_hessian: false,
         };
-        model.eval(q, v, a, lam, 1.0, req, &mut r);
+        model.eval(StateRef::new(q, v, a, lam), req, &mut r);
         r
     };
     let base = resid(&mut model, &q, &v, &a, &lam);

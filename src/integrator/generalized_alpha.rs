@@ -8,8 +8,7 @@
 //! while Newton contracts well (modified Newton), refreshed otherwise. A step that does not
 //! converge is rejected with the state untouched; it is never accepted.
 
-use super::{scaled_norm, Counters, State};
-use crate::model::{EvalRequest, Model};
+use super::{scaled_norm, Counters, EvalRequest, Integrable, State, StateRef};
 
 /// The four generalized-α coefficients from ρ∞.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -156,9 +155,9 @@ impl GeneralizedAlpha {
 
     /// Restores memory: re-evaluates and factorizes the Newton matrix at its recorded point, so
     /// that the next steps are bit-identical to those of the original run.
-    pub fn restore_memory(
+    pub fn restore_memory<M: Integrable + ?Sized>(
         &mut self,
-        model: &mut Model,
+        model: &mut M,
         mem: &IntegratorMemory,
     ) -> Result<(), StepFailure> {
         self.invalidate();
@@ -176,7 +175,8 @@ impl GeneralizedAlpha {
                 matrix: Some(coeffs),
                 lambda_hessian: true,
             };
-            model.eval(&jp.q, &jp.v, &jp.acc, &jp.lam, 1.0, req, &mut self.res);
+            let x = StateRef::new(&jp.q, &jp.v, &jp.acc, &jp.lam);
+            model.eval(x, req, &mut self.res);
             model.factorize().map_err(|_| StepFailure::Singular { h })?;
             self.factored_h = Some(h);
             self.jac_at = Some(jp.clone());
@@ -186,7 +186,11 @@ impl GeneralizedAlpha {
 
     /// Consistent initial accelerations and multipliers at `s` (q, q̇ given); sets the
     /// integrator memory a = q̈.
-    pub fn initialize(&mut self, model: &mut Model, s: &mut State) -> Result<(), StepFailure> {
+    pub fn initialize<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+    ) -> Result<(), StepFailure> {
         let n = model.coordinates();
         let m = model.constraints();
         let zeros_n = vec![0.0; n];
@@ -196,7 +200,8 @@ impl GeneralizedAlpha {
             matrix: Some((1.0, 0.0, 0.0)),
             lambda_hessian: false,
         };
-        model.eval(&s.q, &s.v, &zeros_n, &zeros_m, 1.0, req, &mut self.res);
+        let x = StateRef::new(&s.q, &s.v, &zeros_n, &zeros_m);
+        model.eval(x, req, &mut self.res);
         let mut rhs: Vec<f64> = self.res.iter().map(|r| -r).collect();
         // acceleration-level constraint: Φ_q q̈ = −(Φ_q q̇)_q q̇ (second difference along q̇)
         if m > 0 && s.v.iter().any(|x| *x != 0.0) {
@@ -209,7 +214,8 @@ impl GeneralizedAlpha {
                     matrix: None,
                     lambda_hessian: false,
                 };
-                model.eval(q, &zeros_n, &zeros_n, &zeros_m, 0.0, req, &mut r);
+                let x = StateRef::new(q, &zeros_n, &zeros_n, &zeros_m).with_load(0.0);
+                model.eval(x, req, &mut r);
                 r.split_off(n)
             };
             let qp: Vec<f64> = s.q.iter().zip(&s.v).map(|(q, v)| q + eps * v).collect();
@@ -239,7 +245,12 @@ impl GeneralizedAlpha {
 
     /// One step of size `h` from `s`. On success `s` holds the new state; on failure `s` is
     /// untouched.
-    pub fn step(&mut self, model: &mut Model, s: &mut State, h: f64) -> Result<usize, StepFailure> {
+    pub fn step<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+        h: f64,
+    ) -> Result<usize, StepFailure> {
         let AlphaParams {
             alpha_m: am,
             alpha_f: af,
@@ -278,7 +289,11 @@ impl GeneralizedAlpha {
                 matrix: if refresh { Some(coeffs) } else { None },
                 lambda_hessian: true,
             };
-            model.eval(&t.q, &t.v, &t.acc, &t.lambda, 1.0, req, &mut self.res);
+            model.eval(
+                StateRef::new(&t.q, &t.v, &t.acc, &t.lambda),
+                req,
+                &mut self.res,
+            );
             self.counters.iterations += 1;
             if refresh {
                 if model.factorize().is_err() {
@@ -303,9 +318,9 @@ impl GeneralizedAlpha {
                 self.factored_h = None;
                 return Err(StepFailure::Singular { h });
             }
+            model.increment(&mut t.q, &self.res[..n]);
             for i in 0..n {
                 let d = self.res[i];
-                t.q[i] += d;
                 t.v[i] += gamma_p * d;
                 t.acc[i] += beta_p * d;
                 t.aux[i] += d / bh2;

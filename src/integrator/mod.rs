@@ -1,11 +1,15 @@
-//! Time integration and statics; depends only on [`crate::model::Model`]'s seam.
+//! Time integration and statics. The integrators know the model only through [`Integrable`]
+//! (Chrono's `ChIntegrableIIorder` seam): residual and Newton matrix at a state, LU solve, and
+//! the coordinate update. Nothing here imports the model.
 
 mod generalized_alpha;
+mod seam;
 mod statics;
 
 pub use generalized_alpha::{
     AlphaParams, GeneralizedAlpha, IntegratorMemory, JacobianPoint, StepFailure,
 };
+pub use seam::{EvalRequest, Integrable, StateRef};
 pub use statics::{solve_static, StaticFailure};
 
 /// Dynamic state of the model.
@@ -13,7 +17,8 @@ pub use statics::{solve_static, StaticFailure};
 pub struct State {
     /// Time [s].
     pub t: f64,
-    /// Coordinates q.
+    /// Coordinates q (mixed units: positions and modal amplitudes [m], slopes [-], angles
+    /// [rad]; see [`Integrable::scales`]).
     pub q: Vec<f64>,
     /// Velocities q̇.
     pub v: Vec<f64>,

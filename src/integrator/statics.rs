@@ -2,8 +2,7 @@
 //! gravity and tip force are scaled by a load factor raised from 0 to 1, the increment halved
 //! when Newton fails and doubled after an easy success.
 
-use super::{scaled_norm, State};
-use crate::model::{EvalRequest, Model};
+use super::{scaled_norm, EvalRequest, Integrable, State, StateRef};
 
 /// Why the static solve failed.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,7 +31,11 @@ const MIN_INCREMENT: f64 = 1e-6;
 
 /// Solves for equilibrium starting from `s.q`; on success `s` holds it (at rest, q̈ = 0) and the
 /// function returns the number of Newton iterations. `tol` is relative to coordinate scales.
-pub fn solve_static(model: &mut Model, s: &mut State, tol: f64) -> Result<usize, StaticFailure> {
+pub fn solve_static<M: Integrable + ?Sized>(
+    model: &mut M,
+    s: &mut State,
+    tol: f64,
+) -> Result<usize, StaticFailure> {
     let n = model.coordinates();
     let m = model.constraints();
     let zeros = vec![0.0; n];
@@ -55,7 +58,8 @@ pub fn solve_static(model: &mut Model, s: &mut State, tol: f64) -> Result<usize,
                 matrix: Some((0.0, 0.0, 1.0)),
                 lambda_hessian: true,
             };
-            model.eval(&q, &zeros, &zeros, &lam, target, req, &mut res);
+            let x = StateRef::new(&q, &zeros, &zeros, &lam).with_load(target);
+            model.eval(x, req, &mut res);
             if model.factorize().is_err() {
                 break;
             }
@@ -65,9 +69,7 @@ pub fn solve_static(model: &mut Model, s: &mut State, tol: f64) -> Result<usize,
             if !model.solve(&mut res) {
                 break;
             }
-            for i in 0..n {
-                q[i] += res[i];
-            }
+            model.increment(&mut q, &res[..n]);
             for j in 0..m {
                 lam[j] += res[n + j];
             }

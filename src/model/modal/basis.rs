@@ -225,7 +225,7 @@ impl ModalBasis {
 mod tests {
     use super::*;
 
-    /// Table of physics.md §3 (independent SciPy computation).
+    /// Table of docs/references.md §3 (independent SciPy computation).
     const TABLE: [(f64, f64, f64, f64, f64); 4] = [
         (1.875104, 0.782992, 0.568826, 2.0, 2.753011),
         (4.694091, 0.433936, 0.090767, 2.0, 9.561557),
@@ -253,7 +253,7 @@ mod tests {
 
     #[test]
     fn slope_gram_matches_the_table() {
-        // physics.md §3: ∫φ′² dξ = 4.647778, 32.417399, 77.298891 for modes 1–3
+        // docs/references.md §3: ∫φ′² dξ = 4.647778, 32.417399, 77.298891 for modes 1–3
         let b = ModalBasis::new(3, false);
         for (j, want) in [4.647778, 32.417399, 77.298891].iter().enumerate() {
             assert!((b.slope_gram[j * 3 + j] - want).abs() < 2e-5, "{j}");

@@ -1,4 +1,5 @@
-//! Planar floating-frame body with transverse modal coordinates (physics.md §3).
+//! Planar floating-frame body with transverse modal coordinates (docs/references.md §3): the
+//! kernel of [`crate::model::planar::ModalElement`].
 //!
 //! Local coordinates `q = [Rx, Ry, θ, a_1 … a_n]`: frame origin R [m] (the segment root),
 //! frame angle θ [rad] (counter-clockwise from global x), modal amplitudes a [m]. A material
@@ -402,7 +403,7 @@ mod tests {
 
     #[test]
     fn frequencies_of_the_clamped_segment_match_euler_bernoulli() {
-        // physics.md §4c: d = 2 mm steel, L = 0.4 m: f1..f3 = 9.045, 56.68, 158.71 Hz.
+        // docs/references.md §4c: d = 2 mm steel, L = 0.4 m: f1..f3 = 9.045, 56.68, 158.71 Hz.
         let d: f64 = 0.002;
         let area = std::f64::consts::PI * d * d / 4.0;
         let ei = 2.1e11 * area * d * d / 16.0;

@@ -1,0 +1,225 @@
+//! What a component of the model answers, each on its own local coordinates (the assembly maps
+//! them to global ones through [`super::LocalDofs`]):
+//!
+//! * an [`Element`] (ANCF element, modal body): its residual `M q̈ + f − f_ext` and Newton
+//!   block `c_a M + c_v C + c_x K`;
+//! * a [`Constraint`] (joint rows, a normalization row): Φ, Φ_q and Σλ_i ∂²Φ_i, with its own
+//!   row count;
+//! * a [`Port`] (ANCF node, modal tip or root): where joints, loads and outputs attach;
+//! * a [`Support`]: the reaction from the residual of the held (eliminated) coordinates.
+
+use super::dofs::LocalDofs;
+use super::space::Space;
+use std::any::Any;
+use std::fmt::Debug;
+
+/// A component's view of one state: its local coordinates, rates and accelerations, gathered
+/// into storage the component chooses (fixed-size arrays for a fixed-size element).
+#[derive(Debug, Clone, Copy)]
+pub struct LocalState<'a> {
+    dofs: &'a LocalDofs,
+    held: &'a [f64],
+    q: &'a [f64],
+    v: &'a [f64],
+    a: &'a [f64],
+}
+
+impl<'a> LocalState<'a> {
+    /// The view through `dofs` of the global (q, q̇, q̈) and the held values.
+    pub fn new(
+        dofs: &'a LocalDofs,
+        held: &'a [f64],
+        (q, v, a): (&'a [f64], &'a [f64], &'a [f64]),
+    ) -> Self {
+        Self {
+            dofs,
+            held,
+            q,
+            v,
+            a,
+        }
+    }
+
+    /// Number of local coordinates d.
+    pub fn len(&self) -> usize {
+        self.dofs.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.dofs.is_empty()
+    }
+
+    /// (q, q̇, q̈) into slices of length d (held coordinates at their values, not moving).
+    #[inline]
+    pub fn gather(&self, q: &mut [f64], v: &mut [f64], a: &mut [f64]) {
+        let global = (self.q, self.v, self.a);
+        self.dofs.gather_state(global, self.held, (q, v, a));
+    }
+
+    /// (q, q̇, q̈) as arrays of a component with `D` local coordinates.
+    #[inline]
+    pub fn arrays<const D: usize>(&self) -> ([f64; D], [f64; D], [f64; D]) {
+        let (mut q, mut v, mut a) = ([0.0; D], [0.0; D], [0.0; D]);
+        self.gather(&mut q, &mut v, &mut a);
+        (q, v, a)
+    }
+
+    /// (q, q̇, q̈) as vectors.
+    pub fn vectors(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let d = self.len();
+        let (mut q, mut v, mut a) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
+        self.gather(&mut q, &mut v, &mut a);
+        (q, v, a)
+    }
+}
+
+/// The environment of an evaluation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Env<S: Space> {
+    /// Gravity [m/s²], global axes (unscaled).
+    pub gravity: S::Vec,
+    /// Factor on the external loads (1 in dynamics; load stepping in statics).
+    pub load: f64,
+}
+
+/// Energies of one component [J].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Energies {
+    /// Kinetic energy ½ q̇ᵀ M q̇.
+    pub kinetic: f64,
+    /// Strain energy.
+    pub strain: f64,
+    /// Gravity potential −∫ρA gᵀr dx (zero at the origin).
+    pub potential: f64,
+}
+
+/// Where an element writes its residual and, if requested, its Newton block, on local indices;
+/// the assembly's numbering takes them to the free rows and columns.
+#[derive(Debug)]
+pub struct ElementOut<'a> {
+    /// Matrix coefficients (c_a, c_v, c_x), if the block is wanted.
+    pub matrix: Option<(f64, f64, f64)>,
+    dofs: &'a LocalDofs,
+    sd: f64,
+    res: &'a mut [f64],
+    values: &'a mut [f64],
+}
+
+impl<'a> ElementOut<'a> {
+    /// Writes into the global residual `res` (rows scaled by `sd`) and matrix `values`.
+    pub fn new(
+        matrix: Option<(f64, f64, f64)>,
+        dofs: &'a LocalDofs,
+        sd: f64,
+        res: &'a mut [f64],
+        values: &'a mut [f64],
+    ) -> Self {
+        Self {
+            matrix,
+            dofs,
+            sd,
+            res,
+            values,
+        }
+    }
+
+    /// Adds the residual `r` (one entry per local coordinate).
+    #[inline]
+    pub fn add_residual(&mut self, r: &[f64]) {
+        self.dofs.scatter_add(self.sd, r, self.res);
+    }
+
+    /// Adds the block entries `h(i, j)` of every pair of free local coordinates, row by row.
+    #[inline]
+    pub fn add_block(&mut self, h: impl FnMut(usize, usize) -> f64) {
+        self.dofs.add_block_with(self.values, h);
+    }
+}
+
+/// Measures of an element's configuration that its model may not be valid for; the simulator
+/// refuses a step that exceeds its limits.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Validity {
+    /// Largest |axial strain| [-] (0 where not measured).
+    pub axial_strain: f64,
+    /// Elastic deflection of a small-deformation (modal) element, to be compared with the
+    /// validity limit of a linear floating frame; `None` for large-deformation elements.
+    pub modal_deflection: Option<f64>,
+}
+
+/// A body of the model: ANCF element, modal body.
+pub trait Element<S: Space>: Debug + Send + Sync + 'static {
+    /// Residual `r = M q̈ + f(q, q̇) − env.load·f_ext(q)` on the local coordinates and, with
+    /// `out.matrix = Some((c_a, c_v, c_x))`, the block `c_a M + c_v ∂f/∂q̇ +
+    /// c_x ∂(M q̈ + f − f_ext)/∂q`, each added once through `out`.
+    fn eval(&mut self, x: &LocalState<'_>, env: &Env<S>, out: ElementOut<'_>);
+
+    /// The residual at full load on every local coordinate, by the element's reference path
+    /// (used for support reactions, once per output).
+    fn residual(&self, x: &LocalState<'_>, env: &Env<S>, res: &mut [f64]);
+
+    /// Kinetic, strain and gravity energies at a state.
+    fn energies(&self, x: &LocalState<'_>, gravity: &S::Vec) -> Energies;
+
+    /// Called when gravity changes (elements may cache their gravity force).
+    fn set_gravity(&mut self, _gravity: &S::Vec) {}
+
+    /// Whether the element carries damping.
+    fn is_damped(&self) -> bool;
+
+    /// Validity measures at `q` (none by default).
+    fn validity(&self, _q: &[f64]) -> Validity {
+        Validity::default()
+    }
+
+    /// The element as [`Any`], for inspection of a concrete kind (tests, analyses).
+    fn as_any(&self) -> &dyn Any;
+}
+
+/// Φ, Φ_q and Σλ_i ∂²Φ_i of one constraint over its local coordinates.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ConstraintOut {
+    /// Φ (rows).
+    pub phi: Vec<f64>,
+    /// ∂Φ_r/∂q_k, row-major rows × d.
+    pub jac: Vec<f64>,
+    /// Σλ_r ∂²Φ_r/∂q_i∂q_j as (i, j, value) triplets, in the order they are to be summed
+    /// (a pair may repeat).
+    pub hess: Vec<(usize, usize, f64)>,
+}
+
+impl ConstraintOut {
+    /// Zeroes Φ and Φ_q for `rows` × `d` and clears the Hessian.
+    pub fn reset(&mut self, rows: usize, d: usize) {
+        self.phi.clear();
+        self.phi.resize(rows, 0.0);
+        self.jac.clear();
+        self.jac.resize(rows * d, 0.0);
+        self.hess.clear();
+    }
+}
+
+/// Holonomic constraint rows Φ(q) = 0.
+pub trait Constraint: Debug + Send + Sync + 'static {
+    /// Number of rows.
+    fn rows(&self) -> usize;
+
+    /// Φ and Φ_q at the local coordinates `q` into `out` (after [`ConstraintOut::reset`]);
+    /// with `lambda` (one multiplier per row) also Σλ_r ∂²Φ_r.
+    fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut);
+}
+
+/// An attachment point on a component, evaluated from the component's local coordinates.
+pub trait Port<S: Space>: Debug + Send + Sync + 'static {
+    /// Kinematics at the local coordinates `q`.
+    fn kinematics(&self, q: &[f64]) -> S::PortKin;
+}
+
+/// How the support holds the beam: turns the residual of the held coordinates (the generalized
+/// force the support exerts) into a force and a moment.
+pub trait Support<S: Space>: Debug + Send + Sync + 'static {
+    /// Force [N] and moment about the root point [N m] of the support on the beam, global
+    /// axes, from the residual `r` and the values of the held coordinates.
+    fn reaction(&self, r: &[f64], held: &[f64]) -> (S::Vec, S::Moment);
+}

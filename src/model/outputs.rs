@@ -1,0 +1,158 @@
+//! What a state means: tip kinematics, energies, the support reaction and the validity checks
+//! of the elements. Dimension-free, read through ports, elements and the support.
+
+use super::assembly::Model;
+use super::component::{ConstraintOut, Element, Env, LocalState};
+use super::load::point_force_residual;
+use super::planar::Planar;
+use super::space::{PortKin, Space};
+
+/// Scalar results of one state.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Outputs<S: Space = Planar> {
+    /// Tip position [m], global.
+    pub tip_position: S::Vec,
+    /// Tip velocity [m/s], global.
+    pub tip_velocity: S::Vec,
+    /// Orientation of the tip section: in the plane the angle of the tip tangent from global x
+    /// [rad], in (−π, π].
+    pub tip_angle: S::Attitude,
+    /// Kinetic energy [J].
+    pub kinetic: f64,
+    /// Strain energy [J].
+    pub strain: f64,
+    /// Gravity potential energy −∫ρA gᵀr dx [J] (zero at the origin).
+    pub potential: f64,
+    /// Force of the support on the beam at the root [N], global axes.
+    pub root_force: S::Vec,
+    /// Moment of the support on the beam about the root point [N m] (in the plane:
+    /// counter-clockwise positive; zero for a pinned root).
+    pub root_moment: S::Moment,
+}
+
+/// Validity measures of a model at one configuration.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ModelValidity {
+    /// Largest |axial strain| over the elements [-] (0 without elements that measure it).
+    pub max_axial_strain: f64,
+    /// Largest elastic deflection of a modal segment: (segment index in the scene, the
+    /// element's deflection measure).
+    pub modal_deflection: Option<(usize, f64)>,
+}
+
+impl<S: Space> Model<S> {
+    /// Outputs at a state (q, q̇, q̈, λ).
+    pub fn outputs(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> Outputs<S> {
+        let mut buf = vec![0.0; self.max_local_len()];
+        let tip = &self.tip.dofs;
+        let x = &mut buf[..tip.len()];
+        tip.gather(q, &self.held, x);
+        let kin = self.tip.part.kinematics(x);
+        let mut vel = S::Vec::default();
+        for k in 0..tip.len() {
+            if let Some(i) = tip.free(k) {
+                let dp = kin.jacobian(k);
+                for c in 0..S::DIM {
+                    vel[c] += dp[c] * v[i];
+                }
+            }
+        }
+        let mut o = Outputs {
+            tip_position: kin.position(),
+            tip_velocity: vel,
+            tip_angle: kin.attitude(),
+            ..Default::default()
+        };
+        for e in &self.elements {
+            let x = LocalState::new(&e.at.dofs, &self.held, (q, v, acc));
+            let en = e.at.part.energies(&x, &self.gravity);
+            o.kinetic += en.kinetic;
+            o.strain += en.strain;
+            o.potential += en.potential;
+        }
+        let r = self.held_residual((q, v, acc), lam, &mut buf);
+        (o.root_force, o.root_moment) = self.support.reaction(&r, &self.held);
+        o
+    }
+
+    /// Residual `M q̈ + f − f_ext + Φ_qᵀλ` of the held coordinates at full load: the generalized
+    /// force the support exerts on the beam, summed in the order of the assembly.
+    fn held_residual(
+        &self,
+        (q, v, acc): (&[f64], &[f64], &[f64]),
+        lam: &[f64],
+        buf: &mut [f64],
+    ) -> Vec<f64> {
+        // −0 is the exact additive identity: a coordinate reached once gets its term's bits
+        let mut r = vec![-0.0; self.held.len()];
+        let env = Env {
+            gravity: self.gravity,
+            load: 1.0,
+        };
+        let mut local = Vec::new();
+        for e in self.elements.iter().filter(|e| e.at.dofs.has_held()) {
+            let x = LocalState::new(&e.at.dofs, &self.held, (q, v, acc));
+            local.resize(x.len(), 0.0);
+            e.at.part.residual(&x, &env, &mut local);
+            e.at.dofs.scatter_held(&local, &mut r);
+        }
+        let tip = &self.tip.dofs;
+        if tip.has_held() {
+            let x = &mut buf[..tip.len()];
+            tip.gather(q, &self.held, x);
+            let kin = self.tip.part.kinematics(x);
+            local.resize(tip.len(), 0.0);
+            point_force_residual::<S>(&kin, &self.total_tip_force(), &mut local);
+            tip.scatter_held(&local, &mut r);
+        }
+        let mut out = ConstraintOut::default();
+        for c in self.constraints.iter().filter(|c| c.at.dofs.has_held()) {
+            let dofs = &c.at.dofs;
+            let d = dofs.len();
+            let x = &mut buf[..d];
+            dofs.gather(q, &self.held, x);
+            out.reset(c.rows, d);
+            c.at.part.eval(x, None, &mut out);
+            for row in 0..c.rows {
+                let l = lam[c.row + row];
+                local.clear();
+                local.extend(out.jac[row * d..(row + 1) * d].iter().map(|j| j * l));
+                dofs.scatter_held(&local, &mut r);
+            }
+        }
+        r
+    }
+
+    /// The validity measures of all elements at `q`, in one pass.
+    pub fn validity(&self, q: &[f64]) -> ModelValidity {
+        let mut out = ModelValidity::default();
+        // on the stack when it fits: this runs after every step
+        let mut stack = [0.0; 32];
+        let mut heap = Vec::new();
+        let buf = if self.max_local_len() <= stack.len() {
+            &mut stack[..]
+        } else {
+            heap.resize(self.max_local_len(), 0.0);
+            &mut heap[..]
+        };
+        for e in &self.elements {
+            let x = &mut buf[..e.at.dofs.len()];
+            e.at.dofs.gather(q, &self.held, x);
+            let v = e.at.part.validity(x);
+            out.max_axial_strain = out.max_axial_strain.max(v.axial_strain);
+            if let Some(d) = v.modal_deflection {
+                if out.modal_deflection.is_none_or(|(_, w)| d > w) {
+                    out.modal_deflection = Some((e.segment, d));
+                }
+            }
+        }
+        out
+    }
+
+    /// The elements of one kind `E` in summation order (e.g. the modal bodies).
+    pub fn elements_of<E: Element<S>>(&self) -> impl Iterator<Item = &E> + '_ {
+        self.elements
+            .iter()
+            .filter_map(|e| e.at.part.as_any().downcast_ref::<E>())
+    }
+}

@@ -1,0 +1,223 @@
+//! Ends of planar segments (ports) and the root support.
+//!
+//! An end has a position p(q) and an orientation: either an angle ψ(q) (modal side: frame
+//! angle, plus the elastic tip slope at a modal tip) or a slope vector s(q) (ANCF node: s = r′,
+//! its length is the axial stretch).
+
+use super::Planar;
+use crate::model::component::{Port, Support};
+use crate::model::modal::{rot, ModalBody};
+use crate::model::space::PortKin;
+use nalgebra::Vector2;
+use std::sync::Arc;
+
+/// Orientation of an end.
+#[derive(Debug, Clone)]
+pub enum Orientation {
+    /// Angle ψ [rad], with ∂ψ/∂q_local.
+    Angle(f64, Vec<f64>),
+    /// Slope vector s [-], with ∂s/∂q_local (one 2-vector per local coordinate).
+    Slope(Vector2<f64>, Vec<Vector2<f64>>),
+}
+
+impl Default for Orientation {
+    fn default() -> Self {
+        Orientation::Angle(0.0, Vec::new())
+    }
+}
+
+/// Kinematics of an end at one state, over its local coordinates.
+#[derive(Debug, Clone, Default)]
+pub struct EndKin {
+    /// Position [m].
+    pub p: Vector2<f64>,
+    /// ∂p/∂q_local.
+    pub dp: Vec<Vector2<f64>>,
+    /// Orientation.
+    pub orient: Orientation,
+    /// Curvature of p (modal tip only).
+    pub curv: Option<TipCurvature>,
+}
+
+/// Second derivatives of a modal tip position p = R + A(θ)[L − ½aᵀGa/L; φ(1)ᵀa]:
+/// ∂²p/∂θ² = −A u, ∂²p/∂θ∂a_k = J ∂p/∂a_k, ∂²p/∂a_j∂a_k = −A e_x G_jk / L.
+#[derive(Debug, Clone)]
+pub struct TipCurvature {
+    /// Local index of θ (the modal amplitudes follow it).
+    pub theta: usize,
+    /// A u_tip.
+    pub au: Vector2<f64>,
+    /// J ∂p/∂a_k.
+    pub j_dp_da: Vec<Vector2<f64>>,
+    /// A e_x / L.
+    pub ax_over_l: Vector2<f64>,
+    /// G (row-major n × n).
+    pub gram: Vec<f64>,
+}
+
+impl EndKin {
+    /// Adds μ·∂²p/∂q∂q (local × local) through `add(i, j, value)`.
+    pub fn add_point_hessian(&self, mu: Vector2<f64>, mut add: impl FnMut(usize, usize, f64)) {
+        if let Some(c) = &self.curv {
+            let it = c.theta;
+            add(it, it, -mu.dot(&c.au));
+            let n = c.j_dp_da.len();
+            for (k, v) in c.j_dp_da.iter().enumerate() {
+                let h = mu.dot(v);
+                add(it, it + 1 + k, h);
+                add(it + 1 + k, it, h);
+            }
+            let m = -mu.dot(&c.ax_over_l);
+            if m != 0.0 {
+                for j in 0..n {
+                    for k in 0..n {
+                        let g = c.gram[j * n + k];
+                        if g != 0.0 {
+                            add(it + 1 + j, it + 1 + k, m * g);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Angle of the end [rad]: ψ, or atan2 of the slope.
+    pub fn angle(&self) -> f64 {
+        match &self.orient {
+            Orientation::Angle(psi, _) => *psi,
+            Orientation::Slope(s, _) => s[1].atan2(s[0]),
+        }
+    }
+}
+
+impl PortKin<Planar> for EndKin {
+    fn position(&self) -> [f64; 2] {
+        self.p.into()
+    }
+
+    fn jacobian(&self, k: usize) -> [f64; 2] {
+        self.dp[k].into()
+    }
+
+    fn add_point_hessian(&self, mu: &[f64; 2], add: impl FnMut(usize, usize, f64)) {
+        EndKin::add_point_hessian(self, Vector2::from(*mu), add)
+    }
+
+    fn attitude(&self) -> f64 {
+        self.angle()
+    }
+}
+
+/// An ANCF node, local coordinates `[r_x, r_y, s_x, s_y]` (position [m], slope r′ [-]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NodePort;
+
+impl Port<Planar> for NodePort {
+    fn kinematics(&self, q: &[f64]) -> EndKin {
+        let z = Vector2::zeros();
+        EndKin {
+            p: Vector2::new(q[0], q[1]),
+            dp: vec![Vector2::x(), Vector2::y(), z, z],
+            orient: Orientation::Slope(
+                Vector2::new(q[2], q[3]),
+                vec![z, z, Vector2::x(), Vector2::y()],
+            ),
+            curv: None,
+        }
+    }
+}
+
+/// The tip (x = L) of a modal body, on the body's local coordinates `[R_x, R_y, θ, a…]`:
+/// position with the second-order foreshortening, angle θ + θ_J (frame plus elastic tip slope).
+#[derive(Debug, Clone)]
+pub struct ModalTipPort(pub Arc<ModalBody>);
+
+impl Port<Planar> for ModalTipPort {
+    fn kinematics(&self, ql: &[f64]) -> EndKin {
+        let b = &*self.0;
+        let n = b.modes();
+        let mut dpsi = vec![0.0; 3 + n];
+        dpsi[2] = 1.0;
+        let a = rot(ql[2]);
+        let (u, gk) = b.tip_local_and_gradient(ql);
+        let au = a * u;
+        let mut dp = vec![Vector2::x(), Vector2::y(), Vector2::new(-au[1], au[0])];
+        let mut ajk = Vec::with_capacity(n);
+        for k in 0..n {
+            let c = a * Vector2::new(-gk[k], b.basis.tip[k]);
+            dp.push(c);
+            ajk.push(Vector2::new(-c[1], c[0]));
+            dpsi[3 + k] = b.basis.tip_slope[k] / b.length;
+        }
+        EndKin {
+            p: Vector2::new(ql[0], ql[1]) + au,
+            dp,
+            orient: Orientation::Angle(ql[2] + b.tip_slope(ql), dpsi),
+            curv: Some(TipCurvature {
+                theta: 2,
+                au,
+                j_dp_da: ajk,
+                ax_over_l: a.column(0).into_owned() / b.length,
+                gram: b.basis.slope_gram.clone(),
+            }),
+        }
+    }
+}
+
+/// The root (frame origin) of a modal body, on the body's local coordinates: position R,
+/// angle θ.
+#[derive(Debug, Clone)]
+pub struct ModalRootPort(pub Arc<ModalBody>);
+
+impl Port<Planar> for ModalRootPort {
+    fn kinematics(&self, ql: &[f64]) -> EndKin {
+        let d = self.0.dim();
+        let mut dp = vec![Vector2::zeros(); d];
+        dp[0] = Vector2::x();
+        dp[1] = Vector2::y();
+        let mut dpsi = vec![0.0; d];
+        dpsi[2] = 1.0;
+        EndKin {
+            p: Vector2::new(ql[0], ql[1]),
+            dp,
+            orient: Orientation::Angle(ql[2], dpsi),
+            curv: None,
+        }
+    }
+}
+
+/// The root support of a planar beam: which held coordinates carry its force and moment.
+/// Indices are into the held values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RootSupport {
+    /// ANCF root node: the force is the residual of the held position; a clamped root also
+    /// holds the slope s, and the moment about the root is s × r_s.
+    Node {
+        /// Held x, y of the position.
+        position: [usize; 2],
+        /// Held x, y of the slope (clamped).
+        slope: Option<[usize; 2]>,
+    },
+    /// Modal root frame: the force is the residual of R; a clamped root also holds θ, and the
+    /// moment is its residual.
+    Frame {
+        /// Held x, y of R.
+        position: [usize; 2],
+        /// Held θ (clamped).
+        angle: Option<usize>,
+    },
+}
+
+impl Support<Planar> for RootSupport {
+    fn reaction(&self, r: &[f64], held: &[f64]) -> ([f64; 2], f64) {
+        match *self {
+            RootSupport::Node { position: p, slope } => {
+                let moment = slope.map_or(0.0, |[x, y]| held[x] * r[y] - held[y] * r[x]);
+                ([r[p[0]], r[p[1]]], moment)
+            }
+            RootSupport::Frame { position: p, angle } => {
+                ([r[p[0]], r[p[1]]], angle.map_or(0.0, |a| r[a]))
+            }
+        }
+    }
+}

@@ -1,0 +1,72 @@
+//! The dimension of a model, in one place: the generic assembly ([`super::Model`]) and outputs
+//! ([`super::Outputs`]) are written once over a [`Space`]; each space supplies its vector
+//! types and its port kinematics. [`super::planar::Planar`] is the plane; a spatial model is a
+//! second implementation beside it.
+
+use std::fmt::Debug;
+use std::ops::{Index, IndexMut};
+
+/// A space the beam lives in.
+pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
+    /// Number of global axes (2 in the plane).
+    const DIM: usize;
+    /// Names of the global axes, for variable names and CSV headers (`["x", "y"]`).
+    const AXES: &'static [&'static str];
+    /// Names of the components of a moment (`["z"]` in the plane).
+    const MOMENT_AXES: &'static [&'static str];
+    /// A global vector (position [m], velocity [m/s], force [N], gravity [m/s²]): `[f64; DIM]`.
+    type Vec: Copy
+        + Default
+        + Debug
+        + PartialEq
+        + Send
+        + Sync
+        + AsRef<[f64]>
+        + AsMut<[f64]>
+        + Index<usize, Output = f64>
+        + IndexMut<usize>;
+    /// A moment [N m], global axes: the z component in the plane.
+    type Moment: Copy + Default + Debug + PartialEq + Send + Sync;
+    /// The orientation of a section, for outputs: the angle of the tangent from global x [rad]
+    /// in the plane.
+    type Attitude: Copy + Default + Debug + PartialEq + Send + Sync;
+    /// Kinematics of a port (an attachment point) at one state.
+    type PortKin: PortKin<Self>;
+}
+
+/// Kinematics of a port at one state, over the port's local coordinates: what loads and
+/// outputs need from where they attach. Joints of a space read its richer concrete type.
+pub trait PortKin<S: Space>: Debug + Clone {
+    /// Position p [m], global axes.
+    fn position(&self) -> S::Vec;
+    /// ∂p/∂q_k for local coordinate k.
+    fn jacobian(&self, k: usize) -> S::Vec;
+    /// Adds μ·∂²p/∂q_i∂q_j through `add(i, j, value)` (local indices; each pair at most once).
+    fn add_point_hessian(&self, mu: &S::Vec, add: impl FnMut(usize, usize, f64));
+    /// Orientation of the section at the port.
+    fn attitude(&self) -> S::Attitude;
+}
+
+/// Dot product a·b of two global vectors, summed in axis order.
+pub fn dot<S: Space>(a: &S::Vec, b: &S::Vec) -> f64 {
+    a.as_ref()
+        .iter()
+        .zip(b.as_ref())
+        .map(|(x, y)| x * y)
+        .reduce(|s, t| s + t)
+        .unwrap_or(0.0)
+}
+
+/// `s·v`.
+pub fn scaled<S: Space>(s: f64, v: &S::Vec) -> S::Vec {
+    let mut out = *v;
+    for x in out.as_mut() {
+        *x *= s;
+    }
+    out
+}
+
+/// Whether any component of `v` is nonzero.
+pub fn is_nonzero<S: Space>(v: &S::Vec) -> bool {
+    v.as_ref().iter().any(|x| *x != 0.0)
+}
