@@ -10,9 +10,9 @@ use std::hint::black_box;
 use std::ptr;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use hybeam::fmi::entry;
-use hybeam::fmi::model::CoSimModel;
-use hybeam::fmi::types::fmi2CallbackFunctions;
+use fmi2::guard;
+use fmi2::types::fmi2CallbackFunctions;
+use fmi2::CoSimModel;
 use hybeam::toy::Toy;
 
 const SCENE: &str = include_str!("../scenes/toy.toml");
@@ -22,7 +22,7 @@ const H: f64 = 1e-3;
 fn fmi_overhead(c: &mut Criterion) {
     let mut group = c.benchmark_group("fmi_overhead");
 
-    let mut model = Toy::from_scene(SCENE).unwrap();
+    let mut model = Toy::from_resource(SCENE).unwrap();
     model.initialize(0.0).unwrap();
     let mut t = 0.0;
     group.bench_function("model do_step (direct)", |b| {
@@ -44,11 +44,11 @@ fn fmi_overhead(c: &mut Criterion) {
         componentEnvironment: ptr::null_mut(),
     };
     let name = CString::new("bench").unwrap();
-    let guid = CString::new(hybeam::fmi::guid::guid(SCENE.as_bytes())).unwrap();
+    let guid = CString::new(fmi2::guid::guid::<Toy>(SCENE.as_bytes())).unwrap();
     let uri = CString::new(format!("file://{}", resources.display())).unwrap();
     // SAFETY: valid arguments per the FMI 2.0 contract; the instance is freed below.
     unsafe {
-        let inst = entry::instantiate::<Toy>(
+        let inst = guard::fmi2Instantiate::<Toy>(
             name.as_ptr(),
             1,
             guid.as_ptr(),
@@ -58,20 +58,23 @@ fn fmi_overhead(c: &mut Criterion) {
             0,
         );
         assert!(!inst.is_null());
-        assert_eq!(entry::setup_experiment::<Toy>(inst, 0, 0.0, 0.0, 0, 0.0), 0);
-        assert_eq!(entry::enter_initialization_mode::<Toy>(inst), 0);
-        assert_eq!(entry::exit_initialization_mode::<Toy>(inst), 0);
+        assert_eq!(
+            guard::fmi2SetupExperiment::<Toy>(inst, 0, 0.0, 0.0, 0, 0.0),
+            0
+        );
+        assert_eq!(guard::fmi2EnterInitializationMode::<Toy>(inst), 0);
+        assert_eq!(guard::fmi2ExitInitializationMode::<Toy>(inst), 0);
         let mut t = 0.0;
         let mut failures = 0u64;
         group.bench_function("fmi2DoStep (FMI layer + model)", |b| {
             b.iter(|| {
-                let s = entry::do_step::<Toy>(black_box(inst), black_box(t), black_box(H), 1);
+                let s = guard::fmi2DoStep::<Toy>(black_box(inst), black_box(t), black_box(H), 1);
                 failures += (s != 0) as u64;
                 t += H;
             })
         });
         assert_eq!(failures, 0, "fmi2DoStep failed during the benchmark");
-        entry::free_instance::<Toy>(inst);
+        guard::fmi2FreeInstance::<Toy>(inst);
     }
     let _ = std::fs::remove_dir_all(&dir);
     group.finish();

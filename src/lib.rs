@@ -6,11 +6,10 @@
 //!
 //! Data flow: [`scene`] (TOML, validated) → [`model`] (assembly: elements, modal bodies,
 //! joints) → [`integrator`] (generalized-α, statics) → [`simulator`] (run to a time, outputs,
-//! snapshots) → [`cosim`] (the beam's FMU variables) → [`fmi`] (FMI 2.0 entry points, which
-//! know nothing of beams).
+//! snapshots) → [`cosim`] (the beam's FMU variables) → the `fmi2` crate (FMI 2.0 entry points,
+//! which know nothing of beams).
 
 pub mod cosim;
-pub mod fmi;
 pub mod integrator;
 pub mod linalg;
 pub mod model;
@@ -21,4 +20,4 @@ pub mod toy;
 /// The model this library exports as an FMU (and that `fmu-build` packages).
 pub type FmuModel = cosim::BeamFmu;
 
-export_fmi2!(FmuModel);
+fmi2::export_fmi2!(FmuModel);

@@ -6,8 +6,7 @@
 
 use std::path::Path;
 
-use hybeam::fmi::model::CoSimModel;
-use hybeam::fmi::{guid, xml};
+use fmi2::{guid, xml, CoSimModel};
 
 #[test]
 fn golden_model_descriptions_are_current() {
@@ -33,9 +32,10 @@ fn golden_model_descriptions_are_current() {
                 scene.display()
             )
         });
-        let model = hybeam::FmuModel::from_scene(std::str::from_utf8(&bytes).unwrap())
+        let model = hybeam::FmuModel::from_resource(std::str::from_utf8(&bytes).unwrap())
             .unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
-        let now = xml::model_description_of(&model, &id, &guid::guid(&bytes)).unwrap();
+        let now = xml::model_description_of(&model, &id, &guid::guid::<hybeam::FmuModel>(&bytes))
+            .unwrap();
         let golden = std::fs::read_to_string(&golden_path).unwrap();
         assert!(
             now == golden,

@@ -4,7 +4,7 @@
 //! fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]
 //! ```
 //!
-//! 1. reads the scene and builds the model with `from_scene` (a bad scene fails here, with the
+//! 1. reads the scene and builds the model with `from_resource` (a bad scene fails here, with the
 //!    scene's message and exit code 1);
 //! 2. computes the GUID and writes modelDescription.xml from the model's variable table;
 //! 3. runs `cargo build --release -p hybeam --lib` in this workspace and takes the cdylib that
@@ -21,8 +21,7 @@ mod package;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 
-use hybeam::fmi::model::CoSimModel;
-use hybeam::fmi::{guid, xml};
+use fmi2::{guid, xml, CoSimModel};
 use hybeam::FmuModel;
 
 const USAGE: &str = "usage: fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]";
@@ -85,7 +84,7 @@ fn run(args: &Args) -> Result<PathBuf, String> {
         .map_err(|e| format!("cannot read {}: {e}", scene_path.display()))?;
     let text = std::str::from_utf8(&scene)
         .map_err(|_| format!("{} is not valid UTF-8", scene_path.display()))?;
-    let model = FmuModel::from_scene(text)
+    let model = FmuModel::from_resource(text)
         .map_err(|e| format!("invalid scene {}: {e}", scene_path.display()))?;
     let id = match &args.id {
         Some(id) if xml::is_c_identifier(id) => id.clone(),
@@ -95,7 +94,7 @@ fn run(args: &Args) -> Result<PathBuf, String> {
             xml::model_identifier_from_stem(&stem)
         }
     };
-    let guid = guid::guid(&scene);
+    let guid = guid::guid::<FmuModel>(&scene);
     let description = xml::model_description_of(&model, &id, &guid)?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;

@@ -19,8 +19,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
-use hybeam::fmi::model::CoSimModel;
-use hybeam::fmi::types::{sys, *};
+use fmi2::types::{sys, *};
+use fmi2::CoSimModel;
 use libloading::Library;
 
 /// The scene the FMU is tested with.
@@ -234,12 +234,12 @@ pub fn file_uri(dir: &Path) -> String {
 
 /// The GUID of a scene.
 pub fn guid_of(scene: &str) -> String {
-    hybeam::fmi::guid::guid(scene.as_bytes())
+    fmi2::guid::guid::<hybeam::FmuModel>(scene.as_bytes())
 }
 
 /// Value reference of a variable of the scene's model, by name.
 pub fn vr(name: &str) -> u32 {
-    let model = hybeam::FmuModel::from_scene(SCENE).unwrap();
+    let model = hybeam::FmuModel::from_resource(SCENE).unwrap();
     model
         .variables()
         .iter()
@@ -251,7 +251,7 @@ pub fn vr(name: &str) -> u32 {
 /// The value references of the variables matching `pred`.
 /// Start value of a variable in the model description of `SCENE`.
 pub fn start_of(vr: u32) -> f64 {
-    let model = hybeam::FmuModel::from_scene(SCENE).unwrap();
+    let model = hybeam::FmuModel::from_resource(SCENE).unwrap();
     let v = model
         .variables()
         .iter()
@@ -260,8 +260,8 @@ pub fn start_of(vr: u32) -> f64 {
     v.start.expect("variable has a start value")
 }
 
-pub fn vrs_where(pred: impl Fn(&hybeam::fmi::model::Variable) -> bool) -> Vec<u32> {
-    let model = hybeam::FmuModel::from_scene(SCENE).unwrap();
+pub fn vrs_where(pred: impl Fn(&fmi2::Variable) -> bool) -> Vec<u32> {
+    let model = hybeam::FmuModel::from_resource(SCENE).unwrap();
     model
         .variables()
         .iter()
