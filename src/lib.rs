@@ -15,7 +15,6 @@ pub mod linalg;
 pub mod model;
 pub mod scene;
 pub mod simulator;
-pub mod toy;
 
 /// The model this library exports as an FMU (and that `fmu-build` packages).
 pub type FmuModel = cosim::BeamFmu;
