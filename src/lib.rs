@@ -15,8 +15,3 @@ pub mod linalg;
 pub mod model;
 pub mod scene;
 pub mod simulator;
-
-/// The model this library exports as an FMU (and that `fmu-build` packages).
-pub type FmuModel = cosim::BeamFmu;
-
-fmi2::export_fmi2!(FmuModel);

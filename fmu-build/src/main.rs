@@ -7,7 +7,7 @@
 //! 1. reads the scene and builds the model with `from_resource` (a bad scene fails here, with the
 //!    scene's message and exit code 1);
 //! 2. computes the GUID and writes modelDescription.xml from the model's variable table;
-//! 3. runs `cargo build --release -p hybeam --lib` in this workspace and takes the cdylib that
+//! 3. runs `cargo build --release -p hybeam-fmu --lib` in this workspace and takes the cdylib that
 //!    cargo reports (so `CARGO_TARGET_DIR` and cargo config are honoured);
 //! 4. zips `modelDescription.xml`, `binaries/linux64/<id>.so`, `resources/scene.toml` into
 //!    `DIR/<id>.fmu`.
@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 
 use fmi2::{guid, xml, CoSimModel};
-use hybeam::FmuModel;
+use hybeam_fmu::FmuModel;
 
 const USAGE: &str = "usage: fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]";
 
@@ -119,17 +119,17 @@ fn workspace_root() -> PathBuf {
         .unwrap_or_else(|| PathBuf::from("."))
 }
 
-/// Runs `cargo build --release -p hybeam --lib` and returns the cdylib path cargo reports.
+/// Runs `cargo build --release -p hybeam-fmu --lib` and returns the cdylib path cargo reports.
 fn build_cdylib() -> Result<PathBuf, String> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let root = workspace_root();
     eprintln!(
-        "fmu-build: building the hybeam cdylib (release) in {}",
+        "fmu-build: building the hybeam-fmu cdylib (release) in {}",
         root.display()
     );
     let output = Command::new(&cargo)
         .current_dir(&root)
-        .args(["build", "--release", "-p", "hybeam", "--lib"])
+        .args(["build", "--release", "-p", "hybeam-fmu", "--lib"])
         .arg("--message-format=json-render-diagnostics")
         .stdout(Stdio::piped())
         .stderr(Stdio::inherit())
@@ -145,7 +145,7 @@ fn build_cdylib() -> Result<PathBuf, String> {
             continue;
         };
         let is_lib = msg["reason"] == "compiler-artifact"
-            && msg["target"]["name"] == "hybeam"
+            && msg["target"]["name"] == "hybeam_fmu"
             && msg["target"]["kind"]
                 .as_array()
                 .is_some_and(|k| k.iter().any(|k| k == "cdylib"));
@@ -160,7 +160,7 @@ fn build_cdylib() -> Result<PathBuf, String> {
             return Ok(PathBuf::from(f));
         }
     }
-    Err("cargo did not report a hybeam cdylib artifact".into())
+    Err("cargo did not report a hybeam_fmu cdylib artifact".into())
 }
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! FMI 2.0 host tests through the C ABI of the built cdylib (see `host/mod.rs`).
 //!
-//! Model-agnostic where possible: variables are found by name (`tip.force.*`, `tip.position.*`)
-//! or by causality/variability, so the tests also run on the beam FMU after the merge.
-//! `HUGE_FORCE` must make the model's step fail (the toy refuses |F| > max_force).
+//! Variables are found by name (`tip.force.*`, `tip.position.*`) or by causality/variability,
+//! not by value reference. `HUGE_FORCE` must make the model's step fail (the beam refuses it:
+//! no convergence or beyond its validity).
 
 mod host;
 
@@ -15,7 +15,7 @@ use host::*;
 
 const H: f64 = 0.01;
 /// The magic of the beam's serialized FMU states.
-const MAGIC: [u8; 8] = <hybeam::FmuModel as CoSimModel>::STATE_MAGIC;
+const MAGIC: [u8; 8] = <hybeam_fmu::FmuModel as CoSimModel>::STATE_MAGIC;
 const HUGE_FORCE: f64 = 1e9;
 
 fn outputs() -> Vec<u32> {
