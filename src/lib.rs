@@ -6,10 +6,9 @@
 //!
 //! Data flow: [`scene`] (TOML, validated) → [`model`] (assembly: elements, modal bodies,
 //! joints) → [`integrator`] (generalized-α, statics) → [`simulator`] (run to a time, outputs,
-//! snapshots) → [`cosim`] (the beam's FMU variables) → the `fmi2` crate (FMI 2.0 entry points,
+//! snapshots) → `cosim` in `hybeam-fmu` (the beam's FMU variables) → the `fmi2` crate (FMI 2.0 entry points,
 //! which know nothing of beams).
 
-pub mod cosim;
 pub mod integrator;
 pub mod linalg;
 pub mod model;

@@ -9,10 +9,10 @@
 
 use fmi2::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
 
-use crate::integrator::{IntegratorMemory, JacobianPoint, State};
-use crate::model::Outputs;
-use crate::scene::{Scene, Section, SegmentKind};
-use crate::simulator::{Memory, Simulator, StepControl};
+use hybeam::integrator::{IntegratorMemory, JacobianPoint, State};
+use hybeam::model::Outputs;
+use hybeam::scene::{Scene, Section, SegmentKind};
+use hybeam::simulator::{Memory, Simulator, StepControl};
 
 /// What a value reference designates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -671,7 +671,11 @@ mod tests {
     use super::*;
 
     fn case1() -> String {
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/case1.toml")).unwrap()
+        std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/case1.toml"
+        ))
+        .unwrap()
     }
 
     #[test]
