@@ -6,8 +6,10 @@
 //!
 //! Data flow: [`scene`] (TOML, validated) → [`model`] (assembly: elements, modal bodies,
 //! joints) → [`integrator`] (generalized-α, statics) → [`simulator`] (run to a time, outputs,
-//! snapshots) → `cosim` in `hybeam-fmu` (the beam's FMU variables) → the `fmi2` crate (FMI 2.0 entry points,
-//! which know nothing of beams).
+//! snapshots). The engine knows nothing of FMI and has no `unsafe`: the `hybeam-fmu` crate
+//! adapts the simulator as the beam's FMU (`cosim`) and exports it through the `fmi2` crate.
+
+#![forbid(unsafe_code)]
 
 pub mod integrator;
 pub mod linalg;
