@@ -7,8 +7,9 @@
 //! 1. reads the scene and builds the model with `from_resource` (a bad scene fails here, with the
 //!    scene's message and exit code 1);
 //! 2. computes the GUID and writes modelDescription.xml from the model's variable table;
-//! 3. runs `cargo build --release -p hybeam-fmu --lib` in this workspace and takes the cdylib that
-//!    cargo reports (so `CARGO_TARGET_DIR` and cargo config are honoured);
+//! 3. runs `cargo build --profile fmu-release -p hybeam-fmu --lib` in this workspace (release
+//!    code without debug info) and takes the cdylib that cargo reports (so `CARGO_TARGET_DIR`
+//!    and cargo config are honoured);
 //! 4. zips `modelDescription.xml`, `binaries/linux64/<id>.so`, `resources/scene.toml` into
 //!    `DIR/<id>.fmu`.
 //!
@@ -119,17 +120,21 @@ fn workspace_root() -> PathBuf {
         .unwrap_or_else(|| PathBuf::from("."))
 }
 
-/// Runs `cargo build --release -p hybeam-fmu --lib` and returns the cdylib path cargo reports.
+/// Cargo profile of the shipped binary (`[profile.fmu-release]`: release without debug info).
+const PROFILE: &str = "fmu-release";
+
+/// Runs `cargo build --profile fmu-release -p hybeam-fmu --lib` and returns the cdylib path
+/// cargo reports.
 fn build_cdylib() -> Result<PathBuf, String> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let root = workspace_root();
     eprintln!(
-        "fmu-build: building the hybeam-fmu cdylib (release) in {}",
+        "fmu-build: building the hybeam-fmu cdylib (profile {PROFILE}) in {}",
         root.display()
     );
     let output = Command::new(&cargo)
         .current_dir(&root)
-        .args(["build", "--release", "-p", "hybeam-fmu", "--lib"])
+        .args(["build", "--profile", PROFILE, "-p", "hybeam-fmu", "--lib"])
         .arg("--message-format=json-render-diagnostics")
         .stdout(Stdio::piped())
         .stderr(Stdio::inherit())
