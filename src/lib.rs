@@ -6,19 +6,13 @@
 //!
 //! Data flow: [`scene`] (TOML, validated) → [`model`] (assembly: elements, modal bodies,
 //! joints) → [`integrator`] (generalized-α, statics) → [`simulator`] (run to a time, outputs,
-//! snapshots) → [`cosim`] (the beam's FMU variables) → [`fmi`] (FMI 2.0 entry points, which
-//! know nothing of beams).
+//! snapshots). The engine knows nothing of FMI and has no `unsafe`: the `hybeam-fmu` crate
+//! adapts the simulator as the beam's FMU (`cosim`) and exports it through the `fmi2` crate.
 
-pub mod cosim;
-pub mod fmi;
+#![forbid(unsafe_code)]
+
 pub mod integrator;
 pub mod linalg;
 pub mod model;
 pub mod scene;
 pub mod simulator;
-pub mod toy;
-
-/// The model this library exports as an FMU (and that `fmu-build` packages).
-pub type FmuModel = cosim::BeamFmu;
-
-export_fmi2!(FmuModel);

@@ -29,14 +29,13 @@ fn recording() -> bool {
     std::env::var_os("HYBEAM_RECORD_GOLDEN").is_some()
 }
 
-/// Every shipped beam scene (all of `scenes/` but the FMI layer's toy).
+/// Every shipped beam scene (all of `scenes/`).
 fn shipped_scenes() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .filter(|p| p.file_stem().is_some_and(|s| s != "toy"))
         .collect();
     v.sort();
     v

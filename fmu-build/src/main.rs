@@ -4,11 +4,12 @@
 //! fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]
 //! ```
 //!
-//! 1. reads the scene and builds the model with `from_scene` (a bad scene fails here, with the
+//! 1. reads the scene and builds the model with `from_resource` (a bad scene fails here, with the
 //!    scene's message and exit code 1);
 //! 2. computes the GUID and writes modelDescription.xml from the model's variable table;
-//! 3. runs `cargo build --release -p hybeam --lib` in this workspace and takes the cdylib that
-//!    cargo reports (so `CARGO_TARGET_DIR` and cargo config are honoured);
+//! 3. runs `cargo build --profile fmu-release -p hybeam-fmu --lib` in this workspace (release
+//!    code without debug info) and takes the cdylib that cargo reports (so `CARGO_TARGET_DIR`
+//!    and cargo config are honoured);
 //! 4. zips `modelDescription.xml`, `binaries/linux64/<id>.so`, `resources/scene.toml` into
 //!    `DIR/<id>.fmu`.
 //!
@@ -22,9 +23,8 @@ use clap::Parser;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 
-use hybeam::fmi::model::CoSimModel;
-use hybeam::fmi::{guid, xml};
-use hybeam::FmuModel;
+use fmi2::{guid, xml, CoSimModel};
+use hybeam_fmu::FmuModel;
 
 /// Package a hybeam scene as an FMI 2.0 co-simulation FMU.
 #[derive(Debug, Parser)]
@@ -63,7 +63,7 @@ fn run(args: &Args) -> Result<PathBuf, String> {
         .map_err(|e| format!("cannot read {}: {e}", scene_path.display()))?;
     let text = std::str::from_utf8(&scene)
         .map_err(|_| format!("{} is not valid UTF-8", scene_path.display()))?;
-    let model = FmuModel::from_scene(text)
+    let model = FmuModel::from_resource(text)
         .map_err(|e| format!("invalid scene {}: {e}", scene_path.display()))?;
     let id = match &args.id {
         Some(id) if xml::is_c_identifier(id) => id.clone(),
@@ -73,7 +73,7 @@ fn run(args: &Args) -> Result<PathBuf, String> {
             xml::model_identifier_from_stem(&stem)
         }
     };
-    let guid = guid::guid(&scene);
+    let guid = guid::guid::<FmuModel>(&scene);
     let description = xml::model_description_of(&model, &id, &guid)?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
@@ -98,17 +98,21 @@ fn workspace_root() -> PathBuf {
         .unwrap_or_else(|| PathBuf::from("."))
 }
 
-/// Runs `cargo build --release -p hybeam --lib` and returns the cdylib path cargo reports.
+/// Cargo profile of the shipped binary (`[profile.fmu-release]`: release without debug info).
+const PROFILE: &str = "fmu-release";
+
+/// Runs `cargo build --profile fmu-release -p hybeam-fmu --lib` and returns the cdylib path
+/// cargo reports.
 fn build_cdylib() -> Result<PathBuf, String> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let root = workspace_root();
     eprintln!(
-        "fmu-build: building the hybeam cdylib (release) in {}",
+        "fmu-build: building the hybeam-fmu cdylib (profile {PROFILE}) in {}",
         root.display()
     );
     let output = Command::new(&cargo)
         .current_dir(&root)
-        .args(["build", "--release", "-p", "hybeam", "--lib"])
+        .args(["build", "--profile", PROFILE, "-p", "hybeam-fmu", "--lib"])
         .arg("--message-format=json-render-diagnostics")
         .stdout(Stdio::piped())
         .stderr(Stdio::inherit())
@@ -124,7 +128,7 @@ fn build_cdylib() -> Result<PathBuf, String> {
             continue;
         };
         let is_lib = msg["reason"] == "compiler-artifact"
-            && msg["target"]["name"] == "hybeam"
+            && msg["target"]["name"] == "hybeam_fmu"
             && msg["target"]["kind"]
                 .as_array()
                 .is_some_and(|k| k.iter().any(|k| k == "cdylib"));
@@ -139,7 +143,7 @@ fn build_cdylib() -> Result<PathBuf, String> {
             return Ok(PathBuf::from(f));
         }
     }
-    Err("cargo did not report a hybeam cdylib artifact".into())
+    Err("cargo did not report a hybeam_fmu cdylib artifact".into())
 }
 
 #[cfg(test)]

@@ -1,9 +1,10 @@
 //! A minimal FMI 2.0 host for the tests: loads the built cdylib with libloading and drives it
 //! through the C ABI, capturing every logger call.
 //!
-//! The library is the `libhybeam.so` that `cargo test` builds next to the test executable, together
-//! with the rlib the test links (the lib target has `crate-type = ["rlib", "cdylib"]`). The scene is `SCENE` (the toy now; the beam after the
-//! merge), written into a temporary `resources/` folder under `CARGO_TARGET_TMPDIR`.
+//! The library is the `libhybeam_fmu.so` that `cargo test` builds next to the test executable,
+//! together with the rlib the test links (the lib target has `crate-type = ["rlib", "cdylib"]`).
+//! The scene is `SCENE` (Case 1), written into a temporary `resources/` folder under
+//! `CARGO_TARGET_TMPDIR`.
 //!
 //! The logger: FMI 2.0's logger is C-variadic, which stable Rust cannot define. The FMU always
 //! calls it as `logger(env, name, status, category, "%s", message)`, so the test logger is
@@ -19,12 +20,12 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
-use hybeam::fmi::model::CoSimModel;
-use hybeam::fmi::types::{sys, *};
+use fmi2::types::{sys, *};
+use fmi2::CoSimModel;
 use libloading::Library;
 
 /// The scene the FMU is tested with.
-pub const SCENE: &str = include_str!("../../scenes/case1.toml");
+pub const SCENE: &str = include_str!("../../../../scenes/case1.toml");
 
 /// fmi2 status codes.
 pub const OK: fmi2Status = 0;
@@ -182,12 +183,12 @@ api! {
 }
 
 /// Path of the cdylib built with this test. Cargo writes the cdylib of the library under test
-/// next to the test executable (`target/<profile>/deps/libhybeam.so`, built together with the
-/// rlib the test links); `target/<profile>/libhybeam.so` (from `cargo build --lib`) is the
+/// next to the test executable (`target/<profile>/deps/libhybeam_fmu.so`, built together with the
+/// rlib the test links); `target/<profile>/libhybeam_fmu.so` (from `cargo build --lib`) is the
 /// fallback.
 pub fn library_path() -> PathBuf {
     let file = format!(
-        "{}hybeam{}",
+        "{}hybeam_fmu{}",
         std::env::consts::DLL_PREFIX,
         std::env::consts::DLL_SUFFIX
     );
@@ -198,7 +199,9 @@ pub fn library_path() -> PathBuf {
         .iter()
         .find(|p| p.exists())
         .cloned()
-        .unwrap_or_else(|| panic!("{file} not found in {candidates:?}: run `cargo build --lib`"))
+        .unwrap_or_else(|| {
+            panic!("{file} not found in {candidates:?}: run `cargo build -p hybeam-fmu --lib`")
+        })
 }
 
 /// The loaded library (loaded once per test process).
@@ -234,12 +237,12 @@ pub fn file_uri(dir: &Path) -> String {
 
 /// The GUID of a scene.
 pub fn guid_of(scene: &str) -> String {
-    hybeam::fmi::guid::guid(scene.as_bytes())
+    fmi2::guid::guid::<hybeam_fmu::FmuModel>(scene.as_bytes())
 }
 
 /// Value reference of a variable of the scene's model, by name.
 pub fn vr(name: &str) -> u32 {
-    let model = hybeam::FmuModel::from_scene(SCENE).unwrap();
+    let model = hybeam_fmu::FmuModel::from_resource(SCENE).unwrap();
     model
         .variables()
         .iter()
@@ -251,7 +254,7 @@ pub fn vr(name: &str) -> u32 {
 /// The value references of the variables matching `pred`.
 /// Start value of a variable in the model description of `SCENE`.
 pub fn start_of(vr: u32) -> f64 {
-    let model = hybeam::FmuModel::from_scene(SCENE).unwrap();
+    let model = hybeam_fmu::FmuModel::from_resource(SCENE).unwrap();
     let v = model
         .variables()
         .iter()
@@ -260,8 +263,8 @@ pub fn start_of(vr: u32) -> f64 {
     v.start.expect("variable has a start value")
 }
 
-pub fn vrs_where(pred: impl Fn(&hybeam::fmi::model::Variable) -> bool) -> Vec<u32> {
-    let model = hybeam::FmuModel::from_scene(SCENE).unwrap();
+pub fn vrs_where(pred: impl Fn(&fmi2::Variable) -> bool) -> Vec<u32> {
+    let model = hybeam_fmu::FmuModel::from_resource(SCENE).unwrap();
     model
         .variables()
         .iter()

@@ -16,7 +16,6 @@ use std::io;
 use quick_xml::events::{BytesDecl, Event};
 use quick_xml::Writer;
 
-use super::guid::CRATE_VERSION;
 use super::log::LogCategory;
 use super::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
 
@@ -81,18 +80,29 @@ pub fn model_identifier_from_stem(stem: &str) -> String {
     id
 }
 
-/// modelDescription.xml for `model`.
+/// modelDescription.xml for `model` (generationTool [`CoSimModel::GENERATION_TOOL`]).
 pub fn model_description_of<M: CoSimModel>(
     model: &M,
     model_identifier: &str,
     guid: &str,
 ) -> Result<String, String> {
-    model_description(
-        &model.model_info(),
-        model.variables(),
+    let ids = Identity {
         model_identifier,
         guid,
-    )
+        generation_tool: M::GENERATION_TOOL,
+    };
+    model_description(&model.model_info(), model.variables(), &ids)
+}
+
+/// The identifying attributes of a modelDescription.xml.
+#[derive(Debug, Clone, Copy)]
+pub struct Identity<'a> {
+    /// modelIdentifier (a C identifier: the binary's name).
+    pub model_identifier: &'a str,
+    /// guid.
+    pub guid: &'a str,
+    /// generationTool.
+    pub generation_tool: &'a str,
 }
 
 /// Checks what the XML schema and fmpy's validation require of the variable table and
@@ -152,17 +162,16 @@ pub fn validate(info: &ModelInfo, vars: &[Variable], model_identifier: &str) -> 
     Ok(())
 }
 
-/// modelDescription.xml (UTF-8, trailing newline) for this model information, variable table,
-/// modelIdentifier and GUID. Fails if [`validate`] fails.
+/// modelDescription.xml (UTF-8, trailing newline) for this model information, variable table
+/// and identity. Fails if [`validate`] fails.
 pub fn model_description(
     info: &ModelInfo,
     vars: &[Variable],
-    model_identifier: &str,
-    guid: &str,
+    ids: &Identity,
 ) -> Result<String, String> {
-    validate(info, vars, model_identifier)?;
+    validate(info, vars, ids.model_identifier)?;
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
-    write_document(&mut w, info, vars, model_identifier, guid)
+    write_document(&mut w, info, vars, ids)
         .map_err(|e| format!("writing modelDescription.xml: {e}"))?;
     let mut text = String::from_utf8(w.into_inner()).map_err(|e| e.to_string())?;
     text.push('\n');
@@ -178,21 +187,19 @@ fn write_document(
     w: &mut Writer<Vec<u8>>,
     info: &ModelInfo,
     vars: &[Variable],
-    model_identifier: &str,
-    guid: &str,
+    ids: &Identity,
 ) -> io::Result<()> {
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))?;
-    let tool = format!("hybeam {CRATE_VERSION} fmu-build");
     let mut root = vec![
         ("fmiVersion", "2.0"),
         ("modelName", info.model_name.as_str()),
-        ("guid", guid),
+        ("guid", ids.guid),
     ];
     if !info.description.is_empty() {
         root.push(("description", info.description.as_str()));
     }
     root.extend([
-        ("generationTool", tool.as_str()),
+        ("generationTool", ids.generation_tool),
         ("variableNamingConvention", "structured"),
         ("numberOfEventIndicators", "0"),
     ]);
@@ -201,7 +208,7 @@ fn write_document(
         .write_inner_content(|w| {
             w.create_element("CoSimulation")
                 .with_attributes([
-                    ("modelIdentifier", model_identifier),
+                    ("modelIdentifier", ids.model_identifier),
                     ("needsExecutionTool", "false"),
                     ("canHandleVariableCommunicationStepSize", "true"),
                     ("canInterpolateInputs", "false"),
@@ -363,6 +370,12 @@ mod tests {
         }
     }
 
+    const IDS: Identity = Identity {
+        model_identifier: "m",
+        guid: "{g}",
+        generation_tool: "test <tool>",
+    };
+
     fn info() -> ModelInfo {
         ModelInfo {
             model_name: "m".into(),
@@ -388,9 +401,10 @@ mod tests {
             var("u", 1, Causality::Input, Variability::Continuous, Some(0.0)),
             var("y", 2, Causality::Output, Variability::Continuous, None),
         ];
-        let a = model_description(&info(), &vars, "m", "{g}").unwrap();
-        assert_eq!(a, model_description(&info(), &vars, "m", "{g}").unwrap());
+        let a = model_description(&info(), &vars, &IDS).unwrap();
+        assert_eq!(a, model_description(&info(), &vars, &IDS).unwrap());
         assert!(a.contains("d &lt;&amp;&gt; &quot;q&quot;"));
+        assert!(a.contains(r#"generationTool="test &lt;tool&gt;""#));
         assert!(a.contains(r#"<Unknown index="3" dependencies=""/>"#));
         assert!(a.contains(r#"<Real unit="m" start="2.0"/>"#));
         assert!(a.contains(r#"stepSize="0.001""#));
@@ -430,13 +444,17 @@ mod tests {
             },
         ];
         for v in bad {
-            assert!(model_description(&info(), &[v], "m", "{g}").is_err());
+            assert!(model_description(&info(), &[v], &IDS).is_err());
         }
         let dup = [
             var("a", 0, Causality::Output, Variability::Continuous, None),
             var("b", 0, Causality::Output, Variability::Continuous, None),
         ];
-        assert!(model_description(&info(), &dup, "m", "{g}").is_err());
-        assert!(model_description(&info(), &[], "not-an-id", "{g}").is_err());
+        assert!(model_description(&info(), &dup, &IDS).is_err());
+        let bad_id = Identity {
+            model_identifier: "not-an-id",
+            ..IDS
+        };
+        assert!(model_description(&info(), &[], &bad_id).is_err());
     }
 }

@@ -6,12 +6,11 @@
 
 use std::path::Path;
 
-use hybeam::fmi::model::CoSimModel;
-use hybeam::fmi::{guid, xml};
+use fmi2::{guid, xml, CoSimModel};
 
 #[test]
 fn golden_model_descriptions_are_current() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let mut goldens: Vec<_> = std::fs::read_dir(root.join("modelDescription"))
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -33,9 +32,11 @@ fn golden_model_descriptions_are_current() {
                 scene.display()
             )
         });
-        let model = hybeam::FmuModel::from_scene(std::str::from_utf8(&bytes).unwrap())
+        let model = hybeam_fmu::FmuModel::from_resource(std::str::from_utf8(&bytes).unwrap())
             .unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
-        let now = xml::model_description_of(&model, &id, &guid::guid(&bytes)).unwrap();
+        let now =
+            xml::model_description_of(&model, &id, &guid::guid::<hybeam_fmu::FmuModel>(&bytes))
+                .unwrap();
         let golden = std::fs::read_to_string(&golden_path).unwrap();
         assert!(
             now == golden,

@@ -1,9 +1,6 @@
-//! The `fmuResourceLocation` URI of fmi2Instantiate and the scene file it points to.
+//! The `fmuResourceLocation` URI of fmi2Instantiate and the model's resource file in it.
 
 use std::path::PathBuf;
-
-/// Name of the scene file inside the FMU's `resources/` folder.
-pub const SCENE_FILE: &str = "scene.toml";
 
 /// The local directory named by an FMI 2.0 resource location.
 ///
@@ -81,8 +78,8 @@ fn bytes_to_path(bytes: Vec<u8>) -> PathBuf {
     PathBuf::from(String::from_utf8_lossy(&bytes).into_owned())
 }
 
-/// Reads `resources/scene.toml` from the directory named by `location`.
-pub fn read_scene(location: &str) -> Result<Vec<u8>, String> {
+/// Reads the file `name` from the resource directory named by `location`.
+pub fn read_resource(location: &str, name: &str) -> Result<Vec<u8>, String> {
     let dir = resource_dir(location)?;
     if !dir.is_dir() {
         return Err(format!(
@@ -90,7 +87,7 @@ pub fn read_scene(location: &str) -> Result<Vec<u8>, String> {
             dir.display()
         ));
     }
-    let file = dir.join(SCENE_FILE);
+    let file = dir.join(name);
     std::fs::read(&file).map_err(|e| format!("cannot read {}: {e}", file.display()))
 }
 

@@ -7,13 +7,13 @@ mod host;
 
 use std::ffi::{c_void, CString};
 
-use host::{file_uri, guid_of, resources_with, test_logger, Callbacks, Log, DISCARD, FATAL, OK};
-use hybeam::fmi::entry;
-use hybeam::fmi::model::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
-use hybeam::fmi::types::{
+use fmi2::guard;
+use fmi2::types::{
     fmi2CallbackFunctions, fmi2Component, FMI2_FALSE, FMI2_LAST_SUCCESSFUL_TIME, FMI2_TERMINATED,
     FMI2_TRUE,
 };
+use fmi2::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+use host::{file_uri, resources_with, test_logger, Callbacks, Log, DISCARD, FATAL, OK};
 
 struct Panicky {
     vars: Vec<Variable>,
@@ -22,7 +22,13 @@ struct Panicky {
 }
 
 impl CoSimModel for Panicky {
-    fn from_scene(scene: &str) -> Result<Self, String> {
+    const RESOURCE: &'static str = "scene.toml";
+    const GUID_NAMESPACE: &'static str = "test.panicky";
+    const BUILD_ID: &'static str = "panicky/1";
+    const GENERATION_TOOL: &'static str = "test";
+    const STATE_MAGIC: [u8; 8] = *b"PANICKY1";
+
+    fn from_resource(scene: &str) -> Result<Self, String> {
         Ok(Self {
             terminate: scene == "terminate",
             vars: vec![Variable {
@@ -85,10 +91,10 @@ unsafe fn initialized(scene: &str) -> (fmi2Component, Box<Log>) {
         component_environment: &*log as *const Log as *mut c_void,
     };
     let name = CString::new("panicky").unwrap();
-    let guid = CString::new(guid_of(scene)).unwrap();
+    let guid = CString::new(fmi2::guid::guid::<Panicky>(scene.as_bytes())).unwrap();
     let location = CString::new(file_uri(&resources_with(scene, "panic"))).unwrap();
     unsafe {
-        let c = entry::instantiate::<Panicky>(
+        let c = guard::fmi2Instantiate::<Panicky>(
             name.as_ptr(),
             1,
             guid.as_ptr(),
@@ -98,8 +104,8 @@ unsafe fn initialized(scene: &str) -> (fmi2Component, Box<Log>) {
             0,
         );
         assert!(!c.is_null(), "{:?}", log.entries());
-        assert_eq!(entry::enter_initialization_mode::<Panicky>(c), OK);
-        assert_eq!(entry::exit_initialization_mode::<Panicky>(c), OK);
+        assert_eq!(guard::fmi2EnterInitializationMode::<Panicky>(c), OK);
+        assert_eq!(guard::fmi2ExitInitializationMode::<Panicky>(c), OK);
         (c, log)
     }
 }
@@ -108,15 +114,15 @@ unsafe fn initialized(scene: &str) -> (fmi2Component, Box<Log>) {
 fn panic_in_do_step_is_fatal_not_an_unwind() {
     unsafe {
         let (c, log) = initialized("panic");
-        assert_eq!(entry::do_step::<Panicky>(c, 0.0, 0.1, 0), FATAL);
+        assert_eq!(guard::fmi2DoStep::<Panicky>(c, 0.0, 0.1, 0), FATAL);
         log.assert_last(
             FATAL,
             "logStatusFatal",
             &["fmi2DoStep", "panic: model bug in do_step"],
         );
         // Fatal: every other call is refused, FreeInstance still frees.
-        assert_eq!(entry::terminate::<Panicky>(c), host::ERROR);
-        entry::free_instance::<Panicky>(c);
+        assert_eq!(guard::fmi2Terminate::<Panicky>(c), host::ERROR);
+        guard::fmi2FreeInstance::<Panicky>(c);
     }
 }
 
@@ -124,7 +130,7 @@ fn panic_in_do_step_is_fatal_not_an_unwind() {
 fn terminate_error_is_discard_with_terminated_true() {
     unsafe {
         let (c, log) = initialized("terminate");
-        assert_eq!(entry::do_step::<Panicky>(c, 0.0, 0.1, 0), DISCARD);
+        assert_eq!(guard::fmi2DoStep::<Panicky>(c, 0.0, 0.1, 0), DISCARD);
         log.assert_last(
             DISCARD,
             "logStatusDiscard",
@@ -132,17 +138,17 @@ fn terminate_error_is_discard_with_terminated_true() {
         );
         let mut terminated = FMI2_FALSE;
         assert_eq!(
-            entry::get_boolean_status::<Panicky>(c, FMI2_TERMINATED, &mut terminated),
+            guard::fmi2GetBooleanStatus::<Panicky>(c, FMI2_TERMINATED, &mut terminated),
             OK
         );
         assert_eq!(terminated, FMI2_TRUE);
         let mut last = f64::NAN;
         assert_eq!(
-            entry::get_real_status::<Panicky>(c, FMI2_LAST_SUCCESSFUL_TIME, &mut last),
+            guard::fmi2GetRealStatus::<Panicky>(c, FMI2_LAST_SUCCESSFUL_TIME, &mut last),
             OK
         );
         assert_eq!(last, 0.0);
-        assert_eq!(entry::terminate::<Panicky>(c), OK);
-        entry::free_instance::<Panicky>(c);
+        assert_eq!(guard::fmi2Terminate::<Panicky>(c), OK);
+        guard::fmi2FreeInstance::<Panicky>(c);
     }
 }

@@ -7,11 +7,12 @@
 //! density 6, damping_time 7, damping_ratio 8). A scene only gets the variables it needs: no
 //! damping parameters without damping, no width/height on a round section.
 
-use crate::fmi::model::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
-use crate::integrator::{IntegratorMemory, JacobianPoint, State};
-use crate::model::Outputs;
-use crate::scene::{Scene, Section, SegmentKind};
-use crate::simulator::{Memory, Simulator, StepControl};
+use fmi2::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+
+use hybeam::integrator::{IntegratorMemory, JacobianPoint, State};
+use hybeam::model::Outputs;
+use hybeam::scene::{Scene, Section, SegmentKind};
+use hybeam::simulator::{Memory, Simulator, StepControl};
 
 /// What a value reference designates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -451,7 +452,14 @@ impl Reader<'_> {
 }
 
 impl CoSimModel for BeamFmu {
-    fn from_scene(scene_toml: &str) -> Result<Self, String> {
+    const RESOURCE: &'static str = "scene.toml";
+    const GUID_NAMESPACE: &'static str = "hybeam.fmi2";
+    const BUILD_ID: &'static str = concat!("hybeam/", env!("CARGO_PKG_VERSION"));
+    const GENERATION_TOOL: &'static str =
+        concat!("hybeam ", env!("CARGO_PKG_VERSION"), " fmu-build");
+    const STATE_MAGIC: [u8; 8] = *b"HYBFMI2S";
+
+    fn from_resource(scene_toml: &str) -> Result<Self, String> {
         let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
         let (vars, slots) = table(&scene);
         let sim = Simulator::new(scene.clone())?;
@@ -555,7 +563,7 @@ impl CoSimModel for BeamFmu {
     }
 
     fn reset(&mut self) -> Result<(), String> {
-        let fresh = Self::from_scene(&self.scene_text)?;
+        let fresh = Self::from_resource(&self.scene_text)?;
         *self = fresh;
         Ok(())
     }
@@ -663,12 +671,16 @@ mod tests {
     use super::*;
 
     fn case1() -> String {
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/case1.toml")).unwrap()
+        std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/case1.toml"
+        ))
+        .unwrap()
     }
 
     #[test]
     fn variables_follow_the_scene() {
-        let m = BeamFmu::from_scene(&case1()).unwrap();
+        let m = BeamFmu::from_resource(&case1()).unwrap();
         let names: Vec<&str> = m.variables().iter().map(|v| v.name.as_str()).collect();
         assert!(names.contains(&"modal.diameter") && names.contains(&"ancf.youngs_modulus"));
         assert!(
@@ -676,7 +688,7 @@ mod tests {
             "undamped scene has no damping parameters"
         );
         let case2 = case1().replace("modes = 4", "modes = 4\ndamping_time = 1e-3");
-        let m2 = BeamFmu::from_scene(&case2).unwrap();
+        let m2 = BeamFmu::from_resource(&case2).unwrap();
         assert!(m2
             .variables()
             .iter()
@@ -690,14 +702,14 @@ mod tests {
     #[test]
     fn snapshot_restores_bit_for_bit_in_a_fresh_instance() {
         let text = case1();
-        let mut a = BeamFmu::from_scene(&text).unwrap();
+        let mut a = BeamFmu::from_resource(&text).unwrap();
         a.initialize(0.0).unwrap();
         for k in 0..5 {
             a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
         }
         a.set_real(2, -0.01).unwrap();
         let bytes = a.save_state();
-        let mut b = BeamFmu::from_scene(&text).unwrap();
+        let mut b = BeamFmu::from_resource(&text).unwrap();
         b.load_state(&bytes).unwrap();
         for k in 5..20 {
             a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
@@ -716,7 +728,7 @@ mod tests {
 
     #[test]
     fn bad_parameter_is_refused_with_its_name() {
-        let mut m = BeamFmu::from_scene(&case1()).unwrap();
+        let mut m = BeamFmu::from_resource(&case1()).unwrap();
         let e = m.set_real(1001, -0.2).unwrap_err();
         assert!(e.contains("modal.length") && e.contains("> 0"), "{e}");
         assert!(m.set_real(10, 1.0).unwrap_err().contains("output"));

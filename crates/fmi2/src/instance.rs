@@ -1,30 +1,27 @@
-//! One FMU instance: what an `fmi2Component` points to.
+//! One FMU instance: what an `fmi2Component` points to. Its methods in `calls.rs` are the 34
+//! functions as safe Rust; this file holds the struct, its construction and its logging.
 
-use std::ffi::{c_char, CString};
+use std::ffi::{CStr, CString};
 
 use super::fmu_state::LayerState;
-use super::log::{self, LogCategory, LogFilter};
+use super::log::{self, LogCategory, LogFilter, Logger};
 use super::model::{CoSimModel, Variable};
 use super::state::{Function, ModelState};
-use super::types::{fmi2CallbackFunctions, Status};
+use super::types::Status;
 
-/// Marks a live [`Instance`] allocation (checked on every `fmi2Component` the host hands back,
-/// cleared by fmi2FreeInstance; a best-effort guard against stale or foreign pointers).
-pub(crate) const LIVE: u64 = 0x4859_4245_414d_4649;
-
-/// One FMU instance. Instances share nothing: each owns its model, callbacks and name.
+/// One FMU instance. Instances share nothing: each owns its model, logger and name.
+#[derive(Debug)]
 pub struct Instance<M> {
-    pub(crate) live: u64,
     name: CString,
-    /// The host's callbacks, copied by value at fmi2Instantiate.
-    callbacks: fmi2CallbackFunctions,
+    /// Where messages go.
+    logger: Logger,
     /// Enabled log categories.
     pub log_filter: LogFilter,
     /// State machine, times and termination flags: the FMI layer's part of an FMU state.
     pub layer: LayerState,
     /// Status of the last fmi2DoStep (fmi2GetStatus(fmi2DoStepStatus)).
     pub last_do_step_status: Status,
-    /// GUID of the instance (from the scene and crate version).
+    /// GUID of the instance (of its resource and the model's build).
     pub guid: String,
     /// (value reference, index in `model.variables()`), sorted by value reference.
     vr_index: Vec<(u32, usize)>,
@@ -36,8 +33,8 @@ impl<M: CoSimModel> Instance<M> {
     /// A new instance in state `instantiated`. Fails if the model's value references are not
     /// unique.
     pub fn new(
-        name: CString,
-        callbacks: fmi2CallbackFunctions,
+        name: &str,
+        logger: Logger,
         logging_on: bool,
         guid: String,
         model: M,
@@ -57,9 +54,8 @@ impl<M: CoSimModel> Instance<M> {
             ));
         }
         Ok(Self {
-            live: LIVE,
-            name,
-            callbacks,
+            name: log::c_string(name),
+            logger,
             log_filter: LogFilter::new(logging_on),
             layer: LayerState::instantiated(),
             last_do_step_status: Status::Ok,
@@ -74,6 +70,16 @@ impl<M: CoSimModel> Instance<M> {
         self.name.to_str().unwrap_or("")
     }
 
+    /// The instance name as a C string.
+    pub fn c_name(&self) -> &CStr {
+        &self.name
+    }
+
+    /// The messages an in-memory [`Logger`] kept (empty for the host's logger).
+    pub fn messages(&self) -> Vec<log::Message> {
+        self.logger.messages()
+    }
+
     /// The variable with value reference `vr`, if any.
     #[inline]
     pub fn variable(&self, vr: u32) -> Option<&Variable> {
@@ -81,7 +87,7 @@ impl<M: CoSimModel> Instance<M> {
         self.model.variables().get(self.vr_index[i].1)
     }
 
-    /// True if messages of `category` reach the host.
+    /// True if messages of `category` reach the logger.
     #[inline]
     pub fn logs(&self, category: LogCategory) -> bool {
         self.log_filter.enabled(category)
@@ -89,14 +95,9 @@ impl<M: CoSimModel> Instance<M> {
 
     /// Sends `message` with `status` in its status category, if that category is on.
     pub fn log(&self, status: Status, message: &str) {
-        self.log_in(status, LogCategory::for_status(status), message);
-    }
-
-    /// Sends `message` with `status` in `category`, if that category is on.
-    pub fn log_in(&self, status: Status, category: LogCategory, message: &str) {
+        let category = LogCategory::for_status(status);
         if self.logs(category) {
-            // SAFETY: the callbacks were copied from the host at fmi2Instantiate.
-            unsafe { log::send(&self.callbacks, self.name_ptr(), status, category, message) };
+            self.logger.send(&self.name, status, category, message);
         }
     }
 
@@ -134,45 +135,27 @@ impl<M: CoSimModel> Instance<M> {
         self.error(function, message)
     }
 
-    /// The FMI layer's part of an FMU state.
-    pub fn layer_state(&self) -> LayerState {
-        self.layer
-    }
-
-    /// Restores the FMI layer's part of an FMU state.
-    pub fn set_layer_state(&mut self, l: &LayerState) {
-        self.layer = *l;
+    /// `Ok` if `function` may be called in the current state, else the logged fmi2Error
+    /// (the one-line state check at the top of every function, as Reference-FMUs'
+    /// `ASSERT_STATE`).
+    pub fn check_state(&self, function: Function) -> Result<(), Status> {
+        if self.layer.state.is_in(function.allowed()) {
+            Ok(())
+        } else {
+            Err(self.error(
+                function,
+                format!(
+                    "illegal call sequence: allowed in {}, but the instance is in {}",
+                    function.allowed(),
+                    self.layer.state
+                ),
+            ))
+        }
     }
 
     /// Back to the values right after fmi2Instantiate (the model is reset separately).
     pub fn reset_layer(&mut self) {
         self.layer = LayerState::instantiated();
         self.last_do_step_status = Status::Ok;
-    }
-
-    fn name_ptr(&self) -> *const c_char {
-        self.name.as_ptr()
-    }
-
-    /// Sends a message through `callbacks` for an instance that could not be created.
-    ///
-    /// # Safety
-    /// `callbacks.logger`, if set, must be a valid FMI 2.0 logger.
-    pub unsafe fn log_without_instance(
-        callbacks: &fmi2CallbackFunctions,
-        name: *const c_char,
-        status: Status,
-        message: &str,
-    ) {
-        // SAFETY: forwarded contract.
-        unsafe {
-            log::send(
-                callbacks,
-                name,
-                status,
-                LogCategory::for_status(status),
-                message,
-            )
-        };
     }
 }

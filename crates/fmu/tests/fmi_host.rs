@@ -1,19 +1,21 @@
 //! FMI 2.0 host tests through the C ABI of the built cdylib (see `host/mod.rs`).
 //!
-//! Model-agnostic where possible: variables are found by name (`tip.force.*`, `tip.position.*`)
-//! or by causality/variability, so the tests also run on the beam FMU after the merge.
-//! `HUGE_FORCE` must make the model's step fail (the toy refuses |F| > max_force).
+//! Variables are found by name (`tip.force.*`, `tip.position.*`) or by causality/variability,
+//! not by value reference. `HUGE_FORCE` must make the model's step fail (the beam refuses it:
+//! no convergence or beyond its validity).
 
 mod host;
 
 use std::ffi::{c_char, CString};
 use std::ptr;
 
+use fmi2::types::*;
+use fmi2::{Causality, CoSimModel, Variability};
 use host::*;
-use hybeam::fmi::model::{Causality, Variability};
-use hybeam::fmi::types::*;
 
 const H: f64 = 0.01;
+/// The magic of the beam's serialized FMU states.
+const MAGIC: [u8; 8] = <hybeam_fmu::FmuModel as CoSimModel>::STATE_MAGIC;
 const HUGE_FORCE: f64 = 1e9;
 
 fn outputs() -> Vec<u32> {
@@ -396,6 +398,14 @@ fn fmu_state_round_trips_bit_for_bit() {
     }
     let (st, _) = inst.deserialize(&[]);
     assert_eq!(st, ERROR);
+    // NULL and misaligned FMU states are refused without being read
+    assert_eq!(inst.set_state(ptr::null_mut()), ERROR);
+    assert_eq!(inst.set_state(1usize as fmi2FMUstate), ERROR);
+    inst.log.assert_last(
+        ERROR,
+        "logStatusError",
+        &["fmi2SetFMUstate", "is not an FMU state of this FMU"],
+    );
     // Free: NULL *state is fine; a freed state is refused.
     let dangling = s;
     assert_eq!(inst.free_state(&mut s), OK);
@@ -571,21 +581,143 @@ fn unsupported_functions_exist_and_return_error() {
     }
 }
 
+/// Every function that takes an instance refuses a NULL or misaligned `fmi2Component` with
+/// fmi2Error (fmi2FreeInstance ignores it), without reading through it. A freed or foreign
+/// pointer is outside the FMI 2.0 contract and is not detected: checking it would mean reading
+/// memory the FMU may no longer own, or a process-wide registry of instances
+/// (`fmi2::guard`, docs/fmi-layer.md).
 #[test]
-fn null_or_freed_component_is_an_error_not_a_crash() {
+fn null_or_misaligned_component_is_an_error_not_a_crash() {
     let api = api();
-    unsafe {
-        assert_eq!(api.do_step.unwrap()(ptr::null_mut(), 0.0, H, 0), ERROR);
-        assert_eq!(
-            api.enter_initialization_mode.unwrap()(ptr::null_mut()),
-            ERROR
-        );
-        assert_eq!(
-            api.get_real.unwrap()(ptr::null_mut(), ptr::null(), 0, ptr::null_mut()),
-            ERROR
-        );
-        api.free_instance.unwrap()(ptr::null_mut());
+    let mut st: fmi2FMUstate = ptr::null_mut();
+    let (mut size, mut x) = (0usize, 0.0f64);
+    let (mut status, mut b, mut i) = (0 as fmi2Status, 0 as fmi2Boolean, 0 as fmi2Integer);
+    let mut s: fmi2String = ptr::null();
+    for c in [ptr::null_mut(), 1usize as fmi2Component] {
+        let results: Vec<(fmi2Status, &str)> = unsafe {
+            vec![
+                (
+                    api.set_debug_logging.unwrap()(c, 1, 0, ptr::null()),
+                    "SetDebugLogging",
+                ),
+                (
+                    api.setup_experiment.unwrap()(c, 0, 0.0, 0.0, 0, 0.0),
+                    "SetupExperiment",
+                ),
+                (
+                    api.enter_initialization_mode.unwrap()(c),
+                    "EnterInitializationMode",
+                ),
+                (
+                    api.exit_initialization_mode.unwrap()(c),
+                    "ExitInitializationMode",
+                ),
+                (api.terminate.unwrap()(c), "Terminate"),
+                (api.reset.unwrap()(c), "Reset"),
+                (
+                    api.get_real.unwrap()(c, ptr::null(), 0, ptr::null_mut()),
+                    "GetReal",
+                ),
+                (
+                    api.get_integer.unwrap()(c, ptr::null(), 0, ptr::null_mut()),
+                    "GetInteger",
+                ),
+                (
+                    api.get_boolean.unwrap()(c, ptr::null(), 0, ptr::null_mut()),
+                    "GetBoolean",
+                ),
+                (
+                    api.get_string.unwrap()(c, ptr::null(), 0, ptr::null_mut()),
+                    "GetString",
+                ),
+                (
+                    api.set_real.unwrap()(c, ptr::null(), 0, ptr::null()),
+                    "SetReal",
+                ),
+                (
+                    api.set_integer.unwrap()(c, ptr::null(), 0, ptr::null()),
+                    "SetInteger",
+                ),
+                (
+                    api.set_boolean.unwrap()(c, ptr::null(), 0, ptr::null()),
+                    "SetBoolean",
+                ),
+                (
+                    api.set_string.unwrap()(c, ptr::null(), 0, ptr::null()),
+                    "SetString",
+                ),
+                (api.get_fmu_state.unwrap()(c, &mut st), "GetFMUstate"),
+                (api.set_fmu_state.unwrap()(c, st), "SetFMUstate"),
+                (api.free_fmu_state.unwrap()(c, &mut st), "FreeFMUstate"),
+                (
+                    api.serialized_fmu_state_size.unwrap()(c, st, &mut size),
+                    "SerializedFMUstateSize",
+                ),
+                (
+                    api.serialize_fmu_state.unwrap()(c, st, ptr::null_mut(), 0),
+                    "SerializeFMUstate",
+                ),
+                (
+                    api.deserialize_fmu_state.unwrap()(c, ptr::null(), 0, &mut st),
+                    "DeSerializeFMUstate",
+                ),
+                (
+                    api.get_directional_derivative.unwrap()(
+                        c,
+                        ptr::null(),
+                        0,
+                        ptr::null(),
+                        0,
+                        ptr::null(),
+                        ptr::null_mut(),
+                    ),
+                    "GetDirectionalDerivative",
+                ),
+                (
+                    api.set_real_input_derivatives.unwrap()(
+                        c,
+                        ptr::null(),
+                        0,
+                        ptr::null(),
+                        ptr::null(),
+                    ),
+                    "SetRealInputDerivatives",
+                ),
+                (
+                    api.get_real_output_derivatives.unwrap()(
+                        c,
+                        ptr::null(),
+                        0,
+                        ptr::null(),
+                        ptr::null_mut(),
+                    ),
+                    "GetRealOutputDerivatives",
+                ),
+                (api.do_step.unwrap()(c, 0.0, H, 0), "DoStep"),
+                (api.cancel_step.unwrap()(c), "CancelStep"),
+                (api.get_status.unwrap()(c, 0, &mut status), "GetStatus"),
+                (api.get_real_status.unwrap()(c, 2, &mut x), "GetRealStatus"),
+                (
+                    api.get_integer_status.unwrap()(c, 0, &mut i),
+                    "GetIntegerStatus",
+                ),
+                (
+                    api.get_boolean_status.unwrap()(c, 3, &mut b),
+                    "GetBooleanStatus",
+                ),
+                (
+                    api.get_string_status.unwrap()(c, 1, &mut s),
+                    "GetStringStatus",
+                ),
+            ]
+        };
+        assert_eq!(results.len(), 30);
+        for (result, name) in results {
+            assert_eq!(result, ERROR, "fmi2{name}({c:p})");
+        }
+        unsafe { api.free_instance.unwrap()(c) };
     }
+    assert!(st.is_null() && s.is_null(), "nothing was written");
 }
 
 #[test]
@@ -661,10 +793,10 @@ fn step_size_below_the_bound_is_refused_by_scene_setter_and_snapshot() {
     let max_step = start_of(p);
     for (what, skip) in [("held step", 1), ("max_step parameter", 0)] {
         for h in below {
-            let mut st = hybeam::fmi::fmu_state::FmuState::deserialize(&bytes, &guid).unwrap();
+            let mut st = fmi2::fmu_state::FmuState::deserialize(&bytes, &MAGIC, &guid).unwrap();
             let n = replace_f64(&mut st.model, max_step, h, skip);
             assert!(n >= 1, "{what}: no field holds {max_step:e}");
-            let (status, mut crafted) = inst.deserialize(&st.serialize(&guid));
+            let (status, mut crafted) = inst.deserialize(&st.serialize(&MAGIC, &guid));
             assert_eq!(status, OK, "the envelope is valid");
             assert_eq!(inst.set_state(crafted), ERROR, "{what} = {h:e}");
             inst.log
@@ -776,10 +908,7 @@ fn exports_exactly_the_34_fmi2_functions() {
         .map(|s| s.name().unwrap().to_owned())
         .collect();
     exported.sort();
-    let mut want: Vec<&str> = hybeam::fmi::state::Function::ALL
-        .iter()
-        .map(|f| f.name())
-        .collect();
+    let mut want: Vec<&str> = fmi2::Function::ALL.iter().map(|f| f.name()).collect();
     want.sort();
     assert_eq!(want.len(), 34);
     assert_eq!(exported, want, "{}", path.display());
@@ -992,9 +1121,9 @@ fn extreme_values_and_crafted_snapshots_return_promptly() {
     ] {
         for x in extremes {
             let label = format!("snapshot {what} = {x:e}");
-            let mut st = hybeam::fmi::fmu_state::FmuState::deserialize(&bytes, &guid).unwrap();
+            let mut st = fmi2::fmu_state::FmuState::deserialize(&bytes, &MAGIC, &guid).unwrap();
             assert!(replace_f64(&mut st.model, old, x, skip) >= 1, "{label}");
-            let crafted = st.serialize(&guid);
+            let crafted = st.serialize(&MAGIC, &guid);
             let inst = Inst::new("crafted-into");
             let l = &mut calls;
             let mut p: fmi2FMUstate = ptr::null_mut();

@@ -4,25 +4,27 @@
 //!
 //! | bytes | field |
 //! |---|---|
-//! | 8 | magic `HYBFMI2S` |
+//! | 8 | magic: the model's [`CoSimModel::STATE_MAGIC`] |
 //! | 4 | format version (`1`) |
-//! | 4 + n | GUID length, GUID (UTF-8): the state only loads into an FMU of the same scene and build |
+//! | 4 + n | GUID length, GUID (UTF-8): the state only loads into an FMU of the same resource and build |
 //! | 4 | FMI state bits ([`ModelState::bits`]) |
 //! | 8 × 3 | time, start time, last successful time |
 //! | 1 + 8 | stop time defined (0/1), stop time |
 //! | 1 + 8 | tolerance defined (0/1), tolerance |
 //! | 1 | terminated (0/1) |
 //! | 8 + m | model byte count, model bytes ([`CoSimModel::save_state`]) |
-//! | 8 | FNV-1a 64 checksum of everything before it |
+//! | 8 | FNV-1a 64 checksum of everything before it ([`fnv1a64`]) |
+//!
+//! The checksum detects accidents only (anyone can recompute it): the model checks its own
+//! bytes when they are loaded.
 //!
 //! [`CoSimModel::save_state`]: super::model::CoSimModel::save_state
+//! [`CoSimModel::STATE_MAGIC`]: super::model::CoSimModel::STATE_MAGIC
 
+use super::hash::fnv1a64;
 use super::state::{Function, ModelState};
 
-const MAGIC: &[u8; 8] = b"HYBFMI2S";
 const FORMAT_VERSION: u32 = 1;
-/// Marks a live [`FmuState`] allocation (checked on every pointer the host hands back).
-pub(crate) const LIVE: u64 = 0x4859_4246_4d55_5354;
 
 /// The FMI layer's part of an FMU state.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,9 +61,8 @@ impl LayerState {
 }
 
 /// An owned FMU state (what an `fmi2FMUstate` points to).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FmuState {
-    pub(crate) live: u64,
     /// FMI layer part.
     pub layer: LayerState,
     /// Model bytes from `save_state`.
@@ -71,11 +72,7 @@ pub struct FmuState {
 impl FmuState {
     /// A state from its parts.
     pub fn new(layer: LayerState, model: Vec<u8>) -> Self {
-        Self {
-            live: LIVE,
-            layer,
-            model,
-        }
+        Self { layer, model }
     }
 
     /// Length of [`FmuState::serialize`]'s output.
@@ -83,11 +80,11 @@ impl FmuState {
         8 + 4 + 4 + guid.len() + 4 + 24 + 9 + 9 + 1 + 8 + self.model.len() + 8
     }
 
-    /// The self-contained bytes of this state for an FMU with this GUID.
-    pub fn serialize(&self, guid: &str) -> Vec<u8> {
+    /// The self-contained bytes of this state for an FMU with this magic and GUID.
+    pub fn serialize(&self, magic: &[u8; 8], guid: &str) -> Vec<u8> {
         let l = &self.layer;
         let mut b = Vec::with_capacity(self.serialized_len(guid));
-        b.extend_from_slice(MAGIC);
+        b.extend_from_slice(magic);
         b.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
         b.extend_from_slice(&(guid.len() as u32).to_le_bytes());
         b.extend_from_slice(guid.as_bytes());
@@ -108,11 +105,13 @@ impl FmuState {
         b
     }
 
-    /// Parses and validates bytes from [`FmuState::serialize`] for an FMU with this GUID.
-    /// The model bytes are checked later by `load_state` (at fmi2SetFMUstate).
-    pub fn deserialize(bytes: &[u8], guid: &str) -> Result<Self, String> {
-        if bytes.len() < 8 + 4 || &bytes[..8] != MAGIC {
-            return Err("the bytes are not a serialized hybeam FMU state (bad magic)".into());
+    /// Parses and validates bytes from [`FmuState::serialize`] for an FMU with this magic and
+    /// GUID. The model bytes are checked later by `load_state` (at fmi2SetFMUstate).
+    pub fn deserialize(bytes: &[u8], magic: &[u8; 8], guid: &str) -> Result<Self, String> {
+        if bytes.len() < 8 + 4 || &bytes[..8] != magic {
+            return Err(
+                "the bytes are not a serialized FMU state of this model (bad magic)".into(),
+            );
         }
         let (body, sum) = bytes.split_at(bytes.len().saturating_sub(8).max(12));
         if sum.len() != 8 {
@@ -225,16 +224,11 @@ impl<'a> Reader<'a> {
     }
 }
 
-/// FNV-1a, 64 bit.
-fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    const M: &[u8; 8] = b"TESTFMI2";
 
     fn sample() -> FmuState {
         FmuState::new(
@@ -254,26 +248,29 @@ mod tests {
     #[test]
     fn round_trip() {
         let s = sample();
-        let b = s.serialize("{g}");
+        let b = s.serialize(M, "{g}");
         assert_eq!(b.len(), s.serialized_len("{g}"));
-        let t = FmuState::deserialize(&b, "{g}").unwrap();
+        let t = FmuState::deserialize(&b, M, "{g}").unwrap();
         assert_eq!(t.layer, s.layer);
         assert_eq!(t.model, s.model);
     }
 
     #[test]
     fn refuses_garbage_other_guid_and_corruption() {
-        let b = sample().serialize("{g}");
-        assert!(FmuState::deserialize(&b, "{h}")
+        let b = sample().serialize(M, "{g}");
+        assert!(FmuState::deserialize(&b, M, "{h}")
             .unwrap_err()
             .contains("GUID"));
-        assert!(FmuState::deserialize(b"garbage", "{g}").is_err());
-        assert!(FmuState::deserialize(&[], "{g}").is_err());
-        assert!(FmuState::deserialize(&b[..b.len() - 1], "{g}").is_err());
+        assert!(FmuState::deserialize(&b, b"OTHERMOD", "{g}")
+            .unwrap_err()
+            .contains("magic"));
+        assert!(FmuState::deserialize(b"garbage", M, "{g}").is_err());
+        assert!(FmuState::deserialize(&[], M, "{g}").is_err());
+        assert!(FmuState::deserialize(&b[..b.len() - 1], M, "{g}").is_err());
         for i in 8..b.len() {
             let mut c = b.clone();
             c[i] ^= 0x40;
-            assert!(FmuState::deserialize(&c, "{g}").is_err(), "flip at {i}");
+            assert!(FmuState::deserialize(&c, M, "{g}").is_err(), "flip at {i}");
         }
     }
 }

@@ -1,8 +1,8 @@
-//! Log categories (declared in modelDescription.xml) and the call into the host's logger.
+//! Log categories (declared in modelDescription.xml) and where an instance's messages go.
 //!
 //! The FMI 2.0 logger is a C-variadic, printf-style function. This layer always calls it with
 //! the fixed format `"%s"` and the message as the one argument, so text from users or models is
-//! never interpreted as a format.
+//! never interpreted as a format (the call itself is in [`guard`](crate::guard)).
 //!
 //! Filtering: each category has an on/off flag. At fmi2Instantiate the four status categories are
 //! on and `logAll` follows `loggingOn`. fmi2SetDebugLogging(on, 0, NULL) sets every category to
@@ -10,9 +10,11 @@
 //! §2.2.4): a message is sent iff its own category or `logAll` is on. The call trace has no
 //! category of its own: it is sent iff `logAll` is on.
 
-use std::ffi::{c_char, CStr, CString};
+use std::cell::RefCell;
+use std::ffi::{CStr, CString};
 
-use super::types::{fmi2CallbackFunctions, Status};
+use super::guard::{self, HostCallbacks};
+use super::types::Status;
 
 /// A log category of this FMU.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -123,36 +125,54 @@ pub fn c_string(text: &str) -> CString {
     CString::new(text.replace('\0', "?")).unwrap_or_default()
 }
 
-/// Sends one message to the host's logger, if there is one: format `"%s"`, message as argument.
-///
-/// # Safety
-/// `callbacks.logger`, if set, must be a valid FMI 2.0 logger function.
-pub unsafe fn send(
-    callbacks: &fmi2CallbackFunctions,
-    instance_name: *const c_char,
-    status: Status,
-    category: LogCategory,
-    message: &str,
-) {
-    if let Some(logger) = callbacks.logger {
-        let message = c_string(message);
-        let name = if instance_name.is_null() {
-            c"".as_ptr()
-        } else {
-            instance_name
-        };
-        // SAFETY: the logger is the host's; every pointer is a valid NUL-terminated string that
-        // lives across the call, and "%s" consumes exactly the one argument passed.
-        unsafe {
-            logger(
-                callbacks.componentEnvironment,
-                name,
-                status.to_c(),
-                category.c_name().as_ptr(),
-                c"%s".as_ptr(),
-                message.as_ptr(),
-            )
-        };
+/// One message as a logger receives it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Message {
+    /// Status of the message.
+    pub status: Status,
+    /// Category of the message.
+    pub category: LogCategory,
+    /// The text.
+    pub text: String,
+}
+
+/// Where an instance's messages go.
+#[derive(Debug)]
+pub enum Logger {
+    /// The host's callbacks, copied by value at fmi2Instantiate (the host may free its struct);
+    /// a NULL logger drops every message.
+    Host(HostCallbacks),
+    /// Kept in memory: for Rust hosts and tests that drive [`Instance`](crate::Instance)
+    /// without a C logger.
+    Memory(RefCell<Vec<Message>>),
+}
+
+impl Logger {
+    /// An empty in-memory logger.
+    pub fn memory() -> Self {
+        Logger::Memory(RefCell::new(Vec::new()))
+    }
+
+    /// Sends one message.
+    pub fn send(&self, instance_name: &CStr, status: Status, category: LogCategory, text: &str) {
+        match self {
+            Logger::Host(callbacks) => {
+                guard::call_logger(callbacks, instance_name, status, category, text)
+            }
+            Logger::Memory(messages) => messages.borrow_mut().push(Message {
+                status,
+                category,
+                text: text.to_owned(),
+            }),
+        }
+    }
+
+    /// The messages kept so far (empty for a host logger).
+    pub fn messages(&self) -> Vec<Message> {
+        match self {
+            Logger::Host(_) => Vec::new(),
+            Logger::Memory(messages) => messages.borrow().clone(),
+        }
     }
 }
 

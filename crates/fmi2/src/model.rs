@@ -23,12 +23,12 @@ pub enum Variability {
     Continuous,
 }
 
-/// One real scalar variable of the model (all hybeam variables are fmi2Real).
+/// One real scalar variable of the model (the layer supports fmi2Real variables only).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Variable {
     /// Structured name, e.g. `tip.position.x` or `beam.diameter`.
     pub name: String,
-    /// Value reference: stable across versions for the same scene.
+    /// Value reference: stable across versions for the same resource.
     pub vr: u32,
     /// Causality.
     pub causality: Causality,
@@ -94,12 +94,24 @@ impl From<String> for StepError {
 /// - `variables()` is fixed for the life of the instance and its value references are unique.
 /// - `do_step` either advances the model to `t + h` and returns `Ok`, or returns `Err` and leaves
 ///   the model exactly in its state before the call (last good state).
-/// - `save_state` bytes restored with `load_state` into a fresh instance built from the same scene
-///   continue bit for bit as the original would have.
+/// - `save_state` bytes restored with `load_state` into a fresh instance built from the same
+///   resource continue bit for bit as the original would have.
 pub trait CoSimModel: Sized + Send + 'static {
-    /// Builds the model from the text of `resources/scene.toml`. The error names the field,
-    /// the value and what is allowed.
-    fn from_scene(scene_toml: &str) -> Result<Self, String>;
+    /// The file in the FMU's `resources/` folder the model is built from, e.g. `scene.toml`.
+    const RESOURCE: &'static str;
+    /// Name of the model family's GUID namespace (itself `UUIDv5(NAMESPACE_OID, name)`).
+    const GUID_NAMESPACE: &'static str;
+    /// Build identity hashed into every GUID together with the resource bytes, e.g.
+    /// `model/1.2.0`: the same resource packaged by another build gets another GUID.
+    const BUILD_ID: &'static str;
+    /// The `generationTool` attribute of modelDescription.xml.
+    const GENERATION_TOOL: &'static str;
+    /// The first 8 bytes of a serialized FMU state of this model.
+    const STATE_MAGIC: [u8; 8];
+
+    /// Builds the model from the text of `resources/` [`Self::RESOURCE`]. The error names the
+    /// field, the value and what is allowed.
+    fn from_resource(text: &str) -> Result<Self, String>;
     /// Model name, description and default experiment.
     fn model_info(&self) -> ModelInfo;
     /// The variable table (single source for the XML and the runtime).
@@ -115,11 +127,11 @@ pub trait CoSimModel: Sized + Send + 'static {
     /// Advances from `t` to `t + h` (internal substeps). On error the state is unchanged, and
     /// the error says whether the model can continue ([`StepError`]).
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), StepError>;
-    /// Back to the state after `from_scene` (fmi2Reset).
+    /// Back to the state after `from_resource` (fmi2Reset).
     fn reset(&mut self) -> Result<(), String>;
-    /// Self-contained bytes: format version, scene identity, parameters, inputs, coordinates,
+    /// Self-contained bytes: format version, resource identity, parameters, inputs, coordinates,
     /// velocities, accelerations, integrator memory.
     fn save_state(&self) -> Vec<u8>;
-    /// Restores bytes from `save_state`; refuses bytes of another scene or format version.
+    /// Restores bytes from `save_state`; refuses bytes of another resource or format version.
     fn load_state(&mut self, bytes: &[u8]) -> Result<(), String>;
 }

@@ -1,0 +1,629 @@
+//! The 34 FMI 2.0 co-simulation functions as safe methods of [`Instance`], named after the C
+//! functions (`do_step` ↔ `fmi2DoStep`). [`guard`](crate::guard) turns the C arguments into
+//! slices, strings and references, catches panics and calls these; Rust code (a host, a unit
+//! test with an in-memory [`Logger`]) can call them directly.
+//!
+//! Every method first checks the state against the one table ([`Instance::check_state`]), then
+//! sizes and values, naming the argument and value in the logged message. Argument and
+//! call-sequence errors return fmi2Error and leave the state unchanged, as in Reference-FMUs; a
+//! failure of the model itself (initialize, reset) moves the instance to state `error`.
+
+use crate::fmu_state::FmuState;
+use crate::guid;
+use crate::instance::Instance;
+use crate::log::{LogCategory, Logger};
+use crate::model::{Causality, CoSimModel, StepError, Variability, Variable};
+use crate::resources;
+use crate::state::{Function as F, ModelState};
+use crate::types::*;
+
+/// Relative tolerance of the communication-point and stop-time checks of fmi2DoStep.
+///
+/// `currentCommunicationPoint` is accepted if
+/// `|t − time| ≤ min(TIME_RTOL · max(|t|, |time|, h), h/2)`.
+/// Hosts compute `t0 + n·h` or a running sum, which differ from the FMU's `t + h` by a few ulps
+/// of `|t|` per step; 1e-9 covers ~10⁶ accumulated roundings, and the h/2 cap keeps consecutive
+/// communication points apart even at large times. After a successful step the FMU's time is
+/// set to the host's `t + h`, so no drift builds up.
+pub const TIME_RTOL: f64 = 1e-9;
+
+/// Returns early with the error status of a `Result<_, Status>`.
+macro_rules! tri {
+    ($e:expr) => {
+        match $e {
+            Ok(v) => v,
+            Err(status) => return status,
+        }
+    };
+}
+
+/// Why `var` cannot be set in `state`, if it cannot.
+fn check_settable(var: &Variable, state: ModelState) -> Result<(), String> {
+    match (var.causality, var.variability) {
+        (Causality::Output, _) => Err(format!(
+            "{} (value reference {}) is an output and cannot be set",
+            var.name, var.vr
+        )),
+        (Causality::Input, _) | (Causality::Parameter, Variability::Tunable) => Ok(()),
+        (Causality::Parameter, _) => {
+            if state.is_in(ModelState::INSTANTIATED.or(ModelState::INIT_MODE)) {
+                Ok(())
+            } else {
+                Err(format!(
+                    "{} (value reference {}) is a fixed parameter: it can only be set before \
+                     fmi2ExitInitializationMode (the instance is in {state})",
+                    var.name, var.vr
+                ))
+            }
+        }
+    }
+}
+
+/// The name of a status kind, or `None` if `s` is no fmi2StatusKind.
+fn status_kind_name(s: fmi2StatusKind) -> Option<&'static str> {
+    match s {
+        FMI2_DO_STEP_STATUS => Some("fmi2DoStepStatus"),
+        FMI2_PENDING_STATUS => Some("fmi2PendingStatus"),
+        FMI2_LAST_SUCCESSFUL_TIME => Some("fmi2LastSuccessfulTime"),
+        FMI2_TERMINATED => Some("fmi2Terminated"),
+        _ => None,
+    }
+}
+
+impl<M: CoSimModel> Instance<M> {
+    /// fmi2Instantiate: checks the type, reads `resources/` [`CoSimModel::RESOURCE`], checks the
+    /// GUID, builds the model. The error is the message to log.
+    pub fn instantiate(
+        name: &str,
+        fmu_type: fmi2Type,
+        fmu_guid: &str,
+        resource_location: Option<&str>,
+        logger: Logger,
+        logging_on: bool,
+    ) -> Result<Self, String> {
+        if fmu_type != FMI2_CO_SIMULATION {
+            let kind = if fmu_type == FMI2_MODEL_EXCHANGE {
+                "fmi2ModelExchange"
+            } else {
+                "unknown"
+            };
+            return Err(format!(
+                "fmuType = {fmu_type} ({kind}) is not supported: this FMU implements \
+                 fmi2CoSimulation only"
+            ));
+        }
+        let location = resource_location.ok_or_else(|| {
+            format!(
+                "fmuResourceLocation is NULL: this FMU needs its resources/ folder ({})",
+                M::RESOURCE
+            )
+        })?;
+        let resource = resources::read_resource(location, M::RESOURCE)?;
+        let expected = guid::guid::<M>(&resource);
+        if !guid::same_guid(fmu_guid, &expected) {
+            return Err(format!(
+                "fmuGUID = {fmu_guid} does not match this FMU's GUID {expected} (from \
+                 resources/{} and build {}): modelDescription.xml, binary and resources come \
+                 from different builds",
+                M::RESOURCE,
+                M::BUILD_ID
+            ));
+        }
+        let text = String::from_utf8(resource)
+            .map_err(|_| format!("resources/{} is not valid UTF-8", M::RESOURCE))?;
+        let model = M::from_resource(&text)
+            .map_err(|e| format!("invalid resources/{}: {e}", M::RESOURCE))?;
+        let inst = Self::new(name, logger, logging_on, expected, model)?;
+        inst.trace(|| format!("fmi2Instantiate: instance \"{name}\" of GUID {}", inst.guid));
+        Ok(inst)
+    }
+
+    /// fmi2FreeInstance (legal in every state).
+    pub fn free_instance(self) {
+        self.trace(|| "fmi2FreeInstance".to_owned());
+    }
+
+    /// fmi2SetDebugLogging: every category (empty list) or the listed ones; an unknown name
+    /// changes nothing.
+    pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status {
+        let f = F::SetDebugLogging;
+        tri!(self.check_state(f));
+        if categories.is_empty() {
+            self.log_filter.set_all(logging_on);
+            return Status::Ok;
+        }
+        let mut filter = self.log_filter;
+        for (i, name) in categories.iter().enumerate() {
+            match LogCategory::from_name(name) {
+                Some(cat) => filter.set(cat, logging_on),
+                None => {
+                    let known: Vec<&str> = LogCategory::ALL.iter().map(|c| c.name()).collect();
+                    return self.error(
+                        f,
+                        format!(
+                            "categories[{i}] = \"{name}\" is not a log category of this FMU \
+                             (known: {}); nothing was changed",
+                            known.join(", ")
+                        ),
+                    );
+                }
+            }
+        }
+        self.log_filter = filter;
+        Status::Ok
+    }
+
+    /// fmi2SetupExperiment: stores tolerance, start and stop time.
+    pub fn setup_experiment(
+        &mut self,
+        tolerance: Option<f64>,
+        start_time: f64,
+        stop_time: Option<f64>,
+    ) -> Status {
+        let f = F::SetupExperiment;
+        tri!(self.check_state(f));
+        if let Some(t) = tolerance.filter(|t| !(t.is_finite() && *t > 0.0)) {
+            return self.error(f, format!("tolerance = {t} must be finite and > 0"));
+        }
+        if !start_time.is_finite() {
+            return self.error(f, format!("startTime = {start_time} must be finite"));
+        }
+        if let Some(s) = stop_time.filter(|s| !(s.is_finite() && *s >= start_time)) {
+            return self.error(
+                f,
+                format!("stopTime = {s} must be finite and >= startTime = {start_time}"),
+            );
+        }
+        let l = &mut self.layer;
+        l.tolerance = tolerance;
+        l.start_time = start_time;
+        l.stop_time = stop_time;
+        l.time = start_time;
+        l.last_successful_time = start_time;
+        self.trace(|| {
+            let opt = |x: Option<f64>| x.map_or("undefined".to_owned(), |x| x.to_string());
+            format!(
+                "fmi2SetupExperiment: tolerance {}, startTime {start_time}, stopTime {}",
+                opt(tolerance),
+                opt(stop_time)
+            )
+        });
+        Status::Ok
+    }
+
+    /// fmi2EnterInitializationMode.
+    pub fn enter_initialization_mode(&mut self) -> Status {
+        tri!(self.check_state(F::EnterInitializationMode));
+        self.layer.state = ModelState::INIT_MODE;
+        self.trace(|| "fmi2EnterInitializationMode".to_owned());
+        Status::Ok
+    }
+
+    /// fmi2ExitInitializationMode: `model.initialize(start_time)`, then state `stepComplete`.
+    pub fn exit_initialization_mode(&mut self) -> Status {
+        let f = F::ExitInitializationMode;
+        tri!(self.check_state(f));
+        match self.model.initialize(self.layer.start_time) {
+            Ok(()) => {
+                let l = &mut self.layer;
+                l.state = ModelState::STEP_COMPLETE;
+                l.time = l.start_time;
+                l.last_successful_time = l.start_time;
+                l.terminated = false;
+                self.trace(|| format!("fmi2ExitInitializationMode: t = {}", self.layer.time));
+                Status::Ok
+            }
+            Err(e) => self.model_error(f, format!("model initialization failed: {e}")),
+        }
+    }
+
+    /// fmi2Terminate: state `terminated` (the model keeps its values for fmi2GetReal).
+    pub fn terminate(&mut self) -> Status {
+        tri!(self.check_state(F::Terminate));
+        self.layer.state = ModelState::TERMINATED;
+        self.trace(|| format!("fmi2Terminate at t = {}", self.layer.time));
+        Status::Ok
+    }
+
+    /// fmi2Reset: `model.reset()`, then state `instantiated` with the experiment cleared.
+    pub fn reset(&mut self) -> Status {
+        let f = F::Reset;
+        tri!(self.check_state(f));
+        match self.model.reset() {
+            Ok(()) => {
+                self.reset_layer();
+                self.trace(|| "fmi2Reset".to_owned());
+                Status::Ok
+            }
+            Err(e) => self.model_error(f, format!("model reset failed: {e}")),
+        }
+    }
+
+    /// fmi2GetReal: `out[i]` = the value of `vrs[i]` (equal lengths).
+    pub fn get_real(&self, vrs: &[fmi2ValueReference], out: &mut [f64]) -> Status {
+        let f = F::GetReal;
+        tri!(self.check_state(f));
+        for (&r, slot) in vrs.iter().zip(out.iter_mut()) {
+            if self.variable(r).is_none() {
+                return self.error(
+                    f,
+                    format!("value reference {r} is not a variable of this model"),
+                );
+            }
+            match self.model.get_real(r) {
+                Ok(v) => *slot = v,
+                Err(e) => return self.error(f, format!("value reference {r}: {e}")),
+            }
+        }
+        Status::Ok
+    }
+
+    /// fmi2SetReal: all values are checked (variable exists, settable in this state, finite)
+    /// before any is set; if the model refuses one, those already set are restored. So on
+    /// fmi2Error nothing has changed.
+    pub fn set_real(&mut self, vrs: &[fmi2ValueReference], values: &[f64]) -> Status {
+        let f = F::SetReal;
+        tri!(self.check_state(f));
+        for (&r, &v) in vrs.iter().zip(values) {
+            let Some(var) = self.variable(r) else {
+                return self.error(
+                    f,
+                    format!("value reference {r} is not a variable of this model"),
+                );
+            };
+            if let Err(e) = check_settable(var, self.layer.state) {
+                return self.error(f, e);
+            }
+            if !v.is_finite() {
+                return self.error(
+                    f,
+                    format!(
+                        "{} (value reference {r}) = {v} is not finite; nothing was set",
+                        var.name
+                    ),
+                );
+            }
+        }
+        // Previous values, to undo if the model refuses one (no allocation for n <= 8).
+        let mut small = [0.0; 8];
+        let mut large = Vec::new();
+        let old: &mut [f64] = if vrs.len() <= small.len() {
+            &mut small[..vrs.len()]
+        } else {
+            large.resize(vrs.len(), 0.0);
+            &mut large
+        };
+        for (&r, slot) in vrs.iter().zip(old.iter_mut()) {
+            match self.model.get_real(r) {
+                Ok(v) => *slot = v,
+                Err(e) => return self.error(f, format!("value reference {r}: {e}")),
+            }
+        }
+        for (i, (&r, &v)) in vrs.iter().zip(values).enumerate() {
+            if let Err(e) = self.model.set_real(r, v) {
+                // Reverse order restores repeated value references correctly.
+                for (&r_done, &v_old) in vrs[..i].iter().zip(&old[..i]).rev() {
+                    let _ = self.model.set_real(r_done, v_old);
+                }
+                let name = self.variable(r).map(|x| x.name.as_str()).unwrap_or("");
+                return self.error(
+                    f,
+                    format!("{name} (value reference {r}) = {v} refused: {e}; nothing was set"),
+                );
+            }
+        }
+        Status::Ok
+    }
+
+    /// Get/Set of a type the model does not have (the layer supports fmi2Real only): fmi2OK for
+    /// no value references, otherwise fmi2Error naming the first.
+    fn no_variables_of_type(&self, f: F, vrs: &[fmi2ValueReference]) -> Status {
+        tri!(self.check_state(f));
+        let type_name = match f {
+            F::GetInteger | F::SetInteger => "an Integer",
+            F::GetBoolean | F::SetBoolean => "a Boolean",
+            _ => "a String",
+        };
+        match vrs.first() {
+            None => Status::Ok,
+            Some(r) => self.error(
+                f,
+                format!(
+                    "value reference {r} is not {type_name} variable of this model (it has only \
+                     Real variables)"
+                ),
+            ),
+        }
+    }
+
+    /// fmi2GetInteger (no Integer variables).
+    pub fn get_integer(&self, vrs: &[fmi2ValueReference], _out: &mut [fmi2Integer]) -> Status {
+        self.no_variables_of_type(F::GetInteger, vrs)
+    }
+
+    /// fmi2GetBoolean (no Boolean variables).
+    pub fn get_boolean(&self, vrs: &[fmi2ValueReference], _out: &mut [fmi2Boolean]) -> Status {
+        self.no_variables_of_type(F::GetBoolean, vrs)
+    }
+
+    /// fmi2GetString (no String variables).
+    pub fn get_string(&self, vrs: &[fmi2ValueReference], _out: &mut [fmi2String]) -> Status {
+        self.no_variables_of_type(F::GetString, vrs)
+    }
+
+    /// fmi2SetInteger (no Integer variables).
+    pub fn set_integer(&mut self, vrs: &[fmi2ValueReference], _values: &[fmi2Integer]) -> Status {
+        self.no_variables_of_type(F::SetInteger, vrs)
+    }
+
+    /// fmi2SetBoolean (no Boolean variables).
+    pub fn set_boolean(&mut self, vrs: &[fmi2ValueReference], _values: &[fmi2Boolean]) -> Status {
+        self.no_variables_of_type(F::SetBoolean, vrs)
+    }
+
+    /// fmi2SetString (no String variables).
+    pub fn set_string(&mut self, vrs: &[fmi2ValueReference], _values: &[fmi2String]) -> Status {
+        self.no_variables_of_type(F::SetString, vrs)
+    }
+
+    /// fmi2GetFMUstate: an owned copy (FMI layer state + `model.save_state()`).
+    pub fn get_fmu_state(&self) -> Result<FmuState, Status> {
+        self.check_state(F::GetFMUstate)?;
+        let s = FmuState::new(self.layer, self.model.save_state());
+        self.trace(|| format!("fmi2GetFMUstate at t = {}", self.layer.time));
+        Ok(s)
+    }
+
+    /// fmi2SetFMUstate: `model.load_state`, then the FMI layer state (time, state machine,
+    /// flags).
+    pub fn set_fmu_state(&mut self, s: &FmuState) -> Status {
+        let f = F::SetFMUstate;
+        tri!(self.check_state(f));
+        if let Err(e) = self.model.load_state(&s.model) {
+            return self.error(f, format!("the model refused the FMU state: {e}"));
+        }
+        self.layer = s.layer;
+        self.trace(|| format!("fmi2SetFMUstate: t = {}", self.layer.time));
+        Status::Ok
+    }
+
+    /// fmi2FreeFMUstate: drops `*s` (a `None` is accepted); on an illegal call `*s` is kept.
+    pub fn free_fmu_state(&mut self, s: &mut Option<Box<FmuState>>) -> Status {
+        tri!(self.check_state(F::FreeFMUstate));
+        *s = None;
+        Status::Ok
+    }
+
+    /// fmi2SerializedFMUstateSize.
+    pub fn serialized_fmu_state_size(&self, s: &FmuState) -> Result<usize, Status> {
+        self.check_state(F::SerializedFMUstateSize)?;
+        Ok(s.serialized_len(&self.guid))
+    }
+
+    /// fmi2SerializeFMUstate: `out` must have the length from fmi2SerializedFMUstateSize.
+    pub fn serialize_fmu_state(&self, s: &FmuState, out: &mut [fmi2Byte]) -> Status {
+        let f = F::SerializeFMUstate;
+        tri!(self.check_state(f));
+        let need = s.serialized_len(&self.guid);
+        if out.len() != need {
+            return self.error(
+                f,
+                format!(
+                    "size = {}, but this FMU state serializes to {need} bytes (the value of \
+                     fmi2SerializedFMUstateSize)",
+                    out.len()
+                ),
+            );
+        }
+        for (o, b) in out.iter_mut().zip(s.serialize(&M::STATE_MAGIC, &self.guid)) {
+            *o = b as fmi2Byte;
+        }
+        Status::Ok
+    }
+
+    /// fmi2DeSerializeFMUstate: validates the bytes (magic, format version, GUID, checksum, FMI
+    /// state) and returns a new FMU state; the model bytes are checked by fmi2SetFMUstate.
+    pub fn deserialize_fmu_state(&self, bytes: &[u8]) -> Result<FmuState, Status> {
+        let f = F::DeSerializeFMUstate;
+        self.check_state(f)?;
+        FmuState::deserialize(bytes, &M::STATE_MAGIC, &self.guid).map_err(|e| {
+            self.error(
+                f,
+                format!("serializedState ({} bytes) refused: {e}", bytes.len()),
+            )
+        })
+    }
+
+    /// fmi2GetDirectionalDerivative: not provided (`providesDirectionalDerivative="false"`).
+    pub fn get_directional_derivative(&self) -> Status {
+        let f = F::GetDirectionalDerivative;
+        tri!(self.check_state(f));
+        self.error(
+            f,
+            "not provided by this FMU (providesDirectionalDerivative=\"false\")",
+        )
+    }
+
+    /// fmi2SetRealInputDerivatives: not supported (`canInterpolateInputs="false"`).
+    pub fn set_real_input_derivatives(&mut self) -> Status {
+        let f = F::SetRealInputDerivatives;
+        tri!(self.check_state(f));
+        self.error(
+            f,
+            "not supported by this FMU (canInterpolateInputs=\"false\")",
+        )
+    }
+
+    /// fmi2GetRealOutputDerivatives: not supported (`maxOutputDerivativeOrder="0"`).
+    pub fn get_real_output_derivatives(&self) -> Status {
+        let f = F::GetRealOutputDerivatives;
+        tri!(self.check_state(f));
+        self.error(
+            f,
+            "not supported by this FMU (maxOutputDerivativeOrder=\"0\")",
+        )
+    }
+
+    /// fmi2DoStep: checks the step (`h` finite and > 0, `t` finite, `t + h` finite and later
+    /// than `t` in floating point, `t` equal to the FMU time within [`TIME_RTOL`], `t + h` not
+    /// beyond stopTime), then `model.do_step(t, h)`. Ok → fmi2OK and time = `t + h`. Err →
+    /// fmi2Discard, state `stepFailed`, fmi2LastSuccessfulTime = the time before the step (the
+    /// model keeps its last good state), fmi2Terminated = true only for
+    /// [`StepError::Terminate`]; after a recoverable [`StepError::Discard`] fmi2SetFMUstate
+    /// resumes, e.g. to retry with a smaller step.
+    pub fn do_step(&mut self, t: f64, h: f64) -> Status {
+        let f = F::DoStep;
+        tri!(self.check_state(f));
+        if !(h.is_finite() && h > 0.0) {
+            return self.error(
+                f,
+                format!("communicationStepSize = {h} must be finite and > 0"),
+            );
+        }
+        if !t.is_finite() {
+            return self.error(f, format!("currentCommunicationPoint = {t} must be finite"));
+        }
+        let end = t + h;
+        if !(end.is_finite() && end > t) {
+            let spacing = t.abs().next_up() - t.abs();
+            return self.error(
+                f,
+                format!(
+                    "communicationStepSize = {h:e} does not advance time from \
+                     currentCommunicationPoint = {t:e}: t + h = {end:e} in double precision (at \
+                     |t| = {:e} s consecutive times are {spacing:e} s apart); use a larger \
+                     step, or a start time nearer 0",
+                    t.abs()
+                ),
+            );
+        }
+        let time = self.layer.time;
+        let tol = (TIME_RTOL * t.abs().max(time.abs()).max(h)).min(0.5 * h);
+        if (t - time).abs() > tol {
+            return self.error(
+                f,
+                format!(
+                    "currentCommunicationPoint = {t} differs from the FMU time {time} by {:e} \
+                     (tolerance {tol:e}): each step must start where the last one ended",
+                    t - time
+                ),
+            );
+        }
+        if let Some(stop) = self.layer.stop_time {
+            if end > stop + TIME_RTOL * stop.abs().max(h) {
+                return self.error(
+                    f,
+                    format!(
+                        "currentCommunicationPoint + communicationStepSize = {end} is beyond \
+                         stopTime = {stop}"
+                    ),
+                );
+            }
+        }
+        self.trace(|| format!("fmi2DoStep: t = {t}, h = {h}"));
+        match self.model.do_step(t, h) {
+            Ok(()) => {
+                self.layer.time = end;
+                self.layer.last_successful_time = end;
+                self.last_do_step_status = Status::Ok;
+                Status::Ok
+            }
+            Err(e) => {
+                let terminate = matches!(e, StepError::Terminate(_));
+                self.layer.state = ModelState::STEP_FAILED;
+                self.layer.terminated = terminate;
+                self.layer.last_successful_time = time;
+                self.last_do_step_status = Status::Discard;
+                let next = if terminate {
+                    "fmi2Terminated = true: the model cannot continue"
+                } else {
+                    "fmi2Terminated = false: fmi2SetFMUstate to a saved state continues, e.g. \
+                     with a smaller step or other inputs"
+                };
+                self.log(
+                    Status::Discard,
+                    &format!(
+                        "fmi2DoStep: the step from t = {t} with h = {h} failed: {}; the model \
+                         keeps its state at t = {time} ({next})",
+                        e.message()
+                    ),
+                );
+                Status::Discard
+            }
+        }
+    }
+
+    /// fmi2CancelStep: this FMU never runs asynchronous steps, so it is never in
+    /// `stepInProgress`.
+    pub fn cancel_step(&mut self) -> Status {
+        let f = F::CancelStep;
+        tri!(self.check_state(f));
+        self.error(f, "this FMU runs no asynchronous step to cancel")
+    }
+
+    /// A status query for a kind this function does not provide: fmi2Discard (FMI 2.0 §4.2.3)
+    /// for a kind that exists, fmi2Error for a value that is no status kind.
+    fn unavailable_status(&self, f: F, s: fmi2StatusKind, available: &str) -> Status {
+        match status_kind_name(s) {
+            Some(name) => self.discard(
+                f,
+                format!("status kind {s} ({name}) is not available ({available})"),
+            ),
+            None => self.error(
+                f,
+                format!("s = {s} is not an fmi2StatusKind (0 to 3); {available}"),
+            ),
+        }
+    }
+
+    /// fmi2GetStatus: `fmi2DoStepStatus` gives the status of the last fmi2DoStep.
+    pub fn get_status(&self, s: fmi2StatusKind) -> Result<Status, Status> {
+        let f = F::GetStatus;
+        self.check_state(f)?;
+        if s == FMI2_DO_STEP_STATUS {
+            Ok(self.last_do_step_status)
+        } else {
+            Err(self.unavailable_status(f, s, "only fmi2DoStepStatus = 0"))
+        }
+    }
+
+    /// fmi2GetRealStatus: `fmi2LastSuccessfulTime`.
+    pub fn get_real_status(&self, s: fmi2StatusKind) -> Result<f64, Status> {
+        let f = F::GetRealStatus;
+        self.check_state(f)?;
+        if s == FMI2_LAST_SUCCESSFUL_TIME {
+            Ok(self.layer.last_successful_time)
+        } else {
+            Err(self.unavailable_status(f, s, "only fmi2LastSuccessfulTime = 2"))
+        }
+    }
+
+    /// fmi2GetIntegerStatus: FMI 2.0 defines no Integer status.
+    pub fn get_integer_status(&self, s: fmi2StatusKind) -> Status {
+        let f = F::GetIntegerStatus;
+        tri!(self.check_state(f));
+        self.unavailable_status(f, s, "FMI 2.0 defines no Integer status")
+    }
+
+    /// fmi2GetBooleanStatus: `fmi2Terminated`.
+    pub fn get_boolean_status(&self, s: fmi2StatusKind) -> Result<bool, Status> {
+        let f = F::GetBooleanStatus;
+        self.check_state(f)?;
+        if s == FMI2_TERMINATED {
+            Ok(self.layer.terminated)
+        } else {
+            Err(self.unavailable_status(f, s, "only fmi2Terminated = 3"))
+        }
+    }
+
+    /// fmi2GetStringStatus: `fmi2PendingStatus` only exists while a step is pending, which
+    /// never happens here.
+    pub fn get_string_status(&self, s: fmi2StatusKind) -> Status {
+        let f = F::GetStringStatus;
+        tri!(self.check_state(f));
+        self.unavailable_status(f, s, "this FMU never has a pending step")
+    }
+}
+
+#[cfg(test)]
+mod tests;
