@@ -35,6 +35,31 @@ const STEP_ROUNDING: f64 = 1e-9;
 /// Successful calls at a reduced step before it is doubled again.
 const CALM_BEFORE_GROWTH: u32 = 4;
 
+/// The inputs of the equations a host may change between communication steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inputs {
+    /// Total tip force [N], global axes.
+    pub tip_force: [f64; 2],
+    /// Gravity [m/s²], global axes.
+    pub gravity: [f64; 2],
+}
+
+impl Inputs {
+    fn of(model: &Model) -> Self {
+        Self {
+            tip_force: model.tip_force(),
+            gravity: model.gravity(),
+        }
+    }
+
+    fn apply(&self, model: &mut Model) {
+        model.set_tip_force(self.tip_force);
+        if model.gravity() != self.gravity {
+            model.set_gravity(self.gravity);
+        }
+    }
+}
+
 /// Everything beyond the state that a snapshot must carry for a bit-identical restart.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Memory {
@@ -42,6 +67,10 @@ pub struct Memory {
     pub integrator: IntegratorMemory,
     /// Step control.
     pub step: StepControl,
+    /// The inputs the state's accelerations and multipliers are consistent with (those of the
+    /// last step); the next [`Simulator::advance`] treats a difference from the current
+    /// inputs as a jump at the current time.
+    pub applied: Inputs,
 }
 
 /// A running simulation.
@@ -52,6 +81,8 @@ pub struct Simulator {
     integ: GeneralizedAlpha,
     state: State,
     step: StepControl,
+    /// Inputs the state's q̈ and λ are consistent with (see [`Memory::applied`]).
+    applied: Inputs,
     /// Smallest internal step used so far [s].
     pub min_step_used: f64,
 }
@@ -93,12 +124,14 @@ impl Simulator {
             h_ok: scene.solver.max_step,
             calm: 0,
         };
+        let applied = Inputs::of(&model);
         Ok(Self {
             scene,
             model,
             integ,
             state,
             step,
+            applied,
             min_step_used: f64::INFINITY,
         })
     }
@@ -128,6 +161,7 @@ impl Simulator {
         Memory {
             integrator: self.integ.memory(),
             step: self.step,
+            applied: self.applied,
         }
     }
 
@@ -169,10 +203,11 @@ impl Simulator {
             .map_err(|e| format!("cannot rebuild the Newton matrix of the snapshot: {e}"))?;
         self.state = s;
         self.step = mem.step;
+        self.applied = mem.applied;
         Ok(())
     }
 
-    /// Sets gravity [m/s²] (takes effect at the next step).
+    /// Sets gravity [m/s²] (takes effect at the next step, as a jump of the inputs).
     pub fn set_gravity(&mut self, g: [f64; 2]) {
         self.model.set_gravity(g);
     }
@@ -182,14 +217,20 @@ impl Simulator {
         self.integ.counters
     }
 
-    /// Input tip force on top of the scene's constant force [N], global axes.
+    /// Sets the total tip force [N], global axes (replaces the scene's; takes effect at the
+    /// next step, as a jump of the inputs at the current time: see [`Simulator::advance`]).
     pub fn set_tip_force(&mut self, f: [f64; 2]) {
-        self.model.tip_force = f;
+        self.model.set_tip_force(f);
     }
 
-    /// Current input tip force [N].
+    /// The total tip force the model applies [N], global axes.
     pub fn tip_force(&self) -> [f64; 2] {
-        self.model.tip_force
+        self.model.tip_force()
+    }
+
+    /// Gravity [m/s²], global axes.
+    pub fn gravity(&self) -> [f64; 2] {
+        self.model.gravity()
     }
 
     /// Outputs of the current state.
@@ -204,6 +245,11 @@ impl Simulator {
     /// span that needs more steps of `solver.max_step` is refused before any work. On failure
     /// the state is the one at the start of the call and the error says why and what to
     /// change.
+    ///
+    /// Inputs set since the last step (tip force, gravity) are a discontinuity at the current
+    /// time: the step starts from accelerations and multipliers consistent with them
+    /// ([`GeneralizedAlpha::change_inputs`]), so a force held over a communication step is
+    /// integrated as exactly that force. Constant inputs leave the integrator untouched.
     pub fn advance(&mut self, t_end: f64) -> Result<(), String> {
         let t0 = self.state.t;
         let span = t_end - t0;
@@ -229,6 +275,13 @@ impl Simulator {
         let h_start = self.step.h_ok;
         let saved = self.state.clone();
         let saved_step = self.step;
+        let inputs = Inputs::of(&self.model);
+        if inputs != self.applied {
+            self.applied.apply(&mut self.model);
+            self.integ
+                .change_inputs(&mut self.model, &mut self.state, |m| inputs.apply(m))
+                .map_err(|e| format!("step from t = {t0:.6} s: accelerations consistent with the new inputs: {e}; reduce the loads"))?;
+        }
         // more steps of a reduced h_ok than the cap allows: start from span / cap (≤ h_max)
         let mut steps = ((span / h_start * (1.0 - STEP_ROUNDING)).ceil().max(1.0) as u64).min(cap);
         let mut done = 0u64;
@@ -315,6 +368,7 @@ impl Simulator {
                 format!("step to t = {t_end:.6} s produced non-finite coordinates; reduce the communication step or solver.max_step")
             });
         }
+        self.applied = inputs;
         if halvings > 0 {
             self.step = StepControl {
                 h_ok: span / steps as f64,

@@ -9,7 +9,7 @@ use hybeam::model::Model;
 fn check(header: &str, segs: &[String]) {
     let s = scene(header, segs);
     let mut model = Model::from_scene(&s).unwrap();
-    model.tip_force = [0.3, -0.7];
+    model.set_tip_force([0.3, -0.7]);
     let n = model.coordinates();
     let m = model.constraints();
     let d = n + m;

@@ -453,7 +453,7 @@ fn drive(case: &Case, o: &mut Outcome) {
         let t0 = (k - 1) as f64 * case.chunk;
         let f_in = input_at(&case.input, t0, tip, &mut rng);
         sim.set_tip_force(f_in);
-        let f = sim.model().total_tip_force();
+        let f = sim.tip_force();
         if let Err(e) = sim.advance(k as f64 * case.chunk) {
             o.status = Status::Refused(if e.trim().is_empty() {
                 "(empty message)".into()

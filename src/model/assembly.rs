@@ -60,8 +60,8 @@ pub struct Parts<S: Space> {
     pub support: Box<dyn Support<S>>,
     /// Gravity [m/s²].
     pub gravity: S::Vec,
-    /// Constant tip force of the scene [N].
-    pub scene_tip_force: S::Vec,
+    /// Tip force at build (the scene's) [N], global axes.
+    pub tip_force: S::Vec,
 }
 
 /// Reused local work arrays of the assembly's ports and constraints (sized for the largest
@@ -83,9 +83,9 @@ pub struct Model<S: Space = Planar> {
     pub(crate) support: Box<dyn Support<S>>,
     pub(crate) held: Vec<f64>,
     pub(crate) gravity: S::Vec,
-    /// Tip force applied on top of the scene's [N], global axes.
-    pub tip_force: S::Vec,
-    scene_tip_force: S::Vec,
+    /// The one total tip force [N], global axes: the scene's at build, then whatever
+    /// [`Model::set_tip_force`] sets (no split into scene part and input part).
+    pub(crate) tip_force: S::Vec,
     scale: Vec<f64>,
     q0: Vec<f64>,
     lu: SparseLu,
@@ -115,7 +115,7 @@ impl<S: Space> Model<S> {
             tip,
             support,
             gravity,
-            scene_tip_force,
+            tip_force,
         } = parts;
         let (q0, scale, held) = numbering.finish();
         let n = q0.len();
@@ -199,8 +199,7 @@ impl<S: Space> Model<S> {
             support,
             held,
             gravity,
-            tip_force: S::Vec::default(),
-            scene_tip_force,
+            tip_force,
             scale,
             q0,
             lu: SparseLu::new(pattern),
@@ -234,13 +233,14 @@ impl<S: Space> Model<S> {
         }
     }
 
-    /// Total tip force: scene constant + [`Model::tip_force`] [N].
-    pub fn total_tip_force(&self) -> S::Vec {
-        let mut f = self.scene_tip_force;
-        for (f, d) in f.as_mut().iter_mut().zip(self.tip_force.as_ref()) {
-            *f += d;
-        }
-        f
+    /// The total tip force [N], global axes.
+    pub fn tip_force(&self) -> S::Vec {
+        self.tip_force
+    }
+
+    /// Sets the total tip force [N], global axes (replaces the scene's).
+    pub fn set_tip_force(&mut self, f: S::Vec) {
+        self.tip_force = f;
     }
 
     /// Largest number of local coordinates of a component.
@@ -281,7 +281,7 @@ impl<S: Space> Integrable for Model<S> {
         if matrix.is_some() {
             self.values.fill(0.0);
         }
-        let force = self.total_tip_force();
+        let force = self.tip_force;
         let Self {
             elements,
             constraints,
@@ -466,14 +466,14 @@ mod tests {
             tip: (dofs, Box::new(Point)),
             support: Box::new(NoSupport),
             gravity: [0.0, -G],
-            scene_tip_force: [0.0, 0.0],
+            tip_force: [0.0, 0.0],
         })
     }
 
     #[test]
     fn one_row_constraint_assembles_with_its_exact_matrix() {
         let mut model = pendulum(0.3);
-        model.tip_force = [0.2, -0.1];
+        model.set_tip_force([0.2, -0.1]);
         assert_eq!((model.coordinates(), model.constraints()), (2, 1));
         let (q, v, a, lam) = ([0.2, -0.4], [0.7, 0.3], [1.0, -2.0], [0.9]);
         let req = EvalRequest {

@@ -102,7 +102,7 @@ impl<S: Space> Model<S> {
             tip.gather(q, &self.held, x);
             let kin = self.tip.part.kinematics(x);
             local.resize(tip.len(), 0.0);
-            point_force_residual::<S>(&kin, &self.total_tip_force(), &mut local);
+            point_force_residual::<S>(&kin, &self.tip_force, &mut local);
             tip.scatter_held(&local, &mut r);
         }
         let mut out = ConstraintOut::default();

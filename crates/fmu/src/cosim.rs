@@ -12,7 +12,7 @@ use fmi2::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
 use hybeam::integrator::{IntegratorMemory, JacobianPoint, State};
 use hybeam::model::Outputs;
 use hybeam::scene::{Scene, Section, SegmentKind};
-use hybeam::simulator::{Memory, Simulator, StepControl};
+use hybeam::simulator::{Inputs, Memory, Simulator, StepControl};
 
 /// What a value reference designates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,12 +87,10 @@ pub struct BeamFmu {
     /// Outputs of the current state, computed once per state change (no direct feedthrough:
     /// setting an input does not change them).
     outputs: Outputs,
-    /// Scene tip force the simulator was built with (the input is the total force).
-    built_force: [f64; 2],
 }
 
 /// Magic and version of the snapshot bytes.
-const MAGIC: &[u8; 8] = b"HYBEAM02";
+const MAGIC: &[u8; 8] = b"HYBEAM03";
 
 fn fnv1a(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -368,13 +366,6 @@ impl BeamFmu {
         self.outputs = self.sim.outputs();
     }
 
-    fn apply_input(&mut self) {
-        self.sim.set_tip_force([
-            self.input[0] - self.built_force[0],
-            self.input[1] - self.built_force[1],
-        ]);
-    }
-
     /// Slots of the parameters, in table order.
     fn parameter_slots(&self) -> Vec<Slot> {
         self.vars
@@ -468,7 +459,6 @@ impl CoSimModel for BeamFmu {
             scene_text: scene_toml.to_string(),
             base: scene.clone(),
             input: scene.tip.force,
-            built_force: scene.tip.force,
             scene,
             vars,
             slots,
@@ -495,7 +485,7 @@ impl CoSimModel for BeamFmu {
         let (_, slot) = self.slot_of(vr)?;
         let o = &self.outputs;
         Ok(match slot {
-            Slot::TipForce(i) => self.input[i],
+            Slot::TipForce(i) => self.sim.tip_force()[i],
             Slot::TipPosition(i) => o.tip_position[i],
             Slot::TipVelocity(i) => o.tip_velocity[i],
             Slot::TipAngle => o.tip_angle,
@@ -517,7 +507,7 @@ impl CoSimModel for BeamFmu {
         match slot {
             Slot::TipForce(k) => {
                 self.input[k] = value;
-                self.apply_input();
+                self.sim.set_tip_force(self.input);
                 Ok(())
             }
             Slot::Gravity(_)
@@ -545,8 +535,6 @@ impl CoSimModel for BeamFmu {
         let mut scene = self.scene.clone();
         scene.tip.force = self.input;
         self.sim = Simulator::new(scene)?;
-        self.built_force = self.input;
-        self.apply_input();
         self.refresh_outputs();
         Ok(())
     }
@@ -574,7 +562,6 @@ impl CoSimModel for BeamFmu {
         w.u(fnv1a(self.scene_text.as_bytes()));
         w.v(&self.parameters());
         w.v(&self.input);
-        w.v(&self.built_force);
         let s = self.sim.state();
         w.f(s.t);
         for x in [&s.q, &s.v, &s.acc, &s.aux, &s.lambda] {
@@ -583,6 +570,8 @@ impl CoSimModel for BeamFmu {
         let mem = self.sim.memory();
         w.f(mem.step.h_ok);
         w.u(mem.step.calm as u64);
+        w.v(&mem.applied.tip_force);
+        w.v(&mem.applied.gravity);
         let mem = mem.integrator;
         w.f(mem.eta);
         match &mem.jacobian {
@@ -608,8 +597,7 @@ impl CoSimModel for BeamFmu {
         }
         let params = r.v()?;
         let input = r.v()?;
-        let built = r.v()?;
-        if input.len() != 2 || built.len() != 2 {
+        if input.len() != 2 {
             return Err("snapshot input block is malformed".into());
         }
         let t = r.f()?;
@@ -620,6 +608,23 @@ impl CoSimModel for BeamFmu {
         let lambda = r.v()?;
         let h_ok = r.f()?;
         let calm = r.u()?.min(u32::MAX as u64) as u32;
+        let (applied_force, applied_gravity) = (r.v()?, r.v()?);
+        if applied_force.len() != 2 || applied_gravity.len() != 2 {
+            return Err("snapshot input block is malformed".into());
+        }
+        let applied = Inputs {
+            tip_force: [applied_force[0], applied_force[1]],
+            gravity: [applied_gravity[0], applied_gravity[1]],
+        };
+        if !applied
+            .tip_force
+            .iter()
+            .chain(&applied.gravity)
+            .chain(&input)
+            .all(|x| x.is_finite())
+        {
+            return Err("snapshot inputs hold non-finite values".into());
+        }
         let eta = r.f()?;
         let jacobian = match r.u()? {
             0 => None,
@@ -638,10 +643,10 @@ impl CoSimModel for BeamFmu {
         if !r.0.is_empty() {
             return Err("snapshot has trailing bytes".into());
         }
-        let mut scene = self.build_scene_with_parameters(&params)?;
-        let current = scene.clone();
-        scene.tip.force = [built[0], built[1]];
-        let mut sim = Simulator::for_restore(scene)?;
+        let scene = self.build_scene_with_parameters(&params)?;
+        let mut sim = Simulator::for_restore(scene.clone())?;
+        let input = [input[0], input[1]];
+        sim.set_tip_force(input);
         sim.restore(
             State {
                 t,
@@ -654,13 +659,12 @@ impl CoSimModel for BeamFmu {
             &Memory {
                 integrator: IntegratorMemory { eta, jacobian },
                 step: StepControl { h_ok, calm },
+                applied,
             },
         )?;
-        self.scene = current;
+        self.scene = scene;
         self.sim = sim;
-        self.input = [input[0], input[1]];
-        self.built_force = [built[0], built[1]];
-        self.apply_input();
+        self.input = input;
         self.refresh_outputs();
         Ok(())
     }

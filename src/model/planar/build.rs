@@ -177,7 +177,7 @@ impl Model<Planar> {
             tip: (tip.dofs, tip.port),
             support: Box::new(support.expect("the first segment is held at the root")),
             gravity: scene.gravity,
-            scene_tip_force: scene.tip.force,
+            tip_force: scene.tip.force,
         }))
     }
 
