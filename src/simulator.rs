@@ -91,7 +91,14 @@ impl Simulator {
     /// Builds the model and its initial state (straight, or static equilibrium) at t = 0, with
     /// consistent accelerations.
     pub fn new(scene: Scene) -> Result<Self, String> {
-        Self::build(scene, true)
+        Self::new_at(scene, 0.0)
+    }
+
+    /// As [`Simulator::new`], with the clock starting at `t0` [s] (e.g. an FMU's start time).
+    pub fn new_at(scene: Scene, t0: f64) -> Result<Self, String> {
+        let mut sim = Self::build(scene, true)?;
+        sim.state.t = t0;
+        Ok(sim)
     }
 
     /// Builds the model without computing an initial state (the caller restores a snapshot).

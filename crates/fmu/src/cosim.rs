@@ -531,10 +531,10 @@ impl CoSimModel for BeamFmu {
         }
     }
 
-    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+    fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         let mut scene = self.scene.clone();
         scene.tip.force = self.input;
-        self.sim = Simulator::new(scene)?;
+        self.sim = Simulator::new_at(scene, start_time)?;
         self.refresh_outputs();
         Ok(())
     }
@@ -542,10 +542,9 @@ impl CoSimModel for BeamFmu {
     /// Every failure of the beam is recoverable: the simulator keeps its state at the start of
     /// the step, and a smaller step, other inputs or a restored state can continue.
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), StepError> {
-        // the FMI layer checked t against the current time; integrate from the model's time
-        let _ = t;
-        let t_end = self.sim.time() + h;
-        self.sim.advance(t_end)?;
+        // one clock: the simulator starts at the start time and ends each step at the host's
+        // t + h (the FMI layer checked t against its time, which is the simulator's)
+        self.sim.advance(t + h)?;
         self.refresh_outputs();
         Ok(())
     }
@@ -728,6 +727,21 @@ mod tests {
         }
         assert!(b.load_state(&bytes[..bytes.len() - 3]).is_err());
         assert!(b.load_state(b"garbage").is_err());
+    }
+
+    /// One clock: the simulator starts at the start time, and each step ends at the host's
+    /// t + h to the bit (not at the simulator's time + h).
+    #[test]
+    fn steps_end_at_the_hosts_t_plus_h() {
+        let mut m = BeamFmu::from_resource(&case1()).unwrap();
+        m.initialize(0.3).unwrap();
+        assert_eq!(m.sim.time().to_bits(), 0.3f64.to_bits());
+        let (mut t, h) = (0.3, 0.1 / 3.0 * 1e-2);
+        for _ in 0..7 {
+            m.do_step(t, h).unwrap();
+            t += h;
+            assert_eq!(m.sim.time().to_bits(), t.to_bits());
+        }
     }
 
     #[test]
