@@ -180,13 +180,4 @@ impl Model<Planar> {
             tip_force: scene.tip.force,
         }))
     }
-
-    /// The `i`-th modal body in summation order (for tests and analyses).
-    pub fn modal_body(&self, i: usize) -> &ModalBody {
-        &self
-            .elements_of::<ModalElement>()
-            .nth(i)
-            .expect("modal body index in range")
-            .body
-    }
 }

@@ -3,6 +3,7 @@
 
 use super::Planar;
 use crate::model::ancf::{AncfProps, Mat8, QuadTables, Vec8};
+use crate::model::assembly::Model;
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
 use crate::model::modal::{BodyOut, ModalBody};
 use std::any::Any;
@@ -191,5 +192,16 @@ impl Element<Planar> for ModalElement {
 
     fn as_any(&self) -> &dyn Any {
         self
+    }
+}
+
+impl Model<Planar> {
+    /// The `i`-th modal body in summation order (for tests and analyses).
+    pub fn modal_body(&self, i: usize) -> &ModalBody {
+        &self
+            .elements_of::<ModalElement>()
+            .nth(i)
+            .expect("modal body index in range")
+            .body
     }
 }
