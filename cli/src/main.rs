@@ -9,6 +9,7 @@
 //! command line, 1 for a bad scene or a failed simulation.
 
 use clap::{Args, Parser, Subcommand};
+use hybeam::model::Outputs;
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
 use std::io::Write;
@@ -89,17 +90,17 @@ impl SceneArgs {
 }
 
 /// A CSV column: its name and how its value is read.
-type Column = (&'static str, fn(&Simulator) -> f64);
+type Column = (&'static str, fn(&Outputs) -> f64);
 
 /// Columns of the CSV after `time`. The one place the CLI names its outputs (the names are the
 /// FMU's output variables; docs/fmu-variables.md).
 const COLUMNS: [Column; 6] = [
-    ("tip.position.x", |s| s.outputs().tip_position[0]),
-    ("tip.position.y", |s| s.outputs().tip_position[1]),
-    ("tip.angle", |s| s.outputs().tip_angle),
-    ("energy.kinetic", |s| s.outputs().kinetic),
-    ("energy.strain", |s| s.outputs().strain),
-    ("energy.potential", |s| s.outputs().potential),
+    ("tip.position.x", |o| o.tip_position[0]),
+    ("tip.position.y", |o| o.tip_position[1]),
+    ("tip.angle", |o| o.tip_angle),
+    ("energy.kinetic", |o| o.kinetic),
+    ("energy.strain", |o| o.strain),
+    ("energy.potential", |o| o.potential),
 ];
 
 /// The CSV header line.
@@ -110,11 +111,13 @@ fn header() -> String {
         .join(",")
 }
 
-/// The CSV row of the current state: time to 10 digits, outputs to 18 (round trip).
+/// The CSV row of the current state: time to 10 digits, outputs to 18 (round trip). The
+/// outputs are computed once per row.
 fn row(sim: &Simulator) -> String {
     let mut s = format!("{:.9e}", sim.time());
+    let o = sim.outputs();
     for (_, value) in COLUMNS {
-        s.push_str(&format!(",{:.17e}", value(sim)));
+        s.push_str(&format!(",{:.17e}", value(&o)));
     }
     s
 }
