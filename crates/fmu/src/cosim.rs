@@ -46,14 +46,6 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 impl BeamFmu {
-    fn index_of(&self, vr: u32) -> Result<usize, String> {
-        self.table
-            .variables()
-            .iter()
-            .position(|v| v.vr == vr)
-            .ok_or_else(|| format!("value reference {vr} is not a variable of this model"))
-    }
-
     fn refresh_outputs(&mut self) {
         self.outputs = self.sim.outputs();
     }
@@ -162,8 +154,8 @@ impl CoSimModel for BeamFmu {
         self.table.variables()
     }
 
-    fn get_real(&self, vr: u32) -> Result<f64, String> {
-        let access = self.table.access(self.index_of(vr)?);
+    fn get_real(&self, index: usize) -> Result<f64, String> {
+        let access = self.table.access(index);
         Ok(match access {
             Access::TipForce(k) => self.sim.tip_force()[k],
             Access::Output(read) => read(&self.outputs),
@@ -173,8 +165,7 @@ impl CoSimModel for BeamFmu {
         })
     }
 
-    fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
-        let index = self.index_of(vr)?;
+    fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
         let name = &self.table.variables()[index].name;
         if !value.is_finite() {
             return Err(format!("{name} = {value}: must be a finite number"));
@@ -347,6 +338,11 @@ impl CoSimModel for BeamFmu {
 mod tests {
     use super::*;
 
+    /// The index of value reference `vr` (the FMI layer's resolution).
+    fn at(m: &BeamFmu, vr: u32) -> usize {
+        m.variables().iter().position(|v| v.vr == vr).unwrap()
+    }
+
     fn case1() -> String {
         std::fs::read_to_string(concat!(
             env!("CARGO_MANIFEST_DIR"),
@@ -384,7 +380,7 @@ mod tests {
         for k in 0..5 {
             a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
         }
-        a.set_real(2, -0.01).unwrap();
+        a.set_real(at(&a, 2), -0.01).unwrap();
         let bytes = a.save_state();
         let mut b = BeamFmu::from_resource(&text).unwrap();
         b.load_state(&bytes).unwrap();
@@ -392,11 +388,12 @@ mod tests {
             a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
             b.do_step(k as f64 * 1e-3, 1e-3).unwrap();
         }
-        for v in a.variables().iter().map(|v| v.vr) {
+        for (i, v) in a.variables().iter().enumerate() {
             assert_eq!(
-                a.get_real(v).unwrap().to_bits(),
-                b.get_real(v).unwrap().to_bits(),
-                "vr {v}"
+                a.get_real(i).unwrap().to_bits(),
+                b.get_real(i).unwrap().to_bits(),
+                "{}",
+                v.name
             );
         }
         assert!(b.load_state(&bytes[..bytes.len() - 3]).is_err());
@@ -421,9 +418,9 @@ mod tests {
     #[test]
     fn bad_parameter_is_refused_with_its_name() {
         let mut m = BeamFmu::from_resource(&case1()).unwrap();
-        let e = m.set_real(1001, -0.2).unwrap_err();
+        let e = m.set_real(at(&m, 1001), -0.2).unwrap_err();
         assert!(e.contains("modal.length") && e.contains("> 0"), "{e}");
-        assert!(m.set_real(10, 1.0).unwrap_err().contains("output"));
-        assert!(m.set_real(1, f64::NAN).is_err());
+        assert!(m.set_real(at(&m, 10), 1.0).unwrap_err().contains("output"));
+        assert!(m.set_real(at(&m, 1), f64::NAN).is_err());
     }
 }
