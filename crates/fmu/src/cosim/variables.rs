@@ -243,7 +243,7 @@ fn rectangle(s: &Segment) -> bool {
 }
 
 /// Segment fields, in value-reference order.
-const SEGMENT_FIELDS: [SegmentField; 8] = [
+pub const SEGMENT_FIELDS: [SegmentField; 8] = [
     SegmentField {
         name: "length",
         k: 1,
