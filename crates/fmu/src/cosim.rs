@@ -46,6 +46,19 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 impl BeamFmu {
+    /// modelDescription.xml of the FMU of `scene_toml` with this modelIdentifier, from the
+    /// scene alone (its variable table and default experiment): no simulator is built.
+    pub fn model_description(scene_toml: &str, model_identifier: &str) -> Result<String, String> {
+        let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
+        let guid = fmi2::guid::guid::<Self>(scene_toml.as_bytes());
+        let ids = fmi2::xml::Identity {
+            model_identifier,
+            guid: &guid,
+            generation_tool: Self::GENERATION_TOOL,
+        };
+        fmi2::xml::model_description(&model_info(&scene), Table::of(&scene).variables(), &ids)
+    }
+
     fn refresh_outputs(&mut self) {
         self.outputs = self.sim.outputs();
     }
@@ -68,6 +81,17 @@ impl BeamFmu {
         }
         scene.validate().map_err(|e| e.0)?;
         Ok(scene)
+    }
+}
+
+/// Model name, description and default experiment of a scene.
+fn model_info(scene: &Scene) -> ModelInfo {
+    ModelInfo {
+        model_name: scene.name.clone(),
+        description: scene.description.clone(),
+        start_time: 0.0,
+        stop_time: scene.simulation.t_end,
+        step_size: scene.simulation.output_step,
     }
 }
 
@@ -141,13 +165,7 @@ impl CoSimModel for BeamFmu {
     }
 
     fn model_info(&self) -> ModelInfo {
-        ModelInfo {
-            model_name: self.base.name.clone(),
-            description: self.base.description.clone(),
-            start_time: 0.0,
-            stop_time: self.base.simulation.t_end,
-            step_size: self.base.simulation.output_step,
-        }
+        model_info(&self.base)
     }
 
     fn variables(&self) -> &[Variable] {
