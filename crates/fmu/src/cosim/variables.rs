@@ -37,15 +37,13 @@ impl Access {
         }
     }
 
-    /// Sets the parameter in `scene` (not validated); `false` (scene unchanged) for inputs and
-    /// outputs.
-    pub fn set_parameter(self, scene: &mut Scene, x: f64) -> bool {
+    /// Sets the parameter in `scene` (not validated); no effect for inputs and outputs.
+    pub fn set_parameter(self, scene: &mut Scene, x: f64) {
         match self {
             Access::Scene(p) => (p.set)(scene, x),
             Access::Segment(i, f) => (f.set)(&mut scene.segments[i], x),
-            Access::TipForce(_) | Access::Output(_) => return false,
+            Access::TipForce(_) | Access::Output(_) => {}
         }
-        true
     }
 }
 
