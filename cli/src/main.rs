@@ -93,7 +93,7 @@ impl SceneArgs {
 type Column = (&'static str, fn(&Outputs) -> f64);
 
 /// Columns of the CSV after `time`. The one place the CLI names its outputs (the names are the
-/// FMU's output variables; docs/fmu-variables.md).
+/// FMU's output variables, checked by the test `columns_are_fmu_outputs`).
 const COLUMNS: [Column; 6] = [
     ("tip.position.x", |o| o.tip_position[0]),
     ("tip.position.y", |o| o.tip_position[1]),
@@ -273,5 +273,32 @@ mod tests {
         .unwrap();
         let sim = Simulator::new(scene).unwrap();
         assert_eq!(row(&sim).split(',').count(), header().split(',').count());
+    }
+
+    /// Every CSV column after `time` is an FMU output of the same name that reads the same
+    /// value (docs/fmu-variables.md), on a state where positions, energies and the angle are
+    /// all nonzero.
+    #[test]
+    fn columns_are_fmu_outputs() {
+        use hybeam_fmu::cosim::variables::{Access, Table};
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/case1.toml");
+        let scene = Scene::from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let table = Table::of(&scene);
+        let mut sim = Simulator::new(scene).unwrap();
+        sim.advance(2e-3).unwrap();
+        let outputs = sim.outputs();
+        for (name, value) in COLUMNS {
+            let index = table
+                .variables()
+                .iter()
+                .position(|v| v.name == name)
+                .unwrap_or_else(|| panic!("CSV column {name} is not an FMU variable"));
+            assert_eq!(table.variables()[index].causality, fmi2::Causality::Output);
+            let Access::Output(read) = table.access(index) else {
+                panic!("{name} is not read from the outputs");
+            };
+            assert_ne!(value(&sim), 0.0, "{name} must discriminate");
+            assert_eq!(read(&outputs).to_bits(), value(&sim).to_bits(), "{name}");
+        }
     }
 }

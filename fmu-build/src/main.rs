@@ -4,9 +4,11 @@
 //! fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]
 //! ```
 //!
-//! 1. reads the scene and builds the model with `from_resource` (a bad scene fails here, with the
-//!    scene's message and exit code 1);
-//! 2. computes the GUID and writes modelDescription.xml from the model's variable table;
+//! 1. reads the scene and builds the model with `from_resource`, so that a scene the FMU could
+//!    not instantiate (bad values, an initial static solve that fails) fails here, with the
+//!    scene's message and exit code 1, not in the host;
+//! 2. writes modelDescription.xml (GUID, variable table, default experiment) from the scene
+//!    alone (`BeamFmu::model_description`);
 //! 3. runs `cargo build --profile fmu-release -p hybeam-fmu --lib` in this workspace (release
 //!    code without debug info) and takes the cdylib that cargo reports (so `CARGO_TARGET_DIR`
 //!    and cargo config are honoured);
@@ -23,7 +25,7 @@ use clap::Parser;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 
-use fmi2::{guid, xml, CoSimModel};
+use fmi2::{xml, CoSimModel};
 use hybeam_fmu::FmuModel;
 
 /// Package a hybeam scene as an FMI 2.0 co-simulation FMU.
@@ -63,7 +65,7 @@ fn run(args: &Args) -> Result<PathBuf, String> {
         .map_err(|e| format!("cannot read {}: {e}", scene_path.display()))?;
     let text = std::str::from_utf8(&scene)
         .map_err(|_| format!("{} is not valid UTF-8", scene_path.display()))?;
-    let model = FmuModel::from_resource(text)
+    FmuModel::from_resource(text)
         .map_err(|e| format!("invalid scene {}: {e}", scene_path.display()))?;
     let id = match &args.id {
         Some(id) if xml::is_c_identifier(id) => id.clone(),
@@ -73,8 +75,7 @@ fn run(args: &Args) -> Result<PathBuf, String> {
             xml::model_identifier_from_stem(&stem)
         }
     };
-    let guid = guid::guid::<FmuModel>(&scene);
-    let description = xml::model_description_of(&model, &id, &guid)?;
+    let description = FmuModel::model_description(text, &id)?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
     if args.xml_only {

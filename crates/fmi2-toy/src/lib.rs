@@ -324,7 +324,8 @@ impl CoSimModel for Toy {
         &self.vars
     }
 
-    fn get_real(&self, r: u32) -> Result<f64, String> {
+    fn get_real(&self, index: usize) -> Result<f64, String> {
+        let r = self.vars[index].vr;
         let p = &self.p;
         Ok(match r {
             vr::MASS => p.mass,
@@ -344,7 +345,8 @@ impl CoSimModel for Toy {
         })
     }
 
-    fn set_real(&mut self, r: u32, value: f64) -> Result<(), String> {
+    fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
+        let r = self.vars[index].vr;
         let mut p = self.p;
         match r {
             vr::MASS => p.mass = value,
@@ -468,14 +470,19 @@ mod tests {
 
     const SCENE: &str = include_str!("../toy.toml");
 
+    /// The index of value reference `r` (the FMI layer's resolution).
+    fn at(m: &Toy, r: u32) -> usize {
+        m.vars.iter().position(|v| v.vr == r).unwrap()
+    }
+
     #[test]
     fn failed_step_keeps_state_and_state_round_trips() {
         let mut m = Toy::from_resource(SCENE).unwrap();
         m.initialize(0.0).unwrap();
-        m.set_real(vr::FORCE_X, 5.0).unwrap();
+        m.set_real(at(&m, vr::FORCE_X), 5.0).unwrap();
         m.do_step(0.0, 0.01).unwrap();
         let saved = m.save_state();
-        m.set_real(vr::FORCE_Y, 1e6).unwrap();
+        m.set_real(at(&m, vr::FORCE_Y), 1e6).unwrap();
         assert!(m
             .do_step(0.01, 0.01)
             .unwrap_err()
@@ -488,8 +495,8 @@ mod tests {
         m.do_step(0.01, 0.01).unwrap();
         n.do_step(0.01, 0.01).unwrap();
         assert_eq!(
-            m.get_real(vr::POS_X).unwrap().to_bits(),
-            n.get_real(vr::POS_X).unwrap().to_bits()
+            m.get_real(at(&m, vr::POS_X)).unwrap().to_bits(),
+            n.get_real(at(&n, vr::POS_X)).unwrap().to_bits()
         );
         assert!(n.load_state(b"junk").is_err());
     }
@@ -501,9 +508,9 @@ mod tests {
         assert!(Toy::from_resource("nonsense").is_err());
         let mut m = Toy::from_resource(SCENE).unwrap();
         assert!(m
-            .set_real(vr::DAMPING, -1.0)
+            .set_real(at(&m, vr::DAMPING), -1.0)
             .unwrap_err()
             .contains("damping"));
-        assert_eq!(m.get_real(vr::DAMPING).unwrap(), 0.5);
+        assert_eq!(m.get_real(at(&m, vr::DAMPING)).unwrap(), 0.5);
     }
 }

@@ -244,13 +244,13 @@ impl<M: CoSimModel> Instance<M> {
         let f = F::GetReal;
         tri!(self.check_state(f));
         for (&r, slot) in vrs.iter().zip(out.iter_mut()) {
-            if self.variable(r).is_none() {
+            let Some(index) = self.index_of(r) else {
                 return self.error(
                     f,
                     format!("value reference {r} is not a variable of this model"),
                 );
-            }
-            match self.model.get_real(r) {
+            };
+            match self.model.get_real(index) {
                 Ok(v) => *slot = v,
                 Err(e) => return self.error(f, format!("value reference {r}: {e}")),
             }
@@ -264,13 +264,18 @@ impl<M: CoSimModel> Instance<M> {
     pub fn set_real(&mut self, vrs: &[fmi2ValueReference], values: &[f64]) -> Status {
         let f = F::SetReal;
         tri!(self.check_state(f));
-        for (&r, &v) in vrs.iter().zip(values) {
-            let Some(var) = self.variable(r) else {
+        // Indices of the value references (resolved once), checked before any is set.
+        let (mut small_index, mut large_index) = ([0usize; 8], Vec::new());
+        let index = scratch(&mut small_index, &mut large_index, vrs.len());
+        for ((&r, &v), i) in vrs.iter().zip(values).zip(index.iter_mut()) {
+            let Some(found) = self.index_of(r) else {
                 return self.error(
                     f,
                     format!("value reference {r} is not a variable of this model"),
                 );
             };
+            *i = found;
+            let var = &self.model.variables()[found];
             if let Err(e) = check_settable(var, self.layer.state) {
                 return self.error(f, e);
             }
@@ -284,28 +289,22 @@ impl<M: CoSimModel> Instance<M> {
                 );
             }
         }
-        // Previous values, to undo if the model refuses one (no allocation for n <= 8).
-        let mut small = [0.0; 8];
-        let mut large = Vec::new();
-        let old: &mut [f64] = if vrs.len() <= small.len() {
-            &mut small[..vrs.len()]
-        } else {
-            large.resize(vrs.len(), 0.0);
-            &mut large
-        };
-        for (&r, slot) in vrs.iter().zip(old.iter_mut()) {
-            match self.model.get_real(r) {
+        // Previous values, to undo if the model refuses one.
+        let (mut small, mut large) = ([0.0; 8], Vec::new());
+        let old = scratch(&mut small, &mut large, vrs.len());
+        for ((&r, &i), slot) in vrs.iter().zip(index.iter()).zip(old.iter_mut()) {
+            match self.model.get_real(i) {
                 Ok(v) => *slot = v,
                 Err(e) => return self.error(f, format!("value reference {r}: {e}")),
             }
         }
-        for (i, (&r, &v)) in vrs.iter().zip(values).enumerate() {
-            if let Err(e) = self.model.set_real(r, v) {
+        for (k, ((&r, &i), &v)) in vrs.iter().zip(index.iter()).zip(values).enumerate() {
+            if let Err(e) = self.model.set_real(i, v) {
                 // Reverse order restores repeated value references correctly.
-                for (&r_done, &v_old) in vrs[..i].iter().zip(&old[..i]).rev() {
-                    let _ = self.model.set_real(r_done, v_old);
+                for (&i_done, &v_old) in index[..k].iter().zip(&old[..k]).rev() {
+                    let _ = self.model.set_real(i_done, v_old);
                 }
-                let name = self.variable(r).map(|x| x.name.as_str()).unwrap_or("");
+                let name = &self.model.variables()[i].name;
                 return self.error(
                     f,
                     format!("{name} (value reference {r}) = {v} refused: {e}; nothing was set"),
@@ -622,6 +621,20 @@ impl<M: CoSimModel> Instance<M> {
         let f = F::GetStringStatus;
         tri!(self.check_state(f));
         self.unavailable_status(f, s, "this FMU never has a pending step")
+    }
+}
+
+/// `n` scratch elements: in `stack` for n <= 8 (no allocation), else in `heap`.
+fn scratch<'a, T: Copy + Default>(
+    stack: &'a mut [T; 8],
+    heap: &'a mut Vec<T>,
+    n: usize,
+) -> &'a mut [T] {
+    if n <= stack.len() {
+        &mut stack[..n]
+    } else {
+        heap.resize(n, T::default());
+        heap
     }
 }
 

@@ -80,11 +80,18 @@ impl<M: CoSimModel> Instance<M> {
         self.logger.messages()
     }
 
+    /// The index in `model.variables()` of the variable with value reference `vr`, if any: the
+    /// one place a value reference is resolved.
+    #[inline]
+    pub fn index_of(&self, vr: u32) -> Option<usize> {
+        let i = self.vr_index.binary_search_by_key(&vr, |p| p.0).ok()?;
+        Some(self.vr_index[i].1)
+    }
+
     /// The variable with value reference `vr`, if any.
     #[inline]
     pub fn variable(&self, vr: u32) -> Option<&Variable> {
-        let i = self.vr_index.binary_search_by_key(&vr, |p| p.0).ok()?;
-        self.model.variables().get(self.vr_index[i].1)
+        self.model.variables().get(self.index_of(vr)?)
     }
 
     /// True if messages of `category` reach the logger.

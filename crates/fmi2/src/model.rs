@@ -116,11 +116,13 @@ pub trait CoSimModel: Sized + Send + 'static {
     fn model_info(&self) -> ModelInfo;
     /// The variable table (single source for the XML and the runtime).
     fn variables(&self) -> &[Variable];
-    /// Value of a variable. Outputs are those of the current state.
-    fn get_real(&self, vr: u32) -> Result<f64, String>;
-    /// Sets a parameter or input. Refuses non-finite or out-of-range values with a message;
-    /// the model is unchanged on error.
-    fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String>;
+    /// Value of the variable `variables()[index]` (the layer resolved its value reference and
+    /// checked `index`). Outputs are those of the current state.
+    fn get_real(&self, index: usize) -> Result<f64, String>;
+    /// Sets the parameter or input `variables()[index]` (the layer resolved its value reference,
+    /// checked `index` and that the variable may be set now). Refuses non-finite or
+    /// out-of-range values with a message; the model is unchanged on error.
+    fn set_real(&mut self, index: usize, value: f64) -> Result<(), String>;
     /// Called at fmi2ExitInitializationMode: builds the model from the current parameters and
     /// computes the initial state at `start_time`.
     fn initialize(&mut self, start_time: f64) -> Result<(), String>;

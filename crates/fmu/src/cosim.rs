@@ -1,74 +1,18 @@
 //! The beam as a co-simulation model: the variable table derived from the scene and its
 //! mapping onto a [`Simulator`]. Implements [`CoSimModel`] for the FMI layer.
 //!
-//! Value references are derived from the scene's structure, never from an enumeration order
-//! that could shift: inputs 1–2, outputs 10–22, gravity 100–101, solver 110–112, and segment i's
-//! field k at 1000·(i + 1) + k (k: length 1, diameter 2, width 3, height 4, youngs_modulus 5,
-//! density 6, damping_time 7, damping_ratio 8). A scene only gets the variables it needs: no
-//! damping parameters without damping, no width/height on a round section.
+//! The variables are declared in [`variables`].
 
-use fmi2::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+pub mod variables;
+
+use fmi2::{CoSimModel, ModelInfo, StepError, Variable};
 
 use hybeam::integrator::{IntegratorMemory, JacobianPoint, State};
 use hybeam::model::Outputs;
-use hybeam::scene::{Scene, Section, SegmentKind};
+use hybeam::scene::Scene;
 use hybeam::simulator::{Inputs, Memory, Simulator, StepControl};
 
-/// What a value reference designates.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Slot {
-    TipForce(usize),
-    TipPosition(usize),
-    TipVelocity(usize),
-    TipAngle,
-    RootForce(usize),
-    RootMoment,
-    Kinetic,
-    Strain,
-    Potential,
-    Gravity(usize),
-    RhoInf,
-    MaxStep,
-    Tolerance,
-    Segment(usize, Field),
-}
-
-/// Segment fields exposed as parameters.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Field {
-    Length = 1,
-    Diameter = 2,
-    Width = 3,
-    Height = 4,
-    YoungsModulus = 5,
-    Density = 6,
-    DampingTime = 7,
-    DampingRatio = 8,
-}
-
-impl Field {
-    fn name(self) -> &'static str {
-        match self {
-            Field::Length => "length",
-            Field::Diameter => "diameter",
-            Field::Width => "width",
-            Field::Height => "height",
-            Field::YoungsModulus => "youngs_modulus",
-            Field::Density => "density",
-            Field::DampingTime => "damping_time",
-            Field::DampingRatio => "damping_ratio",
-        }
-    }
-    fn unit(self) -> Option<&'static str> {
-        match self {
-            Field::Length | Field::Diameter | Field::Width | Field::Height => Some("m"),
-            Field::YoungsModulus => Some("Pa"),
-            Field::Density => Some("kg/m3"),
-            Field::DampingTime => Some("s"),
-            Field::DampingRatio => None,
-        }
-    }
-}
+use variables::{Access, SceneParameter, Table};
 
 /// The beam FMU model.
 #[derive(Debug)]
@@ -79,8 +23,8 @@ pub struct BeamFmu {
     base: Scene,
     /// Scene with the current parameter values.
     scene: Scene,
-    vars: Vec<Variable>,
-    slots: Vec<Slot>,
+    /// The variables and how each is accessed.
+    table: Table,
     /// Input tip force [N].
     input: [f64; 2],
     sim: Simulator,
@@ -101,299 +45,53 @@ fn fnv1a(bytes: &[u8]) -> u64 {
     h
 }
 
-fn var(
-    name: String,
-    vr: u32,
-    causality: Causality,
-    variability: Variability,
-    start: Option<f64>,
-    unit: Option<&'static str>,
-    description: &str,
-) -> Variable {
-    Variable {
-        name,
-        vr,
-        causality,
-        variability,
-        start,
-        unit,
-        description: description.to_string(),
-    }
-}
-
-fn table(scene: &Scene) -> (Vec<Variable>, Vec<Slot>) {
-    use Causality::*;
-    use Variability::*;
-    let mut v = Vec::new();
-    let mut s = Vec::new();
-    let mut add = |x: Variable, slot: Slot| {
-        v.push(x);
-        s.push(slot);
-    };
-    for (i, ax) in ["x", "y"].iter().enumerate() {
-        add(
-            var(
-                format!("tip.force.{ax}"),
-                1 + i as u32,
-                Input,
-                Continuous,
-                Some(scene.tip.force[i]),
-                Some("N"),
-                "force applied at the free end, global axes",
-            ),
-            Slot::TipForce(i),
-        );
-    }
-    let outs: [(&str, Slot, Option<&'static str>, &str); 11] = [
-        (
-            "tip.position.x",
-            Slot::TipPosition(0),
-            Some("m"),
-            "free end position, global x",
-        ),
-        (
-            "tip.position.y",
-            Slot::TipPosition(1),
-            Some("m"),
-            "free end position, global y",
-        ),
-        (
-            "tip.velocity.x",
-            Slot::TipVelocity(0),
-            Some("m/s"),
-            "free end velocity, global x",
-        ),
-        (
-            "tip.velocity.y",
-            Slot::TipVelocity(1),
-            Some("m/s"),
-            "free end velocity, global y",
-        ),
-        (
-            "tip.angle",
-            Slot::TipAngle,
-            Some("rad"),
-            "angle of the end tangent from global x, counter-clockwise, in (-pi, pi]",
-        ),
-        (
-            "root.force.x",
-            Slot::RootForce(0),
-            Some("N"),
-            "force of the support on the beam, global x",
-        ),
-        (
-            "root.force.y",
-            Slot::RootForce(1),
-            Some("N"),
-            "force of the support on the beam, global y",
-        ),
-        (
-            "root.moment.z",
-            Slot::RootMoment,
-            Some("N.m"),
-            "moment of the support on the beam about the root, counter-clockwise",
-        ),
-        ("energy.kinetic", Slot::Kinetic, Some("J"), "kinetic energy"),
-        (
-            "energy.strain",
-            Slot::Strain,
-            Some("J"),
-            "elastic strain energy",
-        ),
-        (
-            "energy.potential",
-            Slot::Potential,
-            Some("J"),
-            "gravity potential energy (zero at the origin)",
-        ),
-    ];
-    for (k, (name, slot, unit, desc)) in outs.iter().enumerate() {
-        add(
-            var(
-                name.to_string(),
-                10 + k as u32,
-                Output,
-                Continuous,
-                None,
-                *unit,
-                desc,
-            ),
-            *slot,
-        );
-    }
-    for (i, ax) in ["x", "y"].iter().enumerate() {
-        add(
-            var(
-                format!("gravity.{ax}"),
-                100 + i as u32,
-                Parameter,
-                Tunable,
-                Some(scene.gravity[i]),
-                Some("m/s2"),
-                "gravity, global axes",
-            ),
-            Slot::Gravity(i),
-        );
-    }
-    add(
-        var(
-            "solver.rho_inf".into(),
-            110,
-            Parameter,
-            Fixed,
-            Some(scene.solver.rho_inf),
-            None,
-            "generalized-alpha spectral radius at infinity, [0, 1)",
-        ),
-        Slot::RhoInf,
-    );
-    add(
-        var(
-            "solver.max_step".into(),
-            111,
-            Parameter,
-            Fixed,
-            Some(scene.solver.max_step),
-            Some("s"),
-            "largest internal step",
-        ),
-        Slot::MaxStep,
-    );
-    add(
-        var(
-            "solver.tolerance".into(),
-            112,
-            Parameter,
-            Fixed,
-            Some(scene.solver.tolerance),
-            None,
-            "relative Newton tolerance",
-        ),
-        Slot::Tolerance,
-    );
-    for (i, seg) in scene.segments.iter().enumerate() {
-        let mut fields = vec![(Field::Length, seg.length)];
-        match seg.section {
-            Section::Round => fields.push((Field::Diameter, seg.diameter.unwrap_or(0.0))),
-            Section::Rectangle => {
-                fields.push((Field::Width, seg.width.unwrap_or(0.0)));
-                fields.push((Field::Height, seg.height.unwrap_or(0.0)));
-            }
-        }
-        fields.push((Field::YoungsModulus, seg.youngs_modulus));
-        fields.push((Field::Density, seg.density));
-        if seg.damping_time > 0.0 {
-            fields.push((Field::DampingTime, seg.damping_time));
-        }
-        if seg.kind == SegmentKind::Modal && seg.damping_ratio > 0.0 {
-            fields.push((Field::DampingRatio, seg.damping_ratio));
-        }
-        for (f, val) in fields {
-            let vr = 1000 * (i as u32 + 1) + f as u32;
-            add(
-                var(
-                    format!("{}.{}", seg.name, f.name()),
-                    vr,
-                    Parameter,
-                    Fixed,
-                    Some(val),
-                    f.unit(),
-                    &format!("segment '{}' {}", seg.name, f.name()),
-                ),
-                Slot::Segment(i, f),
-            );
-        }
-    }
-    (v, s)
-}
-
 impl BeamFmu {
-    fn slot_of(&self, vr: u32) -> Result<(usize, Slot), String> {
-        self.vars
-            .iter()
-            .position(|v| v.vr == vr)
-            .map(|i| (i, self.slots[i]))
-            .ok_or_else(|| format!("value reference {vr} is not a variable of this model"))
-    }
-
-    fn parameter_value(scene: &Scene, slot: Slot) -> f64 {
-        match slot {
-            Slot::Gravity(i) => scene.gravity[i],
-            Slot::RhoInf => scene.solver.rho_inf,
-            Slot::MaxStep => scene.solver.max_step,
-            Slot::Tolerance => scene.solver.tolerance,
-            Slot::Segment(i, f) => {
-                let s = &scene.segments[i];
-                match f {
-                    Field::Length => s.length,
-                    Field::Diameter => s.diameter.unwrap_or(0.0),
-                    Field::Width => s.width.unwrap_or(0.0),
-                    Field::Height => s.height.unwrap_or(0.0),
-                    Field::YoungsModulus => s.youngs_modulus,
-                    Field::Density => s.density,
-                    Field::DampingTime => s.damping_time,
-                    Field::DampingRatio => s.damping_ratio,
-                }
-            }
-            _ => f64::NAN,
-        }
-    }
-
-    fn set_parameter(scene: &mut Scene, slot: Slot, x: f64) {
-        match slot {
-            Slot::Gravity(i) => scene.gravity[i] = x,
-            Slot::RhoInf => scene.solver.rho_inf = x,
-            Slot::MaxStep => scene.solver.max_step = x,
-            Slot::Tolerance => scene.solver.tolerance = x,
-            Slot::Segment(i, f) => {
-                let s = &mut scene.segments[i];
-                match f {
-                    Field::Length => s.length = x,
-                    Field::Diameter => s.diameter = Some(x),
-                    Field::Width => s.width = Some(x),
-                    Field::Height => s.height = Some(x),
-                    Field::YoungsModulus => s.youngs_modulus = x,
-                    Field::Density => s.density = x,
-                    Field::DampingTime => s.damping_time = x,
-                    Field::DampingRatio => s.damping_ratio = x,
-                }
-            }
-            _ => {}
-        }
+    /// modelDescription.xml of the FMU of `scene_toml` with this modelIdentifier, from the
+    /// scene alone (its variable table and default experiment): no simulator is built.
+    pub fn model_description(scene_toml: &str, model_identifier: &str) -> Result<String, String> {
+        let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
+        let guid = fmi2::guid::guid::<Self>(scene_toml.as_bytes());
+        let ids = fmi2::xml::Identity {
+            model_identifier,
+            guid: &guid,
+            generation_tool: Self::GENERATION_TOOL,
+        };
+        fmi2::xml::model_description(&model_info(&scene), Table::of(&scene).variables(), &ids)
     }
 
     fn refresh_outputs(&mut self) {
         self.outputs = self.sim.outputs();
     }
 
-    /// Slots of the parameters, in table order.
-    fn parameter_slots(&self) -> Vec<Slot> {
-        self.vars
-            .iter()
-            .zip(&self.slots)
-            .filter(|(v, _)| v.causality == Causality::Parameter)
-            .map(|(_, s)| *s)
-            .collect()
-    }
-
+    /// The parameter values, in table order.
     fn parameters(&self) -> Vec<f64> {
-        self.parameter_slots()
-            .into_iter()
-            .map(|s| Self::parameter_value(&self.scene, s))
+        self.table
+            .parameters()
+            .filter_map(|a| a.parameter(&self.scene))
             .collect()
     }
 
     fn build_scene_with_parameters(&self, params: &[f64]) -> Result<Scene, String> {
         let mut scene = self.base.clone();
-        let pslots = self.parameter_slots();
-        if pslots.len() != params.len() {
+        if self.table.parameters().count() != params.len() {
             return Err("snapshot parameter count does not match this model".into());
         }
-        for (s, x) in pslots.iter().zip(params) {
-            Self::set_parameter(&mut scene, *s, *x);
+        for (a, x) in self.table.parameters().zip(params) {
+            a.set_parameter(&mut scene, *x);
         }
         scene.validate().map_err(|e| e.0)?;
         Ok(scene)
+    }
+}
+
+/// Model name, description and default experiment of a scene.
+fn model_info(scene: &Scene) -> ModelInfo {
+    ModelInfo {
+        model_name: scene.name.clone(),
+        description: scene.description.clone(),
+        start_time: 0.0,
+        stop_time: scene.simulation.t_end,
+        step_size: scene.simulation.output_step,
     }
 }
 
@@ -452,7 +150,7 @@ impl CoSimModel for BeamFmu {
 
     fn from_resource(scene_toml: &str) -> Result<Self, String> {
         let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
-        let (vars, slots) = table(&scene);
+        let table = Table::of(&scene);
         let sim = Simulator::new(scene.clone())?;
         let outputs = sim.outputs();
         Ok(Self {
@@ -460,75 +158,60 @@ impl CoSimModel for BeamFmu {
             base: scene.clone(),
             input: scene.tip.force,
             scene,
-            vars,
-            slots,
+            table,
             sim,
             outputs,
         })
     }
 
     fn model_info(&self) -> ModelInfo {
-        ModelInfo {
-            model_name: self.base.name.clone(),
-            description: self.base.description.clone(),
-            start_time: 0.0,
-            stop_time: self.base.simulation.t_end,
-            step_size: self.base.simulation.output_step,
-        }
+        model_info(&self.base)
     }
 
     fn variables(&self) -> &[Variable] {
-        &self.vars
+        self.table.variables()
     }
 
-    fn get_real(&self, vr: u32) -> Result<f64, String> {
-        let (_, slot) = self.slot_of(vr)?;
-        let o = &self.outputs;
-        Ok(match slot {
-            Slot::TipForce(i) => self.sim.tip_force()[i],
-            Slot::TipPosition(i) => o.tip_position[i],
-            Slot::TipVelocity(i) => o.tip_velocity[i],
-            Slot::TipAngle => o.tip_angle,
-            Slot::RootForce(i) => o.root_force[i],
-            Slot::RootMoment => o.root_moment,
-            Slot::Kinetic => o.kinetic,
-            Slot::Strain => o.strain,
-            Slot::Potential => o.potential,
-            other => Self::parameter_value(&self.scene, other),
+    fn get_real(&self, index: usize) -> Result<f64, String> {
+        let access = self.table.access(index);
+        Ok(match access {
+            Access::TipForce(k) => self.sim.tip_force()[k],
+            Access::Output(read) => read(&self.outputs),
+            Access::Scene(_) | Access::Segment(..) => {
+                access.parameter(&self.scene).unwrap_or(f64::NAN)
+            }
         })
     }
 
-    fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
-        let (i, slot) = self.slot_of(vr)?;
-        let name = &self.vars[i].name;
+    fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
+        let name = &self.table.variables()[index].name;
         if !value.is_finite() {
             return Err(format!("{name} = {value}: must be a finite number"));
         }
-        match slot {
-            Slot::TipForce(k) => {
+        let access = self.table.access(index);
+        match access {
+            Access::TipForce(k) => {
                 self.input[k] = value;
                 self.sim.set_tip_force(self.input);
-                Ok(())
             }
-            Slot::Gravity(_)
-            | Slot::RhoInf
-            | Slot::MaxStep
-            | Slot::Tolerance
-            | Slot::Segment(..) => {
+            Access::Output(_) => return Err(format!("{name} is an output and cannot be set")),
+            Access::Scene(_) | Access::Segment(..) => {
                 let mut scene = self.scene.clone();
-                Self::set_parameter(&mut scene, slot, value);
+                access.set_parameter(&mut scene, value);
                 scene
                     .validate()
                     .map_err(|e| format!("{name} = {value}: {e}"))?;
                 self.scene = scene;
-                if let Slot::Gravity(_) = slot {
-                    self.sim.set_gravity(self.scene.gravity);
+                if let Access::Scene(SceneParameter {
+                    tune: Some(tune), ..
+                }) = access
+                {
+                    tune(&self.scene, &mut self.sim);
                     self.refresh_outputs();
                 }
-                Ok(())
             }
-            _ => Err(format!("{name} is an output and cannot be set")),
         }
+        Ok(())
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
@@ -673,6 +356,11 @@ impl CoSimModel for BeamFmu {
 mod tests {
     use super::*;
 
+    /// The index of value reference `vr` (the FMI layer's resolution).
+    fn at(m: &BeamFmu, vr: u32) -> usize {
+        m.variables().iter().position(|v| v.vr == vr).unwrap()
+    }
+
     fn case1() -> String {
         std::fs::read_to_string(concat!(
             env!("CARGO_MANIFEST_DIR"),
@@ -710,7 +398,7 @@ mod tests {
         for k in 0..5 {
             a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
         }
-        a.set_real(2, -0.01).unwrap();
+        a.set_real(at(&a, 2), -0.01).unwrap();
         let bytes = a.save_state();
         let mut b = BeamFmu::from_resource(&text).unwrap();
         b.load_state(&bytes).unwrap();
@@ -718,11 +406,12 @@ mod tests {
             a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
             b.do_step(k as f64 * 1e-3, 1e-3).unwrap();
         }
-        for v in a.variables().iter().map(|v| v.vr) {
+        for (i, v) in a.variables().iter().enumerate() {
             assert_eq!(
-                a.get_real(v).unwrap().to_bits(),
-                b.get_real(v).unwrap().to_bits(),
-                "vr {v}"
+                a.get_real(i).unwrap().to_bits(),
+                b.get_real(i).unwrap().to_bits(),
+                "{}",
+                v.name
             );
         }
         assert!(b.load_state(&bytes[..bytes.len() - 3]).is_err());
@@ -747,9 +436,9 @@ mod tests {
     #[test]
     fn bad_parameter_is_refused_with_its_name() {
         let mut m = BeamFmu::from_resource(&case1()).unwrap();
-        let e = m.set_real(1001, -0.2).unwrap_err();
+        let e = m.set_real(at(&m, 1001), -0.2).unwrap_err();
         assert!(e.contains("modal.length") && e.contains("> 0"), "{e}");
-        assert!(m.set_real(10, 1.0).unwrap_err().contains("output"));
-        assert!(m.set_real(1, f64::NAN).is_err());
+        assert!(m.set_real(at(&m, 10), 1.0).unwrap_err().contains("output"));
+        assert!(m.set_real(at(&m, 1), f64::NAN).is_err());
     }
 }

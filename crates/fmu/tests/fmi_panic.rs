@@ -54,10 +54,10 @@ impl CoSimModel for Panicky {
     fn variables(&self) -> &[Variable] {
         &self.vars
     }
-    fn get_real(&self, _: u32) -> Result<f64, String> {
+    fn get_real(&self, _: usize) -> Result<f64, String> {
         Ok(0.0)
     }
-    fn set_real(&mut self, _: u32, _: f64) -> Result<(), String> {
+    fn set_real(&mut self, _: usize, _: f64) -> Result<(), String> {
         Ok(())
     }
     fn initialize(&mut self, _: f64) -> Result<(), String> {

@@ -64,15 +64,15 @@ impl CoSimModel for Ramp {
     fn variables(&self) -> &[Variable] {
         &self.vars
     }
-    fn get_real(&self, vr: u32) -> Result<f64, String> {
-        Ok([self.u, self.x, self.k, self.g][vr as usize - 1])
+    fn get_real(&self, index: usize) -> Result<f64, String> {
+        Ok([self.u, self.x, self.k, self.g][index])
     }
-    fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
-        match vr {
-            1 => self.u = value,
-            3 if value < 0.0 => return Err("k must be >= 0".into()),
-            3 => self.k = value,
-            4 => self.g = value,
+    fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
+        match index {
+            0 => self.u = value,
+            2 if value < 0.0 => return Err("k must be >= 0".into()),
+            2 => self.k = value,
+            3 => self.g = value,
             _ => return Err("not settable".into()),
         }
         Ok(())
