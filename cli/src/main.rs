@@ -130,7 +130,7 @@ fn run(args: &RunArgs) -> Result<(), String> {
     let t_end = scene.simulation.t_end;
     let dt = scene.simulation.output_step;
     let wall = Instant::now();
-    let mut sim = Simulator::new(scene)?;
+    let mut sim = Simulator::new(scene).map_err(|e| e.to_string())?;
     let mut out = Vec::with_capacity(64 * 1024);
     writeln!(out, "{}", header()).map_err(|e| e.to_string())?;
     writeln!(out, "{}", row(&sim)).map_err(|e| e.to_string())?;
@@ -165,8 +165,8 @@ fn run(args: &RunArgs) -> Result<(), String> {
 fn statics(args: &SceneArgs) -> Result<(), String> {
     let scene = args.load()?;
     let wall = Instant::now();
-    let mut sim = Simulator::new(scene)?;
-    let it = sim.solve_static()?;
+    let mut sim = Simulator::new(scene).map_err(|e| e.to_string())?;
+    let it = sim.solve_static().map_err(|e| e.to_string())?;
     println!("{}", header());
     println!("{}", row(&sim));
     eprintln!(

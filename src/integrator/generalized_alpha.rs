@@ -70,6 +70,8 @@ impl std::fmt::Display for StepFailure {
     }
 }
 
+impl std::error::Error for StepFailure {}
+
 /// The integrator with its reusable work arrays and Jacobian policy.
 #[derive(Debug, Clone)]
 pub struct GeneralizedAlpha {

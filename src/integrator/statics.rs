@@ -24,6 +24,8 @@ impl std::fmt::Display for StaticFailure {
     }
 }
 
+impl std::error::Error for StaticFailure {}
+
 /// Newton iteration limit per load step.
 const MAX_ITER: usize = 40;
 /// Smallest load increment before giving up.
