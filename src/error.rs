@@ -95,10 +95,10 @@ pub enum SimError {
 /// The limit that ended the halving of a failing internal step.
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 pub enum StepLimit {
-    /// [`MAX_HALVINGS`](crate::simulator::MAX_HALVINGS) reached.
+    /// [`MAX_HALVINGS`](crate::integrator::MAX_HALVINGS) reached.
     #[error(
         "after {} halvings of the internal step",
-        crate::simulator::MAX_HALVINGS
+        crate::integrator::MAX_HALVINGS
     )]
     MaxHalvings,
     /// Halving would go below [`MIN_STEP`].

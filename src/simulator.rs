@@ -4,12 +4,10 @@
 use crate::error::{Refusal, SimError, SnapshotError, StepLimit};
 use crate::integrator::{
     solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
+    CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
 };
 use crate::model::{Model, Outputs};
-use crate::scene::{InitialState, Scene, MIN_STEP};
-
-/// Largest number of halvings of the internal step before a communication step fails.
-pub const MAX_HALVINGS: u32 = 12;
+use crate::scene::{InitialState, Scene};
 
 /// Largest elastic deflection of a modal segment accepted, as tip deflection over length or tip
 /// slope [rad]: a linear floating frame is a small-deformation model.
@@ -32,9 +30,6 @@ pub struct StepControl {
 /// times carries rounding of this order, so an internal step may exceed `solver.max_step` by
 /// this fraction.
 const STEP_ROUNDING: f64 = 1e-9;
-
-/// Successful calls at a reduced step before it is doubled again.
-const CALM_BEFORE_GROWTH: u32 = 4;
 
 /// The inputs of the equations a host may change between communication steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,15 +107,9 @@ impl Simulator {
         let n = model.coordinates();
         let m = model.constraints();
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
-        let mut integ = GeneralizedAlpha::new(
-            scene.solver.rho_inf,
-            scene.solver.tolerance,
-            scene.solver.max_iterations,
-            n,
-            m,
-        );
+        let mut integ = GeneralizedAlpha::new(&scene.solver, n, m);
         if initialize && scene.initial.state == InitialState::Static {
-            solve_static(&mut model, &mut state, scene.solver.tolerance * 1e-2)
+            solve_static(&mut model, &mut state, scene.solver.static_tolerance())
                 .map_err(SimError::InitialStatic)?;
         }
         if initialize {
@@ -385,7 +374,7 @@ impl Simulator {
 
     /// Solves the static equilibrium from the current state under the current loads.
     pub fn solve_static(&mut self) -> Result<usize, SimError> {
-        let tol = self.scene.solver.tolerance * 1e-2;
+        let tol = self.scene.solver.static_tolerance();
         let it = solve_static(&mut self.model, &mut self.state, tol)?;
         self.integ.invalidate();
         Ok(it)
