@@ -11,6 +11,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod error;
 pub mod integrator;
 pub mod linalg;
 pub mod model;

@@ -1,14 +1,13 @@
 //! A beam in time: model + integrator + state behind `advance` and `outputs`.
 //! This is what the command-line runner and the FMU adapter drive.
 
+use crate::error::{Refusal, SimError, SnapshotError, StepLimit};
 use crate::integrator::{
     solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
+    CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
 };
 use crate::model::{Model, Outputs};
-use crate::scene::{InitialState, Scene, MIN_STEP};
-
-/// Largest number of halvings of the internal step before a communication step fails.
-pub const MAX_HALVINGS: u32 = 12;
+use crate::scene::{InitialState, Scene};
 
 /// Largest elastic deflection of a modal segment accepted, as tip deflection over length or tip
 /// slope [rad]: a linear floating frame is a small-deformation model.
@@ -31,9 +30,6 @@ pub struct StepControl {
 /// times carries rounding of this order, so an internal step may exceed `solver.max_step` by
 /// this fraction.
 const STEP_ROUNDING: f64 = 1e-9;
-
-/// Successful calls at a reduced step before it is doubled again.
-const CALM_BEFORE_GROWTH: u32 = 4;
 
 /// The inputs of the equations a host may change between communication steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,42 +86,36 @@ pub struct Simulator {
 impl Simulator {
     /// Builds the model and its initial state (straight, or static equilibrium) at t = 0, with
     /// consistent accelerations.
-    pub fn new(scene: Scene) -> Result<Self, String> {
+    pub fn new(scene: Scene) -> Result<Self, SimError> {
         Self::new_at(scene, 0.0)
     }
 
     /// As [`Simulator::new`], with the clock starting at `t0` [s] (e.g. an FMU's start time).
-    pub fn new_at(scene: Scene, t0: f64) -> Result<Self, String> {
+    pub fn new_at(scene: Scene, t0: f64) -> Result<Self, SimError> {
         let mut sim = Self::build(scene, true)?;
         sim.state.t = t0;
         Ok(sim)
     }
 
     /// Builds the model without computing an initial state (the caller restores a snapshot).
-    pub fn for_restore(scene: Scene) -> Result<Self, String> {
+    pub fn for_restore(scene: Scene) -> Result<Self, SimError> {
         Self::build(scene, false)
     }
 
-    fn build(scene: Scene, initialize: bool) -> Result<Self, String> {
-        let mut model = Model::from_scene(&scene).map_err(|e| e.0)?;
+    fn build(scene: Scene, initialize: bool) -> Result<Self, SimError> {
+        let mut model = Model::from_scene(&scene)?;
         let n = model.coordinates();
         let m = model.constraints();
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
-        let mut integ = GeneralizedAlpha::new(
-            scene.solver.rho_inf,
-            scene.solver.tolerance,
-            scene.solver.max_iterations,
-            n,
-            m,
-        );
+        let mut integ = GeneralizedAlpha::new(&scene.solver, n, m);
         if initialize && scene.initial.state == InitialState::Static {
-            solve_static(&mut model, &mut state, scene.solver.tolerance * 1e-2)
-                .map_err(|e| format!("initial.state = \"static\": {e}; try initial.state = \"straight\" or smaller loads"))?;
+            solve_static(&mut model, &mut state, scene.solver.static_tolerance())
+                .map_err(SimError::InitialStatic)?;
         }
         if initialize {
             integ
                 .initialize(&mut model, &mut state)
-                .map_err(|e| format!("initial accelerations: {e}"))?;
+                .map_err(SimError::InitialAccelerations)?;
         }
         let step = StepControl {
             h_ok: scene.solver.max_step,
@@ -174,27 +164,22 @@ impl Simulator {
 
     /// Restores a snapshot (state and integrator memory) taken from a simulator of the same
     /// scene; the run then continues bit for bit as the original.
-    pub fn restore(&mut self, s: State, mem: &Memory) -> Result<(), String> {
+    pub fn restore(&mut self, s: State, mem: &Memory) -> Result<(), SimError> {
         if s.q.len() != self.state.q.len()
             || s.lambda.len() != self.state.lambda.len()
             || [&s.v, &s.acc, &s.aux].iter().any(|x| x.len() != s.q.len())
         {
-            return Err("state dimensions do not match this model".into());
+            return Err(SnapshotError::Dimensions.into());
         }
         let h_max = self.scene.solver.max_step;
         let h = mem.step.h_ok;
         if !(h >= MIN_STEP && h <= h_max) {
-            return Err(format!(
-                "snapshot step size {h:e} s is not in [{MIN_STEP:e}, solver.max_step = {h_max:e}] s (the smallest internal step is {MIN_STEP:e} s)"
-            ));
+            return Err(SnapshotError::StepSize { h, h_max }.into());
         }
         if let Some(j) = &mem.integrator.jacobian {
             // the step of the held Newton matrix may be a communication step below MIN_STEP
             if !(j.h > 0.0 && j.h <= h_max * (1.0 + 2.0 * STEP_ROUNDING)) {
-                return Err(format!(
-                    "snapshot Newton-matrix step size {:e} s is not in (0, solver.max_step = {h_max:e}] s",
-                    j.h
-                ));
+                return Err(SnapshotError::JacobianStep { h: j.h, h_max }.into());
             }
         }
         let finite = |x: &[f64]| x.iter().all(|x| x.is_finite());
@@ -203,11 +188,11 @@ impl Simulator {
                 .iter()
                 .all(|x| finite(x)))
         {
-            return Err("snapshot state holds non-finite values".into());
+            return Err(SnapshotError::NonFinite.into());
         }
         self.integ
             .restore_memory(&mut self.model, &mem.integrator)
-            .map_err(|e| format!("cannot rebuild the Newton matrix of the snapshot: {e}"))?;
+            .map_err(SnapshotError::NewtonMatrix)?;
         self.state = s;
         self.step = mem.step;
         self.applied = mem.applied;
@@ -257,20 +242,23 @@ impl Simulator {
     /// time: the step starts from accelerations and multipliers consistent with them
     /// ([`GeneralizedAlpha::change_inputs`]), so a force held over a communication step is
     /// integrated as exactly that force. Constant inputs leave the integrator untouched.
-    pub fn advance(&mut self, t_end: f64) -> Result<(), String> {
+    pub fn advance(&mut self, t_end: f64) -> Result<(), SimError> {
         let t0 = self.state.t;
         let span = t_end - t0;
         if span.is_nan() || span <= 0.0 || !span.is_finite() {
-            return Err(format!("cannot advance from t = {t0} to t = {t_end}"));
+            return Err(SimError::BadTime { t0, t_end });
         }
         let h_max = self.scene.solver.max_step;
         let cap = self.scene.solver.max_internal_steps;
         let needed = (span / h_max * (1.0 - STEP_ROUNDING)).ceil();
         if needed > cap as f64 {
-            return Err(format!(
-                "step from t = {t0:.6} s to {t_end:.6} s refused: it needs {needed:.0} internal steps of solver.max_step = {h_max:e} s, more than the cap solver.max_internal_steps = {cap}; split it into communication steps of at most {:e} s, or raise solver.max_step (or solver.max_internal_steps in the scene)",
-                cap as f64 * h_max
-            ));
+            return Err(SimError::WorkCap {
+                t0,
+                t_end,
+                needed,
+                h_max,
+                cap,
+            });
         }
         // start from the step that last worked; grow back after a few calm calls
         if self.step.h_ok < h_max && self.step.calm >= CALM_BEFORE_GROWTH {
@@ -287,7 +275,7 @@ impl Simulator {
             self.applied.apply(&mut self.model);
             self.integ
                 .change_inputs(&mut self.model, &mut self.state, |m| inputs.apply(m))
-                .map_err(|e| format!("step from t = {t0:.6} s: accelerations consistent with the new inputs: {e}; reduce the loads"))?;
+                .map_err(|source| SimError::InputJump { t: t0, source })?;
         }
         // more steps of a reduced h_ok than the cap allows: start from span / cap (≤ h_max)
         let mut steps = ((span / h_start * (1.0 - STEP_ROUNDING)).ceil().max(1.0) as u64).min(cap);
@@ -308,18 +296,14 @@ impl Simulator {
                     halvings += 1;
                     // a halving doubles the steps still to go
                     let limit = if halvings > MAX_HALVINGS {
-                        Some(format!(
-                            "after {MAX_HALVINGS} halvings of the internal step"
-                        ))
+                        Some(StepLimit::MaxHalvings)
                     } else if 0.5 * h < MIN_STEP {
-                        Some(format!(
-                            "at an internal step of {h:e} s (halving it would go below the smallest internal step {MIN_STEP:e} s)"
-                        ))
+                        Some(StepLimit::MinStep { h })
                     } else if attempts + 2 * (steps - done) > cap {
-                        Some(format!(
-                            "after {} halvings of the internal step (another would exceed solver.max_internal_steps = {cap} internal steps in one communication step)",
-                            halvings - 1
-                        ))
+                        Some(StepLimit::WorkCap {
+                            halvings: halvings - 1,
+                            cap,
+                        })
                     } else {
                         None
                     };
@@ -327,11 +311,12 @@ impl Simulator {
                         self.state = saved;
                         self.step = saved_step;
                         self.integ.invalidate();
-                        return Err(format!(
-                            "step from t = {:.6} s failed {limit}: {e}. \
-                             Reduce the communication step or solver.max_step, add damping, lower solver.rho_inf, or reduce the loads",
-                            self.state.t
-                        ));
+                        return Err(SimError::Step {
+                            t: self.state.t,
+                            halvings: halvings - 1,
+                            limit,
+                            source: e,
+                        });
                     }
                     steps *= 2;
                     done *= 2;
@@ -354,25 +339,25 @@ impl Simulator {
             self.state = saved;
             self.step = saved_step;
             self.integ.invalidate();
-            return Err(format!(
-                "step to t = {t_end:.6} s refused: modal segment '{}' deflects {:.1} % of its length (or 1/100 rad of tip slope), beyond the {:.0} % validity of a linear floating frame; make it kind = \"ancf\", shorten it, or reduce the loads",
-                self.scene.segments[si].name,
-                100.0 * d,
-                100.0 * MAX_MODAL_DEFLECTION
-            ));
+            return Err(SimError::Refused {
+                t: t_end,
+                refusal: Refusal::ModalDeflection {
+                    segment: self.scene.segments[si].name.clone(),
+                    value: d,
+                },
+            });
         }
         if !finite || strain > MAX_AXIAL_STRAIN {
             self.state = saved;
             self.step = saved_step;
             self.integ.invalidate();
             return Err(if finite {
-                format!(
-                    "step to t = {t_end:.6} s refused: axial strain {:.1} % exceeds the {:.0} % validity limit of the linear elastic rod; the loads (tip force or gravity) are too large for this beam",
-                    100.0 * strain,
-                    100.0 * MAX_AXIAL_STRAIN
-                )
+                SimError::Refused {
+                    t: t_end,
+                    refusal: Refusal::AxialStrain { value: strain },
+                }
             } else {
-                format!("step to t = {t_end:.6} s produced non-finite coordinates; reduce the communication step or solver.max_step")
+                SimError::NonFinite { t: t_end }
             });
         }
         self.applied = inputs;
@@ -388,9 +373,9 @@ impl Simulator {
     }
 
     /// Solves the static equilibrium from the current state under the current loads.
-    pub fn solve_static(&mut self) -> Result<usize, String> {
-        let tol = self.scene.solver.tolerance * 1e-2;
-        let it = solve_static(&mut self.model, &mut self.state, tol).map_err(|e| e.to_string())?;
+    pub fn solve_static(&mut self) -> Result<usize, SimError> {
+        let tol = self.scene.solver.static_tolerance();
+        let it = solve_static(&mut self.model, &mut self.state, tol)?;
         self.integ.invalidate();
         Ok(it)
     }

@@ -168,3 +168,47 @@ fn shipped_case1_conserves_energy_over_10_s() {
     );
     assert!(drift < 1e-3 * peak, "drift {drift:e} J vs {peak:e} J");
 }
+
+/// A modal segment pushed beyond the small-deformation range is refused by kind, naming the
+/// segment and its deflection, and the simulator keeps its state from before the call.
+/// Reference: the static tip deflection of the 2 N load, P L³/(3 E I) = 0.26 m, is 65 % of the
+/// 0.4 m length, so the beam must pass the 30 % limit on its way there.
+#[test]
+fn modal_overload_is_refused_by_kind() {
+    use hybeam::error::{Refusal, SimError};
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/case1_modal.toml"
+    ))
+    .unwrap()
+    .replace("[initial]", "[tip]\nforce = [0.0, -2.0]\n\n[initial]");
+    let mut sim = Simulator::new(Scene::from_toml(&text).unwrap()).unwrap();
+    let mut t = 0.0;
+    let err = loop {
+        let before = sim.state().clone();
+        match sim.advance(t + 1e-3) {
+            Ok(()) => t += 1e-3,
+            Err(e) => {
+                assert_eq!(sim.state(), &before, "state kept");
+                break e;
+            }
+        }
+        assert!(t < 0.5, "no refusal within 0.5 s");
+    };
+    match &err {
+        SimError::Refused {
+            refusal: Refusal::ModalDeflection { segment, value },
+            ..
+        } => {
+            assert_eq!(segment, "modal");
+            assert!(*value > 0.3 && *value < 0.4, "deflection {value}");
+        }
+        e => panic!("expected a modal refusal, got {e:?}"),
+    }
+    assert_eq!(err.kind(), "refusal");
+    let text = err.to_string();
+    assert!(
+        text.contains("modal segment 'modal' deflects") && text.contains("make it kind = \"ancf\""),
+        "{text}"
+    );
+}

@@ -366,7 +366,7 @@ fn measure(spec: &Spec, opts: &Opts, prog: &mut Progress) -> Result<SceneResult,
         };
         let r = timed(&s, T_END, chunk, reps);
         if let Some(e) = r.err {
-            rows.push(failed(p, e));
+            rows.push(failed(p, e.to_string()));
             continue;
         }
         let (err_max, err_end, err_max_y) = tip_errors(&r.tip, &phys, stride);

@@ -1,6 +1,7 @@
 //! Shared pieces of the report binary: scene loading, timed runs, the reference cache, tables,
 //! the machine description and a one-line progress indicator on stderr.
 
+use hybeam::error::SimError;
 use hybeam::integrator::Counters;
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
@@ -70,7 +71,7 @@ pub struct Run {
     /// Smallest internal step [s].
     pub min_step: f64,
     /// The refusal, if `advance` returned Err.
-    pub err: Option<String>,
+    pub err: Option<SimError>,
 }
 
 /// Simulates to `t_end`, advancing (and sampling) in chunks of `chunk`.

@@ -7,7 +7,11 @@ use std::fmt::Write as _;
 fn status_text(s: &Status) -> String {
     match s {
         Status::Completed => "completed".into(),
-        Status::Refused(m) => format!("refused: {}", m.replace('|', "/")),
+        Status::Refused(e) => format!(
+            "refused ({}): {}",
+            e.kind(),
+            e.to_string().replace('|', "/")
+        ),
         Status::NonFinite(t) => format!("**NaN/inf in outputs at t = {t} s**"),
         Status::Panicked(m) => format!("**PANIC: {}**", m.replace('|', "/")),
     }

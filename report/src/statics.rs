@@ -154,7 +154,7 @@ pub fn run(quick: bool) -> Result<String, String> {
             for &n in ns {
                 prog.item(&format!("{kind} {sym}={p} {n} el."));
                 let s = beam_scene(&header, n)?;
-                let mut sim = Simulator::new(s)?;
+                let mut sim = Simulator::new(s).map_err(|e| e.to_string())?;
                 let (it, tip, status) = match sim.solve_static() {
                     Ok(it) => (it, sim.outputs().tip_position, "ok".to_string()),
                     Err(e) => (0, [f64::NAN; 2], format!("refused: {e}")),

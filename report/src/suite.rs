@@ -2,6 +2,7 @@
 //! Shared by the report binary (`report stability`) and by the crate's `tests/stability.rs` (the fast
 //! subset), so both run exactly the same cases. Depends only on the hybeam library.
 
+use hybeam::error::SimError;
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -60,8 +61,8 @@ pub struct Case {
 pub enum Status {
     /// Ran to the end.
     Completed,
-    /// `Simulator::new` or `advance` returned an error (a clean refusal).
-    Refused(String),
+    /// The scene, `Simulator::new` or `advance` returned an error (a clean refusal of its kind).
+    Refused(SimError),
     /// Ok from `advance` but non-finite outputs.
     NonFinite(f64),
     /// The engine panicked.
@@ -427,7 +428,7 @@ fn drive(case: &Case, o: &mut Outcome) {
     let scene = match Scene::from_toml(&case.scene) {
         Ok(s) => s,
         Err(e) => {
-            o.status = Status::Refused(format!("scene: {e}"));
+            o.status = Status::Refused(SimError::Scene(e));
             return;
         }
     };
@@ -455,11 +456,7 @@ fn drive(case: &Case, o: &mut Outcome) {
         sim.set_tip_force(f_in);
         let f = sim.tip_force();
         if let Err(e) = sim.advance(k as f64 * case.chunk) {
-            o.status = Status::Refused(if e.trim().is_empty() {
-                "(empty message)".into()
-            } else {
-                e
-            });
+            o.status = Status::Refused(e);
             break;
         }
         let out = sim.outputs();

@@ -21,7 +21,7 @@ fn check(case: &Case) -> Result<(), String> {
             }
             Ok(())
         }
-        Status::Refused(m) if !m.trim().is_empty() => Ok(()),
+        Status::Refused(e) if !e.to_string().trim().is_empty() => Ok(()),
         Status::Refused(_) => Err(format!("{}: refused with an empty message", case.name)),
         Status::NonFinite(t) => Err(format!("{}: NaN in outputs at t = {t}", case.name)),
         Status::Panicked(m) => Err(format!("{}: panicked: {m}", case.name)),

@@ -8,7 +8,10 @@
 //! while Newton contracts well (modified Newton), refreshed otherwise. A step that does not
 //! converge is rejected with the state untouched; it is never accepted.
 
-use super::{scaled_norm, Counters, EvalRequest, Integrable, State, StateRef};
+use super::{
+    scaled_norm, Counters, EvalRequest, Integrable, IntegrationParameters, State, StateRef,
+    REFRESH_RATE,
+};
 
 /// The four generalized-α coefficients from ρ∞.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -70,6 +73,8 @@ impl std::fmt::Display for StepFailure {
     }
 }
 
+impl std::error::Error for StepFailure {}
+
 /// The integrator with its reusable work arrays and Jacobian policy.
 #[derive(Debug, Clone)]
 pub struct GeneralizedAlpha {
@@ -116,16 +121,14 @@ pub struct IntegratorMemory {
     pub jacobian: Option<JacobianPoint>,
 }
 
-/// Contraction rate above which a stale Jacobian is refreshed.
-const REFRESH_RATE: f64 = 0.25;
-
 impl GeneralizedAlpha {
-    /// New integrator for a model of `n` coordinates and `m` constraints.
-    pub fn new(rho_inf: f64, tol: f64, max_iter: usize, n: usize, m: usize) -> Self {
+    /// New integrator for a model of `n` coordinates and `m` constraints, with the
+    /// coefficients of `params.rho_inf` and its Newton tolerance and iteration limit.
+    pub fn new(params: &IntegrationParameters, n: usize, m: usize) -> Self {
         Self {
-            p: AlphaParams::from_rho_inf(rho_inf),
-            tol,
-            max_iter,
+            p: AlphaParams::from_rho_inf(params.rho_inf),
+            tol: params.tolerance,
+            max_iter: params.max_iterations,
             counters: Counters::default(),
             factored_h: None,
             jac_at: None,
@@ -523,7 +526,15 @@ mod tests {
     fn run(k: usize, treat: bool) -> Vec<f64> {
         let (dt, n) = (0.01, 40);
         let (mut model, mut s) = Pendulum::at_rest(0.0);
-        let mut integ = GeneralizedAlpha::new(0.9, 1e-13, 20, 2, 1);
+        let mut integ = GeneralizedAlpha::new(
+            &IntegrationParameters {
+                tolerance: 1e-13,
+                max_iterations: 20,
+                ..Default::default()
+            },
+            2,
+            1,
+        );
         integ.initialize(&mut model, &mut s).unwrap();
         let mut out = Vec::new();
         for c in 0..n {
@@ -582,7 +593,15 @@ mod tests {
     #[test]
     fn change_at_start_up_keeps_the_algorithmic_acceleration_equal_to_the_acceleration() {
         let (mut model, mut s) = Pendulum::at_rest(0.7);
-        let mut integ = GeneralizedAlpha::new(0.9, 1e-12, 20, 2, 1);
+        let mut integ = GeneralizedAlpha::new(
+            &IntegrationParameters {
+                tolerance: 1e-12,
+                max_iterations: 20,
+                ..Default::default()
+            },
+            2,
+            1,
+        );
         integ.initialize(&mut model, &mut s).unwrap();
         integ
             .change_inputs(&mut model, &mut s, |m| m.force = 0.1)

@@ -3,12 +3,14 @@
 //! the coordinate update. Nothing here imports the model.
 
 mod generalized_alpha;
+mod parameters;
 mod seam;
 mod statics;
 
 pub use generalized_alpha::{
     AlphaParams, GeneralizedAlpha, IntegratorMemory, JacobianPoint, StepFailure,
 };
+pub use parameters::*;
 pub use seam::{EvalRequest, Integrable, StateRef};
 pub use statics::{solve_static, StaticFailure};
 

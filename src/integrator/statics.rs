@@ -2,7 +2,9 @@
 //! gravity and tip force are scaled by a load factor raised from 0 to 1, the increment halved
 //! when Newton fails and doubled after an easy success.
 
-use super::{scaled_norm, EvalRequest, Integrable, State, StateRef};
+use super::{
+    scaled_norm, EvalRequest, Integrable, State, StateRef, STATIC_MAX_ITER, STATIC_MIN_INCREMENT,
+};
 
 /// Why the static solve failed.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,10 +26,7 @@ impl std::fmt::Display for StaticFailure {
     }
 }
 
-/// Newton iteration limit per load step.
-const MAX_ITER: usize = 40;
-/// Smallest load increment before giving up.
-const MIN_INCREMENT: f64 = 1e-6;
+impl std::error::Error for StaticFailure {}
 
 /// Solves for equilibrium starting from `s.q`; on success `s` holds it (at rest, q̈ = 0) and the
 /// function returns the number of Newton iterations. `tol` is relative to coordinate scales.
@@ -51,7 +50,7 @@ pub fn solve_static<M: Integrable + ?Sized>(
         let (q_save, lam_save) = (q.clone(), lam.clone());
         let mut converged = false;
         let mut iters = 0;
-        for _ in 0..MAX_ITER {
+        for _ in 0..STATIC_MAX_ITER {
             iters += 1;
             let req = EvalRequest {
                 sd: 1.0,
@@ -92,7 +91,7 @@ pub fn solve_static<M: Integrable + ?Sized>(
             q = q_save;
             lam = lam_save;
             inc *= 0.5;
-            if inc < MIN_INCREMENT {
+            if inc < STATIC_MIN_INCREMENT {
                 return Err(StaticFailure {
                     load,
                     reason: "Newton did not converge even with tiny load increments".into(),

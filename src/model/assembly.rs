@@ -366,8 +366,8 @@ mod tests {
     //! a one-row constraint, the kind of row count (e.g. an Euler-parameter normalization) that
     //! joints of three rows never exercised.
     use super::*;
-    use crate::integrator::GeneralizedAlpha;
     use crate::integrator::State;
+    use crate::integrator::{GeneralizedAlpha, IntegrationParameters};
     use crate::model::component::Energies;
     use crate::model::dofs::Dof;
     use crate::model::planar::{EndKin, Orientation};
@@ -515,7 +515,15 @@ mod tests {
         let mut model = pendulum(theta0);
         let (n, m) = (model.coordinates(), model.constraints());
         let mut s = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
-        let mut integ = GeneralizedAlpha::new(0.9, 1e-12, 20, n, m);
+        let mut integ = GeneralizedAlpha::new(
+            &IntegrationParameters {
+                tolerance: 1e-12,
+                max_iterations: 20,
+                ..Default::default()
+            },
+            n,
+            m,
+        );
         integ.initialize(&mut model, &mut s).unwrap();
         let h = period / 400.0;
         let mut crossings = Vec::new();

@@ -10,6 +10,7 @@ mod overrides;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
+pub use crate::integrator::{IntegrationParameters, MIN_STEP, MIN_TOLERANCE};
 pub use overrides::apply_override;
 
 /// A scene error: a message that names the field and what to change.
@@ -146,77 +147,9 @@ pub struct Tip {
     pub force: [f64; 2],
 }
 
-/// Smallest internal step [s]: the lower bound of `solver.max_step`, of the step size a
-/// snapshot holds, and of a halved internal step.
-///
-/// The fastest mode of every shipped scene (the axial mode of a 25 mm steel ANCF element) has
-/// ω_max ≈ 2.0e6 rad/s, a period of 3.2 µs: at 1e-8 s a step resolves it with ω_max·h ≈ 0.02,
-/// about 300 steps per period. Generalized-α is unconditionally stable, so a smaller step buys
-/// neither stability nor resolved physics (elements 100 times shorter, thinner than the rod
-/// they model, would still give ω_max·h ≈ 2); it only multiplies the work: 1e-12 s would take
-/// about 1.4 hours of stepping per millisecond. A communication step shorter than this is
-/// taken as one internal step of its own length and never halved.
-pub const MIN_STEP: f64 = 1e-8;
-
-/// Smallest Newton tolerance: about 4.5 machine epsilons, below which round-off in the
-/// coordinates (relative 2.2e-16) keeps Newton from ever converging.
-pub const MIN_TOLERANCE: f64 = 1e-15;
-
-/// Integrator settings.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Solver {
-    /// Spectral radius at infinite frequency of generalized-α, in [0, 1).
-    #[serde(default = "Solver::default_rho_inf")]
-    pub rho_inf: f64,
-    /// Largest internal step [s], at least [`MIN_STEP`].
-    #[serde(default = "Solver::default_max_step")]
-    pub max_step: f64,
-    /// Newton tolerance, relative to the beam length for positions (dimensionless), in
-    /// [[`MIN_TOLERANCE`], 0.01).
-    #[serde(default = "Solver::default_tolerance")]
-    pub tolerance: f64,
-    /// Newton iteration limit per step.
-    #[serde(default = "Solver::default_max_iterations")]
-    pub max_iterations: usize,
-    /// Work cap: the largest number of internal steps, accepted or rejected (a halving doubles
-    /// the steps still to go), in one communication step. A longer communication step is
-    /// refused before any work is done (the FMU returns fmi2Discard and keeps its state).
-    /// Default 20 000: one Case 1–3 step takes 6–18 µs here, so a call stays below about
-    /// 0.4 s; it allows communication steps up to 2 s at `max_step` = 1e-4 s.
-    #[serde(default = "Solver::default_max_internal_steps")]
-    pub max_internal_steps: u64,
-}
-
-impl Solver {
-    fn default_rho_inf() -> f64 {
-        0.9
-    }
-    fn default_max_step() -> f64 {
-        1e-3
-    }
-    fn default_tolerance() -> f64 {
-        1e-11
-    }
-    fn default_max_iterations() -> usize {
-        12
-    }
-    fn default_max_internal_steps() -> u64 {
-        20_000
-    }
-}
-
-impl Default for Solver {
-    fn default() -> Self {
-        Self {
-            rho_inf: Self::default_rho_inf(),
-            max_step: Self::default_max_step(),
-            tolerance: Self::default_tolerance(),
-            max_iterations: Self::default_max_iterations(),
-            max_internal_steps: Self::default_max_internal_steps(),
-        }
-    }
-}
+/// The `[solver]` table: the integrator's settings, each default documented where it is
+/// defined ([`IntegrationParameters`]).
+pub type Solver = IntegrationParameters;
 
 /// Run settings used by the command-line runner and as the FMU's default experiment.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -7,6 +7,7 @@ pub mod variables;
 
 use fmi2::{CoSimModel, ModelInfo, StepError, Variable};
 
+use hybeam::error::SimError;
 use hybeam::integrator::{IntegratorMemory, JacobianPoint, State};
 use hybeam::model::Outputs;
 use hybeam::scene::Scene;
@@ -151,7 +152,7 @@ impl CoSimModel for BeamFmu {
     fn from_resource(scene_toml: &str) -> Result<Self, String> {
         let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
         let table = Table::of(&scene);
-        let sim = Simulator::new(scene.clone())?;
+        let sim = Simulator::new(scene.clone()).map_err(|e| e.to_string())?;
         let outputs = sim.outputs();
         Ok(Self {
             scene_text: scene_toml.to_string(),
@@ -217,17 +218,17 @@ impl CoSimModel for BeamFmu {
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         let mut scene = self.scene.clone();
         scene.tip.force = self.input;
-        self.sim = Simulator::new_at(scene, start_time)?;
+        self.sim = Simulator::new_at(scene, start_time).map_err(|e| e.to_string())?;
         self.refresh_outputs();
         Ok(())
     }
 
-    /// Every failure of the beam is recoverable: the simulator keeps its state at the start of
-    /// the step, and a smaller step, other inputs or a restored state can continue.
+    /// The simulator keeps its state at the start of a failed step; [`step_error`] says which
+    /// failures a smaller step, other inputs or a restored state can continue from.
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), StepError> {
         // one clock: the simulator starts at the start time and ends each step at the host's
         // t + h (the FMI layer checked t against its time, which is the simulator's)
-        self.sim.advance(t + h)?;
+        self.sim.advance(t + h).map_err(step_error)?;
         self.refresh_outputs();
         Ok(())
     }
@@ -326,7 +327,7 @@ impl CoSimModel for BeamFmu {
             return Err("snapshot has trailing bytes".into());
         }
         let scene = self.build_scene_with_parameters(&params)?;
-        let mut sim = Simulator::for_restore(scene.clone())?;
+        let mut sim = Simulator::for_restore(scene.clone()).map_err(|e| e.to_string())?;
         let input = [input[0], input[1]];
         sim.set_tip_force(input);
         sim.restore(
@@ -343,12 +344,35 @@ impl CoSimModel for BeamFmu {
                 step: StepControl { h_ok, calm },
                 applied,
             },
-        )?;
+        )
+        // a snapshot that does not fit is an error of the call (fmi2Error), not of a step
+        .map_err(|e| e.to_string())?;
         self.scene = scene;
         self.sim = sim;
         self.input = input;
         self.refresh_outputs();
         Ok(())
+    }
+}
+
+/// The FMI outcome of a failed `advance`: the simulator kept its state from before the call, so
+/// whatever a smaller step, other inputs or a restored state can overcome is
+/// [`StepError::Discard`]; the kinds `advance` cannot produce (scene, initialization, statics,
+/// snapshot) would mean the instance is broken and are [`StepError::Terminate`].
+fn step_error(e: SimError) -> StepError {
+    let message = e.to_string();
+    match e {
+        SimError::Step { .. }
+        | SimError::Refused { .. }
+        | SimError::WorkCap { .. }
+        | SimError::NonFinite { .. }
+        | SimError::InputJump { .. }
+        | SimError::BadTime { .. } => StepError::Discard(message),
+        SimError::Scene(_)
+        | SimError::InitialStatic(_)
+        | SimError::InitialAccelerations(_)
+        | SimError::Static(_)
+        | SimError::Snapshot(_) => StepError::Terminate(message),
     }
 }
 
@@ -440,5 +464,74 @@ mod tests {
         assert!(e.contains("modal.length") && e.contains("> 0"), "{e}");
         assert!(m.set_real(at(&m, 10), 1.0).unwrap_err().contains("output"));
         assert!(m.set_real(at(&m, 1), f64::NAN).is_err());
+    }
+
+    /// Each kind of simulator failure maps to the FMI outcome the host needs, with the
+    /// simulator's message unchanged.
+    #[test]
+    fn failures_map_to_discard_or_terminate_by_kind() {
+        use hybeam::error::{Refusal, SnapshotError, StepLimit};
+        use hybeam::integrator::{StaticFailure, StepFailure};
+        use hybeam::scene::SceneError;
+        let singular = StepFailure::Singular { h: 1e-4 };
+        let discard = [
+            SimError::Step {
+                t: 0.1,
+                halvings: 12,
+                limit: StepLimit::MaxHalvings,
+                source: StepFailure::NoConvergence {
+                    h: 1e-4,
+                    last_norm: 3.0,
+                },
+            },
+            SimError::Refused {
+                t: 0.2,
+                refusal: Refusal::ModalDeflection {
+                    segment: "modal".into(),
+                    value: 0.4,
+                },
+            },
+            SimError::Refused {
+                t: 0.2,
+                refusal: Refusal::AxialStrain { value: 0.06 },
+            },
+            SimError::WorkCap {
+                t0: 0.0,
+                t_end: 100.0,
+                needed: 1e5,
+                h_max: 1e-3,
+                cap: 20_000,
+            },
+            SimError::NonFinite { t: 0.3 },
+            SimError::InputJump {
+                t: 0.1,
+                source: singular.clone(),
+            },
+            SimError::BadTime {
+                t0: 0.1,
+                t_end: 0.1,
+            },
+        ];
+        let terminate = [
+            SimError::Scene(SceneError("name = \"\": give the scene a name".into())),
+            SimError::InitialStatic(StaticFailure {
+                load: 0.5,
+                reason: "singular".into(),
+            }),
+            SimError::InitialAccelerations(singular.clone()),
+            SimError::Static(StaticFailure {
+                load: 0.5,
+                reason: "singular".into(),
+            }),
+            SimError::Snapshot(SnapshotError::NewtonMatrix(singular)),
+        ];
+        for e in discard {
+            let text = e.to_string();
+            assert_eq!(step_error(e), StepError::Discard(text));
+        }
+        for e in terminate {
+            let text = e.to_string();
+            assert_eq!(step_error(e), StepError::Terminate(text));
+        }
     }
 }

@@ -1,0 +1,194 @@
+//! Why a [`Simulator`](crate::simulator::Simulator) call failed, by kind, so that a caller
+//! chooses what to do from the kind (the FMU adapter: fmi2Discard for a step it may retry,
+//! fmi2Error for a snapshot of another model) and shows the message, which says what to change.
+
+use crate::integrator::{StaticFailure, StepFailure};
+use crate::scene::{SceneError, MIN_STEP};
+use crate::simulator::{MAX_AXIAL_STRAIN, MAX_MODAL_DEFLECTION};
+use thiserror::Error;
+
+/// A failure of the simulator. On every step failure, refusal or non-finite result the
+/// simulator keeps its state from before the call.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SimError {
+    /// The scene (or the model built from it) is invalid.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// `initial.state = "static"`: the static equilibrium was not found.
+    #[error("initial.state = \"static\": {0}; try initial.state = \"straight\" or smaller loads")]
+    InitialStatic(#[source] StaticFailure),
+    /// The consistent initial accelerations could not be computed.
+    #[error("initial accelerations: {0}")]
+    InitialAccelerations(#[source] StepFailure),
+    /// [`Simulator::solve_static`](crate::simulator::Simulator::solve_static) found no
+    /// equilibrium.
+    #[error(transparent)]
+    Static(#[from] StaticFailure),
+    /// `advance` was asked to go to a time not after the current one (or not finite).
+    #[error("cannot advance from t = {t0} to t = {t_end}")]
+    BadTime {
+        /// Current time [s].
+        t0: f64,
+        /// Requested end time [s].
+        t_end: f64,
+    },
+    /// The communication step needs more internal steps of `solver.max_step` than
+    /// `solver.max_internal_steps`; refused before any work.
+    #[error(
+        "step from t = {t0:.6} s to {t_end:.6} s refused: it needs {needed:.0} internal steps of solver.max_step = {h_max:e} s, more than the cap solver.max_internal_steps = {cap}; split it into communication steps of at most {:e} s, or raise solver.max_step (or solver.max_internal_steps in the scene)",
+        *.cap as f64 * .h_max
+    )]
+    WorkCap {
+        /// Start of the communication step [s].
+        t0: f64,
+        /// Requested end [s].
+        t_end: f64,
+        /// Internal steps of `h_max` the span needs.
+        needed: f64,
+        /// `solver.max_step` [s].
+        h_max: f64,
+        /// `solver.max_internal_steps`.
+        cap: u64,
+    },
+    /// The accelerations consistent with inputs changed at a communication point could not be
+    /// computed.
+    #[error("step from t = {t:.6} s: accelerations consistent with the new inputs: {source}; reduce the loads")]
+    InputJump {
+        /// Time of the input change [s].
+        t: f64,
+        /// The integrator's failure.
+        source: StepFailure,
+    },
+    /// An internal step failed (no convergence or singular) and could not be halved further.
+    #[error(
+        "step from t = {t:.6} s failed {limit}: {source}. Reduce the communication step or solver.max_step, add damping, lower solver.rho_inf, or reduce the loads"
+    )]
+    Step {
+        /// Start of the communication step [s].
+        t: f64,
+        /// Halvings of the internal step done before giving up.
+        halvings: u32,
+        /// Which limit stopped the halving.
+        limit: StepLimit,
+        /// The integrator's last failure.
+        source: StepFailure,
+    },
+    /// The step converged to a state outside the model's validity.
+    #[error("step to t = {t:.6} s refused: {refusal}")]
+    Refused {
+        /// End of the refused communication step [s].
+        t: f64,
+        /// What was out of range.
+        refusal: Refusal,
+    },
+    /// The step produced non-finite coordinates or velocities.
+    #[error("step to t = {t:.6} s produced non-finite coordinates; reduce the communication step or solver.max_step")]
+    NonFinite {
+        /// End of the communication step [s].
+        t: f64,
+    },
+    /// A snapshot does not fit this simulator.
+    #[error(transparent)]
+    Snapshot(#[from] SnapshotError),
+}
+
+/// The limit that ended the halving of a failing internal step.
+#[derive(Debug, Clone, Copy, PartialEq, Error)]
+pub enum StepLimit {
+    /// [`MAX_HALVINGS`](crate::integrator::MAX_HALVINGS) reached.
+    #[error(
+        "after {} halvings of the internal step",
+        crate::integrator::MAX_HALVINGS
+    )]
+    MaxHalvings,
+    /// Halving would go below [`MIN_STEP`].
+    #[error("at an internal step of {h:e} s (halving it would go below the smallest internal step {MIN_STEP:e} s)")]
+    MinStep {
+        /// The internal step that failed [s].
+        h: f64,
+    },
+    /// Another halving would exceed `solver.max_internal_steps`.
+    #[error("after {halvings} halvings of the internal step (another would exceed solver.max_internal_steps = {cap} internal steps in one communication step)")]
+    WorkCap {
+        /// Halvings done.
+        halvings: u32,
+        /// `solver.max_internal_steps`.
+        cap: u64,
+    },
+}
+
+/// A converged state the model refuses as outside its validity.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum Refusal {
+    /// A modal segment deflects beyond [`MAX_MODAL_DEFLECTION`].
+    #[error(
+        "modal segment '{segment}' deflects {:.1} % of its length (or 1/100 rad of tip slope), beyond the {:.0} % validity of a linear floating frame; make it kind = \"ancf\", shorten it, or reduce the loads",
+        100.0 * .value,
+        100.0 * MAX_MODAL_DEFLECTION
+    )]
+    ModalDeflection {
+        /// Scene name of the segment.
+        segment: String,
+        /// Tip deflection over length, or tip slope [rad].
+        value: f64,
+    },
+    /// The largest axial strain exceeds [`MAX_AXIAL_STRAIN`].
+    #[error(
+        "axial strain {:.1} % exceeds the {:.0} % validity limit of the linear elastic rod; the loads (tip force or gravity) are too large for this beam",
+        100.0 * .value,
+        100.0 * MAX_AXIAL_STRAIN
+    )]
+    AxialStrain {
+        /// Largest axial strain [-].
+        value: f64,
+    },
+}
+
+/// A snapshot that does not fit this simulator.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SnapshotError {
+    /// Vector lengths differ from this model's.
+    #[error("state dimensions do not match this model")]
+    Dimensions,
+    /// The step control's step is outside [`MIN_STEP`, `solver.max_step`].
+    #[error("snapshot step size {h:e} s is not in [{MIN_STEP:e}, solver.max_step = {h_max:e}] s (the smallest internal step is {MIN_STEP:e} s)")]
+    StepSize {
+        /// Snapshot step [s].
+        h: f64,
+        /// `solver.max_step` [s].
+        h_max: f64,
+    },
+    /// The held Newton matrix's step is outside (0, `solver.max_step`].
+    #[error(
+        "snapshot Newton-matrix step size {h:e} s is not in (0, solver.max_step = {h_max:e}] s"
+    )]
+    JacobianStep {
+        /// Snapshot Newton-matrix step [s].
+        h: f64,
+        /// `solver.max_step` [s].
+        h_max: f64,
+    },
+    /// The state holds NaN or infinity.
+    #[error("snapshot state holds non-finite values")]
+    NonFinite,
+    /// The held Newton matrix could not be rebuilt.
+    #[error("cannot rebuild the Newton matrix of the snapshot: {0}")]
+    NewtonMatrix(#[source] StepFailure),
+}
+
+impl SimError {
+    /// A short name of the kind, for tables and logs (e.g. `"refusal"`).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            SimError::Scene(_) => "scene",
+            SimError::InitialStatic(_) | SimError::InitialAccelerations(_) => "initial state",
+            SimError::Static(_) => "statics",
+            SimError::BadTime { .. } => "bad time",
+            SimError::WorkCap { .. } => "work cap",
+            SimError::InputJump { .. } | SimError::Step { .. } => "step failure",
+            SimError::Refused { .. } => "refusal",
+            SimError::NonFinite { .. } => "non-finite",
+            SimError::Snapshot(_) => "snapshot",
+        }
+    }
+}

@@ -1,0 +1,123 @@
+//! Every setting of the time integration and the statics, in one place: the fields of
+//! [`IntegrationParameters`] (the scene's `[solver]` table deserialises into it, the FMU exposes
+//! some as parameters), and the fixed constants of the step policy beside it.
+//!
+//! The constants stay constants, not fields: none changes a result a user could want changed
+//! (they decide how hard the engine tries before refusing, never what a converged step is), the
+//! golden histories are recorded with them, and as fields they would add keys to the scene
+//! format (`docs/scene-format.md`), FMU parameters and validation without a use asking for it.
+
+use serde::{Deserialize, Serialize};
+
+/// Settings of the generalized-α integrator, its step control and the statics: the `[solver]`
+/// table of a scene. Validated by `Scene::validate` (which names the TOML field).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct IntegrationParameters {
+    /// Spectral radius at infinite frequency of generalized-α, in [0, 1): the numerical damping
+    /// of the highest frequencies, needed by index-3 constraints (default: 0.9).
+    pub rho_inf: f64,
+    /// Largest internal step [s], at least [`MIN_STEP`] (default: 1e-3).
+    pub max_step: f64,
+    /// Newton tolerance on scaled increments, relative to the beam length for positions and
+    /// modal amplitudes, to 1 for slopes and angles; in [[`MIN_TOLERANCE`], 0.01)
+    /// (default: 1e-11). The statics use [`STATIC_TOLERANCE_FACTOR`] times it.
+    pub tolerance: f64,
+    /// Newton iteration limit per step, in 1..=100 (default: 12).
+    pub max_iterations: usize,
+    /// Work cap: the largest number of internal steps, accepted or rejected (a halving doubles
+    /// the steps still to go), in one communication step. A longer communication step is
+    /// refused before any work is done (the FMU returns fmi2Discard and keeps its state).
+    /// Default: 20 000 (one Case 1–3 step takes 6–18 µs here, so a call stays below about
+    /// 0.4 s; it allows communication steps up to 2 s at `max_step` = 1e-4 s).
+    pub max_internal_steps: u64,
+}
+
+impl IntegrationParameters {
+    /// Newton tolerance of the statics: `tolerance` × [`STATIC_TOLERANCE_FACTOR`].
+    pub fn static_tolerance(&self) -> f64 {
+        self.tolerance * STATIC_TOLERANCE_FACTOR
+    }
+}
+
+impl Default for IntegrationParameters {
+    /// The defaults documented on the fields (those of a `[solver]` table left empty).
+    fn default() -> Self {
+        Self {
+            rho_inf: 0.9,
+            max_step: 1e-3,
+            tolerance: 1e-11,
+            max_iterations: 12,
+            max_internal_steps: 20_000,
+        }
+    }
+}
+
+/// Smallest internal step [s]: the lower bound of `solver.max_step`, of the step size a
+/// snapshot holds, and of a halved internal step.
+///
+/// The fastest mode of every shipped scene (the axial mode of a 25 mm steel ANCF element) has
+/// ω_max ≈ 2.0e6 rad/s, a period of 3.2 µs: at 1e-8 s a step resolves it with ω_max·h ≈ 0.02,
+/// about 300 steps per period. Generalized-α is unconditionally stable, so a smaller step buys
+/// neither stability nor resolved physics (elements 100 times shorter, thinner than the rod
+/// they model, would still give ω_max·h ≈ 2); it only multiplies the work: 1e-12 s would take
+/// about 1.4 hours of stepping per millisecond. A communication step shorter than this is
+/// taken as one internal step of its own length and never halved.
+pub const MIN_STEP: f64 = 1e-8;
+
+/// Smallest Newton tolerance: about 4.5 machine epsilons, below which round-off in the
+/// coordinates (relative 2.2e-16) keeps Newton from ever converging.
+pub const MIN_TOLERANCE: f64 = 1e-15;
+
+/// Largest number of halvings of the internal step before a communication step fails.
+pub const MAX_HALVINGS: u32 = 12;
+
+/// Communication steps completed at a reduced internal step before it is doubled again.
+pub const CALM_BEFORE_GROWTH: u32 = 4;
+
+/// Newton contraction rate above which a stale (held) Newton matrix is refreshed.
+pub const REFRESH_RATE: f64 = 0.25;
+
+/// Newton tolerance of the statics relative to `tolerance` (the statics solve 100 times
+/// tighter than a step).
+pub const STATIC_TOLERANCE_FACTOR: f64 = 1e-2;
+
+/// Newton iteration limit per load step of the statics.
+pub const STATIC_MAX_ITER: usize = 40;
+
+/// Smallest load increment of the statics' load stepping before giving up.
+pub const STATIC_MIN_INCREMENT: f64 = 1e-6;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The defaults of an empty `[solver]` table are those `docs/scene-format.md` documents.
+    #[test]
+    fn defaults_match_the_scene_format_page() {
+        let page = include_str!("../../docs/scene-format.md");
+        let documented = |field: &str| -> f64 {
+            let key = format!("| `solver.{field}` | ");
+            let line = page
+                .lines()
+                .find(|l| l.starts_with(&key))
+                .unwrap_or_else(|| panic!("solver.{field} not documented"));
+            line[key.len()..]
+                .split(" |")
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap()
+        };
+        let p: IntegrationParameters = toml::from_str("").unwrap();
+        assert_eq!(p, IntegrationParameters::default());
+        assert_eq!(p.rho_inf, documented("rho_inf"));
+        assert_eq!(p.max_step, documented("max_step"));
+        assert_eq!(p.tolerance, documented("tolerance"));
+        assert_eq!(p.max_iterations as f64, documented("max_iterations"));
+        assert_eq!(
+            p.max_internal_steps as f64,
+            documented("max_internal_steps")
+        );
+    }
+}
