@@ -298,7 +298,11 @@ mod tests {
                 panic!("{name} is not read from the outputs");
             };
             assert_ne!(value(&outputs), 0.0, "{name} must discriminate");
-            assert_eq!(read(&outputs).to_bits(), value(&outputs).to_bits(), "{name}");
+            assert_eq!(
+                read(&outputs).to_bits(),
+                value(&outputs).to_bits(),
+                "{name}"
+            );
         }
     }
 }
