@@ -147,6 +147,20 @@ pub enum Refusal {
 /// A snapshot that does not fit this simulator.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum SnapshotError {
+    /// The bytes are not a simulator snapshot (truncated, trailing bytes or malformed).
+    #[error("not a hybeam simulator snapshot: {0}")]
+    Malformed(String),
+    /// The snapshot was written in another format version.
+    #[error("snapshot format version {found} is not this simulator's version {expected}")]
+    Version {
+        /// Version in the bytes.
+        found: u32,
+        /// [`SNAPSHOT_VERSION`](crate::simulator::SNAPSHOT_VERSION).
+        expected: u32,
+    },
+    /// The snapshot was taken from a simulator of another scene (or other parameters).
+    #[error("snapshot belongs to another model: its scene (apart from the tip force and gravity it carries) differs from this simulator's; restore it into an instance of the same scene and parameters")]
+    OtherModel,
     /// Vector lengths differ from this model's.
     #[error("state dimensions do not match this model")]
     Dimensions,
@@ -168,8 +182,8 @@ pub enum SnapshotError {
         /// `solver.max_step` [s].
         h_max: f64,
     },
-    /// The state holds NaN or infinity.
-    #[error("snapshot state holds non-finite values")]
+    /// The state or the inputs hold NaN or infinity.
+    #[error("snapshot state or inputs hold non-finite values")]
     NonFinite,
     /// The held Newton matrix could not be rebuilt.
     #[error("cannot rebuild the Newton matrix of the snapshot: {0}")]

@@ -8,6 +8,8 @@ use crate::integrator::{
 };
 use crate::model::{Model, Outputs};
 use crate::scene::{InitialState, Scene};
+use serde::{Deserialize, Serialize};
+use std::hash::Hasher;
 
 /// Largest elastic deflection of a modal segment accepted, as tip deflection over length or tip
 /// slope [rad]: a linear floating frame is a small-deformation model.
@@ -18,7 +20,7 @@ pub const MAX_MODAL_DEFLECTION: f64 = 0.3;
 pub const MAX_AXIAL_STRAIN: f64 = 0.05;
 
 /// Internal step control carried from one communication step to the next.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct StepControl {
     /// Largest internal step that recently succeeded [s] (≤ `solver.max_step`).
     pub h_ok: f64,
@@ -32,7 +34,7 @@ pub struct StepControl {
 const STEP_ROUNDING: f64 = 1e-9;
 
 /// The inputs of the equations a host may change between communication steps.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Inputs {
     /// Total tip force [N], global axes.
     pub tip_force: [f64; 2],
@@ -57,7 +59,7 @@ impl Inputs {
 }
 
 /// Everything beyond the state that a snapshot must carry for a bit-identical restart.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Memory {
     /// Integrator memory.
     pub integrator: IntegratorMemory,
@@ -67,6 +69,41 @@ pub struct Memory {
     /// last step); the next [`Simulator::advance`] treats a difference from the current
     /// inputs as a jump at the current time.
     pub applied: Inputs,
+}
+
+/// Format version of [`Simulator::snapshot`]; raise it when a field of [`Snapshot`] (or of the
+/// structs it holds) changes.
+pub const SNAPSHOT_VERSION: u32 = 1;
+
+/// The payload of [`Simulator::snapshot`], encoded with `postcard` (f64 as 8 little-endian
+/// bytes, so restored values are bit-identical).
+#[derive(Serialize, Deserialize)]
+struct Snapshot {
+    /// [`SNAPSHOT_VERSION`]; first, so that another version is reported as such.
+    version: u32,
+    /// Coordinates of the model.
+    coordinates: u64,
+    /// Constraints of the model.
+    constraints: u64,
+    /// [`scene_key`] of the simulator's scene.
+    scene: u64,
+    /// The inputs set for the next step (tip force [N], gravity [m/s²]).
+    inputs: Inputs,
+    /// The state.
+    state: State,
+    /// The memory beyond the state.
+    memory: Memory,
+}
+
+/// FNV-1a 64 of the canonical TOML of `scene` without its inputs (tip force and gravity, which
+/// a snapshot carries and a host may change): what binds a snapshot to its model.
+fn scene_key(scene: &Scene) -> u64 {
+    let mut scene = scene.clone();
+    scene.tip.force = [0.0; 2];
+    scene.gravity = [0.0; 2];
+    let mut h = fnv::FnvHasher::default();
+    h.write(scene.to_toml().as_bytes());
+    h.finish()
 }
 
 /// A running simulation.
@@ -162,9 +199,9 @@ impl Simulator {
         }
     }
 
-    /// Restores a snapshot (state and integrator memory) taken from a simulator of the same
-    /// scene; the run then continues bit for bit as the original.
-    pub fn restore(&mut self, s: State, mem: &Memory) -> Result<(), SimError> {
+    /// Restores a state and memory taken from a simulator of the same scene (checked:
+    /// dimensions, step sizes, finiteness); the run then continues bit for bit as the original.
+    fn restore(&mut self, s: State, mem: &Memory) -> Result<(), SimError> {
         if s.q.len() != self.state.q.len()
             || s.lambda.len() != self.state.lambda.len()
             || [&s.v, &s.acc, &s.aux].iter().any(|x| x.len() != s.q.len())
@@ -183,7 +220,10 @@ impl Simulator {
             }
         }
         let finite = |x: &[f64]| x.iter().all(|x| x.is_finite());
+        let applied = &mem.applied;
         if !(s.t.is_finite()
+            && finite(&applied.tip_force)
+            && finite(&applied.gravity)
             && [&s.q, &s.v, &s.acc, &s.aux, &s.lambda]
                 .iter()
                 .all(|x| finite(x)))
@@ -196,6 +236,59 @@ impl Simulator {
         self.state = s;
         self.step = mem.step;
         self.applied = mem.applied;
+        Ok(())
+    }
+
+    /// The simulator's state, memory and current inputs as bytes (format [`SNAPSHOT_VERSION`],
+    /// bound to the scene apart from its tip force and gravity):
+    /// [`Simulator::restore_snapshot`] into a simulator of the same scene continues bit for
+    /// bit as this one.
+    pub fn snapshot(&self) -> Vec<u8> {
+        let snapshot = Snapshot {
+            version: SNAPSHOT_VERSION,
+            coordinates: self.state.q.len() as u64,
+            constraints: self.state.lambda.len() as u64,
+            scene: scene_key(&self.scene),
+            inputs: Inputs::of(&self.model),
+            state: self.state.clone(),
+            memory: self.memory(),
+        };
+        // encoding into a Vec fails only on allocation failure, which aborts anyway
+        postcard::to_allocvec(&snapshot).unwrap_or_default()
+    }
+
+    /// Restores bytes of [`Simulator::snapshot`] taken from a simulator of the same scene
+    /// (tip force and gravity may differ: the snapshot sets them). Checks the format version,
+    /// the scene, the dimensions, finiteness and the step sizes; on error the simulator is
+    /// unchanged.
+    pub fn restore_snapshot(&mut self, bytes: &[u8]) -> Result<(), SimError> {
+        let malformed = |e: postcard::Error| SnapshotError::Malformed(e.to_string());
+        let (found, _) = postcard::take_from_bytes::<u32>(bytes).map_err(malformed)?;
+        if found != SNAPSHOT_VERSION {
+            return Err(SnapshotError::Version {
+                found,
+                expected: SNAPSHOT_VERSION,
+            }
+            .into());
+        }
+        let (snap, rest) = postcard::take_from_bytes::<Snapshot>(bytes).map_err(malformed)?;
+        if !rest.is_empty() {
+            return Err(SnapshotError::Malformed(format!("{} trailing bytes", rest.len())).into());
+        }
+        if snap.scene != scene_key(&self.scene) {
+            return Err(SnapshotError::OtherModel.into());
+        }
+        if snap.coordinates != self.state.q.len() as u64
+            || snap.constraints != self.state.lambda.len() as u64
+        {
+            return Err(SnapshotError::Dimensions.into());
+        }
+        let i = &snap.inputs;
+        if !i.tip_force.iter().chain(&i.gravity).all(|x| x.is_finite()) {
+            return Err(SnapshotError::NonFinite.into());
+        }
+        self.restore(snap.state, &snap.memory)?;
+        snap.inputs.apply(&mut self.model);
         Ok(())
     }
 
@@ -378,5 +471,90 @@ impl Simulator {
         let it = solve_static(&mut self.model, &mut self.state, tol)?;
         self.integ.invalidate();
         Ok(it)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case1() -> Scene {
+        Scene::from_toml(include_str!("../scenes/case1.toml")).unwrap()
+    }
+
+    /// Replaces every little-endian occurrence of `old` in `bytes` by `new`; returns how many.
+    fn replace_f64(bytes: &mut [u8], old: f64, new: f64) -> usize {
+        let mut n = 0;
+        for i in 0..bytes.len().saturating_sub(7) {
+            if bytes[i..i + 8] == old.to_le_bytes() {
+                bytes[i..i + 8].copy_from_slice(&new.to_le_bytes());
+                n += 1;
+            }
+        }
+        n
+    }
+
+    #[test]
+    fn snapshot_restores_bit_for_bit_with_its_inputs() {
+        let mut a = Simulator::new(case1()).unwrap();
+        a.advance(2e-3).unwrap();
+        a.set_tip_force([0.3, -0.7]);
+        a.set_gravity([0.5, -9.0]);
+        let bytes = a.snapshot();
+        let mut b = Simulator::for_restore(case1()).unwrap();
+        b.restore_snapshot(&bytes).unwrap();
+        assert_eq!((b.tip_force(), b.gravity()), ([0.3, -0.7], [0.5, -9.0]));
+        a.advance(5e-3).unwrap();
+        b.advance(5e-3).unwrap();
+        let bits = |s: &State| -> Vec<u64> {
+            let vs = [&s.q, &s.v, &s.acc, &s.aux, &s.lambda];
+            vs.iter()
+                .flat_map(|x| x.iter().map(|x| x.to_bits()))
+                .collect()
+        };
+        assert_eq!(bits(a.state()), bits(b.state()));
+        assert_eq!(a.time().to_bits(), b.time().to_bits());
+    }
+
+    #[test]
+    fn snapshot_of_another_version_scene_or_shape_is_refused() {
+        let mut a = Simulator::new(case1()).unwrap();
+        a.advance(1e-3).unwrap();
+        a.set_gravity([0.25, -9.5]);
+        let bytes = a.snapshot();
+        let mut b = Simulator::for_restore(case1()).unwrap();
+        let err = |b: &mut Simulator, bytes: &[u8]| match b.restore_snapshot(bytes) {
+            Err(SimError::Snapshot(e)) => e,
+            other => panic!("{other:?}"),
+        };
+        let cut = &bytes[..bytes.len() - 3];
+        assert!(matches!(err(&mut b, cut), SnapshotError::Malformed(_)));
+        let mut long = bytes.clone();
+        long.push(0);
+        assert!(matches!(err(&mut b, &long), SnapshotError::Malformed(_)));
+        let mut other = bytes.clone();
+        other[0] = SNAPSHOT_VERSION as u8 + 1;
+        let found = SNAPSHOT_VERSION + 1;
+        let expected = SNAPSHOT_VERSION;
+        assert_eq!(
+            err(&mut b, &other),
+            SnapshotError::Version { found, expected }
+        );
+        let mut nan = bytes.clone();
+        assert_eq!(replace_f64(&mut nan, -9.5, f64::NAN), 1);
+        assert_eq!(err(&mut b, &nan), SnapshotError::NonFinite);
+        let mut scene = case1();
+        scene.solver.tolerance *= 2.0;
+        let mut c = Simulator::for_restore(scene).unwrap();
+        assert_eq!(err(&mut c, &bytes), SnapshotError::OtherModel);
+        // gravity and tip force are carried, not bound: another gravity restores
+        let mut scene = case1();
+        scene.gravity = [1.0, 2.0];
+        let mut d = Simulator::for_restore(scene).unwrap();
+        d.restore_snapshot(&bytes).unwrap();
+        assert_eq!(d.gravity(), [0.25, -9.5]);
+        // b is untouched by the refusals and restores the intact bytes
+        b.restore_snapshot(&bytes).unwrap();
+        assert_eq!(b.state(), a.state());
     }
 }

@@ -98,7 +98,7 @@ pub struct GeneralizedAlpha {
 }
 
 /// The state and step size at which the held Newton matrix was evaluated.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct JacobianPoint {
     /// Step size [s].
     pub h: f64,
@@ -113,7 +113,7 @@ pub struct JacobianPoint {
 }
 
 /// Integrator memory beyond the state: what a snapshot must carry for a bit-identical restart.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct IntegratorMemory {
     /// Convergence-rate estimate.
     pub eta: f64,

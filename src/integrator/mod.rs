@@ -15,7 +15,7 @@ pub use seam::{EvalRequest, Integrable, StateRef};
 pub use statics::{solve_static, StaticFailure};
 
 /// Dynamic state of the model.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct State {
     /// Time [s].
     pub t: f64,

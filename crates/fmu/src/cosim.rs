@@ -8,10 +8,9 @@ pub mod variables;
 use fmi2::{CoSimModel, ModelInfo, StepError, Variable};
 
 use hybeam::error::SimError;
-use hybeam::integrator::{IntegratorMemory, JacobianPoint, State};
 use hybeam::model::Outputs;
 use hybeam::scene::Scene;
-use hybeam::simulator::{Inputs, Memory, Simulator, StepControl};
+use hybeam::simulator::Simulator;
 
 use variables::{Access, SceneParameter, Table};
 
@@ -32,18 +31,6 @@ pub struct BeamFmu {
     /// Outputs of the current state, computed once per state change (no direct feedthrough:
     /// setting an input does not change them).
     outputs: Outputs,
-}
-
-/// Magic and version of the snapshot bytes.
-const MAGIC: &[u8; 8] = b"HYBEAM03";
-
-fn fnv1a(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in bytes {
-        h ^= *b as u64;
-        h = h.wrapping_mul(0x0100_0000_01b3);
-    }
-    h
 }
 
 impl BeamFmu {
@@ -93,51 +80,6 @@ fn model_info(scene: &Scene) -> ModelInfo {
         start_time: 0.0,
         stop_time: scene.simulation.t_end,
         step_size: scene.simulation.output_step,
-    }
-}
-
-struct Writer(Vec<u8>);
-impl Writer {
-    fn f(&mut self, x: f64) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-    fn u(&mut self, x: u64) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-    fn v(&mut self, xs: &[f64]) {
-        self.u(xs.len() as u64);
-        for x in xs {
-            self.f(*x);
-        }
-    }
-}
-
-struct Reader<'a>(&'a [u8]);
-impl Reader<'_> {
-    fn take(&mut self, n: usize) -> Result<&[u8], String> {
-        if self.0.len() < n {
-            return Err("snapshot bytes are truncated".into());
-        }
-        let (a, b) = self.0.split_at(n);
-        self.0 = b;
-        Ok(a)
-    }
-    fn u(&mut self) -> Result<u64, String> {
-        Ok(u64::from_le_bytes(
-            self.take(8)?.try_into().expect("8 bytes"),
-        ))
-    }
-    fn f(&mut self) -> Result<f64, String> {
-        Ok(f64::from_le_bytes(
-            self.take(8)?.try_into().expect("8 bytes"),
-        ))
-    }
-    fn v(&mut self) -> Result<Vec<f64>, String> {
-        let n = self.u()? as usize;
-        if n > self.0.len() / 8 {
-            return Err("snapshot bytes are truncated".into());
-        }
-        (0..n).map(|_| self.f()).collect()
     }
 }
 
@@ -239,121 +181,39 @@ impl CoSimModel for BeamFmu {
         Ok(())
     }
 
+    /// The FMU's part (the parameter values, in table order) around the simulator's snapshot
+    /// (state, memory, inputs; versioned and bound to the scene), encoded with `postcard`.
     fn save_state(&self) -> Vec<u8> {
-        let mut w = Writer(Vec::with_capacity(4096));
-        w.0.extend_from_slice(MAGIC);
-        w.u(fnv1a(self.scene_text.as_bytes()));
-        w.v(&self.parameters());
-        w.v(&self.input);
-        let s = self.sim.state();
-        w.f(s.t);
-        for x in [&s.q, &s.v, &s.acc, &s.aux, &s.lambda] {
-            w.v(x);
-        }
-        let mem = self.sim.memory();
-        w.f(mem.step.h_ok);
-        w.u(mem.step.calm as u64);
-        w.v(&mem.applied.tip_force);
-        w.v(&mem.applied.gravity);
-        let mem = mem.integrator;
-        w.f(mem.eta);
-        match &mem.jacobian {
-            None => w.u(0),
-            Some(j) => {
-                w.u(1);
-                w.f(j.h);
-                for x in [&j.q, &j.v, &j.acc, &j.lam] {
-                    w.v(x);
-                }
-            }
-        }
-        w.0
+        let snapshot: FmuSnapshot = (self.parameters(), self.sim.snapshot());
+        postcard::to_allocvec(&snapshot).unwrap_or_default()
     }
 
     fn load_state(&mut self, bytes: &[u8]) -> Result<(), String> {
-        let mut r = Reader(bytes);
-        if r.take(8)? != MAGIC {
-            return Err("not a hybeam snapshot (bad magic or format version)".into());
+        let (snapshot, rest) = postcard::take_from_bytes::<FmuSnapshot>(bytes)
+            .map_err(|e| format!("not a hybeam FMU snapshot: {e}"))?;
+        if !rest.is_empty() {
+            return Err(format!(
+                "not a hybeam FMU snapshot: {} trailing bytes",
+                rest.len()
+            ));
         }
-        if r.u()? != fnv1a(self.scene_text.as_bytes()) {
-            return Err("snapshot belongs to another scene".into());
-        }
-        let params = r.v()?;
-        let input = r.v()?;
-        if input.len() != 2 {
-            return Err("snapshot input block is malformed".into());
-        }
-        let t = r.f()?;
-        let q = r.v()?;
-        let v = r.v()?;
-        let acc = r.v()?;
-        let aux = r.v()?;
-        let lambda = r.v()?;
-        let h_ok = r.f()?;
-        let calm = r.u()?.min(u32::MAX as u64) as u32;
-        let (applied_force, applied_gravity) = (r.v()?, r.v()?);
-        if applied_force.len() != 2 || applied_gravity.len() != 2 {
-            return Err("snapshot input block is malformed".into());
-        }
-        let applied = Inputs {
-            tip_force: [applied_force[0], applied_force[1]],
-            gravity: [applied_gravity[0], applied_gravity[1]],
-        };
-        if !applied
-            .tip_force
-            .iter()
-            .chain(&applied.gravity)
-            .chain(&input)
-            .all(|x| x.is_finite())
-        {
-            return Err("snapshot inputs hold non-finite values".into());
-        }
-        let eta = r.f()?;
-        let jacobian = match r.u()? {
-            0 => None,
-            1 => {
-                let h = r.f()?;
-                Some(JacobianPoint {
-                    h,
-                    q: r.v()?,
-                    v: r.v()?,
-                    acc: r.v()?,
-                    lam: r.v()?,
-                })
-            }
-            _ => return Err("snapshot integrator block is malformed".into()),
-        };
-        if !r.0.is_empty() {
-            return Err("snapshot has trailing bytes".into());
-        }
+        let (params, sim_bytes) = snapshot;
         let scene = self.build_scene_with_parameters(&params)?;
         let mut sim = Simulator::for_restore(scene.clone()).map_err(|e| e.to_string())?;
-        let input = [input[0], input[1]];
-        sim.set_tip_force(input);
-        sim.restore(
-            State {
-                t,
-                q,
-                v,
-                acc,
-                aux,
-                lambda,
-            },
-            &Memory {
-                integrator: IntegratorMemory { eta, jacobian },
-                step: StepControl { h_ok, calm },
-                applied,
-            },
-        )
         // a snapshot that does not fit is an error of the call (fmi2Error), not of a step
-        .map_err(|e| e.to_string())?;
+        sim.restore_snapshot(&sim_bytes)
+            .map_err(|e| e.to_string())?;
         self.scene = scene;
+        self.input = sim.tip_force();
         self.sim = sim;
-        self.input = input;
         self.refresh_outputs();
         Ok(())
     }
 }
+
+/// A serialized FMU state: the parameter values in table order, then the bytes of
+/// [`Simulator::snapshot`].
+type FmuSnapshot = (Vec<f64>, Vec<u8>);
 
 /// The FMI outcome of a failed `advance`: the simulator kept its state from before the call, so
 /// whatever a smaller step, other inputs or a restored state can overcome is
