@@ -324,6 +324,14 @@ impl Simulator {
         self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda)
     }
 
+    /// Returns to the state and step control of the start of an `advance` call after a failed
+    /// or refused communication step (the held Newton matrix belongs to the abandoned attempt).
+    fn roll_back(&mut self, saved: State, saved_step: StepControl) {
+        self.state = saved;
+        self.step = saved_step;
+        self.integ.invalidate();
+    }
+
     /// Advances to `t_end` in equal internal steps no larger than `solver.max_step`, halving
     /// a step that fails (at most [`MAX_HALVINGS`] times, never below [`MIN_STEP`]), with at
     /// most `solver.max_internal_steps` internal steps, accepted or rejected, in the call. A
@@ -401,9 +409,7 @@ impl Simulator {
                         None
                     };
                     if let Some(limit) = limit {
-                        self.state = saved;
-                        self.step = saved_step;
-                        self.integ.invalidate();
+                        self.roll_back(saved, saved_step);
                         return Err(SimError::Step {
                             t: self.state.t,
                             halvings: halvings - 1,
@@ -429,9 +435,7 @@ impl Simulator {
             .modal_deflection
             .filter(|&(_, d)| finite && d > MAX_MODAL_DEFLECTION);
         if let Some((si, d)) = modal {
-            self.state = saved;
-            self.step = saved_step;
-            self.integ.invalidate();
+            self.roll_back(saved, saved_step);
             return Err(SimError::Refused {
                 t: t_end,
                 refusal: Refusal::ModalDeflection {
@@ -441,9 +445,7 @@ impl Simulator {
             });
         }
         if !finite || strain > MAX_AXIAL_STRAIN {
-            self.state = saved;
-            self.step = saved_step;
-            self.integ.invalidate();
+            self.roll_back(saved, saved_step);
             return Err(if finite {
                 SimError::Refused {
                     t: t_end,
