@@ -99,8 +99,9 @@ struct Snapshot {
 /// a snapshot carries and a host may change): what binds a snapshot to its model.
 fn scene_key(scene: &Scene) -> u64 {
     let mut scene = scene.clone();
-    scene.tip.force = [0.0; 2];
-    scene.gravity = [0.0; 2];
+    scene.tip.force.clear();
+    scene.tip.moment.clear();
+    scene.gravity.clear();
     let mut h = fnv::FnvHasher::default();
     h.write(scene.to_toml().as_bytes());
     h.finish()
@@ -551,7 +552,7 @@ mod tests {
         assert_eq!(err(&mut c, &bytes), SnapshotError::OtherModel);
         // gravity and tip force are carried, not bound: another gravity restores
         let mut scene = case1();
-        scene.gravity = [1.0, 2.0];
+        scene.gravity = vec![1.0, 2.0];
         let mut d = Simulator::for_restore(scene).unwrap();
         d.restore_snapshot(&bytes).unwrap();
         assert_eq!(d.gravity(), [0.25, -9.5]);

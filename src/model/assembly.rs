@@ -9,15 +9,15 @@
 //! `c_a·M + c_v·C + c_x·K + Σλ̃_i ∂²Φ_i` in a pattern fixed at build.
 //!
 //! Summation order (fixed, so that the same inputs give the same bits): elements in their
-//! stored order, then the tip force, then the constraints in row order.
+//! stored order, then the tip force, then the tip moment, then the constraints in row order.
 
 use super::component::{
     Constraint, ConstraintOut, Element, ElementOut, Env, LocalState, Port, Support,
 };
 use super::dofs::{LocalDofs, Numbering};
-use super::load::{point_force_residual, point_force_stiffness};
+use super::load::{moment_residual, point_force_residual, point_force_stiffness};
 use super::planar::Planar;
-use super::space::{is_nonzero, scaled, Space};
+use super::space::{is_nonzero, is_nonzero_moment, scaled, Space};
 use crate::integrator::{EvalRequest, Integrable, StateRef};
 use crate::linalg::{SingularMatrix, SparseLu, SparsePattern};
 
@@ -62,6 +62,8 @@ pub struct Parts<S: Space> {
     pub gravity: S::Vec,
     /// Tip force at build (the scene's) [N], global axes.
     pub tip_force: S::Vec,
+    /// Dead tip moment at build (the scene's) [N m], global axes.
+    pub tip_moment: S::Moment,
 }
 
 /// Reused local work arrays of the assembly's ports and constraints (sized for the largest
@@ -86,6 +88,8 @@ pub struct Model<S: Space = Planar> {
     /// The one total tip force [N], global axes: the scene's at build, then whatever
     /// [`Model::set_tip_force`] sets (no split into scene part and input part).
     pub(crate) tip_force: S::Vec,
+    /// The one total dead tip moment [N m], global axes, owned like the tip force.
+    pub(crate) tip_moment: S::Moment,
     scale: Vec<f64>,
     q0: Vec<f64>,
     lu: SparseLu,
@@ -116,6 +120,7 @@ impl<S: Space> Model<S> {
             support,
             gravity,
             tip_force,
+            tip_moment,
         } = parts;
         let (q0, scale, held) = numbering.finish();
         let n = q0.len();
@@ -200,6 +205,7 @@ impl<S: Space> Model<S> {
             held,
             gravity,
             tip_force,
+            tip_moment,
             scale,
             q0,
             lu: SparseLu::new(pattern),
@@ -243,6 +249,16 @@ impl<S: Space> Model<S> {
         self.tip_force = f;
     }
 
+    /// The total dead tip moment [N m], global axes.
+    pub fn tip_moment(&self) -> S::Moment {
+        self.tip_moment
+    }
+
+    /// Sets the total dead tip moment [N m], global axes (replaces the scene's).
+    pub fn set_tip_moment(&mut self, m: S::Moment) {
+        self.tip_moment = m;
+    }
+
     /// Largest number of local coordinates of a component.
     pub(crate) fn max_local_len(&self) -> usize {
         self.work.q.len()
@@ -282,6 +298,7 @@ impl<S: Space> Integrable for Model<S> {
             self.values.fill(0.0);
         }
         let force = self.tip_force;
+        let moment = self.tip_moment;
         let Self {
             elements,
             constraints,
@@ -315,6 +332,26 @@ impl<S: Space> Integrable for Model<S> {
                         values[s] += cx * h;
                     }
                 });
+            }
+        }
+        if is_nonzero_moment::<S>(&moment) {
+            let mut m = moment;
+            for c in S::moment_components_mut(&mut m) {
+                *c *= x.load;
+            }
+            let dofs = &tip.dofs;
+            let d = dofs.len();
+            dofs.gather(x.q, held, &mut work.q[..d]);
+            let kin = tip.part.kinematics(&work.q[..d]);
+            moment_residual::<S>(&kin, &m, &mut work.r[..d]);
+            dofs.scatter_add(req.sd, &work.r[..d], res);
+            if let Some((_, _, cx)) = matrix {
+                tip.part
+                    .add_moment_stiffness(&work.q[..d], &m, &mut |i, j, h| {
+                        if let Some(s) = dofs.slot(i, j) {
+                            values[s] += cx * h;
+                        }
+                    });
             }
         }
         let hessian = req.lambda_hessian && matrix.is_some();
@@ -438,6 +475,7 @@ mod tests {
                 curv: None,
             }
         }
+        fn add_moment_stiffness(&self, _: &[f64], _: &f64, _: &mut dyn FnMut(usize, usize, f64)) {}
     }
 
     #[derive(Debug)]
@@ -467,6 +505,7 @@ mod tests {
             support: Box::new(NoSupport),
             gravity: [0.0, -G],
             tip_force: [0.0, 0.0],
+            tip_moment: 0.0,
         })
     }
 

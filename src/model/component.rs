@@ -214,6 +214,16 @@ pub trait Constraint: Debug + Send + Sync + 'static {
 pub trait Port<S: Space>: Debug + Send + Sync + 'static {
     /// Kinematics at the local coordinates `q`.
     fn kinematics(&self, q: &[f64]) -> S::PortKin;
+
+    /// Stiffness of a dead moment `m` [N m] (global axes) at the port: adds
+    /// `−m·∂²θ/∂q_i∂q_j` (the derivative of the residual `−m·∂θ/∂q_i` with respect to q_j, see
+    /// [`super::PortKin::rotation_jacobian`]) through `add(i, j, value)` (local indices).
+    fn add_moment_stiffness(
+        &self,
+        q: &[f64],
+        m: &S::Moment,
+        add: &mut dyn FnMut(usize, usize, f64),
+    );
 }
 
 /// How the support holds the beam: turns the residual of the held coordinates (the generalized

@@ -23,6 +23,7 @@ pub mod modal;
 pub mod outputs;
 pub mod planar;
 pub mod space;
+pub mod spatial;
 
 pub use assembly::{Model, Parts};
 pub use component::{
@@ -33,3 +34,4 @@ pub use dofs::{Dof, LocalDofs, Numbering};
 pub use outputs::{ModelValidity, Outputs};
 pub use planar::Planar;
 pub use space::{PortKin, Space};
+pub use spatial::Spatial;

@@ -3,9 +3,9 @@
 
 use super::assembly::Model;
 use super::component::{ConstraintOut, Element, Env, LocalState};
-use super::load::point_force_residual;
+use super::load::{moment_residual, point_force_residual};
 use super::planar::Planar;
-use super::space::{PortKin, Space};
+use super::space::{is_nonzero_moment, PortKin, Space};
 
 /// Scalar results of one state.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -17,6 +17,9 @@ pub struct Outputs<S: Space = Planar> {
     /// Orientation of the tip section: in the plane the angle of the tip tangent from global x
     /// [rad], in (−π, π].
     pub tip_angle: S::Attitude,
+    /// Angular velocity of the tip section [rad/s], global axes (in the plane: about z,
+    /// counter-clockwise positive).
+    pub tip_angular_velocity: S::Moment,
     /// Kinetic energy [J].
     pub kinetic: f64,
     /// Strain energy [J].
@@ -49,11 +52,20 @@ impl<S: Space> Model<S> {
         tip.gather(q, &self.held, x);
         let kin = self.tip.part.kinematics(x);
         let mut vel = S::Vec::default();
+        let mut omega = S::Moment::default();
         for k in 0..tip.len() {
             if let Some(i) = tip.free(k) {
                 let dp = kin.jacobian(k);
                 for c in 0..S::DIM {
                     vel[c] += dp[c] * v[i];
+                }
+                let dth = kin.rotation_jacobian(k);
+                let (w, d) = (
+                    S::moment_components_mut(&mut omega),
+                    S::moment_components(&dth),
+                );
+                for c in 0..w.len() {
+                    w[c] += d[c] * v[i];
                 }
             }
         }
@@ -61,6 +73,7 @@ impl<S: Space> Model<S> {
             tip_position: kin.position(),
             tip_velocity: vel,
             tip_angle: kin.attitude(),
+            tip_angular_velocity: omega,
             ..Default::default()
         };
         for e in &self.elements {
@@ -104,6 +117,10 @@ impl<S: Space> Model<S> {
             local.resize(tip.len(), 0.0);
             point_force_residual::<S>(&kin, &self.tip_force, &mut local);
             tip.scatter_held(&local, &mut r);
+            if is_nonzero_moment::<S>(&self.tip_moment) {
+                moment_residual::<S>(&kin, &self.tip_moment, &mut local);
+                tip.scatter_held(&local, &mut r);
+            }
         }
         let mut out = ConstraintOut::default();
         for c in self.constraints.iter().filter(|c| c.at.dofs.has_held()) {

@@ -25,13 +25,19 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
         + AsMut<[f64]>
         + Index<usize, Output = f64>
         + IndexMut<usize>;
-    /// A moment [N m], global axes: the z component in the plane.
+    /// A moment [N m] or an angular velocity [rad/s], global axes: the z component in the
+    /// plane, `[x, y, z]` in space.
     type Moment: Copy + Default + Debug + PartialEq + Send + Sync;
     /// The orientation of a section, for outputs: the angle of the tangent from global x [rad]
     /// in the plane.
     type Attitude: Copy + Default + Debug + PartialEq + Send + Sync;
     /// Kinematics of a port (an attachment point) at one state.
     type PortKin: PortKin<Self>;
+
+    /// The components of a moment, in the order of [`Space::MOMENT_AXES`].
+    fn moment_components(m: &Self::Moment) -> &[f64];
+    /// The components of a moment, mutable.
+    fn moment_components_mut(m: &mut Self::Moment) -> &mut [f64];
 }
 
 /// Kinematics of a port at one state, over the port's local coordinates: what loads and
@@ -45,6 +51,9 @@ pub trait PortKin<S: Space>: Debug + Clone {
     fn add_point_hessian(&self, mu: &S::Vec, add: impl FnMut(usize, usize, f64));
     /// Orientation of the section at the port.
     fn attitude(&self) -> S::Attitude;
+    /// ∂θ/∂q_k: the virtual rotation of the section [rad] per unit of local coordinate k, global
+    /// axes (the angular velocity is Σ_k ∂θ/∂q_k q̇_k; a dead moment m does the work m·δθ).
+    fn rotation_jacobian(&self, k: usize) -> S::Moment;
 }
 
 /// Dot product a·b of two global vectors, summed in axis order.
@@ -69,4 +78,19 @@ pub fn scaled<S: Space>(s: f64, v: &S::Vec) -> S::Vec {
 /// Whether any component of `v` is nonzero.
 pub fn is_nonzero<S: Space>(v: &S::Vec) -> bool {
     v.as_ref().iter().any(|x| *x != 0.0)
+}
+
+/// Dot product m·w of two moments (or a moment and a rotation), summed in axis order.
+pub fn moment_dot<S: Space>(m: &S::Moment, w: &S::Moment) -> f64 {
+    S::moment_components(m)
+        .iter()
+        .zip(S::moment_components(w))
+        .map(|(x, y)| x * y)
+        .reduce(|s, t| s + t)
+        .unwrap_or(0.0)
+}
+
+/// Whether any component of the moment `m` is nonzero.
+pub fn is_nonzero_moment<S: Space>(m: &S::Moment) -> bool {
+    S::moment_components(m).iter().any(|x| *x != 0.0)
 }

@@ -25,15 +25,46 @@ impl fmt::Display for SceneError {
 
 impl std::error::Error for SceneError {}
 
+/// The space a scene lives in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum SpaceKind {
+    /// The x–y plane: vectors `[x, y]`, moments about z.
+    #[default]
+    Planar,
+    /// Space: vectors `[x, y, z]`.
+    Spatial,
+}
+
+impl SpaceKind {
+    /// Number of components of a vector (2 or 3).
+    pub fn dim(self) -> usize {
+        match self {
+            SpaceKind::Planar => 2,
+            SpaceKind::Spatial => 3,
+        }
+    }
+
+    /// Number of components of a moment (1: z in the plane, or 3).
+    pub fn moment_dim(self) -> usize {
+        match self {
+            SpaceKind::Planar => 1,
+            SpaceKind::Spatial => 3,
+        }
+    }
+}
+
 /// How the beam root is held.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum Root {
-    /// Position and slope fixed (cantilever).
+    /// Position and orientation fixed (cantilever).
     #[default]
     Clamped,
-    /// Position fixed, free to rotate in the plane.
+    /// Position fixed, free to rotate in the plane (planar scenes).
     Pinned,
+    /// Position fixed, orientation free (spatial scenes: a spherical joint to the ground).
+    Ball,
 }
 
 /// Kind of a segment.
@@ -46,15 +77,33 @@ pub enum SegmentKind {
     Ancf,
 }
 
-/// Cross-section shape.
+/// Cross-section shape. Section axes: y (the bending plane of a planar scene) and z.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum Section {
     /// Solid round rod of `diameter`.
     #[default]
     Round,
-    /// Solid rectangle `width` (out of plane) × `height` (in the bending plane).
+    /// Solid rectangle `width` (along z, out of the planar bending plane) × `height` (along y).
     Rectangle,
+    /// Round tube of outer `diameter` and `inner_diameter`.
+    Tube,
+}
+
+/// Properties of a cross-section (valid after [`Scene::validate`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionProps {
+    /// Area A [m²].
+    pub area: f64,
+    /// Second moment about the section's y axis [m⁴] (bending in the x–z plane).
+    pub i_y: f64,
+    /// Second moment about the section's z axis [m⁴] (bending in the x–y plane: the planar I).
+    pub i_z: f64,
+    /// Torsion constant J [m⁴] (GJ is the torsional stiffness): I_p for round sections and
+    /// tubes, Saint-Venant's series for a rectangle.
+    pub torsion: f64,
+    /// Polar moment I_p = I_y + I_z [m⁴] (torsional rotary inertia ρI_p per length).
+    pub polar: f64,
 }
 
 /// Strain measures of the ANCF cable.
@@ -90,8 +139,14 @@ pub struct Segment {
     /// Height of a rectangle, in the bending plane [m].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub height: Option<f64>,
+    /// Inner diameter of a tube [m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inner_diameter: Option<f64>,
     /// Young's modulus E [Pa].
     pub youngs_modulus: f64,
+    /// Poisson's ratio ν [-]: shear modulus G = E/(2(1 + ν)) (torsion in spatial scenes).
+    #[serde(default = "Segment::default_poisson_ratio")]
+    pub poisson_ratio: f64,
     /// Density ρ [kg/m³].
     pub density: f64,
     /// Kelvin–Voigt retardation time τ [s]: stress E(ε + τ ε̇), bending likewise. On a modal
@@ -133,18 +188,28 @@ pub struct Initial {
     /// `straight` or `static`.
     #[serde(default)]
     pub state: InitialState,
-    /// Angle of the root (and of the straight beam) from the global x axis [rad], counter-clockwise.
+    /// Planar scenes: angle of the root (and of the straight beam) from the global x axis
+    /// [rad], counter-clockwise.
     #[serde(default)]
     pub angle: f64,
+    /// Spatial scenes: orientation of the root frame, Euler parameters `[e0, e1, e2, e3]`
+    /// (scalar first, root frame → world; normalized on reading). The beam's axis is the
+    /// frame's x axis, the section axes its y and z. Default: identity.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<[f64; 4]>,
 }
 
 /// Loads at the free end.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct Tip {
-    /// Constant force at the tip, global axes [N].
+    /// Constant (dead) force at the tip, global axes [N]: `[x, y]` or `[x, y, z]`.
     #[serde(default)]
-    pub force: [f64; 2],
+    pub force: Vec<f64>,
+    /// Constant (dead) moment at the tip, global axes [N m]: `[z]` in a planar scene,
+    /// `[x, y, z]` in a spatial one.
+    #[serde(default)]
+    pub moment: Vec<f64>,
 }
 
 /// The `[solver]` table: the integrator's settings, each default documented where it is
@@ -190,9 +255,16 @@ pub struct Scene {
     /// Free text.
     #[serde(default)]
     pub description: String,
-    /// Gravity vector, global axes [m/s²].
+    /// `planar` (default) or `spatial`.
     #[serde(default)]
-    pub gravity: [f64; 2],
+    pub space: SpaceKind,
+    /// Spatial scenes: whether the ANCF elements carry a twist director r_y (torsion; 9
+    /// coordinates per node) or are 3D cables (r, r_x; 6 per node, no torque about the axis).
+    #[serde(default = "Scene::default_torsion")]
+    pub torsion: bool,
+    /// Gravity vector, global axes [m/s²]: `[x, y]` or `[x, y, z]` (default zero).
+    #[serde(default)]
+    pub gravity: Vec<f64>,
     /// Root boundary condition.
     #[serde(default)]
     pub root: Root,
@@ -214,20 +286,73 @@ pub struct Scene {
 }
 
 impl Segment {
-    /// Area A [m²] and second moment I [m⁴] of the cross-section (valid after `validate`).
+    fn default_poisson_ratio() -> f64 {
+        0.3
+    }
+
+    /// Area A [m²] and second moment I [m⁴] of the cross-section in the planar bending plane
+    /// (about z; valid after `validate`).
     pub fn area_inertia(&self) -> (f64, f64) {
+        let p = self.section_props();
+        (p.area, p.i_z)
+    }
+
+    /// Shear modulus G = E/(2(1 + ν)) [Pa].
+    pub fn shear_modulus(&self) -> f64 {
+        self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+    }
+
+    /// Properties of the cross-section (valid after `validate`).
+    pub fn section_props(&self) -> SectionProps {
+        use std::f64::consts::PI;
+        let round = |d: f64| {
+            let a = PI * d * d / 4.0;
+            (a, a * d * d / 16.0)
+        };
         match self.section {
-            Section::Round => {
-                let d = self.diameter.unwrap_or(0.0);
-                let a = std::f64::consts::PI * d * d / 4.0;
-                (a, a * d * d / 16.0)
+            Section::Round | Section::Tube => {
+                let (ao, io) = round(self.diameter.unwrap_or(0.0));
+                let (ai, ii) = match self.section {
+                    Section::Tube => round(self.inner_diameter.unwrap_or(0.0)),
+                    _ => (0.0, 0.0),
+                };
+                let i = io - ii;
+                SectionProps {
+                    area: ao - ai,
+                    i_y: i,
+                    i_z: i,
+                    torsion: 2.0 * i,
+                    polar: 2.0 * i,
+                }
             }
             Section::Rectangle => {
                 let (b, h) = (self.width.unwrap_or(0.0), self.height.unwrap_or(0.0));
-                (b * h, b * h * h * h / 12.0)
+                let (i_y, i_z) = (h * b * b * b / 12.0, b * h * h * h / 12.0);
+                SectionProps {
+                    area: b * h,
+                    i_y,
+                    i_z,
+                    torsion: rectangle_torsion_constant(b, h),
+                    polar: i_y + i_z,
+                }
             }
         }
     }
+}
+
+/// Saint-Venant torsion constant of a solid `b` × `h` rectangle [m⁴]:
+/// J = a b³ [1/3 − (64/π⁵)(b/a) Σ_{n odd} tanh(nπa/(2b))/n⁵], a ≥ b (Timoshenko & Goodier §109);
+/// the series is summed to n = 99 (relative remainder below 1e-10).
+pub fn rectangle_torsion_constant(b: f64, h: f64) -> f64 {
+    use std::f64::consts::PI;
+    let (a, b) = if h >= b { (h, b) } else { (b, h) };
+    let sum: f64 = (0..50)
+        .map(|k| {
+            let n = (2 * k + 1) as f64;
+            (n * PI * a / (2.0 * b)).tanh() / n.powi(5)
+        })
+        .sum();
+    a * b * b * b * (1.0 / 3.0 - 64.0 / PI.powi(5) * (b / a) * sum)
 }
 
 fn check_positive(field: &str, v: f64, what: &str) -> Result<(), SceneError> {
@@ -283,7 +408,9 @@ impl Scene {
         }
         let scene: Scene = Scene::deserialize(toml::Value::Table(value))
             .map_err(|e| SceneError(format!("scene: {}", e.to_string().trim())))?;
+        let mut scene = scene;
         scene.validate()?;
+        scene.fill_vectors();
         Ok(scene)
     }
 
@@ -297,13 +424,64 @@ impl Scene {
         if self.name.trim().is_empty() {
             return Err(SceneError("name = \"\": give the scene a name".into()));
         }
-        for (i, g) in self.gravity.iter().enumerate() {
-            check_finite(&format!("gravity[{i}]"), *g)?;
-        }
-        for (i, f) in self.tip.force.iter().enumerate() {
-            check_finite(&format!("tip.force[{i}]"), *f)?;
+        let sp = self.space;
+        let axes = ["[x, y]", "[x, y, z]"][sp.dim() - 2];
+        let moment_axes = ["[z] (the z component)", "[x, y, z]"][sp.moment_dim() - 1];
+        for (field, v, n, how) in [
+            ("gravity", &self.gravity, sp.dim(), axes),
+            ("tip.force", &self.tip.force, sp.dim(), axes),
+            ("tip.moment", &self.tip.moment, sp.moment_dim(), moment_axes),
+        ] {
+            if !v.is_empty() && v.len() != n {
+                return Err(SceneError(format!(
+                    "{field} = {v:?}: a {sp:?} scene takes {n} components {how} (or leave it out for zero)"
+                ).replace("Planar", "planar").replace("Spatial", "spatial")));
+            }
+            for (i, x) in v.iter().enumerate() {
+                check_finite(&format!("{field}[{i}]"), *x)?;
+            }
         }
         check_finite("initial.angle", self.initial.angle)?;
+        match sp {
+            SpaceKind::Planar => {
+                if self.root == Root::Ball {
+                    return Err(SceneError(
+                        "root = \"ball\": a planar scene has clamped or pinned roots (a ball root needs space = \"spatial\")".into(),
+                    ));
+                }
+                if self.initial.orientation.is_some() {
+                    return Err(SceneError(
+                        "initial.orientation: a planar scene gives the root direction as initial.angle [rad]; remove orientation or set space = \"spatial\"".into(),
+                    ));
+                }
+                if !self.torsion {
+                    return Err(SceneError(
+                        "torsion = false: torsion is a switch of spatial scenes; remove it or set space = \"spatial\"".into(),
+                    ));
+                }
+            }
+            SpaceKind::Spatial => {
+                if self.root == Root::Pinned {
+                    return Err(SceneError(
+                        "root = \"pinned\": a spatial scene has clamped or ball roots (a ball root holds the position and leaves the orientation free)".into(),
+                    ));
+                }
+                if self.initial.angle != 0.0 {
+                    return Err(SceneError(format!(
+                        "initial.angle = {}: a spatial scene gives the root frame as initial.orientation = [e0, e1, e2, e3]",
+                        self.initial.angle
+                    )));
+                }
+                if let Some(e) = self.initial.orientation {
+                    let n = e.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    if !(n.is_finite() && n > 1e-6) {
+                        return Err(SceneError(format!(
+                            "initial.orientation = {e:?}: Euler parameters must be finite and not all zero (identity: [1, 0, 0, 0])"
+                        )));
+                    }
+                }
+            }
+        }
         let s = &self.solver;
         if !(s.rho_inf.is_finite() && (0.0..1.0).contains(&s.rho_inf)) {
             return Err(SceneError(format!(
@@ -368,14 +546,40 @@ impl Scene {
             check_positive(&format!("{p}.youngs_modulus"), seg.youngs_modulus, "Pa")?;
             check_positive(&format!("{p}.density"), seg.density, "kg/m3")?;
             check_nonnegative(&format!("{p}.damping_time"), seg.damping_time, "seconds")?;
+            if !(seg.poisson_ratio.is_finite()
+                && seg.poisson_ratio > -1.0
+                && seg.poisson_ratio <= 0.5)
+            {
+                return Err(SceneError(format!(
+                    "{p}.poisson_ratio = {}: must be in (-1, 0.5] (steel: 0.3, the default)",
+                    seg.poisson_ratio
+                )));
+            }
+            if seg.section != Section::Tube && seg.inner_diameter.is_some() {
+                return Err(SceneError(format!(
+                    "{p}.inner_diameter: only a section = \"tube\" has an inner diameter"
+                )));
+            }
             match seg.section {
-                Section::Round => {
+                Section::Round | Section::Tube => {
                     let d = seg.diameter.ok_or_else(|| {
                         SceneError(format!(
-                            "{p}.diameter is missing: a round section needs diameter = <metres>"
+                            "{p}.diameter is missing: a round section or a tube needs diameter = <metres> (outer)"
                         ))
                     })?;
                     check_positive(&format!("{p}.diameter"), d, "metres")?;
+                    if seg.section == Section::Tube {
+                        let di = seg.inner_diameter.ok_or_else(|| {
+                            SceneError(format!(
+                                "{p}.inner_diameter is missing: a tube needs inner_diameter = <metres>, below diameter"
+                            ))
+                        })?;
+                        if !(di.is_finite() && di >= 0.0 && di < d) {
+                            return Err(SceneError(format!(
+                                "{p}.inner_diameter = {di}: must be in [0, diameter = {d}) metres"
+                            )));
+                        }
+                    }
                 }
                 Section::Rectangle => {
                     for (f, v) in [("width", seg.width), ("height", seg.height)] {
@@ -445,6 +649,54 @@ impl Scene {
     pub fn total_length(&self) -> f64 {
         self.segments.iter().map(|s| s.length).sum()
     }
+
+    /// Writes every load vector with all its components (zeros where the file left it out).
+    pub fn fill_vectors(&mut self) {
+        let (n, nm) = (self.space.dim(), self.space.moment_dim());
+        for (v, n) in [
+            (&mut self.gravity, n),
+            (&mut self.tip.force, n),
+            (&mut self.tip.moment, nm),
+        ] {
+            v.resize(n, 0.0);
+        }
+    }
+
+    fn default_torsion() -> bool {
+        true
+    }
+
+    /// Gravity [m/s²] with `N` components (a scene without gravity: zero).
+    pub fn gravity_vec<const N: usize>(&self) -> [f64; N] {
+        padded(&self.gravity)
+    }
+
+    /// Tip force [N] with `N` components (none: zero).
+    pub fn tip_force_vec<const N: usize>(&self) -> [f64; N] {
+        padded(&self.tip.force)
+    }
+
+    /// Tip moment [N m] with `N` components (none: zero).
+    pub fn tip_moment_vec<const N: usize>(&self) -> [f64; N] {
+        padded(&self.tip.moment)
+    }
+
+    /// Orientation of the root frame as unit Euler parameters `[e0, e1, e2, e3]` (scalar first,
+    /// root frame → world; identity if not given).
+    pub fn root_orientation(&self) -> [f64; 4] {
+        let e = self.initial.orientation.unwrap_or([1.0, 0.0, 0.0, 0.0]);
+        let n = e.iter().map(|x| x * x).sum::<f64>().sqrt();
+        e.map(|x| x / n)
+    }
+}
+
+/// The first `N` components of `v`, zero where `v` is shorter.
+fn padded<const N: usize>(v: &[f64]) -> [f64; N] {
+    let mut out = [0.0; N];
+    for (o, x) in out.iter_mut().zip(v) {
+        *o = *x;
+    }
+    out
 }
 
 #[cfg(test)]

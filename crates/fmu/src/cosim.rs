@@ -99,7 +99,7 @@ impl CoSimModel for BeamFmu {
         Ok(Self {
             scene_text: scene_toml.to_string(),
             base: scene.clone(),
-            input: scene.tip.force,
+            input: scene.tip_force_vec(),
             scene,
             table,
             sim,
@@ -159,7 +159,7 @@ impl CoSimModel for BeamFmu {
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         let mut scene = self.scene.clone();
-        scene.tip.force = self.input;
+        scene.tip.force = self.input.to_vec();
         self.sim = Simulator::new_at(scene, start_time).map_err(|e| e.to_string())?;
         self.refresh_outputs();
         Ok(())

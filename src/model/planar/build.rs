@@ -11,7 +11,7 @@ use crate::model::assembly::{Model, Parts};
 use crate::model::component::{Constraint, Element, Port};
 use crate::model::dofs::{Dof, LocalDofs, Numbering};
 use crate::model::modal::{ModalBasis, ModalBody};
-use crate::scene::{Root, Scene, SceneError, SegmentKind};
+use crate::scene::{Root, Scene, SceneError, SegmentKind, SpaceKind};
 use std::sync::Arc;
 
 /// An end of a segment being built: its local coordinates and port.
@@ -35,6 +35,11 @@ impl Model<Planar> {
     /// slopes and angles.
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
         scene.validate()?;
+        if scene.space != SpaceKind::Planar {
+            return Err(SceneError(
+                "space = \"spatial\": this scene builds a spatial model, not a planar one".into(),
+            ));
+        }
         let (sa, ca) = scene.initial.angle.sin_cos();
         let dir = [ca, sa];
         let clamped = scene.root == Root::Clamped;
@@ -176,8 +181,9 @@ impl Model<Planar> {
             constraints: joints,
             tip: (tip.dofs, tip.port),
             support: Box::new(support.expect("the first segment is held at the root")),
-            gravity: scene.gravity,
-            tip_force: scene.tip.force,
+            gravity: scene.gravity_vec(),
+            tip_force: scene.tip_force_vec(),
+            tip_moment: scene.tip_moment_vec::<1>()[0],
         }))
     }
 }

@@ -5,6 +5,7 @@
 //! its length is the axial stretch).
 
 use super::Planar;
+use crate::model::ancf::cross;
 use crate::model::component::{Port, Support};
 use crate::model::modal::{rot, ModalBody};
 use crate::model::space::PortKin;
@@ -106,6 +107,14 @@ impl PortKin<Planar> for EndKin {
     fn attitude(&self) -> f64 {
         self.angle()
     }
+
+    /// ∂ψ/∂q_k; for a slope s, ∂ψ/∂s = (−s_y, s_x)/|s|².
+    fn rotation_jacobian(&self, k: usize) -> f64 {
+        match &self.orient {
+            Orientation::Angle(_, dpsi) => dpsi[k],
+            Orientation::Slope(s, ds) => cross(s, &ds[k]) / s.norm_squared(),
+        }
+    }
 }
 
 /// An ANCF node, local coordinates `[r_x, r_y, s_x, s_y]` (position [m], slope r′ [-]).
@@ -124,6 +133,17 @@ impl Port<Planar> for NodePort {
             ),
             curv: None,
         }
+    }
+
+    /// ψ = atan2(s_y, s_x): ∂²ψ/∂s∂s = [[2 s_x s_y, s_y² − s_x²], [s_y² − s_x², −2 s_x s_y]]/|s|⁴.
+    fn add_moment_stiffness(&self, q: &[f64], m: &f64, add: &mut dyn FnMut(usize, usize, f64)) {
+        let (sx, sy) = (q[2], q[3]);
+        let n4 = (sx * sx + sy * sy).powi(2);
+        let (a, b) = (2.0 * sx * sy / n4, (sy * sy - sx * sx) / n4);
+        add(2, 2, -m * a);
+        add(2, 3, -m * b);
+        add(3, 2, -m * b);
+        add(3, 3, m * a);
     }
 }
 
@@ -162,6 +182,9 @@ impl Port<Planar> for ModalTipPort {
             }),
         }
     }
+
+    /// The tip angle θ + φ′(1)ᵀa/L is linear in q: no stiffness.
+    fn add_moment_stiffness(&self, _: &[f64], _: &f64, _: &mut dyn FnMut(usize, usize, f64)) {}
 }
 
 /// The root (frame origin) of a modal body, on the body's local coordinates: position R,
@@ -184,6 +207,9 @@ impl Port<Planar> for ModalRootPort {
             curv: None,
         }
     }
+
+    /// The angle θ is a coordinate: no stiffness.
+    fn add_moment_stiffness(&self, _: &[f64], _: &f64, _: &mut dyn FnMut(usize, usize, f64)) {}
 }
 
 /// The root support of a planar beam: which held coordinates carry its force and moment.

@@ -29,4 +29,12 @@ impl Space for Planar {
     type Moment = f64;
     type Attitude = f64;
     type PortKin = EndKin;
+
+    fn moment_components(m: &f64) -> &[f64] {
+        std::slice::from_ref(m)
+    }
+
+    fn moment_components_mut(m: &mut f64) -> &mut [f64] {
+        std::slice::from_mut(m)
+    }
 }

@@ -190,18 +190,24 @@ const SCENE_PARAMETERS: [SceneParameter; 5] = [
         vr: 100,
         unit: Some("m/s2"),
         description: "gravity, global axes",
-        get: |s| s.gravity[0],
-        set: |s, x| s.gravity[0] = x,
-        tune: Some(|s, sim| sim.set_gravity(s.gravity)),
+        get: |s| s.gravity_vec::<2>()[0],
+        set: |s, x| {
+            s.gravity = s.gravity_vec::<2>().to_vec();
+            s.gravity[0] = x
+        },
+        tune: Some(|s, sim| sim.set_gravity(s.gravity_vec())),
     },
     SceneParameter {
         name: "gravity.y",
         vr: 101,
         unit: Some("m/s2"),
         description: "gravity, global axes",
-        get: |s| s.gravity[1],
-        set: |s, x| s.gravity[1] = x,
-        tune: Some(|s, sim| sim.set_gravity(s.gravity)),
+        get: |s| s.gravity_vec::<2>()[1],
+        set: |s, x| {
+            s.gravity = s.gravity_vec::<2>().to_vec();
+            s.gravity[1] = x
+        },
+        tune: Some(|s, sim| sim.set_gravity(s.gravity_vec())),
     },
     SceneParameter {
         name: "solver.rho_inf",

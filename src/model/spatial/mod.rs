@@ -1,0 +1,37 @@
+//! Space: [`Spatial`], the spatial components and the build of a spatial model from a scene
+//! (`space = "spatial"`). The formulation is `docs/spatial.md`'s: ANCF cable + twist director
+//! (r, r_x, r_y) elements, floating-frame modal bodies oriented by Euler parameters, rigid
+//! joints of a spherical joint plus three DOT1 rows.
+//!
+//! Port kinematics ([`kin`]): every end exposes its position and its directors as [`Field3`]s
+//! (a vector with its first and second derivatives by the local coordinates), so joint rows,
+//! loads and outputs are written once over them.
+
+mod kin;
+
+pub use kin::{EndKin3, Field3};
+
+use super::space::Space;
+
+/// Space: vectors `[x, y, z]` (global axes), moments and angular velocities `[x, y, z]`,
+/// orientations as Euler parameters `[e0, e1, e2, e3]` (scalar first, section frame → world).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Spatial;
+
+impl Space for Spatial {
+    const DIM: usize = 3;
+    const AXES: &'static [&'static str] = &["x", "y", "z"];
+    const MOMENT_AXES: &'static [&'static str] = &["x", "y", "z"];
+    type Vec = [f64; 3];
+    type Moment = [f64; 3];
+    type Attitude = [f64; 4];
+    type PortKin = EndKin3;
+
+    fn moment_components(m: &[f64; 3]) -> &[f64] {
+        m
+    }
+
+    fn moment_components_mut(m: &mut [f64; 3]) -> &mut [f64] {
+        m
+    }
+}
