@@ -7,6 +7,7 @@
 //! (a vector with its first and second derivatives by the local coordinates), so joint rows,
 //! loads and outputs are written once over them.
 
+mod build;
 mod kin;
 
 pub use kin::{EndKin3, Field3};
