@@ -5,7 +5,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
-use hybeam::model::Model;
+use hybeam::model::{Model, Planar};
 use hybeam::scene::{Scene, StrainModel};
 use hybeam::simulator::Simulator;
 use std::hint::black_box;
@@ -38,7 +38,7 @@ fn element(c: &mut Criterion) {
 }
 
 fn newton(c: &mut Criterion) {
-    let mut model = Model::from_scene(&case1()).unwrap();
+    let mut model = Model::<Planar>::from_scene(&case1()).unwrap();
     let n = model.coordinates();
     let m = model.constraints();
     let q = model.initial_coordinates().to_vec();

@@ -6,7 +6,7 @@ use crate::integrator::{
     solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
     CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
 };
-use crate::model::{Model, Outputs};
+use crate::model::{Model, Outputs, Planar};
 use crate::scene::{InitialState, Scene};
 use serde::{Deserialize, Serialize};
 use std::hash::Hasher;
@@ -141,7 +141,7 @@ impl Simulator {
     }
 
     fn build(scene: Scene, initialize: bool) -> Result<Self, SimError> {
-        let mut model = Model::from_scene(&scene)?;
+        let mut model = Model::<Planar>::from_scene(&scene)?;
         let n = model.coordinates();
         let m = model.constraints();
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);

@@ -5,7 +5,7 @@
 mod common;
 use common::*;
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
-use hybeam::model::Model;
+use hybeam::model::{Model, Planar};
 use nalgebra::DMatrix;
 
 const LAMBDA: [f64; 3] = [
@@ -28,7 +28,7 @@ fn euler_bernoulli(d: f64, l: f64) -> Vec<f64> {
 /// Lowest frequencies [Hz] of the model linearized at its straight initial state.
 fn frequencies(segs: &[String]) -> Vec<f64> {
     let s = scene("gravity = [0.0, 0.0]", segs);
-    let mut model = Model::from_scene(&s).unwrap();
+    let mut model = Model::<Planar>::from_scene(&s).unwrap();
     let n = model.coordinates();
     let m = model.constraints();
     let q = model.initial_coordinates().to_vec();

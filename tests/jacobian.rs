@@ -4,11 +4,11 @@
 mod common;
 use common::*;
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
-use hybeam::model::Model;
+use hybeam::model::{Model, Planar};
 
 fn check(header: &str, segs: &[String]) {
     let s = scene(header, segs);
-    let mut model = Model::from_scene(&s).unwrap();
+    let mut model = Model::<Planar>::from_scene(&s).unwrap();
     model.set_tip_force([0.3, -0.7]);
     let n = model.coordinates();
     let m = model.constraints();
