@@ -8,8 +8,10 @@
 //! loads and outputs are written once over them.
 
 mod build;
+mod joint;
 mod kin;
 
+pub use joint::RigidJoint3;
 pub use kin::{EndKin3, Field3};
 
 use super::space::Space;
