@@ -18,12 +18,14 @@ pub type Vec8 = SVector<f64, 8>;
 /// 8×8 element matrix.
 pub type Mat8 = SMatrix<f64, 8, 8>;
 
-const GAUSS3: [(f64, f64); 3] = [
+/// 3-point Gauss rule on [−1, 1]: (abscissa, weight).
+pub(crate) const GAUSS3: [(f64, f64); 3] = [
     (-0.774_596_669_241_483_4, 5.0 / 9.0),
     (0.0, 8.0 / 9.0),
     (0.774_596_669_241_483_4, 5.0 / 9.0),
 ];
-const GAUSS5: [(f64, f64); 5] = [
+/// 5-point Gauss rule on [−1, 1]: (abscissa, weight).
+pub(crate) const GAUSS5: [(f64, f64); 5] = [
     (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
     (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
     (0.0, 0.568_888_888_888_888_9),

@@ -15,6 +15,7 @@
 //! [`ancf`] (planar ANCF cable), [`modal`] (shape basis, planar floating-frame body).
 
 pub mod ancf;
+pub mod ancf3d;
 pub mod assembly;
 pub mod component;
 pub mod dofs;

@@ -92,8 +92,8 @@ pub struct ModalBasis {
     pub slope_gram: Vec<f64>,
 }
 
-/// Composite Gauss–Legendre rule on [0, 1]: (points, weights).
-fn quadrature(panels: usize) -> Vec<(f64, f64)> {
+/// Composite 5-point Gauss–Legendre rule on [0, 1] with `panels` panels: (points, weights).
+pub fn quadrature(panels: usize) -> Vec<(f64, f64)> {
     const G: [(f64, f64); 5] = [
         (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
         (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),

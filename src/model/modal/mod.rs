@@ -2,6 +2,8 @@
 
 pub mod basis;
 pub mod body;
+pub mod body3d;
 
 pub use basis::ModalBasis;
 pub use body::{rot, BodyOut, ModalBody};
+pub use body3d::{ModalBody3, ModalProps3};

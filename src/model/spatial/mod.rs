@@ -7,10 +7,12 @@
 //! (a vector with its first and second derivatives by the local coordinates), so joint rows,
 //! loads and outputs are written once over them.
 
+mod body;
 mod build;
 mod joint;
 mod kin;
 
+pub use body::{EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3};
 pub use joint::RigidJoint3;
 pub use kin::{EndKin3, Field3};
 

@@ -1,0 +1,1138 @@
+//! Spatial ANCF element: the 3D cable with a twist director ("cable + twist director", 18
+//! coordinates) and, without torsion, the plain 3D cable (12 coordinates). Pure functions of the
+//! element coordinates; `docs/spatial.md` §1.3.
+//!
+//! Coordinates (global axes), node 0 then node 1: `[r, r_x, r_y]` per node with torsion, `[r,
+//! r_x]` without. x is the arc length of the straight reference configuration, ξ = x/l.
+//! `r(x)` is the cubic Hermite interpolation of the planar element ([`super::ancf::Shape`]),
+//! `r_y(x) = (1 − ξ) r0_y + ξ r1_y` (linear).
+//!
+//! Strain measures per unit reference length, on the Gram–Schmidt frame t = r_x/|r_x|,
+//! d2 = normalized r_y ⟂ t (section y axis), d3 = t × d2 (section z axis):
+//! ε = |r_x| − 1, κ2 = −d3·r_xx/|r_x| (bending about d2: x–z plane, E·I_y),
+//! κ3 = d2·r_xx/|r_x| (bending about d3: x–y plane, E·I_z), τ = d2′·d3 (twist, G·J).
+//! Energy ½∫[EA ε² + EI_y κ2² + EI_z κ3² + GJ τ²] dx plus the nodal penalty
+//! Σ_nodes ½(l/2) k [(½(|r_y|² − 1))² + (t·r_y)²], k = [`PENALTY_FACTOR`]·GJ/l², which only
+//! removes the two zero-energy modes of each r_y (its length and its shear angle to r_x).
+//! Without torsion: ½∫[EA ε² + EI |r_x × r_xx|²/|r_x|⁴] dx (round or equal-I sections).
+//! Kelvin–Voigt damping (retardation time τ_d) on ε, κ2, κ3, τ; on the cable, on ε and the
+//! curvature vector κ = r_x × r_xx/|r_x|² (global axes).
+//!
+//! Quadrature as the planar element: 5 Gauss points axial, 3 bending and twist, penalty at the
+//! nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
+//! the tangent and damping matrices ([`Ancf3Props::tangent`]) are the exact Jacobians of the
+//! same generic code by forward-mode AD (`num-dual`).
+
+use super::ancf::{GAUSS3, GAUSS5};
+use num_dual::{DualNum, DualSVec64};
+
+/// Coordinates of an element with torsion (2 nodes × [r, r_x, r_y]).
+pub const TORSION_DOFS: usize = 18;
+/// Coordinates of a cable element (2 nodes × [r, r_x]).
+pub const CABLE_DOFS: usize = 12;
+/// Penalty factor c of the nodal r_y penalty k = c·GJ/l_e² [-].
+///
+/// With c = 1 the penalty's stiffness per node, k·l_e/2 = GJ/(2 l_e), is of the order of the
+/// element's torsional stiffness GJ/l_e (the Newton matrix keeps its scaling), and the penalty
+/// modes sit at ω ≈ √(k/ρI_p) = √(G J/(ρ I_p))/l_e = c_t/l_e for round sections, below the
+/// element's highest torsional mode √12·c_t/l_e: no new, faster time scale. Linear twist and
+/// bending modes do not load it (the frame is normalized).
+pub const PENALTY_FACTOR: f64 = 1.0;
+
+/// Element properties (constant).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ancf3Props {
+    /// Element length l [m].
+    pub length: f64,
+    /// Mass per length ρA [kg/m].
+    pub rho_a: f64,
+    /// Twist inertia per length ρI_p [kg m] (polar moment I_p = I_y + I_z).
+    pub rho_ip: f64,
+    /// Axial stiffness EA [N].
+    pub ea: f64,
+    /// Bending stiffness about the section y axis E·I_y [N m²] (bending in the x–z plane).
+    pub ei_y: f64,
+    /// Bending stiffness about the section z axis E·I_z [N m²] (bending in the x–y plane).
+    pub ei_z: f64,
+    /// Torsional stiffness G·J [N m²].
+    pub gj: f64,
+    /// Kelvin–Voigt retardation time τ_d [s] (0 = no damping).
+    pub damping_time: f64,
+    /// With torsion: nodes [r, r_x, r_y] (18 coordinates); without: the cable [r, r_x] (12).
+    pub torsion: bool,
+}
+
+/// Quadrature tables of an element (shape functions at the points, weights times the Jacobian
+/// l/2), computed once per element length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tables3 {
+    /// Axial points: (w·EA, dS/dx).
+    axial: [(f64, [f64; 4]); 5],
+    /// Bending and twist points.
+    bending: [BendPoint; 3],
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct BendPoint {
+    /// Gauss weight × l/2 [m].
+    w: f64,
+    ds: [f64; 4],
+    dds: [f64; 4],
+    /// Linear shape functions of r_y and their x-derivatives.
+    ny: [f64; 2],
+    nyx: [f64; 2],
+}
+
+/// Hermite shape functions and their derivatives at ξ, as the planar element.
+fn hermite(xi: f64, l: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
+    let s = super::ancf::Shape::at(xi, l);
+    (s.s, s.ds, s.dds)
+}
+
+/// The scalar of the generic code: f64 on the residual path, dual numbers for the tangents.
+pub trait Real: DualNum<Primitive = f64> + Copy {}
+impl<T: DualNum<Primitive = f64> + Copy> Real for T {}
+
+type V<T> = [T; 3];
+
+#[inline(always)]
+fn dot<T: Real>(a: &V<T>, b: &V<T>) -> T {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+fn cross<T: Real>(a: &V<T>, b: &V<T>) -> V<T> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// α a + β b.
+#[inline(always)]
+fn lin2<T: Real>(al: T, a: &V<T>, be: T, b: &V<T>) -> V<T> {
+    [
+        al * a[0] + be * b[0],
+        al * a[1] + be * b[1],
+        al * a[2] + be * b[2],
+    ]
+}
+
+/// α a + β b + γ c.
+#[inline(always)]
+fn lin3<T: Real>(al: T, a: &V<T>, be: T, b: &V<T>, ga: T, c: &V<T>) -> V<T> {
+    [
+        al * a[0] + be * b[0] + ga * c[0],
+        al * a[1] + be * b[1] + ga * c[1],
+        al * a[2] + be * b[2] + ga * c[2],
+    ]
+}
+
+/// Σ_j w_j e[slot_j..slot_j + 3].
+#[inline(always)]
+fn comb<T: Real, const N: usize, const D: usize>(
+    w: &[f64; N],
+    slots: &[usize; N],
+    e: &[T; D],
+) -> V<T> {
+    let mut r = [T::from(0.0); 3];
+    for j in 0..N {
+        let s = slots[j];
+        for c in 0..3 {
+            r[c] += e[s + c] * w[j];
+        }
+    }
+    r
+}
+
+/// `f[slot_j + c] += w_j v_c`.
+#[inline(always)]
+fn scatter<T: Real, const N: usize, const D: usize>(
+    f: &mut [T; D],
+    w: &[f64; N],
+    slots: &[usize; N],
+    v: &V<T>,
+) {
+    for j in 0..N {
+        let s = slots[j];
+        for c in 0..3 {
+            f[s + c] += v[c] * w[j];
+        }
+    }
+}
+
+/// Gradient of a scalar measure with respect to (r_x, r_xx, r_y, r_yx) at a point.
+#[derive(Debug, Clone, Copy)]
+struct Grad<T> {
+    a: V<T>,
+    b: V<T>,
+    c: V<T>,
+    d: V<T>,
+}
+
+/// (κ2, κ3, τ) and their gradients with respect to a = r_x, b = r_xx, c = r_y, d = r_yx.
+///
+/// With C = a × c (so d3 = C/|C|, d2 = ((a·a) c − (a·c) a)/(|C| |a|)), w = |C|, n = |a|:
+/// κ2 = −(C·b)/(w n), κ3 = (C·(a × b))/(w n²), τ = (n² C·d − (a·c)(C·b))/(n w²).
+#[inline(always)]
+fn bend_twist<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>, d: &V<T>) -> ([T; 3], [Grad<T>; 3]) {
+    let n2 = dot(a, a);
+    let n = n2.sqrt();
+    let cc = dot(c, c);
+    let g = dot(a, c);
+    let ab = dot(a, b);
+    let bc = dot(b, c);
+    let cv = cross(a, c);
+    let w2 = n2 * cc - g * g;
+    let w = w2.sqrt();
+    let p = dot(&cv, b);
+    let q = n2 * bc - ab * g;
+    let s = dot(&cv, d);
+    let (inv_n2, inv_w2) = (n2.recip(), w2.recip());
+    // ½∂(w²)/w² and ½∂(n²)/n²
+    let hw_a = lin2(cc * inv_w2, a, -g * inv_w2, c);
+    let hw_c = lin2(n2 * inv_w2, c, -g * inv_w2, a);
+    let hn_a = [a[0] * inv_n2, a[1] * inv_n2, a[2] * inv_n2];
+    let cxb = cross(c, b);
+    let bxa = cross(b, a);
+    let cxd = cross(c, d);
+    let dxa = cross(d, a);
+    let zero = [T::from(0.0); 3];
+    // κ2
+    let h2 = (w * n).recip();
+    let k2 = -p * h2;
+    let g2 = Grad {
+        a: lin3(-h2, &cxb, -k2, &hw_a, -k2, &hn_a),
+        b: [-h2 * cv[0], -h2 * cv[1], -h2 * cv[2]],
+        c: lin2(-h2, &bxa, -k2, &hw_c),
+        d: zero,
+    };
+    // κ3
+    let h3 = (w * n2).recip();
+    let k3 = q * h3;
+    let dq_a = lin3(bc * 2.0, a, -g, b, -ab, c);
+    let g3 = Grad {
+        a: lin3(h3, &dq_a, -k3, &hw_a, k3 * (-2.0), &hn_a),
+        b: lin2(h3 * n2, c, -h3 * g, a),
+        c: lin3(h3 * n2, b, -h3 * ab, a, -k3, &hw_c),
+        d: zero,
+    };
+    // τ = T/(n w²), T = n² s − g p
+    let ht = (n * w2).recip();
+    let tau = (n2 * s - g * p) * ht;
+    let dt_a = [
+        a[0] * (s * 2.0) + n2 * cxd[0] - p * c[0] - g * cxb[0],
+        a[1] * (s * 2.0) + n2 * cxd[1] - p * c[1] - g * cxb[1],
+        a[2] * (s * 2.0) + n2 * cxd[2] - p * c[2] - g * cxb[2],
+    ];
+    let dt_c = lin3(n2, &dxa, -p, a, -g, &bxa);
+    let gt = Grad {
+        a: lin3(ht, &dt_a, -tau, &hn_a, tau * (-2.0), &hw_a),
+        b: [-ht * g * cv[0], -ht * g * cv[1], -ht * g * cv[2]],
+        c: lin2(ht, &dt_c, tau * (-2.0), &hw_c),
+        d: [ht * n2 * cv[0], ht * n2 * cv[1], ht * n2 * cv[2]],
+    };
+    ([k2, k3, tau], [g2, g3, gt])
+}
+
+/// Strain measures (ε, κ2, κ3, τ) at a point from r_x, r_xx, r_y, r_yx (see the module doc).
+pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3], ryx: [f64; 3]) -> [f64; 4] {
+    let ([k2, k3, tau], _) = bend_twist(&rx, &rxx, &ry, &ryx);
+    [dot(&rx, &rx).sqrt() - 1.0, k2, k3, tau]
+}
+
+impl Ancf3Props {
+    /// Number of element coordinates (18 with torsion, 12 without).
+    pub fn dofs(&self) -> usize {
+        if self.torsion {
+            TORSION_DOFS
+        } else {
+            CABLE_DOFS
+        }
+    }
+
+    /// Whether the element can represent these properties: the cable (no torsion) has one
+    /// bending stiffness, so E·I_y must equal E·I_z (relative 1e-12).
+    pub fn check(&self) -> Result<(), String> {
+        if !self.torsion
+            && (self.ei_y - self.ei_z).abs() > 1e-12 * self.ei_y.abs().max(self.ei_z.abs())
+        {
+            return Err(format!(
+                "torsion = false: the 3D cable element has one bending stiffness, but E·I_y = {} \
+                 and E·I_z = {} N m² differ; use a round section or tube, or torsion = true",
+                self.ei_y, self.ei_z
+            ));
+        }
+        Ok(())
+    }
+
+    /// Bending stiffness of the cable [N m²]: E·I_z (equal to E·I_y, see [`Ancf3Props::check`];
+    /// the mean if they differ).
+    pub fn cable_ei(&self) -> f64 {
+        0.5 * (self.ei_y + self.ei_z)
+    }
+
+    /// Stiffness k of the nodal r_y penalty [N]: [`PENALTY_FACTOR`]·GJ/l².
+    pub fn penalty_stiffness(&self) -> f64 {
+        PENALTY_FACTOR * self.gj / (self.length * self.length)
+    }
+
+    /// Start of each node's blocks: (r-slots of the Hermite functions S1..S4, r_y slots).
+    fn slots(&self) -> ([usize; 4], [usize; 2]) {
+        let st = if self.torsion { 9 } else { 6 };
+        ([0, 3, st, st + 3], [6, 15])
+    }
+
+    /// Consistent mass matrix, row-major d × d (d = [`Ancf3Props::dofs`]) [kg, kg m, kg m²]:
+    /// ρA ∫SᵀS dx ⊗ I₃ on the r-blocks plus ρI_p l/6 [2 1; 1 2] ⊗ I₃ on the r_y blocks.
+    pub fn mass_matrix(&self) -> Vec<f64> {
+        let d = self.dofs();
+        let mut m = vec![0.0; d * d];
+        let (rs, ys) = self.slots();
+        let h = self.hermite_mass();
+        for j in 0..4 {
+            for k in 0..4 {
+                for c in 0..3 {
+                    m[(rs[j] + c) * d + rs[k] + c] += h[j][k];
+                }
+            }
+        }
+        if self.torsion {
+            let y = self.twist_mass();
+            for j in 0..2 {
+                for k in 0..2 {
+                    for c in 0..3 {
+                        m[(ys[j] + c) * d + ys[k] + c] += y[j][k];
+                    }
+                }
+            }
+        }
+        m
+    }
+
+    /// The 4×4 Hermite mass pattern ρA l/420 [156, 22l, 54, −13l; …].
+    fn hermite_mass(&self) -> [[f64; 4]; 4] {
+        let l = self.length;
+        let c = self.rho_a * l / 420.0;
+        [
+            [156.0, 22.0 * l, 54.0, -13.0 * l],
+            [22.0 * l, 4.0 * l * l, 13.0 * l, -3.0 * l * l],
+            [54.0, 13.0 * l, 156.0, -22.0 * l],
+            [-13.0 * l, -3.0 * l * l, -22.0 * l, 4.0 * l * l],
+        ]
+        .map(|r| r.map(|x| c * x))
+    }
+
+    /// The 2×2 r_y mass pattern ρI_p l/6 [2 1; 1 2].
+    fn twist_mass(&self) -> [[f64; 2]; 2] {
+        let c = self.rho_ip * self.length / 6.0;
+        [[2.0 * c, c], [c, 2.0 * c]]
+    }
+
+    /// The mass matrix's scalar patterns (Hermite 4×4 on the r-blocks, 2×2 on the r_y blocks)
+    /// and the block starts, for a residual without the dense matrix.
+    pub fn mass_patterns(&self) -> MassPatterns {
+        let (rs, ys) = self.slots();
+        MassPatterns {
+            hermite: self.hermite_mass(),
+            twist: if self.torsion {
+                self.twist_mass()
+            } else {
+                [[0.0; 2]; 2]
+            },
+            r_slots: rs,
+            y_slots: ys,
+            torsion: self.torsion,
+        }
+    }
+
+    /// Generalized gravity force ∫ρA S_rᵀ g dx = ρA l [½, l/12, ½, −l/12] ⊗ g on the r-blocks
+    /// (first d entries used) [N, N m].
+    pub fn gravity_force(&self, g: [f64; 3]) -> [f64; TORSION_DOFS] {
+        let l = self.length;
+        let w = [0.5, l / 12.0, 0.5, -l / 12.0];
+        let (rs, _) = self.slots();
+        let mut f = [0.0; TORSION_DOFS];
+        for j in 0..4 {
+            for c in 0..3 {
+                f[rs[j] + c] = self.rho_a * l * w[j] * g[c];
+            }
+        }
+        f
+    }
+
+    /// Quadrature tables (weights × l/2 × EA for the axial points).
+    pub fn tables(&self) -> Tables3 {
+        let l = self.length;
+        let mut t = Tables3 {
+            axial: [(0.0, [0.0; 4]); 5],
+            bending: [BendPoint::default(); 3],
+        };
+        for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
+            let (_, ds, _) = hermite(0.5 * (xg + 1.0), l);
+            t.axial[k] = (wg * 0.5 * l * self.ea, ds);
+        }
+        for (k, (xg, wg)) in GAUSS3.iter().enumerate() {
+            let xi = 0.5 * (xg + 1.0);
+            let (_, ds, dds) = hermite(xi, l);
+            t.bending[k] = BendPoint {
+                w: wg * 0.5 * l,
+                ds,
+                dds,
+                ny: [1.0 - xi, xi],
+                nyx: [-1.0 / l, 1.0 / l],
+            };
+        }
+        t
+    }
+
+    /// Internal (elastic + damping) generalized force at (e, ė), positive resisting [N, N m]:
+    /// the residual path (f64, no allocation). `D` must be [`Ancf3Props::dofs`].
+    pub fn internal_force<const D: usize>(
+        &self,
+        tab: &Tables3,
+        e: &[f64; D],
+        ed: &[f64; D],
+    ) -> [f64; D] {
+        self.force_generic(tab, e, ed)
+    }
+
+    /// Internal force, tangent stiffness ∂f/∂e and damping matrix ∂f/∂ė (row-major D × D),
+    /// exact (forward-mode AD of [`Ancf3Props::internal_force`]'s code).
+    #[allow(clippy::type_complexity)]
+    pub fn tangent<const D: usize>(
+        &self,
+        tab: &Tables3,
+        e: &[f64; D],
+        ed: &[f64; D],
+    ) -> ([f64; D], Box<[[f64; D]; D]>, Box<[[f64; D]; D]>) {
+        let seeded = |x: &[f64; D]| {
+            let mut s = [DualSVec64::<D>::from_re(0.0); D];
+            for k in 0..D {
+                s[k] = DualSVec64::<D>::from_re(x[k]).derivative(k);
+            }
+            s
+        };
+        let plain = |x: &[f64; D]| x.map(DualSVec64::<D>::from_re);
+        let jac = |f: [DualSVec64<D>; D]| {
+            let mut j = Box::new([[0.0; D]; D]);
+            for (row, fi) in j.iter_mut().zip(&f) {
+                if let Some(eps) = &fi.eps.0 {
+                    for k in 0..D {
+                        row[k] = eps[k];
+                    }
+                }
+            }
+            j
+        };
+        let fk = self.force_generic(tab, &seeded(e), &plain(ed));
+        let force = fk.map(|x| x.re);
+        let k = jac(fk);
+        let c = if self.damping_time > 0.0 {
+            jac(self.force_generic(tab, &plain(e), &seeded(ed)))
+        } else {
+            Box::new([[0.0; D]; D])
+        };
+        (force, k, c)
+    }
+
+    fn force_generic<T: Real, const D: usize>(
+        &self,
+        tab: &Tables3,
+        e: &[T; D],
+        ed: &[T; D],
+    ) -> [T; D] {
+        debug_assert_eq!(D, self.dofs());
+        let tau_d = self.damping_time;
+        let damped = tau_d > 0.0;
+        let (rs, ys) = self.slots();
+        let mut f = [T::from(0.0); D];
+        for (w, ds) in &tab.axial {
+            let a = comb(ds, &rs, e);
+            let n = dot(&a, &a).sqrt();
+            let inv = n.recip();
+            let g = [a[0] * inv, a[1] * inv, a[2] * inv];
+            let mut stress = n - 1.0;
+            if damped {
+                let ad = comb(ds, &rs, ed);
+                stress += dot(&g, &ad) * tau_d;
+            }
+            let s = stress * *w;
+            scatter(&mut f, ds, &rs, &[g[0] * s, g[1] * s, g[2] * s]);
+        }
+        if self.torsion {
+            for p in &tab.bending {
+                let a = comb(&p.ds, &rs, e);
+                let b = comb(&p.dds, &rs, e);
+                let c = comb(&p.ny, &ys, e);
+                let d = comb(&p.nyx, &ys, e);
+                let (m, g) = bend_twist(&a, &b, &c, &d);
+                let stiff = [self.ei_y, self.ei_z, self.gj];
+                let mut s = m;
+                if damped {
+                    let ad = comb(&p.ds, &rs, ed);
+                    let bd = comb(&p.dds, &rs, ed);
+                    let cd = comb(&p.ny, &ys, ed);
+                    let dd = comb(&p.nyx, &ys, ed);
+                    for i in 0..3 {
+                        let gi = &g[i];
+                        let rate =
+                            dot(&gi.a, &ad) + dot(&gi.b, &bd) + dot(&gi.c, &cd) + dot(&gi.d, &dd);
+                        s[i] += rate * tau_d;
+                    }
+                }
+                let s = [0, 1, 2].map(|i| s[i] * (p.w * stiff[i]));
+                let ga = lin3(s[0], &g[0].a, s[1], &g[1].a, s[2], &g[2].a);
+                let gb = lin3(s[0], &g[0].b, s[1], &g[1].b, s[2], &g[2].b);
+                let gc = lin3(s[0], &g[0].c, s[1], &g[1].c, s[2], &g[2].c);
+                let gd = [s[2] * g[2].d[0], s[2] * g[2].d[1], s[2] * g[2].d[2]];
+                scatter(&mut f, &p.ds, &rs, &ga);
+                scatter(&mut f, &p.dds, &rs, &gb);
+                scatter(&mut f, &p.ny, &ys, &gc);
+                scatter(&mut f, &p.nyx, &ys, &gd);
+            }
+            // nodal penalty: ½(l/2)k[(½(|y|² − 1))² + γ²], γ = t·y
+            let kp = 0.5 * self.length * self.penalty_stiffness();
+            for node in 0..2 {
+                let (xs, yslot) = (9 * node + 3, 9 * node + 6);
+                let x = [e[xs], e[xs + 1], e[xs + 2]];
+                let y = [e[yslot], e[yslot + 1], e[yslot + 2]];
+                let inv_n = dot(&x, &x).sqrt().recip();
+                let gam = dot(&x, &y) * inv_n;
+                let ystr = (dot(&y, &y) - 1.0) * 0.5;
+                let fy = lin2(ystr * kp, &y, gam * inv_n * kp, &x);
+                let fx = lin2(gam * inv_n * kp, &y, -(gam * gam) * inv_n * inv_n * kp, &x);
+                for c in 0..3 {
+                    f[xs + c] += fx[c];
+                    f[yslot + c] += fy[c];
+                }
+            }
+        } else {
+            let ei = self.cable_ei();
+            for p in &tab.bending {
+                let a = comb(&p.ds, &rs, e);
+                let b = comb(&p.dds, &rs, e);
+                let inv = dot(&a, &a).recip();
+                let bv = cross(&a, &b);
+                let kap = [bv[0] * inv, bv[1] * inv, bv[2] * inv];
+                let mut mv = kap;
+                if damped {
+                    // κ̇ = (ȧ × b + a × ḃ)/|a|² − 2κ (a·ȧ)/|a|²
+                    let ad = comb(&p.ds, &rs, ed);
+                    let bd = comb(&p.dds, &rs, ed);
+                    let r1 = cross(&ad, &b);
+                    let r2 = cross(&a, &bd);
+                    let ada = dot(&a, &ad) * inv * 2.0;
+                    for c in 0..3 {
+                        mv[c] += ((r1[c] + r2[c]) * inv - kap[c] * ada) * tau_d;
+                    }
+                }
+                let s = p.w * ei;
+                let mv = [mv[0] * s, mv[1] * s, mv[2] * s];
+                // δ(κ)·M: a-part (b × M)/|a|² − 2(κ·M) a/|a|², b-part (M × a)/|a|²
+                let bm = cross(&b, &mv);
+                let ma = cross(&mv, &a);
+                let km = dot(&kap, &mv) * inv * (-2.0);
+                let ga = lin2(inv, &bm, km, &a);
+                let gb = [ma[0] * inv, ma[1] * inv, ma[2] * inv];
+                scatter(&mut f, &p.ds, &rs, &ga);
+                scatter(&mut f, &p.dds, &rs, &gb);
+            }
+        }
+        f
+    }
+
+    /// Strain energy [J] at the element coordinates `e` (d entries).
+    pub fn strain_energy(&self, e: &[f64]) -> f64 {
+        let tab = self.tables();
+        let (rs, ys) = self.slots();
+        let v = |w: &[f64], slots: &[usize]| {
+            let mut r = [0.0; 3];
+            for (wj, s) in w.iter().zip(slots) {
+                for c in 0..3 {
+                    r[c] += wj * e[s + c];
+                }
+            }
+            r
+        };
+        let mut u = 0.0;
+        for (w, ds) in &tab.axial {
+            let a = v(ds, &rs);
+            let eps = dot(&a, &a).sqrt() - 1.0;
+            u += 0.5 * w * eps * eps;
+        }
+        for p in &tab.bending {
+            let a = v(&p.ds, &rs);
+            let b = v(&p.dds, &rs);
+            if self.torsion {
+                let c = v(&p.ny, &ys);
+                let d = v(&p.nyx, &ys);
+                let [_, k2, k3, tau] = strains(a, b, c, d);
+                u += 0.5 * p.w * (self.ei_y * k2 * k2 + self.ei_z * k3 * k3 + self.gj * tau * tau);
+            } else {
+                let bv = cross(&a, &b);
+                let n2 = dot(&a, &a);
+                u += 0.5 * p.w * self.cable_ei() * dot(&bv, &bv) / (n2 * n2);
+            }
+        }
+        if self.torsion {
+            let kp = 0.5 * self.length * self.penalty_stiffness();
+            for node in 0..2 {
+                let x = [e[9 * node + 3], e[9 * node + 4], e[9 * node + 5]];
+                let y = [e[9 * node + 6], e[9 * node + 7], e[9 * node + 8]];
+                let gam = dot(&x, &y) / dot(&x, &x).sqrt();
+                let ystr = 0.5 * (dot(&y, &y) - 1.0);
+                u += 0.5 * kp * (ystr * ystr + gam * gam);
+            }
+        }
+        u
+    }
+
+    /// Largest |ε| over the axial quadrature points of `e` (d entries).
+    pub fn max_axial_strain(&self, tab: &Tables3, e: &[f64]) -> f64 {
+        let (rs, _) = self.slots();
+        let mut worst: f64 = 0.0;
+        for (_, ds) in &tab.axial {
+            let mut a = [0.0; 3];
+            for j in 0..4 {
+                for c in 0..3 {
+                    a[c] += ds[j] * e[rs[j] + c];
+                }
+            }
+            worst = worst.max((dot(&a, &a).sqrt() - 1.0).abs());
+        }
+        worst
+    }
+
+    /// Strain measures (ε, κ2, κ3, τ) at ξ ∈ [0, 1] of an element with torsion.
+    pub fn strains_at(&self, e: &[f64; TORSION_DOFS], xi: f64) -> [f64; 4] {
+        let l = self.length;
+        let (_, ds, dds) = hermite(xi, l);
+        let (rs, ys) = self.slots();
+        let a = comb(&ds, &rs, e);
+        let b = comb(&dds, &rs, e);
+        let c = comb(&[1.0 - xi, xi], &ys, e);
+        let d = comb(&[-1.0 / l, 1.0 / l], &ys, e);
+        strains(a, b, c, d)
+    }
+}
+
+/// The scalar patterns of the mass matrix (M = hermite ⊗ I₃ on the r-blocks + twist ⊗ I₃ on
+/// the r_y blocks), for `M ë` without the dense matrix.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassPatterns {
+    /// ρA ∫S_jS_k dx [kg, kg m, kg m²].
+    pub hermite: [[f64; 4]; 4],
+    /// ρI_p ∫N_jN_k dx [kg m²].
+    pub twist: [[f64; 2]; 2],
+    /// Starts of the r-blocks of S1..S4 (r0, r0_x, r1, r1_x).
+    pub r_slots: [usize; 4],
+    /// Starts of the r_y blocks (r0_y, r1_y).
+    pub y_slots: [usize; 2],
+    /// Whether the r_y blocks exist.
+    pub torsion: bool,
+}
+
+impl MassPatterns {
+    /// `res += M a`.
+    #[inline]
+    pub fn add_product<const D: usize>(&self, a: &[f64; D], res: &mut [f64; D]) {
+        let (rs, ys) = (&self.r_slots, &self.y_slots);
+        for j in 0..4 {
+            for k in 0..4 {
+                let m = self.hermite[j][k];
+                for c in 0..3 {
+                    res[rs[j] + c] += m * a[rs[k] + c];
+                }
+            }
+        }
+        if self.torsion {
+            for j in 0..2 {
+                for k in 0..2 {
+                    let m = self.twist[j][k];
+                    for c in 0..3 {
+                        res[ys[j] + c] += m * a[ys[k] + c];
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Coordinates of a straight, unstretched element from `p0` with section frame `frame`
+/// (columns: axis x̄, section ȳ, z̄ in global axes), d entries (d = 18 with torsion).
+pub fn straight(p0: [f64; 3], frame: [[f64; 3]; 3], l: f64, torsion: bool) -> Vec<f64> {
+    let [x, y, _] = frame;
+    let mut e = Vec::with_capacity(18);
+    for s in [0.0, l] {
+        e.extend((0..3).map(|c| p0[c] + s * x[c]));
+        e.extend(x);
+        if torsion {
+            e.extend(y);
+        }
+    }
+    e
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ancf::{AncfProps, Vec8};
+    use crate::scene::StrainModel;
+
+    /// Steel rod d = 2 mm (the paper's), element length 0.05 m; optionally E·I_y ≠ E·I_z.
+    pub(crate) fn props(torsion: bool, tau: f64, ei_ratio: f64) -> Ancf3Props {
+        let (e, g, rho, d) = (210e9, 210e9 / 2.6, 7850.0, 2e-3);
+        let a = PI * d * d / 4.0;
+        let i = a * d * d / 16.0;
+        Ancf3Props {
+            length: 0.05,
+            rho_a: rho * a,
+            rho_ip: rho * 2.0 * i,
+            ea: e * a,
+            ei_y: e * i * ei_ratio,
+            ei_z: e * i,
+            gj: g * 2.0 * i,
+            damping_time: tau,
+            torsion,
+        }
+    }
+
+    use std::f64::consts::PI;
+
+    /// Deterministic pseudo-random numbers in [−1, 1].
+    fn noise(seed: u64, n: usize) -> Vec<f64> {
+        let mut s = seed;
+        (0..n)
+            .map(|_| {
+                s = s
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+            })
+            .collect()
+    }
+
+    /// A frame (columns x̄, ȳ, z̄) rotated by `angle` about the unit `axis`.
+    fn frame(axis: [f64; 3], angle: f64) -> [[f64; 3]; 3] {
+        let rot = |v: [f64; 3]| {
+            let (s, c) = angle.sin_cos();
+            let kv = cross(&axis, &v);
+            let kd = dot(&axis, &v);
+            [0, 1, 2].map(|i| c * v[i] + s * kv[i] + (1.0 - c) * kd * axis[i])
+        };
+        [
+            rot([1.0, 0.0, 0.0]),
+            rot([0.0, 1.0, 0.0]),
+            rot([0.0, 0.0, 1.0]),
+        ]
+    }
+
+    /// A bent, stretched and twisted element (and a rate), deterministic.
+    fn deformed<const D: usize>(p: &Ancf3Props, seed: u64) -> ([f64; D], [f64; D]) {
+        let n3 = 1.0 / 3f64.sqrt();
+        let f = frame([n3, -n3, n3], 0.7);
+        let mut e: [f64; D] = straight([0.1, -0.2, 0.3], f, p.length, p.torsion)
+            .try_into()
+            .unwrap();
+        let r = noise(seed, 2 * D);
+        for k in 0..D {
+            // positions move by ≤ 2 mm, slopes and directors by ≤ 0.15
+            let s = if k % 9 < 3 && p.torsion || !p.torsion && k % 6 < 3 {
+                2e-3
+            } else {
+                0.15
+            };
+            e[k] += s * r[k];
+        }
+        let ed: [f64; D] = std::array::from_fn(|k| 3.0 * r[D + k]);
+        (e, ed)
+    }
+
+    fn check_tangent<const D: usize>(p: &Ancf3Props) {
+        let tab = p.tables();
+        let (e, ed) = deformed::<D>(p, 7);
+        let (f, k, c) = p.tangent(&tab, &e, &ed);
+        let fast = p.internal_force(&tab, &e, &ed);
+        let fmax = f.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for i in 0..D {
+            assert!((f[i] - fast[i]).abs() <= 1e-13 * fmax, "force {i}");
+        }
+        let kmax = k.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        let cmax = c.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        let (mut ek, mut ec) = (0.0f64, 0.0f64);
+        for j in 0..D {
+            let h = 1e-6;
+            let (mut ep, mut em) = (e, e);
+            ep[j] += h;
+            em[j] -= h;
+            let (fp, fm) = (
+                p.internal_force(&tab, &ep, &ed),
+                p.internal_force(&tab, &em, &ed),
+            );
+            let (mut vp, mut vm) = (ed, ed);
+            vp[j] += h;
+            vm[j] -= h;
+            let (gp, gm) = (
+                p.internal_force(&tab, &e, &vp),
+                p.internal_force(&tab, &e, &vm),
+            );
+            for i in 0..D {
+                ek = ek.max((((fp[i] - fm[i]) / (2.0 * h)) - k[i][j]).abs());
+                ec = ec.max((((gp[i] - gm[i]) / (2.0 * h)) - c[i][j]).abs());
+            }
+        }
+        eprintln!(
+            "torsion {} tau {}: |K| {kmax:.3e}, FD error {:.1e}; |C| {cmax:.3e}, FD error {:.1e}",
+            p.torsion,
+            p.damping_time,
+            ek / kmax,
+            ec / cmax.max(1e-300)
+        );
+        assert!(ek <= 1e-6 * kmax, "K: {ek:e} of {kmax:e}");
+        assert!(ec <= 1e-6 * cmax.max(kmax * p.damping_time), "C: {ec:e}");
+        if p.damping_time == 0.0 {
+            assert_eq!(cmax, 0.0);
+            // symmetric (a Hessian) without damping
+            for i in 0..D {
+                for j in 0..D {
+                    assert!((k[i][j] - k[j][i]).abs() <= 1e-9 * kmax, "K sym {i} {j}");
+                }
+            }
+        } else {
+            assert!(cmax > 0.0);
+        }
+    }
+
+    /// Stiffnesses with EA/l ≈ EI/l³ ≈ GJ/l, so that no part hides behind the axial one in
+    /// the relative error.
+    fn balanced(torsion: bool, tau: f64) -> Ancf3Props {
+        Ancf3Props {
+            ea: 1.0,
+            ei_y: 2e-3,
+            ei_z: if torsion { 3e-3 } else { 2e-3 },
+            gj: 1.0,
+            ..props(torsion, tau, 1.0)
+        }
+    }
+
+    #[test]
+    fn tangent_and_damping_match_central_differences() {
+        for tau in [0.0, 7e-4] {
+            check_tangent::<18>(&props(true, tau, 1.0));
+            check_tangent::<18>(&props(true, tau, 0.3));
+            check_tangent::<12>(&props(false, tau, 1.0));
+            check_tangent::<18>(&balanced(true, tau));
+            check_tangent::<12>(&balanced(false, tau));
+        }
+    }
+
+    fn check_gradient<const D: usize>(p: &Ancf3Props) {
+        let tab = p.tables();
+        let (e, _) = deformed::<D>(p, 11);
+        let f = p.internal_force(&tab, &e, &[0.0; D]);
+        let fmax = f.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for j in 0..D {
+            let h = 1e-6;
+            let (mut ep, mut em) = (e, e);
+            ep[j] += h;
+            em[j] -= h;
+            let fd = (p.strain_energy(&ep) - p.strain_energy(&em)) / (2.0 * h);
+            assert!((fd - f[j]).abs() <= 1e-6 * fmax, "{j}: {fd} vs {}", f[j]);
+        }
+    }
+
+    #[test]
+    fn force_is_the_gradient_of_the_strain_energy() {
+        check_gradient::<18>(&props(true, 0.0, 1.0));
+        check_gradient::<18>(&props(true, 0.0, 2.5));
+        check_gradient::<12>(&props(false, 0.0, 1.0));
+        check_gradient::<18>(&balanced(true, 0.0));
+        check_gradient::<12>(&balanced(false, 0.0));
+    }
+
+    fn check_rigid<const D: usize>(p: &Ancf3Props) {
+        let tab = p.tables();
+        let n3 = 1.0 / 3f64.sqrt();
+        for (axis, angle) in [
+            ([1.0, 0.0, 0.0], 0.0),
+            ([n3, n3, -n3], 2.1),
+            ([0.0, 0.6, 0.8], -1.0),
+        ] {
+            let f = frame(axis, angle);
+            let e: [f64; D] = straight([0.3, -0.1, 2.0], f, p.length, p.torsion)
+                .try_into()
+                .unwrap();
+            // rigid velocity: ω × (x − x0) + v0 for every position, ω × director
+            let (w, v0) = ([1.5, -2.0, 0.7], [0.2, 0.1, -0.3]);
+            let mut ed = [0.0; D];
+            let st = if p.torsion { 9 } else { 6 };
+            for node in 0..2 {
+                let b = st * node;
+                let r = [e[b] - e[0], e[b + 1] - e[1], e[b + 2] - e[2]];
+                let wr = cross(&w, &r);
+                for c in 0..3 {
+                    ed[b + c] = v0[c] + wr[c];
+                }
+                for blk in (3..st).step_by(3) {
+                    let d = [e[b + blk], e[b + blk + 1], e[b + blk + 2]];
+                    let wd = cross(&w, &d);
+                    ed[b + blk..b + blk + 3].copy_from_slice(&wd);
+                }
+            }
+            let force = p.internal_force(&tab, &e, &ed);
+            let fmax = force.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            assert!(fmax < 1e-14 * p.ea, "{axis:?} {angle}: {fmax:e}");
+            let u = p.strain_energy(&e);
+            assert!(u < 1e-25, "{u:e}");
+        }
+    }
+
+    #[test]
+    fn rigid_motion_gives_zero_energy_and_force() {
+        check_rigid::<18>(&props(true, 7e-4, 1.0));
+        check_rigid::<18>(&props(true, 7e-4, 0.4));
+        check_rigid::<12>(&props(false, 7e-4, 1.0));
+    }
+
+    #[test]
+    fn strain_measures_of_a_helix_match_the_closed_form() {
+        // Helix of radius ρ, pitch parameter h, arc length s: curvature k = ρ/λ², torsion
+        // τ_g = h/λ² (λ² = ρ² + h²); Frenet frame t, n, b. Director d2 = cos φ n + sin φ b with
+        // φ = φ0 + φ1 s; the reference arc length x = s/(1 + ε). Then, per reference length,
+        // κ2 = (1+ε) k sin φ, κ3 = (1+ε) k cos φ, τ = (1+ε)(τ_g + φ1). r_y = α d2 + β t (stretched
+        // and sheared director: the measures must not see α, β).
+        let (rho, h, eps, phi0, phi1, al, be) = (0.3, 0.12, 0.02, 0.4, 2.0, 1.3, 0.2);
+        let lam = (rho * rho + h * h).sqrt();
+        let (k, tg) = (rho / (lam * lam), h / (lam * lam));
+        let st = 1.0 + eps;
+        for s in [0.0, 0.37, 1.9] {
+            let th = s / lam;
+            let (sn, cs) = th.sin_cos();
+            let t = [-rho * sn / lam, rho * cs / lam, h / lam];
+            let n = [-cs, -sn, 0.0];
+            let b = cross(&t, &n);
+            // Frenet: t′ = k n, n′ = −k t + τ_g b, b′ = −τ_g n (per s)
+            let phi = phi0 + phi1 * s;
+            let (sp, cp) = phi.sin_cos();
+            let d2 = lin2(cp, &n, sp, &b);
+            let dn = lin2(-k, &t, tg, &b);
+            let db = [-tg * n[0], -tg * n[1], -tg * n[2]];
+            // d2′ = cos φ n′ + sin φ b′ + φ1 (−sin φ n + cos φ b)
+            let d2s = [0, 1, 2].map(|i| cp * dn[i] + sp * db[i] + phi1 * (-sp * n[i] + cp * b[i]));
+            let ts = [k * n[0], k * n[1], k * n[2]];
+            // derivatives by the reference length x: d/dx = (1 + ε) d/ds
+            let rx = t.map(|v| st * v);
+            let rxx = ts.map(|v| st * st * v);
+            let ry = lin2(al, &d2, be, &t);
+            let ryx = lin2(al * st, &d2s, be * st, &ts);
+            let [e, k2, k3, tau] = strains(rx, rxx, ry, ryx);
+            let want = [eps, st * k * sp, st * k * cp, st * (tg + phi1)];
+            for (g, w) in [e, k2, k3, tau].iter().zip(want) {
+                assert!(
+                    (g - w).abs() < 1e-13,
+                    "s {s}: {:?} vs {want:?}",
+                    [e, k2, k3, tau]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn uniformly_twisted_element_matches_the_chord_closed_form() {
+        // r_y turns by Δ about the axis between the nodes; linear (chord) interpolation gives
+        // φ(ξ) = atan2(ξ sin Δ, 1 − ξ + ξ cos Δ), τ = φ′ = sin Δ/(l((1 − ξ + ξ cos Δ)² + ξ² sin² Δ)).
+        // Energy factor over ½GJΔ²/l with 3-point Gauss (spatial.md §1.3 table): 30° 1.0005,
+        // 90° 1.072.
+        let p = props(true, 0.0, 1.0);
+        let l = p.length;
+        // (degrees, table factor, half a unit of its last digit)
+        for (deg, factor, half) in [
+            (10.0, 1.00001, 5e-6),
+            (30.0, 1.0005, 5e-5),
+            (45.0, 1.0026, 5e-5),
+            (90.0, 1.072, 5e-4),
+        ] {
+            let delta: f64 = deg * PI / 180.0;
+            let n3 = 1.0 / 3f64.sqrt();
+            let f0 = frame([n3, n3, n3], 0.4);
+            // frame rotated about its own axis by Δ: y1 = R(x̄, Δ) ȳ
+            let y1 = {
+                let (s, c) = delta.sin_cos();
+                lin2(c, &f0[1], s, &f0[2])
+            };
+            let mut e: [f64; 18] = straight([0.0; 3], f0, l, true).try_into().unwrap();
+            e[15..18].copy_from_slice(&y1);
+            for xi in [0.0, 0.2, 0.5, 0.9] {
+                let x = 1.0 - xi + xi * delta.cos();
+                let y = xi * delta.sin();
+                let want = delta.sin() / (l * (x * x + y * y));
+                let [eps, k2, k3, tau] = p.strains_at(&e, xi);
+                assert!(eps.abs() < 1e-15 && k2.abs() < 1e-12 && k3.abs() < 1e-12);
+                assert!(
+                    (tau - want).abs() < 1e-12 * want,
+                    "{deg}° ξ {xi}: {tau} vs {want}"
+                );
+            }
+            let u = p.strain_energy(&e);
+            let got = u / (0.5 * p.gj * delta * delta / l);
+            eprintln!("twist {deg}° per element: energy factor {got:.6} (spatial.md: {factor})");
+            // equal to the table's rounding (+1e-9 for the rounding of this computation)
+            assert!((got - factor).abs() <= half + 1e-9, "{deg}: {got}");
+        }
+    }
+
+    #[test]
+    fn in_plane_element_equals_the_planar_element() {
+        // an in-plane (x–y) bent, stretched element: κ3 is the planar signed curvature, κ2 = τ
+        // = 0 and the penalty vanishes for r_y = ẑ × t; energy, force and mass equal the planar
+        // kernel's (Exact strain) to rounding.
+        let p3 = props(true, 0.0, 1.7);
+        let p2 = AncfProps {
+            length: p3.length,
+            rho_a: p3.rho_a,
+            ea: p3.ea,
+            ei: p3.ei_z,
+            damping_time: 0.0,
+            strain: StrainModel::Exact,
+        };
+        let e2 = Vec8::from_column_slice(&[0.01, -0.02, 0.9, 0.3, 0.055, 0.01, 0.7, 0.75]);
+        for torsion in [true, false] {
+            let p = Ancf3Props { torsion, ..p3 };
+            let p = if torsion {
+                p
+            } else {
+                Ancf3Props { ei_y: p.ei_z, ..p }
+            };
+            let st = p.dofs() / 2;
+            let mut e3 = vec![0.0; p.dofs()];
+            for node in 0..2 {
+                let b = st * node;
+                let (sx, sy) = (e2[4 * node + 2], e2[4 * node + 3]);
+                e3[b..b + 6].copy_from_slice(&[e2[4 * node], e2[4 * node + 1], 0.0, sx, sy, 0.0]);
+                if torsion {
+                    let n = (sx * sx + sy * sy).sqrt();
+                    e3[b + 6..b + 9].copy_from_slice(&[-sy / n, sx / n, 0.0]);
+                }
+            }
+            let (u2, u3) = (p2.strain_energy(&e2), p.strain_energy(&e3));
+            assert!((u2 - u3).abs() <= 1e-14 * u2, "{torsion}: {u2} vs {u3}");
+            let f2 = p2.elastic(&e2, &Vec8::zeros(), false).force;
+            let tab = p.tables();
+            let f3: Vec<f64> = if torsion {
+                p.internal_force(
+                    &tab,
+                    &<[f64; 18]>::try_from(e3.clone()).unwrap(),
+                    &[0.0; 18],
+                )
+                .to_vec()
+            } else {
+                p.internal_force(
+                    &tab,
+                    &<[f64; 12]>::try_from(e3.clone()).unwrap(),
+                    &[0.0; 12],
+                )
+                .to_vec()
+            };
+            let fmax = f2.amax();
+            for node in 0..2 {
+                let b = st * node;
+                for (k2, k3) in [(0, 0), (1, 1), (2, 3), (3, 4)] {
+                    let (x2, x3) = (f2[4 * node + k2], f3[b + k3]);
+                    assert!(
+                        (x2 - x3).abs() <= 1e-12 * fmax,
+                        "{torsion} {node} {k2}: {x2} {x3}"
+                    );
+                }
+                for k3 in [2, 5] {
+                    assert!(
+                        f3[b + k3].abs() <= 1e-12 * fmax,
+                        "out of plane {}",
+                        f3[b + k3]
+                    );
+                }
+                if torsion {
+                    for k3 in 6..9 {
+                        assert!(f3[b + k3].abs() <= 1e-12 * fmax, "r_y force {}", f3[b + k3]);
+                    }
+                }
+            }
+            let (m2, m3) = (p2.mass_matrix(), p.mass_matrix());
+            let d = p.dofs();
+            for i in 0..8 {
+                for j in 0..8 {
+                    let map = |k: usize| st * (k / 4) + [0, 1, 3, 4][k % 4];
+                    assert_eq!(m2[(i, j)], m3[map(i) * d + map(j)]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn mass_and_gravity_match_quadrature() {
+        // independent: ρA ∫SᵀS and ρI_p ∫NᵀN by 5-point Gauss (exact for these degrees); total
+        // translational mass ρA l
+        let p = props(true, 0.0, 1.0);
+        let l = p.length;
+        let m = p.mass_matrix();
+        let g = p.gravity_force([0.3, -9.81, 1.2]);
+        let d = 18;
+        let rs = [0, 3, 9, 12];
+        let ys = [6, 15];
+        let mut mi = [[0.0; 4]; 4];
+        let mut yi = [[0.0; 2]; 2];
+        let mut gi = [0.0; 4];
+        for (xg, wg) in GAUSS5 {
+            let xi = 0.5 * (xg + 1.0);
+            let (s, _, _) = hermite(xi, l);
+            let n = [1.0 - xi, xi];
+            for j in 0..4 {
+                gi[j] += wg * 0.5 * l * p.rho_a * s[j];
+                for k in 0..4 {
+                    mi[j][k] += wg * 0.5 * l * p.rho_a * s[j] * s[k];
+                }
+            }
+            for j in 0..2 {
+                for k in 0..2 {
+                    yi[j][k] += wg * 0.5 * l * p.rho_ip * n[j] * n[k];
+                }
+            }
+        }
+        for c in 0..3 {
+            for j in 0..4 {
+                let want = gi[j] * [0.3, -9.81, 1.2][c];
+                assert!((g[rs[j] + c] - want).abs() < 1e-15);
+                for k in 0..4 {
+                    assert!((m[(rs[j] + c) * d + rs[k] + c] - mi[j][k]).abs() < 1e-17);
+                }
+            }
+            for j in 0..2 {
+                for k in 0..2 {
+                    assert!((m[(ys[j] + c) * d + ys[k] + c] - yi[j][k]).abs() < 1e-20);
+                }
+            }
+        }
+        let tot: f64 = [0, 2].iter().flat_map(|&j| [0, 2].map(|k| mi[j][k])).sum();
+        assert!((tot - p.rho_a * l).abs() < 1e-16);
+        // the patterns' product equals the dense matrix
+        let a: [f64; 18] = std::array::from_fn(|k| (k as f64 * 0.37).sin());
+        let mut ma = [0.0; 18];
+        p.mass_patterns().add_product(&a, &mut ma);
+        for i in 0..18 {
+            let want: f64 = (0..18).map(|j| m[i * d + j] * a[j]).sum();
+            assert!((ma[i] - want).abs() < 1e-16, "{i}");
+        }
+    }
+
+    #[test]
+    fn cable_refuses_unequal_bending_stiffness() {
+        assert!(props(false, 0.0, 1.0).check().is_ok());
+        assert!(props(true, 0.0, 2.0).check().is_ok());
+        let msg = props(false, 0.0, 2.0).check().unwrap_err();
+        assert!(
+            msg.contains("torsion = false") && msg.contains("E·I_y"),
+            "{msg}"
+        );
+    }
+}

@@ -1,0 +1,646 @@
+//! Spatial floating-frame body with bending modes in both planes and two torsion shapes
+//! (docs: shared spatial brief §2): the kernel of [`crate::model::spatial::ModalElement3`].
+//!
+//! Local coordinates `q = [R(3), p(4), a_y(nb), a_z(nb), a_t(2)]`: frame origin R [m] (the
+//! segment root, world axes), Euler parameters p = (e0, e1, e2, e3) of the body frame → world
+//! (scalar first; A(p) = (e0² − eᵀe)I + 2eeᵀ + 2e0ẽ), bending amplitudes a_y (x–y plane, E·i_z)
+//! and a_z (x–z plane, E·i_y) [m] on the shapes of a [`ModalBasis`] (∫φ_iφ_j dξ = δ_ij), and
+//! torsion amplitudes a_t [rad] on χ₁ = ξ (static twist shape) and χ₂ = √2 sin πξ.
+//!
+//! A centerline point at x = ξL is at r = R + A ū, ū = (x, φᵀa_y, φᵀa_z); the section turns
+//! about the body x axis by θ(ξ) = χᵀa_t and is treated as a spinning rigid disk (kinetic energy
+//! ½∫ρI_p(ω̄_x + θ̇)²dx). Linear FFRF: no geometric stiffening (the tip foreshortening is in the
+//! tip port only, [`ModalBody3::tip_local`]). Body angular velocity ω̄ = 2Ēṗ (Ē̇ṗ = 0).
+//!
+//! The residual is `r = M q̈ − Q_v(q, q̇) − Q_g(q) + K a + D ȧ` in Exudyn's form (the p rows are
+//! Ḡᵀ = 2Ēᵀ times the body-frame moment balance about the frame origin; they are defined up to a
+//! multiple of p, which the normalization row's multiplier absorbs). [`ModalBody3::residual`] is
+//! generic over the scalar: plain f64 for the Newton iterations, [`Dual64`] for the exact
+//! Newton block ([`ModalBody3::newton_block`]).
+
+use super::basis::ModalBasis;
+use crate::scene::Segment;
+use nalgebra::{Matrix2, Vector2};
+use num_dual::{Dual64, DualNum};
+use std::f64::consts::{PI, SQRT_2};
+
+/// A scalar the kernel runs on: f64 or a dual number over f64.
+pub trait Real: DualNum<Primitive = f64> + Copy {}
+impl<T: DualNum<Primitive = f64> + Copy> Real for T {}
+
+/// A 3-vector of scalars.
+pub type V3<T> = [T; 3];
+
+/// a × b.
+#[inline]
+pub fn cross<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// a·b.
+#[inline]
+pub fn dot<T: Real>(a: V3<T>, b: V3<T>) -> T {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// s·a.
+#[inline]
+pub fn scale<T: Real>(a: V3<T>, s: T) -> V3<T> {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// a + b.
+#[inline]
+pub fn add<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// A(p) = (e0² − eᵀe)I + 2eeᵀ + 2e0ẽ, rows (body → world; a rotation for |p| = 1).
+#[inline]
+pub fn euler_rotation<T: Real>(p: [T; 4]) -> [V3<T>; 3] {
+    let [e0, e1, e2, e3] = p;
+    let s = e0 * e0 - e1 * e1 - e2 * e2 - e3 * e3;
+    let two = T::from(2.0);
+    [
+        [
+            s + two * e1 * e1,
+            two * (e1 * e2 - e0 * e3),
+            two * (e1 * e3 + e0 * e2),
+        ],
+        [
+            two * (e2 * e1 + e0 * e3),
+            s + two * e2 * e2,
+            two * (e2 * e3 - e0 * e1),
+        ],
+        [
+            two * (e3 * e1 - e0 * e2),
+            two * (e3 * e2 + e0 * e1),
+            s + two * e3 * e3,
+        ],
+    ]
+}
+
+/// A v̄.
+#[inline]
+pub fn mul<T: Real>(a: &[V3<T>; 3], v: V3<T>) -> V3<T> {
+    [dot(a[0], v), dot(a[1], v), dot(a[2], v)]
+}
+
+/// Aᵀ v.
+#[inline]
+pub fn mul_t<T: Real>(a: &[V3<T>; 3], v: V3<T>) -> V3<T> {
+    let mut o = [T::zero(); 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            o[j] += a[i][j] * v[i];
+        }
+    }
+    o
+}
+
+/// Ē(p) (3 × 4, rows): ω̄ = 2Ēṗ is the angular velocity in body axes.
+#[inline]
+pub fn e_bar<T: Real>(p: [T; 4]) -> [[T; 4]; 3] {
+    let [e0, e1, e2, e3] = p;
+    [[-e1, e0, e3, -e2], [-e2, -e3, e0, e1], [-e3, e2, -e1, e0]]
+}
+
+/// E(p) (3 × 4, rows): ω = 2Eṗ is the angular velocity in world axes.
+#[inline]
+pub fn e_world<T: Real>(p: [T; 4]) -> [[T; 4]; 3] {
+    let [e0, e1, e2, e3] = p;
+    [[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]]
+}
+
+/// 2 B x for a 3 × 4 matrix B (rows) and a 4-vector x.
+#[inline]
+fn g_mul<T: Real>(b: &[[T; 4]; 3], x: &[T]) -> V3<T> {
+    let mut o = [T::zero(); 3];
+    for i in 0..3 {
+        for k in 0..4 {
+            o[i] += b[i][k] * x[k];
+        }
+        o[i] *= 2.0;
+    }
+    o
+}
+
+/// Geometry, material and damping of a spatial modal segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModalProps3 {
+    /// Length L [m].
+    pub length: f64,
+    /// Mass per length ρA [kg/m].
+    pub rho_a: f64,
+    /// Torsional rotary inertia per length ρI_p [kg m].
+    pub rho_ip: f64,
+    /// Bending stiffness in the x–y plane E·i_z [N m²] (the a_y modes).
+    pub ei_z: f64,
+    /// Bending stiffness in the x–z plane E·i_y [N m²] (the a_z modes).
+    pub ei_y: f64,
+    /// Torsional stiffness G·J [N m²].
+    pub gj: f64,
+    /// Modal damping ratio ζ of every mode [-].
+    pub damping_ratio: f64,
+    /// Kelvin–Voigt retardation time τ [s] (D += τK).
+    pub damping_time: f64,
+}
+
+impl ModalProps3 {
+    /// The properties of a scene segment.
+    pub fn of_segment(seg: &Segment) -> Self {
+        let s = seg.section_props();
+        Self {
+            length: seg.length,
+            rho_a: seg.density * s.area,
+            rho_ip: seg.density * s.polar,
+            ei_z: seg.youngs_modulus * s.i_z,
+            ei_y: seg.youngs_modulus * s.i_y,
+            gj: seg.shear_modulus() * s.torsion,
+            damping_ratio: seg.damping_ratio,
+            damping_time: seg.damping_time,
+        }
+    }
+}
+
+/// Number of torsion shapes (ξ and √2 sin πξ).
+pub const TORSION_SHAPES: usize = 2;
+
+/// The torsion shapes χ_m(ξ) and their slopes χ_m′(ξ) (per ξ).
+pub fn torsion_shapes(xi: f64) -> ([f64; 2], [f64; 2]) {
+    let (s, c) = (PI * xi).sin_cos();
+    ([xi, SQRT_2 * s], [1.0, SQRT_2 * PI * c])
+}
+
+/// Constant properties and invariants of a spatial modal segment.
+#[derive(Debug, Clone)]
+pub struct ModalBody3 {
+    /// Bending shape basis (both planes).
+    pub basis: ModalBasis,
+    /// Geometry and material.
+    pub props: ModalProps3,
+    /// Modal stiffness of the a_y modes E·i_z Λ_k/L³ [N/m].
+    pub k_y: Vec<f64>,
+    /// Modal stiffness of the a_z modes E·i_y Λ_k/L³ [N/m].
+    pub k_z: Vec<f64>,
+    /// Modal damping of the a_y modes 2ζω_kρAL + τK_k [N s/m] (zero if undamped).
+    pub d_y: Vec<f64>,
+    /// Modal damping of the a_z modes [N s/m].
+    pub d_z: Vec<f64>,
+    /// Torsion mass ρI_p L ∫χ_iχ_j dξ [kg m²].
+    pub m_t: [[f64; 2]; 2],
+    /// Torsion stiffness GJ/L ∫χ_i′χ_j′ dξ [N m].
+    pub k_t: [[f64; 2]; 2],
+    /// Torsion damping: ζ per torsion mode of (M_t, K_t) plus τK_t [N m s].
+    pub d_t: [[f64; 2]; 2],
+    /// ρI_p L ∫χ_m dξ [kg m²]: coupling of a_t with the frame's spin ω̄_x.
+    pub c_t: [f64; 2],
+    /// χ_m(1): tip twist θ_T = χ(1)ᵀa_t.
+    pub chi_tip: [f64; 2],
+    /// ρA L ∫φ_k dξ [kg].
+    pub s_f: Vec<f64>,
+    /// ρA L² ∫ξφ_k dξ [kg m].
+    pub s_x: Vec<f64>,
+    damped: bool,
+}
+
+impl ModalBody3 {
+    /// Builds the body from its bending basis and properties.
+    pub fn new(basis: ModalBasis, props: ModalProps3) -> Self {
+        let l = props.length;
+        let mu = props.rho_a * l;
+        let damped = props.damping_ratio > 0.0 || props.damping_time > 0.0;
+        let stiff =
+            |ei: f64| -> Vec<f64> { basis.lambda4.iter().map(|x| ei * x / l.powi(3)).collect() };
+        let (k_y, k_z) = (stiff(props.ei_z), stiff(props.ei_y));
+        let damp = |k: &[f64]| -> Vec<f64> {
+            k.iter()
+                .map(|kk| {
+                    if damped {
+                        2.0 * props.damping_ratio * (kk / mu).sqrt() * mu + props.damping_time * kk
+                    } else {
+                        0.0
+                    }
+                })
+                .collect()
+        };
+        let (d_y, d_z) = (damp(&k_y), damp(&k_z));
+        // ∫χχ = [[1/3, √2/π], [√2/π, 1]], ∫χ′χ′ = diag(1, π²), ∫χ = (1/2, 2√2/π)
+        let jt = props.rho_ip * l;
+        let m_t = [[jt / 3.0, jt * SQRT_2 / PI], [jt * SQRT_2 / PI, jt]];
+        let kt = props.gj / l;
+        let k_t = [[kt, 0.0], [0.0, kt * PI * PI]];
+        // modal damping of the coupled pair: D = 2ζ L √(L⁻¹KL⁻ᵀ) Lᵀ with M = LLᵀ, + τK
+        let mut d_t = [[0.0; 2]; 2];
+        if damped && jt > 0.0 {
+            let mm = Matrix2::new(m_t[0][0], m_t[0][1], m_t[1][0], m_t[1][1]);
+            let km = Matrix2::new(k_t[0][0], k_t[0][1], k_t[1][0], k_t[1][1]);
+            let lo = mm
+                .cholesky()
+                .expect("torsion mass is positive definite")
+                .l();
+            let li = lo.try_inverse().expect("Cholesky factor is invertible");
+            let c = li * km * li.transpose();
+            let eig = (0.5 * (c + c.transpose())).symmetric_eigen();
+            let sq = eig.eigenvectors
+                * Matrix2::from_diagonal(&eig.eigenvalues.map(|x| x.max(0.0).sqrt()))
+                * eig.eigenvectors.transpose();
+            let dz = 2.0 * props.damping_ratio * lo * sq * lo.transpose();
+            for i in 0..2 {
+                for j in 0..2 {
+                    d_t[i][j] = dz[(i, j)] + props.damping_time * k_t[i][j];
+                }
+            }
+        }
+        let c_t = [jt * 0.5, jt * 2.0 * SQRT_2 / PI];
+        let s_f = basis.i1.iter().map(|v| mu * v).collect();
+        let s_x = basis.ix.iter().map(|v| mu * l * v).collect();
+        Self {
+            basis,
+            props,
+            k_y,
+            k_z,
+            d_y,
+            d_z,
+            m_t,
+            k_t,
+            d_t,
+            c_t,
+            chi_tip: torsion_shapes(1.0).0,
+            s_f,
+            s_x,
+            damped,
+        }
+    }
+
+    /// Number of bending shapes per plane nb.
+    pub fn modes(&self) -> usize {
+        self.k_y.len()
+    }
+
+    /// Local coordinate count 3 + 4 + 2nb + 2.
+    pub fn dim(&self) -> usize {
+        7 + 2 * self.modes() + TORSION_SHAPES
+    }
+
+    /// Local index of a_y,k.
+    pub fn iy(&self, k: usize) -> usize {
+        7 + k
+    }
+
+    /// Local index of a_z,k.
+    pub fn iz(&self, k: usize) -> usize {
+        7 + self.modes() + k
+    }
+
+    /// Local index of a_t,m.
+    pub fn it(&self, m: usize) -> usize {
+        7 + 2 * self.modes() + m
+    }
+
+    /// Mass ρAL [kg].
+    pub fn mass(&self) -> f64 {
+        self.props.rho_a * self.props.length
+    }
+
+    /// Whether the body carries damping.
+    pub fn is_damped(&self) -> bool {
+        self.damped
+    }
+
+    /// Bending frequencies of the clamped segment ω_k [rad/s]: (x–y plane, x–z plane).
+    pub fn bending_omegas(&self) -> (Vec<f64>, Vec<f64>) {
+        let m = self.mass();
+        let f = |k: &[f64]| k.iter().map(|k| (k / m).sqrt()).collect();
+        (f(&self.k_y), f(&self.k_z))
+    }
+
+    /// Torsion frequencies of the clamped segment [rad/s], ascending (K_t x = ω² M_t x).
+    pub fn torsion_omegas(&self) -> [f64; 2] {
+        let (m, k) = (self.m_t, self.k_t);
+        // det(K − λM) = 0: a λ² + b λ + c = 0
+        let a = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+        let b = -(k[0][0] * m[1][1] + k[1][1] * m[0][0] - k[0][1] * m[1][0] - k[1][0] * m[0][1]);
+        let c = k[0][0] * k[1][1] - k[0][1] * k[1][0];
+        let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
+        let (l1, l2) = ((-b - disc) / (2.0 * a), (-b + disc) / (2.0 * a));
+        [l1.sqrt(), l2.sqrt()]
+    }
+
+    /// Residual `r = M q̈ − Q_v − Q_g + K a + D ȧ` at (q, q̇, q̈) for gravity g [m/s²] (world)
+    /// into `out` (length [`ModalBody3::dim`]). Generic over the scalar; no allocation.
+    pub fn residual<T: Real>(&self, q: &[T], v: &[T], a: &[T], g: [f64; 3], out: &mut [T]) {
+        let nb = self.modes();
+        let l = self.props.length;
+        let mu = self.mass();
+        let ra = self.props.rho_a;
+        let zero = T::zero();
+        let p = [q[3], q[4], q[5], q[6]];
+        let rot = euler_rotation(p);
+        let eb = e_bar(p);
+        let w = g_mul(&eb, &v[3..7]); // ω̄
+        let wd = g_mul(&eb, &a[3..7]); // ω̄̇ (Ē̇ṗ = 0)
+        let z = mul_t(&rot, [a[0] - g[0], a[1] - g[1], a[2] - g[2]]); // Aᵀ(R̈ − g)
+        let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
+        let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
+        let (ky, kz) = (&a[7..7 + nb], &a[7 + nb..7 + 2 * nb]);
+        let (at, vt, kt) = (&q[7 + 2 * nb..], &v[7 + 2 * nb..], &a[7 + 2 * nb..]);
+        let sum = |c: &[f64], x: &[T]| -> T {
+            let mut s = zero;
+            for (ci, xi) in c.iter().zip(x) {
+                s += *xi * *ci;
+            }
+            s
+        };
+        let dotm = |x: &[T], y: &[T]| -> T {
+            let mut s = zero;
+            for (xi, yi) in x.iter().zip(y) {
+                s += *xi * *yi;
+            }
+            s
+        };
+        // first moments ∫ρu, ∫ρS ȧ, ∫ρS ä
+        let cbar = [
+            T::from(0.5 * mu * l),
+            sum(&self.s_f, ay),
+            sum(&self.s_f, az),
+        ];
+        let sv = [zero, sum(&self.s_f, vy), sum(&self.s_f, vz)];
+        let sa = [zero, sum(&self.s_f, ky), sum(&self.s_f, kz)];
+        // J = ∫ρuuᵀ and Ī = tr(J)I − J + ρI_pL e_x e_xᵀ
+        let jxx = mu * l * l / 3.0;
+        let jxy = sum(&self.s_x, ay);
+        let jxz = sum(&self.s_x, az);
+        let jyy = dotm(ay, ay) * ra * l;
+        let jzz = dotm(az, az) * ra * l;
+        let jyz = dotm(ay, az) * ra * l;
+        let ibar = [
+            [jyy + jzz + self.props.rho_ip * l, -jxy, -jxz],
+            [-jxy, jzz + jxx, -jyz],
+            [-jxz, -jyz, jyy + jxx],
+        ];
+        let iw = mul(&ibar, w);
+        let iwd = mul(&ibar, wd);
+        // torsion angular momentum about x̄ (rates and accelerations)
+        let ht_v = vt[0] * self.c_t[0] + vt[1] * self.c_t[1];
+        let ht_a = kt[0] * self.c_t[0] + kt[1] * self.c_t[1];
+        // ∫ρ u × s̈ with s̈ = (0, φᵀä_y, φᵀä_z)
+        let usa = [
+            (dotm(ay, kz) - dotm(az, ky)) * ra * l,
+            -sum(&self.s_x, kz),
+            sum(&self.s_x, ky),
+        ];
+        // ∫ρ u × (ω̄ × s) = ω̄ ∫ρ u·s − (∫ρ s uᵀ) ω̄, s = (0, φᵀȧ_y, φᵀȧ_z)
+        let us = (dotm(ay, vy) + dotm(az, vz)) * ra * l;
+        let ky_row = [
+            sum(&self.s_x, vy),
+            dotm(vy, ay) * ra * l,
+            dotm(vy, az) * ra * l,
+        ];
+        let kz_row = [
+            sum(&self.s_x, vz),
+            dotm(vz, ay) * ra * l,
+            dotm(vz, az) * ra * l,
+        ];
+        let uws = [
+            w[0] * us,
+            w[1] * us - dot(ky_row, w),
+            w[2] * us - dot(kz_row, w),
+        ];
+        // body-frame moment balance about the frame origin
+        let hv = [iw[0] + ht_v, iw[1], iw[2]];
+        let wxh = cross(w, hv);
+        let cz = cross(cbar, z);
+        let mbar = [
+            cz[0] + iwd[0] + usa[0] + ht_a + wxh[0] + uws[0] * 2.0,
+            cz[1] + iwd[1] + usa[1] + wxh[1] + uws[1] * 2.0,
+            cz[2] + iwd[2] + usa[2] + wxh[2] + uws[2] * 2.0,
+        ];
+        // translation: m(R̈ − g) + A[ω̄̇ × c̄ + S̄ä + ω̄ × (ω̄ × c̄) + 2 ω̄ × S̄ȧ]
+        let wc = cross(w, cbar);
+        let fl = add(
+            add(cross(wd, cbar), sa),
+            add(cross(w, wc), scale(cross(w, sv), T::from(2.0))),
+        );
+        let fw = mul(&rot, fl);
+        for i in 0..3 {
+            out[i] = (a[i] - g[i]) * mu + fw[i];
+        }
+        for k in 0..4 {
+            out[3 + k] = (eb[0][k] * mbar[0] + eb[1][k] * mbar[1] + eb[2][k] * mbar[2]) * 2.0;
+        }
+        let w2 = dot(w, w);
+        let ml = ra * l;
+        for n in 0..nb {
+            let (sf, sx) = (self.s_f[n], self.s_x[n]);
+            let mut fy = z[1] * sf
+                + (wd[2] * sx - wd[0] * az[n] * ml)
+                + ky[n] * ml
+                + w[1] * w[0] * sx
+                + (w[1] * w[1] - w2) * ay[n] * ml
+                + w[1] * w[2] * az[n] * ml
+                - w[0] * vz[n] * (2.0 * ml)
+                + ay[n] * self.k_y[n];
+            let mut fz = z[2] * sf
+                + (wd[0] * ay[n] * ml - wd[1] * sx)
+                + kz[n] * ml
+                + w[2] * w[0] * sx
+                + w[2] * w[1] * ay[n] * ml
+                + (w[2] * w[2] - w2) * az[n] * ml
+                + w[0] * vy[n] * (2.0 * ml)
+                + az[n] * self.k_z[n];
+            if self.damped {
+                fy += vy[n] * self.d_y[n];
+                fz += vz[n] * self.d_z[n];
+            }
+            out[7 + n] = fy;
+            out[7 + nb + n] = fz;
+        }
+        for m in 0..2 {
+            let mut f = wd[0] * self.c_t[m]
+                + kt[0] * self.m_t[m][0]
+                + kt[1] * self.m_t[m][1]
+                + at[0] * self.k_t[m][0]
+                + at[1] * self.k_t[m][1];
+            if self.damped {
+                f += vt[0] * self.d_t[m][0] + vt[1] * self.d_t[m][1];
+            }
+            out[7 + 2 * nb + m] = f;
+        }
+    }
+
+    /// The Newton block `c_a ∂r/∂q̈ + c_v ∂r/∂q̇ + c_x ∂r/∂q` (row-major d × d) by forward-mode
+    /// automatic differentiation of [`ModalBody3::residual`]: column j is the directional
+    /// derivative along (δq, δq̇, δq̈) = (c_x, c_v, c_a)·e_j. Exact; allocates (rebuilt rarely).
+    pub fn newton_block(
+        &self,
+        (q, v, a): (&[f64], &[f64], &[f64]),
+        g: [f64; 3],
+        (ca, cv, cx): (f64, f64, f64),
+        block: &mut [f64],
+    ) {
+        let d = self.dim();
+        let lift = |x: &[f64]| -> Vec<Dual64> { x.iter().map(|&x| Dual64::from_re(x)).collect() };
+        let (mut qd, mut vd, mut ad) = (lift(q), lift(v), lift(a));
+        let mut out = vec![Dual64::from_re(0.0); d];
+        for j in 0..d {
+            qd[j].eps = cx;
+            vd[j].eps = cv;
+            ad[j].eps = ca;
+            self.residual(&qd, &vd, &ad, g, &mut out);
+            for i in 0..d {
+                block[i * d + j] = out[i].eps;
+            }
+            qd[j].eps = 0.0;
+            vd[j].eps = 0.0;
+            ad[j].eps = 0.0;
+        }
+    }
+
+    /// Kinetic energy ½ q̇ᵀ M(q) q̇ [J], in closed form: ½m|Ṙ|² + Ṙ·A(ω̄×c̄ + S̄ȧ) + ½ω̄ᵀĪω̄ +
+    /// ω̄·∫ρu×s + ½ρAL|ȧ_b|² + ω̄_x c_tᵀȧ_t + ½ȧ_tᵀM_tȧ_t.
+    pub fn kinetic_energy(&self, q: &[f64], v: &[f64]) -> f64 {
+        let nb = self.modes();
+        let l = self.props.length;
+        let mu = self.mass();
+        let ml = self.props.rho_a * l;
+        let p = [q[3], q[4], q[5], q[6]];
+        let rot = euler_rotation(p);
+        let w = g_mul(&e_bar(p), &v[3..7]);
+        let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
+        let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
+        let vt = &v[7 + 2 * nb..];
+        let sum = |c: &[f64], x: &[f64]| c.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
+        let cbar = [0.5 * mu * l, sum(&self.s_f, ay), sum(&self.s_f, az)];
+        let sv = [0.0, sum(&self.s_f, vy), sum(&self.s_f, vz)];
+        let rd = [v[0], v[1], v[2]];
+        let jxx = mu * l * l / 3.0;
+        let (jxy, jxz) = (sum(&self.s_x, ay), sum(&self.s_x, az));
+        let (jyy, jzz, jyz) = (ml * sum(ay, ay), ml * sum(az, az), ml * sum(ay, az));
+        let ibar = [
+            [jyy + jzz + self.props.rho_ip * l, -jxy, -jxz],
+            [-jxy, jzz + jxx, -jyz],
+            [-jxz, -jyz, jyy + jxx],
+        ];
+        // ∫ρ u × s = (ρAL(a_y·ȧ_z − a_z·ȧ_y), −s_x·ȧ_z, s_x·ȧ_y)
+        let us = [
+            ml * (sum(ay, vz) - sum(az, vy)),
+            -sum(&self.s_x, vz),
+            sum(&self.s_x, vy),
+        ];
+        let mt = &self.m_t;
+        let tors = vt[0] * (mt[0][0] * vt[0] + mt[0][1] * vt[1])
+            + vt[1] * (mt[1][0] * vt[0] + mt[1][1] * vt[1]);
+        0.5 * mu * dot(rd, rd)
+            + dot(rd, mul(&rot, add(cross(w, cbar), sv)))
+            + 0.5 * dot(w, mul(&ibar, w))
+            + dot(w, us)
+            + 0.5 * ml * (sum(vy, vy) + sum(vz, vz))
+            + w[0] * (self.c_t[0] * vt[0] + self.c_t[1] * vt[1])
+            + 0.5 * tors
+    }
+
+    /// Strain energy ½ aᵀ K a [J].
+    pub fn strain_energy(&self, q: &[f64]) -> f64 {
+        let nb = self.modes();
+        let mut u = 0.0;
+        for n in 0..nb {
+            u += self.k_y[n] * q[7 + n] * q[7 + n] + self.k_z[n] * q[7 + nb + n] * q[7 + nb + n];
+        }
+        let at = &q[7 + 2 * nb..];
+        for i in 0..2 {
+            for j in 0..2 {
+                u += at[i] * self.k_t[i][j] * at[j];
+            }
+        }
+        0.5 * u
+    }
+
+    /// Gravity potential −gᵀ∫ρA r dx = −gᵀ(m R + A c̄) [J].
+    pub fn potential_energy(&self, q: &[f64], g: [f64; 3]) -> f64 {
+        let nb = self.modes();
+        let l = self.props.length;
+        let sum = |c: &[f64], x: &[f64]| c.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
+        let cbar = [
+            0.5 * self.mass() * l,
+            sum(&self.s_f, &q[7..7 + nb]),
+            sum(&self.s_f, &q[7 + nb..7 + 2 * nb]),
+        ];
+        let first = add(
+            scale([q[0], q[1], q[2]], self.mass()),
+            mul(&euler_rotation([q[3], q[4], q[5], q[6]]), cbar),
+        );
+        -dot(g, first)
+    }
+
+    /// Tip deflections (φ(1)ᵀa_y, φ(1)ᵀa_z) [m], tip slopes (v′, w′) = φ′(1)ᵀ(a_y, a_z)/L [-]
+    /// and tip twist θ_T = χ(1)ᵀa_t [rad], body axes.
+    pub fn tip_elastic(&self, q: &[f64]) -> (Vector2<f64>, Vector2<f64>, f64) {
+        let nb = self.modes();
+        let l = self.props.length;
+        let (mut v, mut w, mut vs, mut ws) = (0.0, 0.0, 0.0, 0.0);
+        for n in 0..nb {
+            let (ay, az) = (q[7 + n], q[7 + nb + n]);
+            v += ay * self.basis.tip[n];
+            w += az * self.basis.tip[n];
+            vs += ay * (self.basis.tip_slope[n] / l);
+            ws += az * (self.basis.tip_slope[n] / l);
+        }
+        let th = q[7 + 2 * nb] * self.chi_tip[0] + q[8 + 2 * nb] * self.chi_tip[1];
+        (Vector2::new(v, w), Vector2::new(vs, ws), th)
+    }
+
+    /// (G a)_k / L for one plane's amplitudes: gradient of the foreshortening ½aᵀGa/L.
+    pub fn foreshortening_gradient(&self, a: &[f64]) -> Vec<f64> {
+        let nb = self.modes();
+        (0..nb)
+            .map(|k| {
+                (0..nb)
+                    .map(|j| self.basis.slope_gram[k * nb + j] * a[j])
+                    .sum::<f64>()
+                    / self.props.length
+            })
+            .collect()
+    }
+
+    /// Tip position in the body frame ū_T = (L − ½(a_yᵀGa_y + a_zᵀGa_z)/L, φ(1)ᵀa_y,
+    /// φ(1)ᵀa_z) [m]: the second-order foreshortening in both planes (G = ∫φ′φ′ dξ).
+    pub fn tip_local(&self, q: &[f64]) -> [f64; 3] {
+        let nb = self.modes();
+        let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
+        let gy = self.foreshortening_gradient(ay);
+        let gz = self.foreshortening_gradient(az);
+        let short = 0.5
+            * (gy.iter().zip(ay).map(|(g, a)| g * a).sum::<f64>()
+                + gz.iter().zip(az).map(|(g, a)| g * a).sum::<f64>());
+        let (d, _, _) = self.tip_elastic(q);
+        [self.props.length - short, d[0], d[1]]
+    }
+
+    /// Centerline point ū(ξ) = (ξL, φ(ξ)ᵀa_y, φ(ξ)ᵀa_z) in the body frame [m] and the section
+    /// twist θ(ξ) = χ(ξ)ᵀa_t [rad] (linear field, no foreshortening).
+    pub fn point_local(&self, q: &[f64], xi: f64) -> ([f64; 3], f64) {
+        let nb = self.modes();
+        let (mut v, mut w) = (0.0, 0.0);
+        for n in 0..nb {
+            let phi = self.basis.eval_one(n, xi)[0];
+            v += phi * q[7 + n];
+            w += phi * q[7 + nb + n];
+        }
+        let (chi, _) = torsion_shapes(xi);
+        let th = chi[0] * q[7 + 2 * nb] + chi[1] * q[8 + 2 * nb];
+        ([xi * self.props.length, v, w], th)
+    }
+
+    /// Modal deflection measure max(|(v_T, w_T)|/L, |(v′, w′)|, |θ_T|): tip deflection over the
+    /// length, tip slope [rad] and tip twist [rad] (the planar body's measure, plus the twist,
+    /// which the first-order section director of the tip also assumes small).
+    pub fn deflection(&self, q: &[f64]) -> f64 {
+        let (d, s, th) = self.tip_elastic(q);
+        (d.norm() / self.props.length).max(s.norm()).max(th.abs())
+    }
+}
