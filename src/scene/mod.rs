@@ -425,8 +425,10 @@ impl Scene {
             return Err(SceneError("name = \"\": give the scene a name".into()));
         }
         let sp = self.space;
-        let axes = ["[x, y]", "[x, y, z]"][sp.dim() - 2];
-        let moment_axes = ["[z] (the z component)", "[x, y, z]"][sp.moment_dim() - 1];
+        let (axes, moment_axes) = match sp {
+            SpaceKind::Planar => ("[x, y]", "[z] (the z component)"),
+            SpaceKind::Spatial => ("[x, y, z]", "[x, y, z]"),
+        };
         for (field, v, n, how) in [
             ("gravity", &self.gravity, sp.dim(), axes),
             ("tip.force", &self.tip.force, sp.dim(), axes),
@@ -741,5 +743,71 @@ elements = 4
         assert!(err_of(&[("solver.rho_inf", "1.0")]).contains("solver.rho_inf"));
         assert!(err_of(&[("segments", "[]")]).contains("empty"));
         assert!(err_of(&[("segments.0.lenght", "1.0")]).contains("lenght"));
+    }
+
+    #[test]
+    fn vector_lengths_roots_and_orientation_follow_the_space() {
+        assert!(err_of(&[("gravity", "[0.0, 0.0, -9.81]")])
+            .contains("gravity = [0.0, 0.0, -9.81]: a planar scene takes 2 components"));
+        assert!(err_of(&[("space", "\"spatial\"")]).contains("a spatial scene takes 3 components"));
+        assert!(err_of(&[("tip.moment", "[0.0, 1.0]")]).contains("tip.moment"));
+        assert!(err_of(&[("root", "\"ball\"")]).contains("root = \"ball\""));
+        let spatial = [("space", "\"spatial\""), ("gravity", "[0.0, 0.0, -9.81]")];
+        let with = |extra: (&str, &str)| err_of(&[spatial[0], spatial[1], extra]);
+        assert!(with(("root", "\"pinned\"")).contains("root = \"pinned\""));
+        assert!(
+            with(("initial.orientation", "[0.0, 0.0, 0.0, 0.0]")).contains("initial.orientation")
+        );
+        assert!(
+            with(("initial.orientation", "[1.0, nan, 0.0, 0.0]")).contains("initial.orientation")
+        );
+        assert!(with(("initial.angle", "0.3")).contains("initial.orientation"));
+        assert!(err_of(&[("segments.0.poisson_ratio", "0.7")]).contains("poisson_ratio = 0.7"));
+        let o: Vec<(String, String)> = spatial
+            .iter()
+            .chain(&[("initial.orientation", "[2.0, 0.0, 0.0, 2.0]")])
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect();
+        let s = Scene::from_toml_with_overrides(OK, &o).unwrap();
+        let e = s.root_orientation();
+        assert!((e[0] - 0.5f64.sqrt()).abs() < 1e-15 && (e[3] - 0.5f64.sqrt()).abs() < 1e-15);
+        // missing loads are written with all their components
+        assert_eq!((s.tip.force.len(), s.tip.moment.len()), (3, 3));
+    }
+
+    #[test]
+    fn section_properties_match_closed_forms() {
+        use std::f64::consts::PI;
+        let tube = Scene::from_toml_with_overrides(
+            OK,
+            &[
+                ("segments.0.section".into(), "\"tube\"".into()),
+                ("segments.0.inner_diameter".into(), "0.0015".into()),
+            ],
+        )
+        .unwrap();
+        let p = tube.segments[0].section_props();
+        let (d, di) = (0.002f64, 0.0015f64);
+        let i = PI * (d.powi(4) - di.powi(4)) / 64.0;
+        assert!((p.area / (PI * (d * d - di * di) / 4.0) - 1.0).abs() < 1e-14);
+        assert!((p.i_y / i - 1.0).abs() < 1e-14 && (p.i_z / i - 1.0).abs() < 1e-14);
+        assert!((p.torsion / (2.0 * i) - 1.0).abs() < 1e-14);
+        assert!(err_of(&[("segments.0.section", "\"tube\"")]).contains("inner_diameter is missing"));
+        assert!(err_of(&[
+            ("segments.0.section", "\"tube\""),
+            ("segments.0.inner_diameter", "0.002")
+        ])
+        .contains("inner_diameter = 0.002"));
+        // Saint-Venant: J = k a b³ with k = 0.1406 (square), 0.2287 (a/b = 2), 0.3123 (a/b = 10)
+        // (Timoshenko & Goodier, Theory of Elasticity, §109 table), → 1/3 for a thin strip
+        for (ratio, k) in [(1.0, 0.1406), (2.0, 0.2287), (10.0, 0.3123)] {
+            let j = rectangle_torsion_constant(1.0, ratio) / ratio;
+            assert!((j - k).abs() < 1e-4, "a/b = {ratio}: {j}");
+        }
+        let j = rectangle_torsion_constant(1000.0, 1.0) / 1000.0;
+        assert!(
+            (j - (1.0 / 3.0) * (1.0 - 0.630_2 / 1000.0)).abs() < 1e-6,
+            "{j}"
+        );
     }
 }
