@@ -9,8 +9,10 @@
 
 mod build;
 mod kin;
+mod node;
 
 pub use kin::{EndKin3, Field3};
+pub use node::{AncfElement3, NodePort3, NodeSupport3};
 
 use super::space::Space;
 
