@@ -571,6 +571,49 @@ fn clamped_segment_frequencies_match_b4() {
     assert!((wt[0] / (2.0 * PI) / fam[2][0] - 1.0).abs() < 1e-10);
 }
 
+#[test]
+fn damping_is_modal_with_the_given_ratio_plus_kelvin_voigt() {
+    // at rest, ∂r/∂q̇ is the damping alone: in the mass-normalized eigenvectors Φ of (M, K) of
+    // the amplitudes, ΦᵀDΦ = diag(2ζω_i + τω_i²) for every bending and torsion mode
+    let b = test_body(3, true);
+    let d = b.dim();
+    let mut q = vec![0.0; d];
+    q[3] = 1.0;
+    let z = vec![0.0; d];
+    let block = |c| {
+        let mut m = vec![0.0; d * d];
+        b.newton_block((&q, &z, &z), [0.0; 3], c, &mut m);
+        DMatrix::from_fn(d - 7, d - 7, |i, j| m[(i + 7) * d + j + 7])
+    };
+    let (mm, cc, kk) = (
+        block((1.0, 0.0, 0.0)),
+        block((0.0, 1.0, 0.0)),
+        block((0.0, 0.0, 1.0)),
+    );
+    let lo = mm.clone().cholesky().unwrap().l();
+    let li = lo.try_inverse().unwrap();
+    let eig = (&li * &kk * li.transpose()).symmetric_eigen();
+    let phi = li.transpose() * &eig.eigenvectors;
+    let modal = phi.transpose() * cc * &phi;
+    let (zeta, tau) = (b.props.damping_ratio, b.props.damping_time);
+    for i in 0..d - 7 {
+        let w = eig.eigenvalues[i].sqrt();
+        let want = 2.0 * zeta * w + tau * w * w;
+        assert!(
+            (modal[(i, i)] / want - 1.0).abs() < 1e-9,
+            "mode {i}: {} vs {want}",
+            modal[(i, i)]
+        );
+        for j in 0..i {
+            assert!(
+                modal[(i, j)].abs() < 1e-9 * want,
+                "coupling {i} {j}: {}",
+                modal[(i, j)]
+            );
+        }
+    }
+}
+
 /// No support: a free body has no held coordinates.
 #[derive(Debug)]
 struct Free;
@@ -786,6 +829,7 @@ fn clamped_segment_statics_match_beam_theory_in_both_planes_and_torsion() {
         tip_force: f.into(),
         tip_moment: m.into(),
     });
+    assert!(std::ptr::eq(model.modal_body(0), &*body));
     let mut s = State::at_rest(0.0, model.initial_coordinates().to_vec(), 0);
     hybeam::integrator::solve_static(&mut model, &mut s, 1e-13).unwrap();
     let o = model.outputs(&s.q, &s.v, &s.acc, &s.lambda);
