@@ -499,6 +499,19 @@ fn steel_rod(basis: ModalBasis, dia: f64, stiffer: f64) -> ModalBody3 {
     )
 }
 
+/// The amplitude blocks (M, ∂r/∂q̇, ∂r/∂q) of the Newton matrix at rest, straight, p = 1.
+fn amplitude_blocks(b: &ModalBody3) -> [DMatrix<f64>; 3] {
+    let d = b.dim();
+    let mut q = vec![0.0; d];
+    q[3] = 1.0;
+    let z = vec![0.0; d];
+    [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)].map(|c| {
+        let mut m = vec![0.0; d * d];
+        b.newton_block((&q, &z, &z), [0.0; 3], c, &mut m);
+        DMatrix::from_fn(d - 7, d - 7, |i, j| m[(i + 7) * d + j + 7])
+    })
+}
+
 #[test]
 fn clamped_segment_frequencies_match_b4() {
     // B4: steel rod E = 210 GPa, ν = 0.3, ρ = 7850, d = 2 mm, L = 0.4 m, clamped–free; modes 4
@@ -506,17 +519,7 @@ fn clamped_segment_frequencies_match_b4() {
     let (e, nu, rho, l): (f64, f64, f64, f64) = (210e9, 0.3, 7850.0, 0.4);
     let g = e / (2.0 * (1.0 + nu));
     let b = steel_rod(ModalBasis::new(4, true), 0.002, 1.0);
-    let d = b.dim();
-    let mut q = vec![0.0; d];
-    q[3] = 1.0;
-    let z = vec![0.0; d];
-    let block = |c| {
-        let mut m = vec![0.0; d * d];
-        b.newton_block((&q, &z, &z), [0.0; 3], c, &mut m);
-        let k0 = 7;
-        DMatrix::from_fn(d - k0, d - k0, |i, j| m[(i + k0) * d + j + k0])
-    };
-    let (mm, kk) = (block((1.0, 0.0, 0.0)), block((0.0, 0.0, 1.0)));
+    let [mm, _, kk] = amplitude_blocks(&b);
     let lo = mm.clone().cholesky().unwrap().l();
     let li = lo.try_inverse().unwrap();
     let c = &li * kk * li.transpose();
@@ -577,19 +580,7 @@ fn damping_is_modal_with_the_given_ratio_plus_kelvin_voigt() {
     // the amplitudes, ΦᵀDΦ = diag(2ζω_i + τω_i²) for every bending and torsion mode
     let b = test_body(3, true);
     let d = b.dim();
-    let mut q = vec![0.0; d];
-    q[3] = 1.0;
-    let z = vec![0.0; d];
-    let block = |c| {
-        let mut m = vec![0.0; d * d];
-        b.newton_block((&q, &z, &z), [0.0; 3], c, &mut m);
-        DMatrix::from_fn(d - 7, d - 7, |i, j| m[(i + 7) * d + j + 7])
-    };
-    let (mm, cc, kk) = (
-        block((1.0, 0.0, 0.0)),
-        block((0.0, 1.0, 0.0)),
-        block((0.0, 0.0, 1.0)),
-    );
+    let [mm, cc, kk] = amplitude_blocks(&b);
     let lo = mm.clone().cholesky().unwrap().l();
     let li = lo.try_inverse().unwrap();
     let eig = (&li * &kk * li.transpose()).symmetric_eigen();
