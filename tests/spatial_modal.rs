@@ -499,6 +499,19 @@ fn steel_rod(basis: ModalBasis, dia: f64, stiffer: f64) -> ModalBody3 {
     )
 }
 
+/// The amplitude blocks (M, ∂r/∂q̇, ∂r/∂q) of the Newton matrix at rest, straight, p = 1.
+fn amplitude_blocks(b: &ModalBody3) -> [DMatrix<f64>; 3] {
+    let d = b.dim();
+    let mut q = vec![0.0; d];
+    q[3] = 1.0;
+    let z = vec![0.0; d];
+    [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)].map(|c| {
+        let mut m = vec![0.0; d * d];
+        b.newton_block((&q, &z, &z), [0.0; 3], c, &mut m);
+        DMatrix::from_fn(d - 7, d - 7, |i, j| m[(i + 7) * d + j + 7])
+    })
+}
+
 #[test]
 fn clamped_segment_frequencies_match_b4() {
     // B4: steel rod E = 210 GPa, ν = 0.3, ρ = 7850, d = 2 mm, L = 0.4 m, clamped–free; modes 4
@@ -506,17 +519,7 @@ fn clamped_segment_frequencies_match_b4() {
     let (e, nu, rho, l): (f64, f64, f64, f64) = (210e9, 0.3, 7850.0, 0.4);
     let g = e / (2.0 * (1.0 + nu));
     let b = steel_rod(ModalBasis::new(4, true), 0.002, 1.0);
-    let d = b.dim();
-    let mut q = vec![0.0; d];
-    q[3] = 1.0;
-    let z = vec![0.0; d];
-    let block = |c| {
-        let mut m = vec![0.0; d * d];
-        b.newton_block((&q, &z, &z), [0.0; 3], c, &mut m);
-        let k0 = 7;
-        DMatrix::from_fn(d - k0, d - k0, |i, j| m[(i + k0) * d + j + k0])
-    };
-    let (mm, kk) = (block((1.0, 0.0, 0.0)), block((0.0, 0.0, 1.0)));
+    let [mm, _, kk] = amplitude_blocks(&b);
     let lo = mm.clone().cholesky().unwrap().l();
     let li = lo.try_inverse().unwrap();
     let c = &li * kk * li.transpose();
@@ -569,6 +572,37 @@ fn clamped_segment_frequencies_match_b4() {
     assert!(e1 > 0.0 && e1 < 0.01, "{e1}");
     let wt = b.torsion_omegas();
     assert!((wt[0] / (2.0 * PI) / fam[2][0] - 1.0).abs() < 1e-10);
+}
+
+#[test]
+fn damping_is_modal_with_the_given_ratio_plus_kelvin_voigt() {
+    // at rest, ∂r/∂q̇ is the damping alone: in the mass-normalized eigenvectors Φ of (M, K) of
+    // the amplitudes, ΦᵀDΦ = diag(2ζω_i + τω_i²) for every bending and torsion mode
+    let b = test_body(3, true);
+    let d = b.dim();
+    let [mm, cc, kk] = amplitude_blocks(&b);
+    let lo = mm.clone().cholesky().unwrap().l();
+    let li = lo.try_inverse().unwrap();
+    let eig = (&li * &kk * li.transpose()).symmetric_eigen();
+    let phi = li.transpose() * &eig.eigenvectors;
+    let modal = phi.transpose() * cc * &phi;
+    let (zeta, tau) = (b.props.damping_ratio, b.props.damping_time);
+    for i in 0..d - 7 {
+        let w = eig.eigenvalues[i].sqrt();
+        let want = 2.0 * zeta * w + tau * w * w;
+        assert!(
+            (modal[(i, i)] / want - 1.0).abs() < 1e-9,
+            "mode {i}: {} vs {want}",
+            modal[(i, i)]
+        );
+        for j in 0..i {
+            assert!(
+                modal[(i, j)].abs() < 1e-9 * want,
+                "coupling {i} {j}: {}",
+                modal[(i, j)]
+            );
+        }
+    }
 }
 
 /// No support: a free body has no held coordinates.
@@ -744,4 +778,134 @@ fn b5_torque_free_precession_keeps_its_invariants() {
     let got = rows[2].precession_rate;
     eprintln!("B5 precession rate {got:.5} rad/s vs |H|/I₁ = {rate:.5}");
     assert!((got / rate - 1.0).abs() < 1e-3, "{got} vs {rate}");
+}
+
+#[test]
+fn clamped_segment_statics_match_beam_theory_in_both_planes_and_torsion() {
+    // a clamped body (R, p held, tilted root) assembled with its tip port and support; small
+    // dead tip force and moment (linear range): tip deflections v = f_y L³/(3EI_z) +
+    // m_z L²/(2EI_z), w = f_z L³/(3EI_y) − m_y L²/(2EI_y), twist θ = m_x L/GJ (each exact in the
+    // span of the modes + interface shapes and the static twist shape), body axes; the support
+    // carries −F and −(r_T × F) − M about the root
+    let body = Arc::new(test_body(3, true));
+    let d = body.dim();
+    let (l, pr) = (body.props.length, body.props);
+    let p0 = {
+        let x = [0.8, 0.3, -0.4, 0.2];
+        let n = x.iter().map(|v: &f64| v * v).sum::<f64>().sqrt();
+        x.map(|v| v / n)
+    };
+    let r0 = [0.2, -0.1, 0.3];
+    let a0 = mat(p0);
+    let mut num = Numbering::default();
+    let mut dofs: Vec<Dof> = r0.iter().map(|&x| num.held(x)).collect();
+    dofs.extend(p0.iter().map(|&x| num.held(x)));
+    dofs.extend((7..d).map(|_| num.free(0.0, l)));
+    let dofs = LocalDofs::new(dofs);
+    let (fb, mb) = (
+        Vector3::new(0.0, 0.02, -0.03),
+        Vector3::new(0.004, 0.003, -0.002),
+    );
+    let (f, m) = (a0 * fb, a0 * mb);
+    let mut model = Model::<Spatial>::assemble(Parts {
+        numbering: num,
+        elements: vec![(dofs.clone(), Box::new(ModalElement3::new(body.clone())), 0)],
+        constraints: Vec::new(),
+        tip: (dofs, Box::new(ModalTipPort3(body.clone()))),
+        support: Box::new(FrameSupport3 {
+            position: [0, 1, 2],
+            attitude: Some([3, 4, 5, 6]),
+        }),
+        gravity: [0.0; 3],
+        tip_force: f.into(),
+        tip_moment: m.into(),
+    });
+    assert!(std::ptr::eq(model.modal_body(0), &*body));
+    let mut s = State::at_rest(0.0, model.initial_coordinates().to_vec(), 0);
+    hybeam::integrator::solve_static(&mut model, &mut s, 1e-13).unwrap();
+    let o = model.outputs(&s.q, &s.v, &s.acc, &s.lambda);
+    let tip = a0.transpose() * (Vector3::from(o.tip_position) - Vector3::from(r0));
+    let v = fb[1] * l.powi(3) / (3.0 * pr.ei_z) + mb[2] * l * l / (2.0 * pr.ei_z);
+    let w = fb[2] * l.powi(3) / (3.0 * pr.ei_y) - mb[1] * l * l / (2.0 * pr.ei_y);
+    let theta = mb[0] * l / pr.gj;
+    let q: Vec<f64> = (0..d)
+        .map(|k| if k < 7 { 0.0 } else { s.q[k - 7] })
+        .collect();
+    let (_, _, th) = body.tip_elastic(&q);
+    eprintln!(
+        "statics: v {:.6e} (beam {v:.6e}), w {:.6e} (beam {w:.6e}), twist {th:.6e} (GJ {theta:.6e})",
+        tip[1], tip[2]
+    );
+    assert!((tip[1] / v - 1.0).abs() < 1e-6, "{} vs {v}", tip[1]);
+    assert!((tip[2] / w - 1.0).abs() < 1e-6, "{} vs {w}", tip[2]);
+    // the tip frame couples twist and slopes at second order (relative O(slope) ~ 1e-6 here)
+    assert!((th / theta - 1.0).abs() < 1e-5, "{th} vs {theta}");
+    let rt = Vector3::from(o.tip_position) - Vector3::from(r0);
+    let want_m = -rt.cross(&f) - m;
+    assert!((Vector3::from(o.root_force) + f).norm() < 1e-10 * f.norm());
+    assert!(
+        (Vector3::from(o.root_moment) - want_m).norm() < 1e-9 * want_m.norm(),
+        "{:?} vs {want_m:?}",
+        o.root_moment
+    );
+}
+
+#[test]
+#[ignore = "timing, run with --ignored --nocapture"]
+fn residual_timing() {
+    use hybeam::model::modal::{BodyOut, ModalBody};
+    use std::hint::black_box;
+    use std::time::Instant;
+    let b = test_body(4, true);
+    let d = b.dim();
+    let (q, v, a) = random_state(&b, 0.5);
+    let mut r = vec![0.0; d];
+    let n = 200_000;
+    let t0 = Instant::now();
+    for _ in 0..n {
+        b.residual(
+            black_box(&q),
+            black_box(&v),
+            black_box(&a),
+            [0.0, -9.81, 0.0],
+            &mut r,
+        );
+        black_box(&r);
+    }
+    let t3 = t0.elapsed().as_secs_f64() / n as f64;
+    let p = ModalBody::new(ModalBasis::new(4, true), 0.4, 2.4, 1650.0, 0.02, 1e-4);
+    let dp = p.dim();
+    let mut o = BodyOut::new(dp);
+    let t0 = Instant::now();
+    for _ in 0..n {
+        p.eval(
+            black_box(&q[..dp]),
+            black_box(&v[..dp]),
+            black_box(&a[..dp]),
+            [0.0, -9.81],
+            false,
+            &mut o,
+        );
+        black_box(&o.res);
+    }
+    let t2 = t0.elapsed().as_secs_f64() / n as f64;
+    let m = 2000;
+    let mut block = vec![0.0; d * d];
+    let t0 = Instant::now();
+    for _ in 0..m {
+        b.newton_block(
+            (&q, &v, &a),
+            [0.0, -9.81, 0.0],
+            (1.0, 0.5, 0.25),
+            &mut block,
+        );
+        black_box(&block);
+    }
+    let tb = t0.elapsed().as_secs_f64() / m as f64;
+    eprintln!(
+        "residual: spatial {:.0} ns ({d} coordinates), planar {:.0} ns ({dp}); Newton block {:.1} µs",
+        t3 * 1e9,
+        t2 * 1e9,
+        tb * 1e6
+    );
 }

@@ -15,8 +15,11 @@
 //! Σ_nodes ½(l/2) k [(½(|r_y|² − 1))² + (t·r_y)²], k = [`PENALTY_FACTOR`]·GJ/l², which only
 //! removes the two zero-energy modes of each r_y (its length and its shear angle to r_x).
 //! Without torsion: ½∫[EA ε² + EI |r_x × r_xx|²/|r_x|⁴] dx (round or equal-I sections).
-//! Kelvin–Voigt damping (retardation time τ_d) on ε, κ2, κ3, τ; on the cable, on ε and the
-//! curvature vector κ = r_x × r_xx/|r_x|² (global axes).
+//! Kelvin–Voigt damping (retardation time τ_d) on ε, κ2, κ3, τ. The cable has no material
+//! frame, so the rate of its curvature vector κ = r_x × r_xx/|r_x|² is taken relative to the
+//! rotation of the tangent, κ̇ − w × κ with w = t × ṫ (dissipation ½EIτ_d|κ̇ − w × κ|²): exact
+//! for rigid rotations about axes ⟂ t, but a rigid spin Ω about an axis with Ω·t ≠ 0 of a
+//! *curved* cable is damped by a moment ~EIτ_d(Ω·t)|κ| (no frame can tell it from bending).
 //!
 //! Quadrature as the planar element: 5 Gauss points axial, 3 bending and twist, penalty at the
 //! nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
@@ -518,23 +521,27 @@ impl Ancf3Props {
                 let kap = [bv[0] * inv, bv[1] * inv, bv[2] * inv];
                 let mut mv = kap;
                 if damped {
-                    // κ̇ = (ȧ × b + a × ḃ)/|a|² − 2κ (a·ȧ)/|a|²
+                    // κ̇ − w × κ, w = (a × ȧ)/|a|² (the rotation rate of the tangent):
+                    // (ȧ × b + a × ḃ)/|a|² − 2κ (a·ȧ)/|a|² − (a × ȧ) × κ/|a|²
                     let ad = comb(&p.ds, &rs, ed);
                     let bd = comb(&p.dds, &rs, ed);
                     let r1 = cross(&ad, &b);
                     let r2 = cross(&a, &bd);
-                    let ada = dot(&a, &ad) * inv * 2.0;
+                    let r3 = cross(&cross(&a, &ad), &kap);
+                    let ada = dot(&a, &ad) * 2.0;
                     for c in 0..3 {
-                        mv[c] += ((r1[c] + r2[c]) * inv - kap[c] * ada) * tau_d;
+                        mv[c] += (r1[c] + r2[c] - r3[c] - kap[c] * ada) * (inv * tau_d);
                     }
                 }
                 let s = p.w * ei;
                 let mv = [mv[0] * s, mv[1] * s, mv[2] * s];
-                // δ(κ)·M: a-part (b × M)/|a|² − 2(κ·M) a/|a|², b-part (M × a)/|a|²
+                // Jᵀμ of κ̇_rel = J ė (J = ∂κ/∂e on the elastic part, κ·a = 0):
+                // a-part [b × μ − 2(κ·μ) a + (a·μ) κ]/|a|², b-part (μ × a)/|a|²
                 let bm = cross(&b, &mv);
                 let ma = cross(&mv, &a);
-                let km = dot(&kap, &mv) * inv * (-2.0);
-                let ga = lin2(inv, &bm, km, &a);
+                let km = dot(&kap, &mv) * (-2.0);
+                let am = dot(&a, &mv);
+                let ga = lin3(inv, &bm, km * inv, &a, am * inv, &kap);
                 let gb = [ma[0] * inv, ma[1] * inv, ma[2] * inv];
                 scatter(&mut f, &p.ds, &rs, &ga);
                 scatter(&mut f, &p.dds, &rs, &gb);
@@ -676,7 +683,7 @@ pub fn straight(p0: [f64; 3], frame: [[f64; 3]; 3], l: f64, torsion: bool) -> Ve
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::model::ancf::{AncfProps, Vec8};
     use crate::scene::StrainModel;
@@ -894,6 +901,54 @@ mod tests {
         check_rigid::<18>(&props(true, 7e-4, 1.0));
         check_rigid::<18>(&props(true, 7e-4, 0.4));
         check_rigid::<12>(&props(false, 7e-4, 1.0));
+    }
+
+    #[test]
+    fn rigid_rotation_of_a_bent_element_is_not_damped() {
+        // bent in the x–y plane, spinning about ẑ (⟂ every tangent): the damping force is zero
+        // for both variants (the cable's curvature rate is taken relative to the tangent)
+        for torsion in [true, false] {
+            let p = props(torsion, 7e-4, 1.0);
+            let st = p.dofs() / 2;
+            let l = p.length;
+            let mut e = vec![0.0; p.dofs()];
+            let mut ed = vec![0.0; p.dofs()];
+            let w = [0.0, 0.0, 3.0];
+            for node in 0..2 {
+                let (ang, b) = (0.4 * node as f64, st * node);
+                let (sn, cs) = f64::sin_cos(ang);
+                let r = [
+                    l * sn / 0.4 * node as f64,
+                    l * (1.0 - cs) / 0.4 * node as f64,
+                    0.0,
+                ];
+                let mut vecs = vec![r, [cs, sn, 0.0]];
+                if torsion {
+                    vecs.push([-sn, cs, 0.0]);
+                }
+                for (k, v) in vecs.iter().enumerate() {
+                    e[b + 3 * k..b + 3 * k + 3].copy_from_slice(v);
+                    ed[b + 3 * k..b + 3 * k + 3].copy_from_slice(&cross(&w, v));
+                }
+            }
+            let tab = p.tables();
+            let (f, f0): (Vec<f64>, Vec<f64>) = if torsion {
+                let e: [f64; 18] = e.clone().try_into().unwrap();
+                let ed: [f64; 18] = ed.clone().try_into().unwrap();
+                let f = p.internal_force(&tab, &e, &ed).to_vec();
+                (f, p.internal_force(&tab, &e, &[0.0; 18]).to_vec())
+            } else {
+                let e: [f64; 12] = e.clone().try_into().unwrap();
+                let ed: [f64; 12] = ed.clone().try_into().unwrap();
+                let f = p.internal_force(&tab, &e, &ed).to_vec();
+                (f, p.internal_force(&tab, &e, &[0.0; 12]).to_vec())
+            };
+            let fmax = f0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            assert!(fmax > 1.0, "bent: {fmax}");
+            for (a, b) in f.iter().zip(&f0) {
+                assert!((a - b).abs() < 1e-12 * fmax, "{torsion}: {a} vs {b}");
+            }
+        }
     }
 
     #[test]

@@ -349,35 +349,37 @@ impl ModalBody3 {
         let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
         let (ky, kz) = (&a[7..7 + nb], &a[7 + nb..7 + 2 * nb]);
         let (at, vt, kt) = (&q[7 + 2 * nb..], &v[7 + 2 * nb..], &a[7 + 2 * nb..]);
-        let sum = |c: &[f64], x: &[T]| -> T {
-            let mut s = zero;
-            for (ci, xi) in c.iter().zip(x) {
-                s += *xi * *ci;
+        // every reduction over the modes in one pass: s_f·x and s_x·x for x = a, ȧ, ä of both
+        // planes, and the products of amplitudes with amplitudes, rates and accelerations
+        let (mut sf, mut sx) = ([zero; 6], [zero; 6]);
+        let mut pr = [zero; 9];
+        for n in 0..nb {
+            let (cf, cx) = (self.s_f[n], self.s_x[n]);
+            let x = [ay[n], az[n], vy[n], vz[n], ky[n], kz[n]];
+            for k in 0..6 {
+                sf[k] += x[k] * cf;
+                sx[k] += x[k] * cx;
             }
-            s
-        };
-        let dotm = |x: &[T], y: &[T]| -> T {
-            let mut s = zero;
-            for (xi, yi) in x.iter().zip(y) {
-                s += *xi * *yi;
-            }
-            s
-        };
+            let (y, z) = (ay[n], az[n]);
+            pr[0] += y * y;
+            pr[1] += z * z;
+            pr[2] += y * z;
+            pr[3] += y * kz[n];
+            pr[4] += z * ky[n];
+            pr[5] += y * vy[n];
+            pr[6] += z * vz[n];
+            pr[7] += z * vy[n];
+            pr[8] += y * vz[n];
+        }
+        let pr = pr.map(|x| x * (ra * l));
         // first moments ∫ρu, ∫ρS ȧ, ∫ρS ä
-        let cbar = [
-            T::from(0.5 * mu * l),
-            sum(&self.s_f, ay),
-            sum(&self.s_f, az),
-        ];
-        let sv = [zero, sum(&self.s_f, vy), sum(&self.s_f, vz)];
-        let sa = [zero, sum(&self.s_f, ky), sum(&self.s_f, kz)];
+        let cbar = [T::from(0.5 * mu * l), sf[0], sf[1]];
+        let sv = [zero, sf[2], sf[3]];
+        let sa = [zero, sf[4], sf[5]];
         // J = ∫ρuuᵀ and Ī = tr(J)I − J + ρI_pL e_x e_xᵀ
         let jxx = mu * l * l / 3.0;
-        let jxy = sum(&self.s_x, ay);
-        let jxz = sum(&self.s_x, az);
-        let jyy = dotm(ay, ay) * ra * l;
-        let jzz = dotm(az, az) * ra * l;
-        let jyz = dotm(ay, az) * ra * l;
+        let (jxy, jxz) = (sx[0], sx[1]);
+        let (jyy, jzz, jyz) = (pr[0], pr[1], pr[2]);
         let ibar = [
             [jyy + jzz + self.props.rho_ip * l, -jxy, -jxz],
             [-jxy, jzz + jxx, -jyz],
@@ -389,23 +391,11 @@ impl ModalBody3 {
         let ht_v = vt[0] * self.c_t[0] + vt[1] * self.c_t[1];
         let ht_a = kt[0] * self.c_t[0] + kt[1] * self.c_t[1];
         // ∫ρ u × s̈ with s̈ = (0, φᵀä_y, φᵀä_z)
-        let usa = [
-            (dotm(ay, kz) - dotm(az, ky)) * ra * l,
-            -sum(&self.s_x, kz),
-            sum(&self.s_x, ky),
-        ];
+        let usa = [pr[3] - pr[4], -sx[5], sx[4]];
         // ∫ρ u × (ω̄ × s) = ω̄ ∫ρ u·s − (∫ρ s uᵀ) ω̄, s = (0, φᵀȧ_y, φᵀȧ_z)
-        let us = (dotm(ay, vy) + dotm(az, vz)) * ra * l;
-        let ky_row = [
-            sum(&self.s_x, vy),
-            dotm(vy, ay) * ra * l,
-            dotm(vy, az) * ra * l,
-        ];
-        let kz_row = [
-            sum(&self.s_x, vz),
-            dotm(vz, ay) * ra * l,
-            dotm(vz, az) * ra * l,
-        ];
+        let us = pr[5] + pr[6];
+        let ky_row = [sx[2], pr[5], pr[7]];
+        let kz_row = [sx[3], pr[8], pr[6]];
         let uws = [
             w[0] * us,
             w[1] * us - dot(ky_row, w),

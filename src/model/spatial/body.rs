@@ -9,6 +9,7 @@
 //! constant ∂²(Av̄)/∂p² (shared spatial brief §2.1), valid for any p.
 
 use super::{EndKin3, Field3, Spatial};
+use crate::model::assembly::Model;
 use crate::model::component::{
     Constraint, ConstraintOut, Element, ElementOut, Energies, Env, LocalState, Port, Support,
     Validity,
@@ -90,19 +91,26 @@ fn frame_field(
     for (k, d) in d_av(&p, &v).into_iter().enumerate() {
         f.d[P0 + k] = d;
     }
+    let mut push = |i: usize, j: usize, h: Vector3<f64>| {
+        if h != Vector3::zeros() {
+            f.dd.push((i, j, h));
+        }
+    };
     for i in 0..4 {
         for j in i..4 {
-            f.dd.push((P0 + i, P0 + j, dd_av(&v, i, j)));
+            push(P0 + i, P0 + j, dd_av(&v, i, j));
         }
     }
     for &(k, b) in dv {
-        f.d[k] += a * b;
         for (i, h) in d_av(&p, &b).into_iter().enumerate() {
-            f.dd.push((P0 + i, k, h));
+            push(P0 + i, k, h);
         }
     }
     for &(k, l, c) in ddv {
-        f.dd.push((k, l, a * c));
+        push(k, l, a * c);
+    }
+    for &(k, b) in dv {
+        f.d[k] += a * b;
     }
     f
 }
@@ -424,5 +432,16 @@ impl Support<Spatial> for FrameSupport3 {
             [0, 1, 2].map(|c| 0.5 * (0..4).map(|k| e[c][k] * rp[k]).sum::<f64>())
         });
         (f, m)
+    }
+}
+
+impl Model<Spatial> {
+    /// The `i`-th spatial modal body in summation order (for tests and analyses).
+    pub fn modal_body(&self, i: usize) -> &ModalBody3 {
+        &self
+            .elements_of::<ModalElement3>()
+            .nth(i)
+            .expect("modal body index in range")
+            .body
     }
 }

@@ -11,10 +11,12 @@ mod body;
 mod build;
 mod joint;
 mod kin;
+mod node;
 
 pub use body::{EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3};
 pub use joint::RigidJoint3;
 pub use kin::{EndKin3, Field3};
+pub use node::{AncfElement3, NodePort3, NodeSupport3};
 
 use super::space::Space;
 

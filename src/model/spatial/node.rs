@@ -1,0 +1,478 @@
+//! The spatial ANCF element as a component ([`AncfElement3`]), its node as a port
+//! ([`NodePort3`]) and the root support of an ANCF chain ([`NodeSupport3`]). Kernel:
+//! [`crate::model::ancf3d`].
+
+use super::kin::{EndKin3, Field3};
+use super::Spatial;
+use crate::model::ancf3d::{Ancf3Props, MassPatterns, Real, Tables3, TORSION_DOFS};
+use crate::model::component::{
+    Element, ElementOut, Energies, Env, LocalState, Port, Support, Validity,
+};
+use nalgebra::{Matrix3, Vector3};
+use num_dual::{Dual2Vec, DualSVec64};
+use std::any::Any;
+
+/// A spatial ANCF element, local coordinates node 0 then node 1, each `[r, r_x, r_y]` (18) with
+/// torsion or `[r, r_x]` (12) without (global axes; positions [m], gradients [-]).
+#[derive(Debug, Clone)]
+pub struct AncfElement3 {
+    /// Element properties.
+    pub props: Ancf3Props,
+    /// Dense mass matrix, row-major d × d (for the Newton block).
+    mass: Vec<f64>,
+    patterns: MassPatterns,
+    tables: Tables3,
+    /// ∫ρA S_rᵀ g dx at the current gravity (first d entries).
+    gravity_force: [f64; TORSION_DOFS],
+}
+
+impl AncfElement3 {
+    /// Element of the given properties (gravity zero until set). A cable (no torsion) with
+    /// E·I_y ≠ E·I_z uses their mean: builds refuse it first with [`Ancf3Props::check`].
+    pub fn new(props: Ancf3Props) -> Self {
+        Self {
+            props,
+            mass: props.mass_matrix(),
+            patterns: props.mass_patterns(),
+            tables: props.tables(),
+            gravity_force: [0.0; TORSION_DOFS],
+        }
+    }
+
+    fn eval_d<const D: usize>(
+        &self,
+        x: &LocalState<'_>,
+        env: &Env<Spatial>,
+        mut out: ElementOut<'_>,
+    ) {
+        let (e, ed, ea) = x.arrays::<D>();
+        let p = &self.props;
+        let (force, matrices) = if out.matrix.is_some() {
+            let (f, k, c) = p.tangent(&self.tables, &e, &ed);
+            (f, Some((k, c)))
+        } else {
+            (p.internal_force(&self.tables, &e, &ed), None)
+        };
+        // r = M ë + f_int − load·f_g
+        let mut res = force;
+        for (r, g) in res.iter_mut().zip(&self.gravity_force) {
+            *r -= env.load * g;
+        }
+        self.patterns.add_product(&ea, &mut res);
+        out.add_residual(&res);
+        if let (Some((ca, cv, cx)), Some((k, c))) = (out.matrix, matrices) {
+            let damped = cv != 0.0 && p.damping_time > 0.0;
+            let m = &self.mass;
+            out.add_block(|r, col| {
+                let mut v = ca * m[r * D + col] + cx * k[r][col];
+                if damped {
+                    v += cv * c[r][col];
+                }
+                v
+            });
+        }
+    }
+
+    fn residual_d<const D: usize>(&self, x: &LocalState<'_>, res: &mut [f64]) {
+        let (e, ed, ea) = x.arrays::<D>();
+        let mut r = self.props.internal_force(&self.tables, &e, &ed);
+        for (r, g) in r.iter_mut().zip(&self.gravity_force) {
+            *r -= g;
+        }
+        self.patterns.add_product(&ea, &mut r);
+        res.copy_from_slice(&r);
+    }
+}
+
+impl Element<Spatial> for AncfElement3 {
+    fn eval(&mut self, x: &LocalState<'_>, env: &Env<Spatial>, out: ElementOut<'_>) {
+        if self.props.torsion {
+            self.eval_d::<18>(x, env, out)
+        } else {
+            self.eval_d::<12>(x, env, out)
+        }
+    }
+
+    fn residual(&self, x: &LocalState<'_>, _env: &Env<Spatial>, res: &mut [f64]) {
+        if self.props.torsion {
+            self.residual_d::<18>(x, res)
+        } else {
+            self.residual_d::<12>(x, res)
+        }
+    }
+
+    fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 3]) -> Energies {
+        let (e, ed, _) = x.vectors();
+        let d = e.len();
+        let mut kinetic = 0.0;
+        for i in 0..d {
+            let mv: f64 = (0..d).map(|j| self.mass[i * d + j] * ed[j]).sum();
+            kinetic += 0.5 * ed[i] * mv;
+        }
+        Energies {
+            kinetic,
+            strain: self.props.strain_energy(&e),
+            potential: -e
+                .iter()
+                .zip(&self.gravity_force)
+                .map(|(a, b)| a * b)
+                .sum::<f64>(),
+        }
+    }
+
+    fn set_gravity(&mut self, g: &[f64; 3]) {
+        self.gravity_force = self.props.gravity_force(*g);
+    }
+
+    fn is_damped(&self) -> bool {
+        self.props.damping_time > 0.0
+    }
+
+    fn validity(&self, q: &[f64]) -> Validity {
+        Validity {
+            axial_strain: self.props.max_axial_strain(&self.tables, q),
+            modal_deflection: None,
+        }
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+/// An ANCF node as a port, local coordinates `[r, r_x, r_y]` (torsion) or `[r, r_x]` (cable).
+///
+/// Frame [t d2 d3]: with torsion Gram–Schmidt of (r_x, r_y) (t = r_x/|r_x|, d2 = normalized
+/// r_y ⟂ t, d3 = t × d2); for the cable the minimal rotation of `reference` that takes its
+/// axis x̄ to t (defined except for t = −x̄: a cable node turned by 180° has no frame).
+/// Rotation per local coordinate: ½ Σ_i d_i × ∂d_i/∂q_k (exact, forward-mode AD).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodePort3 {
+    /// Whether the node carries r_y (9 local coordinates) or not (6).
+    pub torsion: bool,
+    /// Section frame → world of the node's straight initial configuration (columns x̄, ȳ, z̄ in
+    /// global axes); only the cable's frame uses it.
+    pub reference: Matrix3<f64>,
+}
+
+impl NodePort3 {
+    /// Port of a node with (`torsion`) or without r_y, initial section frame `reference`.
+    pub fn new(torsion: bool, reference: Matrix3<f64>) -> Self {
+        Self { torsion, reference }
+    }
+
+    /// Frame columns [t, d2, d3] from r_x (`x[0..3]`) and, with torsion, r_y (`x[3..6]`).
+    fn frame<T: Real, const N: usize>(&self, x: &[T; N]) -> [[T; 3]; 3] {
+        let a = [x[0], x[1], x[2]];
+        let dot = |u: &[T; 3], v: &[T; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+        let cross = |u: &[T; 3], v: &[T; 3]| {
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+        };
+        let inv = dot(&a, &a).sqrt().recip();
+        let t = a.map(|v| v * inv);
+        if self.torsion {
+            let c = [x[3], x[4], x[5]];
+            let tc = dot(&t, &c);
+            let u = [0, 1, 2].map(|i| c[i] - t[i] * tc);
+            let iu = dot(&u, &u).sqrt().recip();
+            let d2 = u.map(|v| v * iu);
+            let d3 = cross(&t, &d2);
+            [t, d2, d3]
+        } else {
+            // R = cos θ I + [s]× + s sᵀ/(1 + cos θ), s = x̄ × t, cos θ = x̄·t
+            let col = |k: usize| [0, 1, 2].map(|i| T::from(self.reference[(i, k)]));
+            let x0 = col(0);
+            let s = cross(&x0, &t);
+            let ct = dot(&x0, &t);
+            let f = (ct + 1.0).recip();
+            let rot = |v: [T; 3]| {
+                let sv = cross(&s, &v);
+                let ss = dot(&s, &v) * f;
+                [0, 1, 2].map(|i| v[i] * ct + sv[i] + s[i] * ss)
+            };
+            [t, rot(col(1)), rot(col(2))]
+        }
+    }
+
+    /// Frame and rotation per director coordinate (N = 6 with torsion: r_x, r_y; 3 without).
+    fn frame_rotation<const N: usize>(&self, q: &[f64]) -> (Matrix3<f64>, [Vector3<f64>; N]) {
+        let x: [DualSVec64<N>; N] =
+            std::array::from_fn(|k| DualSVec64::<N>::from_re(q[3 + k]).derivative(k));
+        let d = self.frame(&x);
+        let mut frame = Matrix3::zeros();
+        let mut rot = [Vector3::zeros(); N];
+        for (i, di) in d.iter().enumerate() {
+            let v = Vector3::from_fn(|c, _| di[c].re);
+            frame.set_column(i, &v);
+            for (k, rk) in rot.iter_mut().enumerate() {
+                let dv = Vector3::from_fn(|c, _| di[c].eps.0.map_or(0.0, |e| e[k]));
+                *rk += 0.5 * v.cross(&dv);
+            }
+        }
+        (frame, rot)
+    }
+
+    /// Adds −m·∂(∂θ/∂q_i)/∂q_j over the N director coordinates (offset 3).
+    fn moment_stiffness<const N: usize>(
+        &self,
+        q: &[f64],
+        m: &[f64; 3],
+        add: &mut dyn FnMut(usize, usize, f64),
+    ) {
+        let x: [Dual2Vec<f64, nalgebra::Const<N>>; N] = std::array::from_fn(|k| {
+            Dual2Vec::<f64, nalgebra::Const<N>>::from_re(q[3 + k]).derivative(k)
+        });
+        let d = self.frame(&x);
+        let m = Vector3::from(*m);
+        // ∂_j θ_k = ½ Σ_i (∂_j d_i × ∂_k d_i + d_i × ∂_j∂_k d_i)
+        let mut h = [[0.0; N]; N];
+        for di in &d {
+            let v = Vector3::from_fn(|c, _| di[c].re);
+            let g = |c: usize, k: usize| di[c].v1.0.map_or(0.0, |e| e[k]);
+            let hh = |c: usize, j: usize, k: usize| di[c].v2.0.map_or(0.0, |e| e[(j, k)]);
+            for k in 0..N {
+                let dk = Vector3::from_fn(|c, _| g(c, k));
+                for j in 0..N {
+                    let dj = Vector3::from_fn(|c, _| g(c, j));
+                    let djk = Vector3::from_fn(|c, _| hh(c, j, k));
+                    h[k][j] += 0.5 * m.dot(&(dj.cross(&dk) + v.cross(&djk)));
+                }
+            }
+        }
+        for (k, row) in h.iter().enumerate() {
+            for (j, x) in row.iter().enumerate() {
+                if *x != 0.0 {
+                    add(3 + k, 3 + j, -x);
+                }
+            }
+        }
+    }
+}
+
+impl Port<Spatial> for NodePort3 {
+    fn kinematics(&self, q: &[f64]) -> EndKin3 {
+        let d = q.len();
+        let mut rotation = vec![Vector3::zeros(); d];
+        let frame = if self.torsion {
+            let (f, r) = self.frame_rotation::<6>(q);
+            rotation[3..9].copy_from_slice(&r);
+            f
+        } else {
+            let (f, r) = self.frame_rotation::<3>(q);
+            rotation[3..6].copy_from_slice(&r);
+            f
+        };
+        EndKin3 {
+            p: Field3::coordinates(q, 0, d),
+            frame,
+            rotation,
+            tangent: Field3::coordinates(q, 3, d),
+            section: self.torsion.then(|| Field3::coordinates(q, 6, d)),
+            normals: None,
+        }
+    }
+
+    fn add_moment_stiffness(
+        &self,
+        q: &[f64],
+        m: &[f64; 3],
+        add: &mut dyn FnMut(usize, usize, f64),
+    ) {
+        if self.torsion {
+            self.moment_stiffness::<6>(q, m, add)
+        } else {
+            self.moment_stiffness::<3>(q, m, add)
+        }
+    }
+}
+
+/// The root support of an ANCF chain: which held coordinates (indices into the held values)
+/// carry its force and moment. Clamped: r0, r0_x (and r0_y with torsion) held; ball: r0 only.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NodeSupport3 {
+    /// Held x, y, z of the root position r0.
+    pub position: [usize; 3],
+    /// Held r0_x (clamped).
+    pub slope: Option<[usize; 3]>,
+    /// Held r0_y (clamped, with torsion).
+    pub section: Option<[usize; 3]>,
+}
+
+impl Support<Spatial> for NodeSupport3 {
+    /// F = r_{r0}, M = r0_x × r_{r0_x} + r0_y × r_{r0_y} about r0 (the work of a rotation δθ of
+    /// the held gradients δr0_x = δθ × r0_x, δr0_y = δθ × r0_y).
+    fn reaction(&self, r: &[f64], held: &[f64]) -> ([f64; 3], [f64; 3]) {
+        let vec = |v: &[f64], i: [usize; 3]| Vector3::new(v[i[0]], v[i[1]], v[i[2]]);
+        let mut m = Vector3::zeros();
+        for idx in [self.slope, self.section].into_iter().flatten() {
+            m += vec(held, idx).cross(&vec(r, idx));
+        }
+        (vec(r, self.position).into(), m.into())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::dofs::{LocalDofs, Numbering};
+    use crate::model::PortKin;
+    use nalgebra::{Rotation3, Unit};
+
+    fn reference() -> Matrix3<f64> {
+        let axis = Unit::new_normalize(Vector3::new(0.3, -0.5, 0.8));
+        Rotation3::from_axis_angle(&axis, 0.9).into_inner()
+    }
+
+    /// A node: position, then r_x and r_y moved away from the reference frame (stretched,
+    /// sheared, turned by tens of degrees).
+    fn node(torsion: bool) -> Vec<f64> {
+        let f = reference();
+        let mut q = vec![0.1, 0.2, -0.3];
+        let rx = 1.05 * f.column(0) + 0.3 * f.column(1) - 0.4 * f.column(2);
+        q.extend(rx.iter());
+        if torsion {
+            let ry = 0.2 * f.column(0) + 0.9 * f.column(1) + 0.5 * f.column(2);
+            q.extend(ry.iter());
+        }
+        q
+    }
+
+    /// Axial vector of the skew part of (∂D/∂q_k) Dᵀ by central differences: the rotation of
+    /// the frame per unit q_k, independent of the ½Σ d × ∂d formula.
+    fn fd_rotation(port: &NodePort3, q: &[f64], k: usize) -> Vector3<f64> {
+        let h = 1e-6;
+        let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
+        qp[k] += h;
+        qm[k] -= h;
+        let dd = (port.kinematics(&qp).frame - port.kinematics(&qm).frame) / (2.0 * h);
+        let w = dd * port.kinematics(q).frame.transpose();
+        Vector3::new(w[(2, 1)], w[(0, 2)], w[(1, 0)])
+    }
+
+    #[test]
+    fn frame_is_orthonormal_and_the_reference_at_the_initial_node() {
+        for torsion in [true, false] {
+            let port = NodePort3::new(torsion, reference());
+            let f = reference();
+            let mut q = vec![0.0; 3];
+            q.extend(f.column(0).iter());
+            if torsion {
+                q.extend(f.column(1).iter());
+            }
+            let k = port.kinematics(&q);
+            assert!((k.frame - f).amax() < 1e-15, "{torsion}");
+            let k = port.kinematics(&node(torsion));
+            assert!((k.frame.transpose() * k.frame - Matrix3::identity()).amax() < 1e-15);
+            assert!((k.frame.determinant() - 1.0).abs() < 1e-15);
+            let t = Vector3::from_column_slice(&node(torsion)[3..6]).normalize();
+            assert!((k.frame.column(0) - t).amax() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn rotation_and_moment_stiffness_match_central_differences() {
+        for torsion in [true, false] {
+            let port = NodePort3::new(torsion, reference());
+            let q = node(torsion);
+            let d = q.len();
+            let kin = port.kinematics(&q);
+            for k in 0..d {
+                let fd = fd_rotation(&port, &q, k);
+                let got = Vector3::from(kin.rotation_jacobian(k));
+                assert!((fd - got).amax() < 1e-9, "{torsion} {k}: {fd} vs {got}");
+            }
+            let m = [0.7, -1.3, 0.4];
+            let mut h = vec![0.0; d * d];
+            port.add_moment_stiffness(&q, &m, &mut |i, j, v| h[i * d + j] += v);
+            let hmax = h.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            assert!(hmax > 0.1, "{torsion}: {hmax}");
+            for j in 0..d {
+                let e = 1e-6;
+                let (mut qp, mut qm) = (q.clone(), q.clone());
+                qp[j] += e;
+                qm[j] -= e;
+                let (kp, km) = (port.kinematics(&qp), port.kinematics(&qm));
+                for i in 0..d {
+                    // residual r_i = −m·∂θ/∂q_i; stiffness ∂r_i/∂q_j
+                    let rp = -Vector3::from(m).dot(&Vector3::from(kp.rotation_jacobian(i)));
+                    let rm = -Vector3::from(m).dot(&Vector3::from(km.rotation_jacobian(i)));
+                    let fd = (rp - rm) / (2.0 * e);
+                    assert!(
+                        (fd - h[i * d + j]).abs() < 1e-8,
+                        "{torsion} ({i},{j}): {fd} vs {}",
+                        h[i * d + j]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn support_reaction_balances_the_loads_on_an_element() {
+        // A free element in a deformed state with accelerations, no gravity: its residual is
+        // M ë + f_int, and the internal force is self-equilibrated, so the reaction computed from
+        // the node-0 residual by NodeSupport3 must equal minus the force and moment (about r0)
+        // of the node-1 residual plus the inertia resultant. With ë = 0 the node-1 residual
+        // alone balances it.
+        for torsion in [true, false] {
+            // the cable's damping is not frame-indifferent for spin about its tangent (see
+            // ancf3d), so its damping force may carry a net moment: undamped here
+            let tau = if torsion { 7e-4 } else { 0.0 };
+            let p =
+                crate::model::ancf3d::tests::props(torsion, tau, if torsion { 0.5 } else { 1.0 });
+            let f = reference();
+            let cols = [0, 1, 2].map(|c| [f[(0, c)], f[(1, c)], f[(2, c)]]);
+            let mut e = crate::model::ancf3d::straight([0.1, 0.0, 0.2], cols, p.length, torsion);
+            let d = e.len();
+            for (k, x) in e.iter_mut().enumerate() {
+                *x += 0.01 * ((k as f64) * 1.7).sin() * if k % (d / 2) < 3 { 0.1 } else { 1.0 };
+            }
+            let ed: Vec<f64> = (0..d).map(|k| (k as f64 * 0.9).cos()).collect();
+            let mut num = Numbering::default();
+            let dofs = LocalDofs::new(e.iter().map(|v| num.free(*v, 1.0)).collect());
+            let acc = vec![0.0; d];
+            let el = AncfElement3::new(p);
+            let x = LocalState::new(&dofs, &[], (&e, &ed, &acc));
+            let env = Env {
+                gravity: [0.0; 3],
+                load: 1.0,
+            };
+            let mut r = vec![0.0; d];
+            el.residual(&x, &env, &mut r);
+            let st = d / 2;
+            let blocks = |b: usize| {
+                if torsion {
+                    vec![b + 3, b + 6]
+                } else {
+                    vec![b + 3]
+                }
+            };
+            let sup = NodeSupport3 {
+                position: [0, 1, 2],
+                slope: Some([3, 4, 5]),
+                section: torsion.then_some([6, 7, 8]),
+            };
+            let (fr, mr) = sup.reaction(&r, &e);
+            let v = |a: &[f64], i: usize| Vector3::new(a[i], a[i + 1], a[i + 2]);
+            let f1 = v(&r, st);
+            let mut m1 = (v(&e, st) - v(&e, 0)).cross(&f1);
+            for b in blocks(st) {
+                m1 += v(&e, b).cross(&v(&r, b));
+            }
+            let scale = r.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            assert!(
+                (Vector3::from(fr) + f1).amax() < 1e-12 * scale,
+                "{torsion} force"
+            );
+            assert!(
+                (Vector3::from(mr) + m1).amax() < 1e-12 * scale,
+                "{torsion} moment"
+            );
+            assert!(Vector3::from(mr).amax() > 1e-6 * scale);
+        }
+    }
+}
