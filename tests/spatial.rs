@@ -443,11 +443,32 @@ fn spatial_modes(segs: &[String], torsion: bool) -> Vec<Mode> {
     modes
 }
 
+/// Closed forms of the Case 1 rod (steel, d = 2 mm, L = 0.4 m, ν = 0.3, clamped–free):
+/// bending ω_n = λ_n² √(EI/(ρA L⁴)) with 1 + cos λ cosh λ = 0, first torsion
+/// (1/(4L)) √(G/ρ) [Hz].
+fn case1_closed_forms(d: f64) -> ([f64; 3], f64) {
+    const LAMBDA: [f64; 3] = [
+        1.875_104_068_711_961,
+        4.694_091_132_974_175,
+        7.854_757_438_237_613,
+    ];
+    let l: f64 = 0.4;
+    let tau = std::f64::consts::TAU;
+    let (area, i) = (
+        std::f64::consts::PI * d * d / 4.0,
+        std::f64::consts::PI * d.powi(4) / 64.0,
+    );
+    let bending =
+        LAMBDA.map(|lam| lam * lam * (E_STEEL * i / (RHO_STEEL * area * l.powi(4))).sqrt() / tau);
+    let g = E_STEEL / (2.0 * 1.3);
+    (bending, (g / RHO_STEEL).sqrt() / (4.0 * l))
+}
+
 #[test]
 fn b4_frequencies_of_the_case1_rod() {
-    let bending = [9.045, 56.682, 158.712];
-    let torsion = 2004.79;
     let d = 0.002;
+    let (bending, torsion) = case1_closed_forms(d);
+    eprintln!("B4 closed forms: bending {bending:.4?} Hz (each plane), torsion {torsion:.2} Hz");
     for ne in [4, 8, 16] {
         for (name, segs) in ["hybrid", "all-ANCF"].iter().zip(case1_rod(d, 4, ne)) {
             let modes = spatial_modes(&segs, true);
@@ -456,10 +477,20 @@ fn b4_frequencies_of_the_case1_rod() {
                 .iter()
                 .find(|m| m.is_torsion())
                 .expect("a torsion mode");
-            let mut line = format!("B4 {name:<8} {ne:>2} ANCF elements:");
+            let mesh = if *name == "hybrid" {
+                format!("modal 4+2 + {:>2} el.", ne / 2)
+            } else {
+                format!("{ne:>2} el.")
+            };
+            let mut line = format!("B4 {name:<8} {mesh:<16}:");
             for (k, f) in bending.iter().enumerate() {
                 let (a, b) = (bend[2 * k].f, bend[2 * k + 1].f);
-                line += &format!(" f{} = {a:.4}/{b:.4} Hz ({:+.1e})", k + 1, a / f - 1.0);
+                line += &format!(
+                    " f{} {a:.4}/{b:.4} Hz ({:+.1e}/{:+.1e})",
+                    k + 1,
+                    a / f - 1.0,
+                    b / f - 1.0
+                );
                 if ne == 16 {
                     assert!(
                         (a / f - 1.0).abs() < 1e-3 && (b / f - 1.0).abs() < 1e-3,
@@ -479,6 +510,7 @@ fn b4_frequencies_of_the_case1_rod() {
             );
             eprintln!("{line}");
             if ne == 16 {
+                // docs/spatial.md §1.3: +0.04 % (16 elements) to +0.16 % (8), consistent mass
                 assert!((tors.f / torsion - 1.0).abs() < 2e-3, "{line}");
             }
         }
@@ -573,4 +605,43 @@ fn newton_matrix_of_a_ball_rooted_hybrid_matches_central_differences() {
     eprintln!(
         "Newton matrix vs central differences: n = {n}, m = {m}, worst relative error {worst:.2e}"
     );
+}
+
+#[test]
+fn unsupported_spatial_scenes_are_refused_with_the_reason() {
+    let d = 0.002;
+    let err = |header: &str, segs: &[String]| {
+        Model::<Spatial>::from_scene(&scene(header, segs))
+            .expect_err("refused")
+            .0
+    };
+    let e = err(
+        "space = \"spatial\"",
+        &[ancf("a", 0.4, &round(d), 4, "strain = \"paper\"")],
+    );
+    assert!(e.contains("segments[0].strain = \"paper\""), "{e}");
+    let e = err(
+        "space = \"spatial\"\ntorsion = false",
+        &[ancf(
+            "a",
+            0.4,
+            &square(d).replace("width = 2e-3", "width = 4e-3"),
+            4,
+            "",
+        )],
+    );
+    assert!(e.contains("torsion = false") && e.contains("E·I_y"), "{e}");
+    let e = err(
+        "space = \"spatial\"\ntorsion = false",
+        &[
+            ancf("a", 0.2, &round(d), 4, ""),
+            modal("m", 0.2, &round(d), 2, false, ""),
+        ],
+    );
+    assert!(
+        e.contains("segments[1] (modal) after segments[0] (ancf)"),
+        "{e}"
+    );
+    let e = err("", &[ancf("a", 0.4, &round(d), 4, "")]);
+    assert!(e.contains("space = \"planar\""), "{e}");
 }
