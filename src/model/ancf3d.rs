@@ -182,17 +182,18 @@ struct Grad<T> {
 fn bend_twist<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>, d: &V<T>) -> ([T; 3], [Grad<T>; 3]) {
     let n2 = dot(a, a);
     let n = n2.sqrt();
+    let inv_n = n.recip();
     let cc = dot(c, c);
     let g = dot(a, c);
     let ab = dot(a, b);
     let bc = dot(b, c);
     let cv = cross(a, c);
     let w2 = n2 * cc - g * g;
-    let w = w2.sqrt();
+    let inv_w = w2.sqrt().recip();
     let p = dot(&cv, b);
     let q = n2 * bc - ab * g;
     let s = dot(&cv, d);
-    let (inv_n2, inv_w2) = (n2.recip(), w2.recip());
+    let (inv_n2, inv_w2) = (inv_n * inv_n, inv_w * inv_w);
     // ½∂(w²)/w² and ½∂(n²)/n²
     let hw_a = lin2(cc * inv_w2, a, -g * inv_w2, c);
     let hw_c = lin2(n2 * inv_w2, c, -g * inv_w2, a);
@@ -203,7 +204,7 @@ fn bend_twist<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>, d: &V<T>) -> ([T; 3], [Grad
     let dxa = cross(d, a);
     let zero = [T::from(0.0); 3];
     // κ2
-    let h2 = (w * n).recip();
+    let h2 = inv_w * inv_n;
     let k2 = -p * h2;
     let g2 = Grad {
         a: lin3(-h2, &cxb, -k2, &hw_a, -k2, &hn_a),
@@ -212,7 +213,7 @@ fn bend_twist<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>, d: &V<T>) -> ([T; 3], [Grad
         d: zero,
     };
     // κ3
-    let h3 = (w * n2).recip();
+    let h3 = inv_w * inv_n2;
     let k3 = q * h3;
     let dq_a = lin3(bc * 2.0, a, -g, b, -ab, c);
     let g3 = Grad {
@@ -222,7 +223,7 @@ fn bend_twist<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>, d: &V<T>) -> ([T; 3], [Grad
         d: zero,
     };
     // τ = T/(n w²), T = n² s − g p
-    let ht = (n * w2).recip();
+    let ht = inv_n * inv_w2;
     let tau = (n2 * s - g * p) * ht;
     let dt_a = [
         a[0] * (s * 2.0) + n2 * cxd[0] - p * c[0] - g * cxb[0],
