@@ -228,7 +228,22 @@ fn gravity_in_any_transverse_direction_gives_the_same_deflection() {
                     9.81 * g[1],
                     9.81 * g[2]
                 );
-                let tip = static_tip::<Spatial>(&scene(&header, &segs)).tip_position;
+                let o = static_tip::<Spatial>(&scene(&header, &segs));
+                let tip = o.tip_position;
+                // the support carries the weight: F = −m g (to the static tolerance),
+                // M = −(L/2 x̄) × m g up to the axial shortening of the deflected rod
+                let w = RHO_STEEL * std::f64::consts::PI * d * d / 4.0 * 0.4 * 9.81;
+                let weight = w * Vector3::from(g);
+                let (f, mo) = (Vector3::from(o.root_force), Vector3::from(o.root_moment));
+                assert!(
+                    (f + weight).norm() < 1e-8 * w,
+                    "{name} {g:?}: root force {f:?}"
+                );
+                let m_ref = -(0.2 * Vector3::<f64>::x()).cross(&weight);
+                assert!(
+                    (mo - m_ref).norm() < 1e-4 * m_ref.norm(),
+                    "{name} {g:?}: root moment {mo:?} vs {m_ref:?}"
+                );
                 let u = Vector3::new(tip[0] - 0.4, tip[1], tip[2]);
                 let gdir = Vector3::from(g);
                 // the transverse displacement is along g
