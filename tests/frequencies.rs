@@ -4,9 +4,7 @@
 
 mod common;
 use common::*;
-use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::model::{Model, Planar};
-use nalgebra::DMatrix;
 
 const LAMBDA: [f64; 3] = [
     1.875_104_068_711_961,
@@ -25,57 +23,15 @@ fn euler_bernoulli(d: f64, l: f64) -> Vec<f64> {
         .collect()
 }
 
-/// Lowest frequencies [Hz] of the model linearized at its straight initial state.
+/// Lowest frequencies [Hz] of the model linearized at its straight initial state: the lowest
+/// three are transverse bending modes for these slender rods.
 fn frequencies(segs: &[String]) -> Vec<f64> {
     let s = scene("gravity = [0.0, 0.0]", segs);
     let mut model = Model::<Planar>::from_scene(&s).unwrap();
-    let n = model.coordinates();
-    let m = model.constraints();
-    let q = model.initial_coordinates().to_vec();
-    let z = vec![0.0; n];
-    let lam = vec![0.0; m];
-    let mut res = vec![0.0; n + m];
-    let mut dense = |ca: f64, cx: f64| {
-        let req = EvalRequest {
-            sd: 1.0,
-            matrix: Some((ca, 0.0, cx)),
-            lambda_hessian: true,
-        };
-        model.eval(StateRef::new(&q, &z, &z, &lam), req, &mut res);
-        let a = model.assembled_dense();
-        DMatrix::from_fn(n + m, n + m, |i, j| a[i][j])
-    };
-    let full_m = dense(1.0, 0.0);
-    let full_k = dense(0.0, 1.0);
-    let mm = full_m.view((0, 0), (n, n)).into_owned();
-    let kk = full_k.view((0, 0), (n, n)).into_owned();
-    // null space of Φ_q from the projector I − Φ_qᵀ(Φ_qΦ_qᵀ)⁻¹Φ_q
-    let basis = if m > 0 {
-        let g = full_k.view((n, 0), (m, n)).into_owned();
-        let ggt = (&g * g.transpose()).try_inverse().unwrap();
-        let p = DMatrix::<f64>::identity(n, n) - g.transpose() * ggt * &g;
-        let e = p.symmetric_eigen();
-        let cols: Vec<_> = (0..n)
-            .filter(|&i| e.eigenvalues[i] > 0.5)
-            .map(|i| e.eigenvectors.column(i).into_owned())
-            .collect();
-        assert_eq!(cols.len(), n - m);
-        DMatrix::from_columns(&cols)
-    } else {
-        DMatrix::identity(n, n)
-    };
-    let mr = basis.transpose() * &mm * &basis;
-    let kr = basis.transpose() * &kk * &basis;
-    let l = mr.cholesky().unwrap().l();
-    let li = l.try_inverse().unwrap();
-    let a = &li * kr * li.transpose();
-    let a = 0.5 * (&a + a.transpose());
-    let mut w2: Vec<f64> = a.symmetric_eigenvalues().iter().copied().collect();
-    w2.sort_by(f64::total_cmp);
-    // transverse bending modes only: the lowest three are bending for these slender rods
-    w2.iter()
+    linearized_modes(&mut model)
+        .iter()
         .take(3)
-        .map(|x| x.sqrt() / (2.0 * std::f64::consts::PI))
+        .map(|m| m.0)
         .collect()
 }
 

@@ -1,7 +1,10 @@
 //! Scene builders shared by the physics tests.
 #![allow(dead_code)]
 
+use hybeam::integrator::{EvalRequest, Integrable, StateRef};
+use hybeam::model::{Model, Space};
 use hybeam::scene::Scene;
+use nalgebra::DMatrix;
 
 /// Steel.
 pub const E_STEEL: f64 = 2.1e11;
@@ -60,4 +63,145 @@ pub fn tip_history(scene: Scene, t_end: f64, dt: f64) -> Vec<[f64; 2]> {
         out.push(sim.outputs().tip_position);
     }
     out
+}
+
+/// The modes of a model linearized at its initial state (at rest, λ = 0): M and K from the
+/// assembled Newton matrix, restricted to the null space of Φ_q (projector
+/// I − Φ_qᵀ(Φ_qΦ_qᵀ)⁻¹Φ_q), generalized symmetric eigenproblem. Returns (frequency [Hz],
+/// mass-normalized shape on all coordinates) by increasing frequency.
+pub fn linearized_modes<S: Space>(model: &mut Model<S>) -> Vec<(f64, Vec<f64>)> {
+    let n = model.coordinates();
+    let m = model.constraints();
+    let q = model.initial_coordinates().to_vec();
+    let z = vec![0.0; n];
+    let lam = vec![0.0; m];
+    let mut res = vec![0.0; n + m];
+    let mut dense = |ca: f64, cx: f64| {
+        let req = EvalRequest {
+            sd: 1.0,
+            matrix: Some((ca, 0.0, cx)),
+            lambda_hessian: true,
+        };
+        model.eval(StateRef::new(&q, &z, &z, &lam), req, &mut res);
+        let a = model.assembled_dense();
+        DMatrix::from_fn(n + m, n + m, |i, j| a[i][j])
+    };
+    let full_m = dense(1.0, 0.0);
+    let full_k = dense(0.0, 1.0);
+    let mm = full_m.view((0, 0), (n, n)).into_owned();
+    let kk = full_k.view((0, 0), (n, n)).into_owned();
+    let basis = if m > 0 {
+        let g = full_k.view((n, 0), (m, n)).into_owned();
+        let ggt = (&g * g.transpose())
+            .try_inverse()
+            .expect("independent constraint rows");
+        let p = DMatrix::<f64>::identity(n, n) - g.transpose() * ggt * &g;
+        let e = p.symmetric_eigen();
+        let cols: Vec<_> = (0..n)
+            .filter(|&i| e.eigenvalues[i] > 0.5)
+            .map(|i| e.eigenvectors.column(i).into_owned())
+            .collect();
+        assert_eq!(cols.len(), n - m);
+        DMatrix::from_columns(&cols)
+    } else {
+        DMatrix::identity(n, n)
+    };
+    let mr = basis.transpose() * &mm * &basis;
+    let kr = basis.transpose() * &kk * &basis;
+    let l = mr
+        .cholesky()
+        .expect("positive mass on the constraint manifold")
+        .l();
+    let li = l.try_inverse().unwrap();
+    let a = &li * kr * li.transpose();
+    let a = 0.5 * (&a + a.transpose());
+    let e = a.symmetric_eigen();
+    let shapes = &basis * li.transpose() * &e.eigenvectors;
+    let mut modes: Vec<(f64, Vec<f64>)> = (0..e.eigenvalues.len())
+        .map(|k| {
+            let f = e.eigenvalues[k].max(0.0).sqrt() / std::f64::consts::TAU;
+            (f, shapes.column(k).iter().copied().collect())
+        })
+        .collect();
+    modes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    modes
+}
+
+/// The assembled Newton matrix (mass, damping, stiffness, joint rows and their λ-Hessian, tip
+/// loads) of `model` against central differences of the assembled residual at a perturbed
+/// state; panics on a mismatch, returns the worst error as a fraction of its tolerance
+/// 1e-6·(1 + |entry|) + 1e-8·max|residual|.
+pub fn check_newton_matrix<S: Space>(model: &mut Model<S>) -> f64 {
+    let n = model.coordinates();
+    let m = model.constraints();
+    let d = n + m;
+    let wave = |i: usize, a: f64| (a * i as f64 + 0.3).sin();
+    let q: Vec<f64> = model
+        .initial_coordinates()
+        .iter()
+        .enumerate()
+        .map(|(i, x)| x + 0.02 * wave(i, 1.7))
+        .collect();
+    let v: Vec<f64> = (0..n).map(|i| 0.5 * wave(i, 0.9)).collect();
+    let a: Vec<f64> = (0..n).map(|i| 3.0 * wave(i, 2.3)).collect();
+    let lam: Vec<f64> = (0..m).map(|i| 0.1 * wave(i, 1.1)).collect();
+    let mut res = vec![0.0; d];
+    let mut matrix = |model: &mut Model<S>, c: (f64, f64, f64)| {
+        let req = EvalRequest {
+            sd: 1.0,
+            matrix: Some(c),
+            lambda_hessian: c.2 != 0.0,
+        };
+        model.eval(StateRef::new(&q, &v, &a, &lam), req, &mut res);
+        model.assembled_dense()
+    };
+    let mats = [
+        matrix(model, (0.0, 0.0, 1.0)),
+        matrix(model, (0.0, 1.0, 0.0)),
+        matrix(model, (1.0, 0.0, 0.0)),
+    ];
+    let resid = |model: &mut Model<S>, x: [&[f64]; 4]| {
+        let mut r = vec![0.0; d];
+        let req = EvalRequest {
+            sd: 1.0,
+            matrix: None,
+            lambda_hessian: false,
+        };
+        model.eval(StateRef::new(x[0], x[1], x[2], x[3]), req, &mut r);
+        r
+    };
+    let base = resid(model, [&q, &v, &a, &lam]);
+    let scale = base.iter().fold(1.0f64, |s, x| s.max(x.abs()));
+    let mut worst = 0.0f64;
+    for (which, mat) in mats.iter().enumerate() {
+        for j in 0..d {
+            if which > 0 && j >= n {
+                continue;
+            }
+            let h = 1e-7;
+            let (mut p, mut mm) = (
+                [q.clone(), v.clone(), a.clone(), lam.clone()],
+                [q.clone(), v.clone(), a.clone(), lam.clone()],
+            );
+            let (slot, k) = if j >= n { (3, j - n) } else { (which, j) };
+            p[slot][k] += h;
+            mm[slot][k] -= h;
+            let rp = resid(model, [&p[0], &p[1], &p[2], &p[3]]);
+            let rm = resid(model, [&mm[0], &mm[1], &mm[2], &mm[3]]);
+            // joint rows hold Φ_q in every assembled matrix; they are checked with the stiffness
+            let rows = if which == 0 { d } else { n };
+            for i in 0..rows {
+                let fd = (rp[i] - rm[i]) / (2.0 * h);
+                let err = (fd - mat[i][j]).abs();
+                let tol = 1e-6 * (1.0 + mat[i][j].abs()) + 1e-8 * scale;
+                worst = worst.max(err / tol);
+                assert!(
+                    err < tol,
+                    "{which}: [{i},{j}] analytic {} fd {fd} (n = {n}, m = {m})",
+                    mat[i][j]
+                );
+            }
+        }
+    }
+    worst
 }
