@@ -74,6 +74,12 @@ fn chain(n: usize, torsion: bool, frame: Matrix3<f64>, damping_time: f64) -> Mod
         damping_time,
         ..props(n, torsion)
     };
+    chain_of(p, n, frame)
+}
+
+/// A clamped chain of `n` elements of properties `p` along the axis of `frame`.
+fn chain_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Model<Spatial> {
+    let torsion = p.torsion;
     let node = |num: &mut Numbering, s: f64, free: bool| {
         let mut v: Vec<f64> = (frame.column(0) * s).iter().copied().collect();
         v.extend(frame.column(0).iter());
@@ -147,7 +153,13 @@ fn kind(block: usize, comp: usize) -> Kind {
 /// Frequencies [Hz] of each family, ascending, from the generalized eigenproblem of each
 /// decoupled group; asserts the decoupling (cross-group entries of M and K at rounding).
 fn modes(n: usize, torsion: bool, frame: Matrix3<f64>) -> Vec<(Kind, Vec<f64>)> {
-    let mut model = chain(n, torsion, frame, 0.0);
+    modes_of(props(n, torsion), n, frame)
+}
+
+/// [`modes`] of a chain of elements of properties `p`.
+fn modes_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Vec<(Kind, Vec<f64>)> {
+    let torsion = p.torsion;
+    let mut model = chain_of(p, n, frame);
     let (m, k) = (dense(&mut model, 1.0, 0.0), dense(&mut model, 0.0, 1.0));
     let dim = m.nrows();
     let per = if torsion { 9 } else { 6 };
@@ -328,6 +340,36 @@ fn cable_chain_has_degenerate_bending_pairs_and_no_torsion() {
                 z[i]
             );
         }
+    }
+}
+
+#[test]
+fn unequal_bending_stiffness_goes_to_its_plane() {
+    // E·I_y = 2 E·I_z: bending in the x–z plane (E·I_y) √2 times higher than in the x–y plane
+    // (E·I_z), up to the rotary inertia split of the x–y plane (see above)
+    let n = 16;
+    let p = Ancf3Props {
+        ei_y: 2.0 * props(n, true).ei_z,
+        ..props(n, true)
+    };
+    let all = modes_of(p, n, oblique());
+    let (y, z) = (of(&all, Kind::BendY), of(&all, Kind::BendZ));
+    assert_bending(n, &y, 4);
+    let ip_over_a = D * D / 8.0;
+    for i in 0..4 {
+        let lam = [1.875, 4.694, 7.855, 10.996][i] / L;
+        let split = y[i] * 2f64.sqrt() / z[i] - 1.0;
+        println!(
+            "f{}: x–y {:.4} Hz, x–z {:.4} Hz, √2·f_xy/f_xz − 1 = {split:.2e}",
+            i + 1,
+            y[i],
+            z[i]
+        );
+        assert!(
+            split <= 1e-9 && -split < ip_over_a * lam * lam,
+            "f{}: {split:e}",
+            i + 1
+        );
     }
 }
 
