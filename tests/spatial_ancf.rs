@@ -548,3 +548,59 @@ fn residual_cost_against_the_planar_element() {
         tc / tp
     );
 }
+
+/// spatial.md B2 [D]: a straight rod (L = 1, EI = 1, GJ = 0.7) under a dead end moment M
+/// bends into a helix; tip position and section rotation in closed form:
+/// Ω = |M|/EI, m̂ = M/|M|, cos α = M_t/|M|, u0 = (e_x − cos α m̂)/sin α, w0 = m̂ × u0,
+/// r(L) = cos α L m̂ + (sin α/Ω)(sin ΩL u0 + (1 − cos ΩL) w0),
+/// R(L) = exp(L M̃/EI)·exp(L M_t (1/GJ − 1/EI) ẽ_x). The element with torsion, all ANCF,
+/// static solve with the dead moment at the tip node (NodePort3's rotation and moment
+/// stiffness).
+#[test]
+fn end_moment_gives_the_closed_form_helix() {
+    let (ei, gj): (f64, f64) = (1.0, 0.7);
+    let m_local: Vector3<f64> = Vector3::new(1.0, 0.0, 1.5);
+    let frame = oblique();
+    let (om, mhat) = (m_local.norm() / ei, m_local.normalize());
+    let ca = m_local[0] / m_local.norm();
+    let sa = (1.0 - ca * ca).sqrt();
+    let u0 = (Vector3::x() - ca * mhat) / sa;
+    let w0 = mhat.cross(&u0);
+    let r_tip: Vector3<f64> =
+        frame * (ca * mhat + (sa / om) * (om.sin() * u0 + (1.0 - om.cos()) * w0));
+    let rot = Rotation3::new(m_local / ei)
+        * Rotation3::new(Vector3::x() * m_local[0] * (1.0 / gj - 1.0 / ei));
+    let frame_tip = frame * rot.into_inner();
+    println!("B2 helix, M = {m_local:?} (section axes): elements | tip position error | tip frame error [rad]");
+    let mut last = (f64::INFINITY, f64::INFINITY);
+    for n in [4, 8, 16, 32] {
+        let p = Ancf3Props {
+            length: 1.0 / n as f64,
+            rho_a: 1.0,
+            rho_ip: 1e-3,
+            ea: 1e4,
+            ei_y: ei,
+            ei_z: ei,
+            gj,
+            damping_time: 0.0,
+            torsion: true,
+        };
+        let mut model = chain_of(p, n, frame);
+        model.set_tip_moment((frame * m_local).into());
+        let mut s =
+            hybeam::integrator::State::at_rest(0.0, model.initial_coordinates().to_vec(), 0);
+        hybeam::integrator::solve_static(&mut model, &mut s, 1e-11).expect("static solve");
+        let q_tip = &s.q[s.q.len() - 9..];
+        let kin = hybeam::model::Port::<Spatial>::kinematics(&NodePort3::new(true, frame), q_tip);
+        let ep = (Vector3::from_column_slice(&q_tip[..3]) - r_tip).norm();
+        let er = Rotation3::from_matrix_unchecked(frame_tip.transpose() * kin.frame).angle();
+        println!("{n:8} | {ep:.3e} | {er:.3e}");
+        // converging: each halving of the elements reduces both errors
+        assert!(
+            ep < last.0 && er < last.1,
+            "{n}: {ep:e} {er:e} after {last:?}"
+        );
+        last = (ep, er);
+    }
+    assert!(last.0 < 2e-5 && last.1 < 5e-5, "{last:?}");
+}
