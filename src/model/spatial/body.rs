@@ -17,7 +17,7 @@ use crate::model::component::{
 use crate::model::modal::body3d::{self, cross, euler_rotation, Real, V3};
 use crate::model::modal::ModalBody3;
 use nalgebra::{Matrix3, Vector3};
-use num_dual::{Dual64, HyperDual64};
+use num_dual::HyperDual64;
 use std::any::Any;
 use std::sync::Arc;
 
@@ -140,29 +140,24 @@ fn frame_of<T: Real>(t: V3<T>, s: V3<T>) -> [V3<T>; 3] {
     [t, d2, d3]
 }
 
-/// Virtual rotation ½Σ d_i × ∂d_i of the frame of (T, S) along the directions (δT, δS).
-fn frame_rotation(t: &Field3, s: &Field3, k: usize) -> Vector3<f64> {
-    if t.d[k] == Vector3::zeros() && s.d[k] == Vector3::zeros() {
-        return Vector3::zeros();
-    }
-    let lift = |f: &Field3| -> V3<Dual64> { [0, 1, 2].map(|c| Dual64::new(f.v[c], f.d[k][c])) };
-    let fr = frame_of(lift(t), lift(s));
-    let mut w = Vector3::zeros();
-    for d in fr {
-        let re = Vector3::new(d[0].re, d[1].re, d[2].re);
-        let eps = Vector3::new(d[0].eps, d[1].eps, d[2].eps);
-        w += 0.5 * re.cross(&eps);
-    }
-    w
-}
-
-/// The end kinematics from position, directors and normals: frame and rotation from the
-/// tangent and section directors.
+/// The end kinematics from position, directors and normals: frame [t, d2, d3] of the tangent
+/// T and the section director S ([`frame_of`]) and its rotation ω_k = ½Σ d_i × ∂d_i/∂q_k, in
+/// closed form on the frame: with |T|, u = S − (t·S)t,
+/// ω_k = ((∂S·d3 − (t·S)(∂T·d3)/|T|)/|u|) t − (∂T·d3/|T|) d2 + (∂T·d2/|T|) d3.
 fn end_kin(p: Field3, tangent: Field3, section: Field3, normals: [Field3; 3]) -> EndKin3 {
-    let fr = frame_of(tangent.v.into(), section.v.into());
-    let frame = Matrix3::from_fn(|i, j| fr[j][i]);
-    let rotation = (0..tangent.d.len())
-        .map(|k| frame_rotation(&tangent, &section, k))
+    let [t, d2, d3] = frame_of(tangent.v.into(), section.v.into()).map(Vector3::from);
+    let frame = Matrix3::from_columns(&[t, d2, d3]);
+    let tn = tangent.v.norm();
+    let ts = t.dot(&section.v);
+    let un = (section.v - ts * t).norm();
+    let rotation = tangent
+        .d
+        .iter()
+        .zip(&section.d)
+        .map(|(dt, ds)| {
+            let (t2, t3) = (dt.dot(&d2) / tn, dt.dot(&d3) / tn);
+            (ds.dot(&d3) - ts * t3) / un * t - t3 * d2 + t2 * d3
+        })
         .collect();
     EndKin3 {
         p,
