@@ -74,6 +74,12 @@ fn chain(n: usize, torsion: bool, frame: Matrix3<f64>, damping_time: f64) -> Mod
         damping_time,
         ..props(n, torsion)
     };
+    chain_of(p, n, frame)
+}
+
+/// A clamped chain of `n` elements of properties `p` along the axis of `frame`.
+fn chain_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Model<Spatial> {
+    let torsion = p.torsion;
     let node = |num: &mut Numbering, s: f64, free: bool| {
         let mut v: Vec<f64> = (frame.column(0) * s).iter().copied().collect();
         v.extend(frame.column(0).iter());
@@ -147,7 +153,13 @@ fn kind(block: usize, comp: usize) -> Kind {
 /// Frequencies [Hz] of each family, ascending, from the generalized eigenproblem of each
 /// decoupled group; asserts the decoupling (cross-group entries of M and K at rounding).
 fn modes(n: usize, torsion: bool, frame: Matrix3<f64>) -> Vec<(Kind, Vec<f64>)> {
-    let mut model = chain(n, torsion, frame, 0.0);
+    modes_of(props(n, torsion), n, frame)
+}
+
+/// [`modes`] of a chain of elements of properties `p`.
+fn modes_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Vec<(Kind, Vec<f64>)> {
+    let torsion = p.torsion;
+    let mut model = chain_of(p, n, frame);
     let (m, k) = (dense(&mut model, 1.0, 0.0), dense(&mut model, 0.0, 1.0));
     let dim = m.nrows();
     let per = if torsion { 9 } else { 6 };
@@ -332,6 +344,36 @@ fn cable_chain_has_degenerate_bending_pairs_and_no_torsion() {
 }
 
 #[test]
+fn unequal_bending_stiffness_goes_to_its_plane() {
+    // E·I_y = 2 E·I_z: bending in the x–z plane (E·I_y) √2 times higher than in the x–y plane
+    // (E·I_z), up to the rotary inertia split of the x–y plane (see above)
+    let n = 16;
+    let p = Ancf3Props {
+        ei_y: 2.0 * props(n, true).ei_z,
+        ..props(n, true)
+    };
+    let all = modes_of(p, n, oblique());
+    let (y, z) = (of(&all, Kind::BendY), of(&all, Kind::BendZ));
+    assert_bending(n, &y, 4);
+    let ip_over_a = D * D / 8.0;
+    for i in 0..4 {
+        let lam = [1.875, 4.694, 7.855, 10.996][i] / L;
+        let split = y[i] * 2f64.sqrt() / z[i] - 1.0;
+        println!(
+            "f{}: x–y {:.4} Hz, x–z {:.4} Hz, √2·f_xy/f_xz − 1 = {split:.2e}",
+            i + 1,
+            y[i],
+            z[i]
+        );
+        assert!(
+            split <= 1e-9 && -split < ip_over_a * lam * lam,
+            "f{}: {split:e}",
+            i + 1
+        );
+    }
+}
+
+#[test]
 fn frequencies_do_not_depend_on_the_orientation() {
     for torsion in [true, false] {
         let a = modes(4, torsion, Matrix3::identity());
@@ -505,4 +547,60 @@ fn residual_cost_against_the_planar_element() {
         ts / tp,
         tc / tp
     );
+}
+
+/// spatial.md B2 [D]: a straight rod (L = 1, EI = 1, GJ = 0.7) under a dead end moment M
+/// bends into a helix; tip position and section rotation in closed form:
+/// Ω = |M|/EI, m̂ = M/|M|, cos α = M_t/|M|, u0 = (e_x − cos α m̂)/sin α, w0 = m̂ × u0,
+/// r(L) = cos α L m̂ + (sin α/Ω)(sin ΩL u0 + (1 − cos ΩL) w0),
+/// R(L) = exp(L M̃/EI)·exp(L M_t (1/GJ − 1/EI) ẽ_x). The element with torsion, all ANCF,
+/// static solve with the dead moment at the tip node (NodePort3's rotation and moment
+/// stiffness).
+#[test]
+fn end_moment_gives_the_closed_form_helix() {
+    let (ei, gj): (f64, f64) = (1.0, 0.7);
+    let m_local: Vector3<f64> = Vector3::new(1.0, 0.0, 1.5);
+    let frame = oblique();
+    let (om, mhat) = (m_local.norm() / ei, m_local.normalize());
+    let ca = m_local[0] / m_local.norm();
+    let sa = (1.0 - ca * ca).sqrt();
+    let u0 = (Vector3::x() - ca * mhat) / sa;
+    let w0 = mhat.cross(&u0);
+    let r_tip: Vector3<f64> =
+        frame * (ca * mhat + (sa / om) * (om.sin() * u0 + (1.0 - om.cos()) * w0));
+    let rot = Rotation3::new(m_local / ei)
+        * Rotation3::new(Vector3::x() * m_local[0] * (1.0 / gj - 1.0 / ei));
+    let frame_tip = frame * rot.into_inner();
+    println!("B2 helix, M = {m_local:?} (section axes): elements | tip position error | tip frame error [rad]");
+    let mut last = (f64::INFINITY, f64::INFINITY);
+    for n in [4, 8, 16, 32] {
+        let p = Ancf3Props {
+            length: 1.0 / n as f64,
+            rho_a: 1.0,
+            rho_ip: 1e-3,
+            ea: 1e4,
+            ei_y: ei,
+            ei_z: ei,
+            gj,
+            damping_time: 0.0,
+            torsion: true,
+        };
+        let mut model = chain_of(p, n, frame);
+        model.set_tip_moment((frame * m_local).into());
+        let mut s =
+            hybeam::integrator::State::at_rest(0.0, model.initial_coordinates().to_vec(), 0);
+        hybeam::integrator::solve_static(&mut model, &mut s, 1e-11).expect("static solve");
+        let q_tip = &s.q[s.q.len() - 9..];
+        let kin = hybeam::model::Port::<Spatial>::kinematics(&NodePort3::new(true, frame), q_tip);
+        let ep = (Vector3::from_column_slice(&q_tip[..3]) - r_tip).norm();
+        let er = Rotation3::from_matrix_unchecked(frame_tip.transpose() * kin.frame).angle();
+        println!("{n:8} | {ep:.3e} | {er:.3e}");
+        // converging: each halving of the elements reduces both errors
+        assert!(
+            ep < last.0 && er < last.1,
+            "{n}: {ep:e} {er:e} after {last:?}"
+        );
+        last = (ep, er);
+    }
+    assert!(last.0 < 2e-5 && last.1 < 5e-5, "{last:?}");
 }

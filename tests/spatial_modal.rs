@@ -854,58 +854,64 @@ fn clamped_segment_statics_match_beam_theory_in_both_planes_and_torsion() {
 #[ignore = "timing, run with --ignored --nocapture"]
 fn residual_timing() {
     use hybeam::model::modal::{BodyOut, ModalBody};
+    use hybeam::model::Planar;
     use std::hint::black_box;
     use std::time::Instant;
+    /// Best time per call [s] of `f` over 7 batches of `n` calls (the machine is shared).
+    fn best(n: usize, mut f: impl FnMut()) -> f64 {
+        (0..7)
+            .map(|_| {
+                let t0 = Instant::now();
+                for _ in 0..n {
+                    f();
+                }
+                t0.elapsed().as_secs_f64() / n as f64
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
     let b = test_body(4, true);
     let d = b.dim();
     let (q, v, a) = random_state(&b, 0.5);
+    let g = [0.0, -9.81, 0.0];
     let mut r = vec![0.0; d];
-    let n = 200_000;
-    let t0 = Instant::now();
-    for _ in 0..n {
-        b.residual(
-            black_box(&q),
-            black_box(&v),
-            black_box(&a),
-            [0.0, -9.81, 0.0],
-            &mut r,
-        );
+    let t3 = best(20_000, || {
+        b.residual(black_box(&q), black_box(&v), black_box(&a), g, &mut r);
         black_box(&r);
-    }
-    let t3 = t0.elapsed().as_secs_f64() / n as f64;
+    });
     let p = ModalBody::new(ModalBasis::new(4, true), 0.4, 2.4, 1650.0, 0.02, 1e-4);
     let dp = p.dim();
     let mut o = BodyOut::new(dp);
-    let t0 = Instant::now();
-    for _ in 0..n {
+    let (qp, vp, ap) = (&q[..dp], &v[..dp], &a[..dp]);
+    let t2 = best(20_000, || {
         p.eval(
-            black_box(&q[..dp]),
-            black_box(&v[..dp]),
-            black_box(&a[..dp]),
+            black_box(qp),
+            black_box(vp),
+            black_box(ap),
             [0.0, -9.81],
             false,
             &mut o,
         );
         black_box(&o.res);
-    }
-    let t2 = t0.elapsed().as_secs_f64() / n as f64;
-    let m = 2000;
+    });
     let mut block = vec![0.0; d * d];
-    let t0 = Instant::now();
-    for _ in 0..m {
-        b.newton_block(
-            (&q, &v, &a),
-            [0.0, -9.81, 0.0],
-            (1.0, 0.5, 0.25),
-            &mut block,
-        );
+    let tb = best(300, || {
+        b.newton_block((&q, &v, &a), g, (1.0, 0.5, 0.25), &mut block);
         black_box(&block);
-    }
-    let tb = t0.elapsed().as_secs_f64() / m as f64;
+    });
+    let port = ModalTipPort3(Arc::new(b.clone()));
+    let tk = best(1000, || {
+        black_box(port.kinematics(black_box(&q)));
+    });
+    let pport = hybeam::model::planar::ModalTipPort(Arc::new(p.clone()));
+    let tpk = best(1000, || {
+        black_box(Port::<Planar>::kinematics(&pport, black_box(qp)));
+    });
     eprintln!(
-        "residual: spatial {:.0} ns ({d} coordinates), planar {:.0} ns ({dp}); Newton block {:.1} µs",
+        "best of 7: residual spatial {:.0} ns ({d} coordinates), planar {:.0} ns ({dp}); Newton block {:.1} µs; tip kinematics {:.2} µs (planar {:.2} µs)",
         t3 * 1e9,
         t2 * 1e9,
-        tb * 1e6
+        tb * 1e6,
+        tk * 1e6,
+        tpk * 1e6
     );
 }

@@ -165,6 +165,90 @@ fn scatter<T: Real, const N: usize, const D: usize>(
     }
 }
 
+/// How a local vector of a quadrature point is made of element coordinates: Σ_j w_j
+/// e[slot_j..slot_j + 3].
+#[derive(Debug, Clone, Copy)]
+struct Map<'a> {
+    w: &'a [f64],
+    slots: &'a [usize],
+}
+
+impl<'a> Map<'a> {
+    #[inline(always)]
+    fn new(w: &'a [f64], slots: &'a [usize]) -> Self {
+        Self { w, slots }
+    }
+}
+
+/// The local vectors of a point.
+#[inline(always)]
+fn gather<T: Real, const K: usize, const D: usize>(maps: &[Map<'_>; K], e: &[T; D]) -> [V<T>; K] {
+    maps.map(|m| {
+        let mut r = [T::from(0.0); 3];
+        for (w, s) in m.w.iter().zip(m.slots) {
+            for c in 0..3 {
+                r[c] += e[s + c] * *w;
+            }
+        }
+        r
+    })
+}
+
+/// Adds the Jacobians of one point's local forces `g(u, u̇)` (K local vectors) to the element
+/// stiffness `k` and, with `c`, damping matrix: AD with N = 3K (positions) or 6K (positions
+/// and rates) seeds, then `mapsᵀ J maps`.
+fn point_tangent<const K: usize, const N: usize, const D: usize>(
+    maps: &[Map<'_>; K],
+    e: &[f64; D],
+    ed: &[f64; D],
+    k: &mut [[f64; D]; D],
+    c: Option<&mut [[f64; D]; D]>,
+    g: impl FnOnce(&[V<DualSVec64<N>>; K], &[V<DualSVec64<N>>; K]) -> [V<DualSVec64<N>>; K],
+) {
+    debug_assert!(N == 3 * K || (N == 6 * K && c.is_some()));
+    let (u0, ud0) = (gather(maps, e), gather(maps, ed));
+    let seed = |x: &[V<f64>; K], off: usize, on: bool| {
+        let mut out = [[DualSVec64::<N>::from_re(0.0); 3]; K];
+        for al in 0..K {
+            for ci in 0..3 {
+                let v = DualSVec64::<N>::from_re(x[al][ci]);
+                out[al][ci] = if on {
+                    v.derivative(off + 3 * al + ci)
+                } else {
+                    v
+                };
+            }
+        }
+        out
+    };
+    let rates = N == 6 * K;
+    let out = g(&seed(&u0, 0, true), &seed(&ud0, 3 * K, rates));
+    let add = |mat: &mut [[f64; D]; D], off: usize| {
+        for (ma, ga) in maps.iter().zip(&out) {
+            for ci in 0..3 {
+                let Some(eps) = &ga[ci].eps.0 else { continue };
+                for (mb, bet) in maps.iter().zip(0..K) {
+                    for cj in 0..3 {
+                        let j = eps[off + 3 * bet + cj];
+                        if j == 0.0 {
+                            continue;
+                        }
+                        for (wa, sa) in ma.w.iter().zip(ma.slots) {
+                            for (wb, sb) in mb.w.iter().zip(mb.slots) {
+                                mat[sa + ci][sb + cj] += wa * wb * j;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    };
+    add(k, 0);
+    if let (Some(c), true) = (c, rates) {
+        add(c, 3 * K);
+    }
+}
+
 /// Gradient of a scalar measure with respect to (r_x, r_xx, r_y, r_yx) at a point.
 #[derive(Debug, Clone, Copy)]
 struct Grad<T> {
@@ -403,7 +487,9 @@ impl Ancf3Props {
     }
 
     /// Internal force, tangent stiffness ∂f/∂e and damping matrix ∂f/∂ė (row-major D × D),
-    /// exact (forward-mode AD of [`Ancf3Props::internal_force`]'s code).
+    /// exact: forward-mode AD of the same point functions as [`Ancf3Props::internal_force`],
+    /// on each quadrature point's local vectors (r_x; r_x, r_xx, r_y, r_yx; …) and mapped to
+    /// the element by the constant shape weights.
     #[allow(clippy::type_complexity)]
     pub fn tangent<const D: usize>(
         &self,
@@ -411,33 +497,62 @@ impl Ancf3Props {
         e: &[f64; D],
         ed: &[f64; D],
     ) -> ([f64; D], Box<[[f64; D]; D]>, Box<[[f64; D]; D]>) {
-        let seeded = |x: &[f64; D]| {
-            let mut s = [DualSVec64::<D>::from_re(0.0); D];
-            for k in 0..D {
-                s[k] = DualSVec64::<D>::from_re(x[k]).derivative(k);
+        debug_assert_eq!(D, self.dofs());
+        let force = self.internal_force(tab, e, ed);
+        let mut k = Box::new([[0.0; D]; D]);
+        let mut c = Box::new([[0.0; D]; D]);
+        let damped = self.damping_time > 0.0;
+        let (rs, ys) = self.slots();
+        let mats = (&mut *k, &mut *c);
+        for (w, ds) in &tab.axial {
+            let maps = [Map::new(ds, &rs)];
+            if damped {
+                point_tangent::<1, 6, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
+                    self.axial_point(*w, u, Some(ud))
+                });
+            } else {
+                point_tangent::<1, 3, D>(&maps, e, ed, mats.0, None, |u, _| {
+                    self.axial_point(*w, u, None)
+                });
             }
-            s
-        };
-        let plain = |x: &[f64; D]| x.map(DualSVec64::<D>::from_re);
-        let jac = |f: [DualSVec64<D>; D]| {
-            let mut j = Box::new([[0.0; D]; D]);
-            for (row, fi) in j.iter_mut().zip(&f) {
-                if let Some(eps) = &fi.eps.0 {
-                    for k in 0..D {
-                        row[k] = eps[k];
-                    }
+        }
+        for p in &tab.bending {
+            if self.torsion {
+                let maps = [
+                    Map::new(&p.ds, &rs),
+                    Map::new(&p.dds, &rs),
+                    Map::new(&p.ny, &ys),
+                    Map::new(&p.nyx, &ys),
+                ];
+                if damped {
+                    point_tangent::<4, 24, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
+                        self.bend_point(p.w, u, Some(ud))
+                    });
+                } else {
+                    point_tangent::<4, 12, D>(&maps, e, ed, mats.0, None, |u, _| {
+                        self.bend_point(p.w, u, None)
+                    });
+                }
+            } else {
+                let maps = [Map::new(&p.ds, &rs), Map::new(&p.dds, &rs)];
+                if damped {
+                    point_tangent::<2, 12, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
+                        self.cable_point(p.w, u, Some(ud))
+                    });
+                } else {
+                    point_tangent::<2, 6, D>(&maps, e, ed, mats.0, None, |u, _| {
+                        self.cable_point(p.w, u, None)
+                    });
                 }
             }
-            j
-        };
-        let fk = self.force_generic(tab, &seeded(e), &plain(ed));
-        let force = fk.map(|x| x.re);
-        let k = jac(fk);
-        let c = if self.damping_time > 0.0 {
-            jac(self.force_generic(tab, &plain(e), &seeded(ed)))
-        } else {
-            Box::new([[0.0; D]; D])
-        };
+        }
+        if self.torsion {
+            for node in 0..2 {
+                let (xs, ysl) = ([9 * node + 3], [9 * node + 6]);
+                let maps = [Map::new(&[1.0], &xs), Map::new(&[1.0], &ysl)];
+                point_tangent::<2, 6, D>(&maps, e, ed, mats.0, None, |u, _| self.penalty_node(u));
+            }
+        }
         (force, k, c)
     }
 
@@ -448,107 +563,135 @@ impl Ancf3Props {
         ed: &[T; D],
     ) -> [T; D] {
         debug_assert_eq!(D, self.dofs());
-        let tau_d = self.damping_time;
-        let damped = tau_d > 0.0;
+        let damped = self.damping_time > 0.0;
         let (rs, ys) = self.slots();
         let mut f = [T::from(0.0); D];
         for (w, ds) in &tab.axial {
-            let a = comb(ds, &rs, e);
-            let n = dot(&a, &a).sqrt();
-            let inv = n.recip();
-            let g = [a[0] * inv, a[1] * inv, a[2] * inv];
-            let mut stress = n - 1.0;
-            if damped {
-                let ad = comb(ds, &rs, ed);
-                stress += dot(&g, &ad) * tau_d;
-            }
-            let s = stress * *w;
-            scatter(&mut f, ds, &rs, &[g[0] * s, g[1] * s, g[2] * s]);
+            let ud = damped.then(|| [comb(ds, &rs, ed)]);
+            let [g] = self.axial_point(*w, &[comb(ds, &rs, e)], ud.as_ref());
+            scatter(&mut f, ds, &rs, &g);
         }
-        if self.torsion {
-            for p in &tab.bending {
-                let a = comb(&p.ds, &rs, e);
-                let b = comb(&p.dds, &rs, e);
-                let c = comb(&p.ny, &ys, e);
-                let d = comb(&p.nyx, &ys, e);
-                let (m, g) = bend_twist(&a, &b, &c, &d);
-                let stiff = [self.ei_y, self.ei_z, self.gj];
-                let mut s = m;
-                if damped {
-                    let ad = comb(&p.ds, &rs, ed);
-                    let bd = comb(&p.dds, &rs, ed);
-                    let cd = comb(&p.ny, &ys, ed);
-                    let dd = comb(&p.nyx, &ys, ed);
-                    for i in 0..3 {
-                        let gi = &g[i];
-                        let rate =
-                            dot(&gi.a, &ad) + dot(&gi.b, &bd) + dot(&gi.c, &cd) + dot(&gi.d, &dd);
-                        s[i] += rate * tau_d;
-                    }
-                }
-                let s = [0, 1, 2].map(|i| s[i] * (p.w * stiff[i]));
-                let ga = lin3(s[0], &g[0].a, s[1], &g[1].a, s[2], &g[2].a);
-                let gb = lin3(s[0], &g[0].b, s[1], &g[1].b, s[2], &g[2].b);
-                let gc = lin3(s[0], &g[0].c, s[1], &g[1].c, s[2], &g[2].c);
-                let gd = [s[2] * g[2].d[0], s[2] * g[2].d[1], s[2] * g[2].d[2]];
+        for p in &tab.bending {
+            let (a, b) = (comb(&p.ds, &rs, e), comb(&p.dds, &rs, e));
+            let (ad, bd) = if damped {
+                (comb(&p.ds, &rs, ed), comb(&p.dds, &rs, ed))
+            } else {
+                ([T::from(0.0); 3], [T::from(0.0); 3])
+            };
+            if self.torsion {
+                let (c, d) = (comb(&p.ny, &ys, e), comb(&p.nyx, &ys, e));
+                let ud = damped.then(|| [ad, bd, comb(&p.ny, &ys, ed), comb(&p.nyx, &ys, ed)]);
+                let [ga, gb, gc, gd] = self.bend_point(p.w, &[a, b, c, d], ud.as_ref());
                 scatter(&mut f, &p.ds, &rs, &ga);
                 scatter(&mut f, &p.dds, &rs, &gb);
                 scatter(&mut f, &p.ny, &ys, &gc);
                 scatter(&mut f, &p.nyx, &ys, &gd);
+            } else {
+                let ud = damped.then_some([ad, bd]);
+                let [ga, gb] = self.cable_point(p.w, &[a, b], ud.as_ref());
+                scatter(&mut f, &p.ds, &rs, &ga);
+                scatter(&mut f, &p.dds, &rs, &gb);
             }
-            // nodal penalty: ½(l/2)k[(½(|y|² − 1))² + γ²], γ = t·y
-            let kp = 0.5 * self.length * self.penalty_stiffness();
+        }
+        if self.torsion {
             for node in 0..2 {
                 let (xs, yslot) = (9 * node + 3, 9 * node + 6);
                 let x = [e[xs], e[xs + 1], e[xs + 2]];
                 let y = [e[yslot], e[yslot + 1], e[yslot + 2]];
-                let inv_n = dot(&x, &x).sqrt().recip();
-                let gam = dot(&x, &y) * inv_n;
-                let ystr = (dot(&y, &y) - 1.0) * 0.5;
-                let fy = lin2(ystr * kp, &y, gam * inv_n * kp, &x);
-                let fx = lin2(gam * inv_n * kp, &y, -(gam * gam) * inv_n * inv_n * kp, &x);
+                let [fx, fy] = self.penalty_node(&[x, y]);
                 for c in 0..3 {
                     f[xs + c] += fx[c];
                     f[yslot + c] += fy[c];
                 }
             }
-        } else {
-            let ei = self.cable_ei();
-            for p in &tab.bending {
-                let a = comb(&p.ds, &rs, e);
-                let b = comb(&p.dds, &rs, e);
-                let inv = dot(&a, &a).recip();
-                let bv = cross(&a, &b);
-                let kap = [bv[0] * inv, bv[1] * inv, bv[2] * inv];
-                let mut mv = kap;
-                if damped {
-                    // κ̇ − w × κ, w = (a × ȧ)/|a|² (the rotation rate of the tangent):
-                    // (ȧ × b + a × ḃ)/|a|² − 2κ (a·ȧ)/|a|² − (a × ȧ) × κ/|a|²
-                    let ad = comb(&p.ds, &rs, ed);
-                    let bd = comb(&p.dds, &rs, ed);
-                    let r1 = cross(&ad, &b);
-                    let r2 = cross(&a, &bd);
-                    let r3 = cross(&cross(&a, &ad), &kap);
-                    let ada = dot(&a, &ad) * 2.0;
-                    for c in 0..3 {
-                        mv[c] += (r1[c] + r2[c] - r3[c] - kap[c] * ada) * (inv * tau_d);
-                    }
-                }
-                let s = p.w * ei;
-                let mv = [mv[0] * s, mv[1] * s, mv[2] * s];
-                // Jᵀμ of κ̇_rel = J ė (J = ∂κ/∂e on the elastic part, κ·a = 0):
-                // a-part [b × μ − 2(κ·μ) a + (a·μ) κ]/|a|², b-part (μ × a)/|a|²
-                let bm = cross(&b, &mv);
-                let ma = cross(&mv, &a);
-                let km = dot(&kap, &mv) * (-2.0);
-                let am = dot(&a, &mv);
-                let ga = lin3(inv, &bm, km * inv, &a, am * inv, &kap);
-                let gb = [ma[0] * inv, ma[1] * inv, ma[2] * inv];
-                scatter(&mut f, &p.ds, &rs, &ga);
-                scatter(&mut f, &p.dds, &rs, &gb);
-            }
         }
         f
+    }
+
+    /// Local force of an axial point (weight `w`·EA): ∂/∂r_x of ½w ε², Kelvin–Voigt stress
+    /// ε + τ_d ε̇ with the rate `ud`.
+    #[inline(always)]
+    fn axial_point<T: Real>(&self, w: f64, u: &[V<T>; 1], ud: Option<&[V<T>; 1]>) -> [V<T>; 1] {
+        let a = &u[0];
+        let n = dot(a, a).sqrt();
+        let inv = n.recip();
+        let g = [a[0] * inv, a[1] * inv, a[2] * inv];
+        let mut stress = n - 1.0;
+        if let Some(ud) = ud {
+            stress += dot(&g, &ud[0]) * self.damping_time;
+        }
+        let s = stress * w;
+        [[g[0] * s, g[1] * s, g[2] * s]]
+    }
+
+    /// Local forces on (r_x, r_xx, r_y, r_yx) of a bending/twist point (weight `w` [m]).
+    #[inline(always)]
+    fn bend_point<T: Real>(&self, w: f64, u: &[V<T>; 4], ud: Option<&[V<T>; 4]>) -> [V<T>; 4] {
+        let [a, b, c, d] = u;
+        let (m, g) = bend_twist(a, b, c, d);
+        let stiff = [self.ei_y, self.ei_z, self.gj];
+        let mut s = m;
+        if let Some([ad, bd, cd, dd]) = ud {
+            for i in 0..3 {
+                let gi = &g[i];
+                let rate = dot(&gi.a, ad) + dot(&gi.b, bd) + dot(&gi.c, cd) + dot(&gi.d, dd);
+                s[i] += rate * self.damping_time;
+            }
+        }
+        let s = [0, 1, 2].map(|i| s[i] * (w * stiff[i]));
+        [
+            lin3(s[0], &g[0].a, s[1], &g[1].a, s[2], &g[2].a),
+            lin3(s[0], &g[0].b, s[1], &g[1].b, s[2], &g[2].b),
+            lin3(s[0], &g[0].c, s[1], &g[1].c, s[2], &g[2].c),
+            [s[2] * g[2].d[0], s[2] * g[2].d[1], s[2] * g[2].d[2]],
+        ]
+    }
+
+    /// Local forces on (r_x, r_xx) of a cable bending point (weight `w` [m]).
+    #[inline(always)]
+    fn cable_point<T: Real>(&self, w: f64, u: &[V<T>; 2], ud: Option<&[V<T>; 2]>) -> [V<T>; 2] {
+        let [a, b] = u;
+        let inv = dot(a, a).recip();
+        let bv = cross(a, b);
+        let kap = [bv[0] * inv, bv[1] * inv, bv[2] * inv];
+        let mut mv = kap;
+        if let Some([ad, bd]) = ud {
+            // κ̇ − w × κ, w = (a × ȧ)/|a|² (the rotation rate of the tangent):
+            // (ȧ × b + a × ḃ)/|a|² − 2κ (a·ȧ)/|a|² − (a × ȧ) × κ/|a|²
+            let r1 = cross(ad, b);
+            let r2 = cross(a, bd);
+            let r3 = cross(&cross(a, ad), &kap);
+            let ada = dot(a, ad) * 2.0;
+            for c in 0..3 {
+                mv[c] += (r1[c] + r2[c] - r3[c] - kap[c] * ada) * (inv * self.damping_time);
+            }
+        }
+        let s = w * self.cable_ei();
+        let mv = [mv[0] * s, mv[1] * s, mv[2] * s];
+        // Jᵀμ of κ̇_rel = J ė (J = ∂κ/∂e on the elastic part, κ·a = 0):
+        // a-part [b × μ − 2(κ·μ) a + (a·μ) κ]/|a|², b-part (μ × a)/|a|²
+        let bm = cross(b, &mv);
+        let ma = cross(&mv, a);
+        let km = dot(&kap, &mv) * (-2.0);
+        let am = dot(a, &mv);
+        [
+            lin3(inv, &bm, km * inv, a, am * inv, &kap),
+            [ma[0] * inv, ma[1] * inv, ma[2] * inv],
+        ]
+    }
+
+    /// Local forces on (r_x, r_y) of a node's penalty ½(l/2)k[(½(|y|² − 1))² + γ²], γ = t·y.
+    #[inline(always)]
+    fn penalty_node<T: Real>(&self, u: &[V<T>; 2]) -> [V<T>; 2] {
+        let kp = 0.5 * self.length * self.penalty_stiffness();
+        let [x, y] = u;
+        let inv_n = dot(x, x).sqrt().recip();
+        let gam = dot(x, y) * inv_n;
+        let ystr = (dot(y, y) - 1.0) * 0.5;
+        [
+            lin2(gam * inv_n * kp, y, -(gam * gam) * inv_n * inv_n * kp, x),
+            lin2(ystr * kp, y, gam * inv_n * kp, x),
+        ]
     }
 
     /// Strain energy [J] at the element coordinates `e` (d entries).

@@ -17,7 +17,7 @@ use crate::model::component::{
 use crate::model::modal::body3d::{self, cross, euler_rotation, Real, V3};
 use crate::model::modal::ModalBody3;
 use nalgebra::{Matrix3, Vector3};
-use num_dual::{Dual64, HyperDual64};
+use num_dual::HyperDual64;
 use std::any::Any;
 use std::sync::Arc;
 
@@ -59,28 +59,41 @@ fn dd_av(v: &Vector3<f64>, i: usize, j: usize) -> Vector3<f64> {
     }
 }
 
-/// A(p) as a nalgebra matrix.
-fn rotation(p: &[f64; 4]) -> Matrix3<f64> {
-    let a = euler_rotation(*p);
-    Matrix3::from_fn(|i, j| a[i][j])
+/// A(p) and its derivatives ∂A/∂p_k at one p (A is quadratic in p: these give every
+/// ∂(Av̄)/∂p = ∂A/∂p v̄ by one product).
+struct Attitude {
+    a: Matrix3<f64>,
+    da: [Matrix3<f64>; 4],
+}
+
+impl Attitude {
+    fn new(q: &[f64]) -> Self {
+        let p = [q[P0], q[P0 + 1], q[P0 + 2], q[P0 + 3]];
+        let a = euler_rotation(p);
+        let cols = [Vector3::x(), Vector3::y(), Vector3::z()].map(|e| d_av(&p, &e));
+        Self {
+            a: Matrix3::from_fn(|i, j| a[i][j]),
+            da: [0, 1, 2, 3].map(|k| Matrix3::from_columns(&[cols[0][k], cols[1][k], cols[2][k]])),
+        }
+    }
 }
 
 /// The field A(p)·v̄(a) (+ R if `with_r`) over `dim` local coordinates, from v̄ at the current
 /// a, its derivatives `dv` (local index, ∂v̄/∂q_k) and second derivatives `ddv` (k ≤ l).
 fn frame_field(
     q: &[f64],
+    att: &Attitude,
     dim: usize,
     with_r: bool,
     v: Vector3<f64>,
     dv: &[(usize, Vector3<f64>)],
     ddv: &[(usize, usize, Vector3<f64>)],
 ) -> Field3 {
-    let p = [q[P0], q[P0 + 1], q[P0 + 2], q[P0 + 3]];
-    let a = rotation(&p);
+    let a = &att.a;
     let mut f = Field3 {
         v: a * v,
         d: vec![Vector3::zeros(); dim],
-        dd: Vec::new(),
+        dd: Vec::with_capacity(10 + 4 * dv.len() + ddv.len()),
     };
     if with_r {
         for c in 0..3 {
@@ -88,22 +101,24 @@ fn frame_field(
             f.d[c][c] = 1.0;
         }
     }
-    for (k, d) in d_av(&p, &v).into_iter().enumerate() {
-        f.d[P0 + k] = d;
+    for (k, da) in att.da.iter().enumerate() {
+        f.d[P0 + k] = da * v;
     }
     let mut push = |i: usize, j: usize, h: Vector3<f64>| {
         if h != Vector3::zeros() {
             f.dd.push((i, j, h));
         }
     };
-    for i in 0..4 {
-        for j in i..4 {
-            push(P0 + i, P0 + j, dd_av(&v, i, j));
+    if v != Vector3::zeros() {
+        for i in 0..4 {
+            for j in i..4 {
+                push(P0 + i, P0 + j, dd_av(&v, i, j));
+            }
         }
     }
     for &(k, b) in dv {
-        for (i, h) in d_av(&p, &b).into_iter().enumerate() {
-            push(P0 + i, k, h);
+        for (i, da) in att.da.iter().enumerate() {
+            push(P0 + i, k, da * b);
         }
     }
     for &(k, l, c) in ddv {
@@ -125,26 +140,24 @@ fn frame_of<T: Real>(t: V3<T>, s: V3<T>) -> [V3<T>; 3] {
     [t, d2, d3]
 }
 
-/// Virtual rotation ½Σ d_i × ∂d_i of the frame of (T, S) along the directions (δT, δS).
-fn frame_rotation(t: &Field3, s: &Field3, k: usize) -> Vector3<f64> {
-    let lift = |f: &Field3| -> V3<Dual64> { [0, 1, 2].map(|c| Dual64::new(f.v[c], f.d[k][c])) };
-    let fr = frame_of(lift(t), lift(s));
-    let mut w = Vector3::zeros();
-    for d in fr {
-        let re = Vector3::new(d[0].re, d[1].re, d[2].re);
-        let eps = Vector3::new(d[0].eps, d[1].eps, d[2].eps);
-        w += 0.5 * re.cross(&eps);
-    }
-    w
-}
-
-/// The end kinematics from position, directors and normals: frame and rotation from the
-/// tangent and section directors.
+/// The end kinematics from position, directors and normals: frame [t, d2, d3] of the tangent
+/// T and the section director S ([`frame_of`]) and its rotation ω_k = ½Σ d_i × ∂d_i/∂q_k, in
+/// closed form on the frame: with |T|, u = S − (t·S)t,
+/// ω_k = ((∂S·d3 − (t·S)(∂T·d3)/|T|)/|u|) t − (∂T·d3/|T|) d2 + (∂T·d2/|T|) d3.
 fn end_kin(p: Field3, tangent: Field3, section: Field3, normals: [Field3; 3]) -> EndKin3 {
-    let fr = frame_of(tangent.v.into(), section.v.into());
-    let frame = Matrix3::from_fn(|i, j| fr[j][i]);
-    let rotation = (0..tangent.d.len())
-        .map(|k| frame_rotation(&tangent, &section, k))
+    let [t, d2, d3] = frame_of(tangent.v.into(), section.v.into()).map(Vector3::from);
+    let frame = Matrix3::from_columns(&[t, d2, d3]);
+    let tn = tangent.v.norm();
+    let ts = t.dot(&section.v);
+    let un = (section.v - ts * t).norm();
+    let rotation = tangent
+        .d
+        .iter()
+        .zip(&section.d)
+        .map(|(dt, ds)| {
+            let (t2, t3) = (dt.dot(&d2) / tn, dt.dot(&d3) / tn);
+            (ds.dot(&d3) - ts * t3) / un * t - t3 * d2 + t2 * d3
+        })
         .collect();
     EndKin3 {
         p,
@@ -289,6 +302,7 @@ impl Port<Spatial> for ModalTipPort3 {
         let nb = b.modes();
         let d = b.dim();
         let l = b.props.length;
+        let att = Attitude::new(q);
         let (_, slope, th) = b.tip_elastic(q);
         let (vs, ws) = (slope[0], slope[1]);
         let (x, y, z) = (Vector3::x(), Vector3::y(), Vector3::z());
@@ -310,7 +324,7 @@ impl Port<Spatial> for ModalTipPort3 {
                 }
             }
         }
-        let pos = frame_field(q, d, true, u, &du, &ddu);
+        let pos = frame_field(q, &att, d, true, u, &du, &ddu);
         // director derivatives: v′ by a_y, w′ by a_z, θ by a_t
         let sy = |dir: Vector3<f64>| -> Vec<(usize, Vector3<f64>)> {
             (0..nb)
@@ -328,19 +342,19 @@ impl Port<Spatial> for ModalTipPort3 {
         let tangent = {
             let mut dv = sy(y);
             dv.extend(sz(z));
-            frame_field(q, d, false, x + vs * y + ws * z, &dv, &[])
+            frame_field(q, &att, d, false, x + vs * y + ws * z, &dv, &[])
         };
         let section = {
             let mut dv = sy(-x);
             dv.extend(st(z));
-            frame_field(q, d, false, y + th * z - vs * x, &dv, &[])
+            frame_field(q, &att, d, false, y + th * z - vs * x, &dv, &[])
         };
-        let n1 = frame_field(q, d, false, y - vs * x, &sy(-x), &[]);
-        let n2 = frame_field(q, d, false, z - ws * x, &sz(-x), &[]);
+        let n1 = frame_field(q, &att, d, false, y - vs * x, &sy(-x), &[]);
+        let n2 = frame_field(q, &att, d, false, z - ws * x, &sz(-x), &[]);
         let n3 = {
             let mut dv = st(-y);
             dv.extend(sz(-x));
-            frame_field(q, d, false, z - th * y - ws * x, &dv, &[])
+            frame_field(q, &att, d, false, z - th * y - ws * x, &dv, &[])
         };
         end_kin(pos, tangent, section, [n1, n2, n3])
     }
@@ -365,8 +379,9 @@ pub struct ModalRootPort3(pub Arc<ModalBody3>);
 impl Port<Spatial> for ModalRootPort3 {
     fn kinematics(&self, q: &[f64]) -> EndKin3 {
         let d = self.0.dim();
-        let f = |v: Vector3<f64>| frame_field(q, d, false, v, &[], &[]);
-        let pos = frame_field(q, d, true, Vector3::zeros(), &[], &[]);
+        let att = Attitude::new(q);
+        let f = |v: Vector3<f64>| frame_field(q, &att, d, false, v, &[], &[]);
+        let pos = frame_field(q, &att, d, true, Vector3::zeros(), &[], &[]);
         let (x, y, z) = (Vector3::x(), Vector3::y(), Vector3::z());
         end_kin(pos, f(x), f(y), [f(y), f(z), f(z)])
     }

@@ -475,4 +475,58 @@ mod tests {
             assert!(Vector3::from(mr).amax() > 1e-6 * scale);
         }
     }
+
+    fn state(e: &[f64], ed: &[f64]) -> (LocalDofs, Vec<f64>, Vec<f64>, Vec<f64>) {
+        let mut num = Numbering::default();
+        let dofs = LocalDofs::new(e.iter().map(|v| num.free(*v, 1.0)).collect());
+        (dofs, e.to_vec(), ed.to_vec(), vec![0.0; e.len()])
+    }
+
+    #[test]
+    fn energies_and_validity_match_closed_forms() {
+        // straight element along the reference axis, stretched by 1 %, translating at v and
+        // spinning about its axis at ω: kinetic ½ρA l|v|² + ½ρI_p l ω² (r_y turns at ω about the
+        // axis, its rate has length ω), strain ½EA l ε², gravity potential −ρA l g·(centre).
+        let p = crate::model::ancf3d::tests::props(true, 0.0, 1.0);
+        let f = reference();
+        let (x, y) = (f.column(0), f.column(1));
+        let (l, eps, om) = (p.length, 0.01, 40.0);
+        let v = Vector3::new(0.3, -0.2, 0.5);
+        let mut e = Vec::new();
+        let mut ed = Vec::new();
+        for s in [0.0, l] {
+            e.extend((x * s * (1.0 + eps)).iter());
+            e.extend((x * (1.0 + eps)).iter());
+            e.extend(y.iter());
+            ed.extend(v.iter());
+            ed.extend([0.0; 3]);
+            ed.extend((om * x.cross(&y)).iter());
+        }
+        let (dofs, q, qd, a) = state(&e, &ed);
+        let mut el = AncfElement3::new(p);
+        let g = [0.0, -9.81, 2.0];
+        el.set_gravity(&g);
+        let en = el.energies(&LocalState::new(&dofs, &[], (&q, &qd, &a)), &g);
+        let kin = 0.5 * p.rho_a * l * v.norm_squared() + 0.5 * p.rho_ip * l * om * om;
+        assert!(
+            (en.kinetic - kin).abs() < 1e-14 * kin,
+            "{} vs {kin}",
+            en.kinetic
+        );
+        let strain = 0.5 * p.ea * l * eps * eps;
+        assert!(
+            (en.strain - strain).abs() < 1e-10 * strain,
+            "{} vs {strain}",
+            en.strain
+        );
+        let centre = x * 0.5 * l * (1.0 + eps);
+        let pot = -p.rho_a * l * Vector3::from(g).dot(&centre);
+        assert!(
+            (en.potential - pot).abs() < 1e-15,
+            "{} vs {pot}",
+            en.potential
+        );
+        let val = el.validity(&e);
+        assert!((val.axial_strain - eps).abs() < 1e-14 && val.modal_deflection.is_none());
+    }
 }
