@@ -29,13 +29,17 @@ fn recording() -> bool {
     std::env::var_os("HYBEAM_RECORD_GOLDEN").is_some()
 }
 
-/// Every shipped beam scene (all of `scenes/`).
+/// Every shipped planar beam scene (`scenes/`; the recordings predate the spatial scenes).
 fn shipped_scenes() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let planar = |p: &PathBuf| {
+        let text = std::fs::read_to_string(p).unwrap();
+        Scene::from_toml(&text).unwrap().space == hybeam::scene::SpaceKind::Planar
+    };
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml") && planar(p))
         .collect();
     v.sort();
     v
