@@ -1,10 +1,11 @@
-//! Engine kernels: one ANCF element (forces + tangent), one Newton iteration (assembly +
+//! Engine kernels: one ANCF element (forces + tangent; planar and spatial), one Newton iteration (assembly +
 //! factorization + solve) and one full step of Case 1.
 #![allow(missing_docs)] // criterion's macros generate undocumented items
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
+use hybeam::model::ancf3d::Ancf3Props;
 use hybeam::model::{Model, Planar};
 use hybeam::scene::{Scene, StrainModel};
 use hybeam::simulator::Simulator;
@@ -84,5 +85,58 @@ fn step(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, element, newton, step);
+/// The spatial ANCF element (with torsion, and the cable) on the planar bench's rod and state
+/// (bent in the x–y plane, r_y = ẑ × r_x): forces only and forces + exact tangent (AD).
+fn spatial_element(c: &mut Criterion) {
+    let e2 = straight([0.0, 0.0], 0.1, 0.025);
+    for torsion in [true, false] {
+        let p = Ancf3Props {
+            length: 0.025,
+            rho_a: 0.0247,
+            rho_ip: 1.57e-8,
+            ea: 6.6e5,
+            ei_y: 0.165,
+            ei_z: 0.165,
+            gj: 0.127,
+            damping_time: 0.0,
+            torsion,
+        };
+        let tab = p.tables();
+        let mut e = Vec::new();
+        for node in 0..2 {
+            let (sx, sy) = (e2[4 * node + 2], e2[4 * node + 3] + [0.01, -0.02][node]);
+            e.extend([e2[4 * node], e2[4 * node + 1], 0.0, sx, sy, 0.0]);
+            if torsion {
+                let n = (sx * sx + sy * sy).sqrt();
+                e.extend([-sy / n, sx / n, 0.0]);
+            }
+        }
+        let name = if torsion {
+            "spatial ancf element"
+        } else {
+            "spatial ancf cable"
+        };
+        if torsion {
+            let e: [f64; 18] = e.try_into().unwrap();
+            let ed = [0.0; 18];
+            c.bench_function(&format!("{name}: forces only"), |b| {
+                b.iter(|| black_box(p.internal_force(&tab, black_box(&e), &ed)))
+            });
+            c.bench_function(&format!("{name}: forces + tangent"), |b| {
+                b.iter(|| black_box(p.tangent(&tab, black_box(&e), &ed)))
+            });
+        } else {
+            let e: [f64; 12] = e.try_into().unwrap();
+            let ed = [0.0; 12];
+            c.bench_function(&format!("{name}: forces only"), |b| {
+                b.iter(|| black_box(p.internal_force(&tab, black_box(&e), &ed)))
+            });
+            c.bench_function(&format!("{name}: forces + tangent"), |b| {
+                b.iter(|| black_box(p.tangent(&tab, black_box(&e), &ed)))
+            });
+        }
+    }
+}
+
+criterion_group!(benches, element, spatial_element, newton, step);
 criterion_main!(benches);

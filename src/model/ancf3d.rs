@@ -27,6 +27,7 @@
 //! same generic code by forward-mode AD (`num-dual`).
 
 use super::ancf::{GAUSS3, GAUSS5};
+use crate::scene::{Segment, StrainModel};
 use num_dual::{DualNum, DualSVec64};
 
 /// Coordinates of an element with torsion (2 nodes × [r, r_x, r_y]).
@@ -331,6 +332,38 @@ pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3], ryx: [f64; 3]) -> [f64
 }
 
 impl Ancf3Props {
+    /// Properties of the elements of an ANCF `segment` of a validated scene, split into its
+    /// `elements` equal elements, with or without torsion (the scene's `torsion`). Refuses
+    /// what this element cannot represent, naming the segment, field and fix: the paper's
+    /// simplified strain model, and E·I_y ≠ E·I_z without torsion ([`Ancf3Props::check`]).
+    pub fn of_segment(segment: &Segment, torsion: bool) -> Result<Self, String> {
+        let name = &segment.name;
+        if segment.strain != StrainModel::Exact {
+            return Err(format!(
+                "segment {name:?}: strain = \"paper\" is planar only; the spatial ANCF element \
+                 uses the exact strain measures (remove `strain` or set strain = \"exact\")"
+            ));
+        }
+        let sec = segment.section_props();
+        let e = segment.youngs_modulus;
+        let rho = segment.density;
+        let props = Self {
+            length: segment.length / segment.elements.unwrap_or(1) as f64,
+            rho_a: rho * sec.area,
+            rho_ip: rho * sec.polar,
+            ea: e * sec.area,
+            ei_y: e * sec.i_y,
+            ei_z: e * sec.i_z,
+            gj: segment.shear_modulus() * sec.torsion,
+            damping_time: segment.damping_time,
+            torsion,
+        };
+        props
+            .check()
+            .map_err(|m| format!("segment {name:?}: {m}"))?;
+        Ok(props)
+    }
+
     /// Number of element coordinates (18 with torsion, 12 without).
     pub fn dofs(&self) -> usize {
         if self.torsion {
@@ -1322,6 +1355,54 @@ pub(crate) mod tests {
             let want: f64 = (0..18).map(|j| m[i * d + j] * a[j]).sum();
             assert!((ma[i] - want).abs() < 1e-16, "{i}");
         }
+    }
+
+    #[test]
+    fn segment_properties_and_refusals() {
+        let text = r#"
+            name = "rod"
+            kind = "ancf"
+            length = 0.4
+            diameter = 2e-3
+            youngs_modulus = 210e9
+            poisson_ratio = 0.3
+            density = 7850.0
+            elements = 8
+            damping_time = 7e-4
+        "#;
+        let seg: Segment = toml::from_str(text).unwrap();
+        let p = Ancf3Props::of_segment(&seg, true).unwrap();
+        // independent: the round rod by hand
+        let want = props(true, 7e-4, 1.0);
+        for (got, want) in [
+            (p.length, want.length),
+            (p.rho_a, want.rho_a),
+            (p.rho_ip, want.rho_ip),
+            (p.ea, want.ea),
+            (p.ei_y, want.ei_y),
+            (p.ei_z, want.ei_z),
+            (p.gj, want.gj),
+        ] {
+            assert!((got - want).abs() <= 1e-14 * want, "{got} vs {want}");
+        }
+        assert_eq!(p.damping_time, 7e-4);
+        let paper = Segment {
+            strain: StrainModel::Paper,
+            ..seg.clone()
+        };
+        let msg = Ancf3Props::of_segment(&paper, true).unwrap_err();
+        assert!(msg.contains("\"rod\"") && msg.contains("strain"), "{msg}");
+        let rect: Segment = toml::from_str(&format!(
+            "{}\nsection = \"rectangle\"\nwidth = 2e-3\nheight = 4e-3",
+            text.replace("diameter = 2e-3", "")
+        ))
+        .unwrap();
+        assert!(Ancf3Props::of_segment(&rect, true).is_ok());
+        let msg = Ancf3Props::of_segment(&rect, false).unwrap_err();
+        assert!(
+            msg.contains("\"rod\"") && msg.contains("torsion = false"),
+            "{msg}"
+        );
     }
 
     #[test]
