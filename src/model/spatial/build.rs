@@ -18,7 +18,7 @@ use crate::model::assembly::{Model, Parts};
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::dofs::{Dof, LocalDofs, Numbering};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
-use crate::scene::{Root, Scene, SceneError, SegmentKind, SpaceKind, StrainModel};
+use crate::scene::{Root, Scene, SceneError, SegmentKind, SpaceKind};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use std::sync::Arc;
 
@@ -95,13 +95,6 @@ impl Model<Spatial> {
                 "space = \"planar\": this scene builds a planar model (Model::<Planar>), not a spatial one".into(),
             ));
         }
-        for (i, seg) in scene.segments.iter().enumerate() {
-            if seg.kind == SegmentKind::Ancf && seg.strain == StrainModel::Paper {
-                return Err(SceneError(format!(
-                    "segments[{i}].strain = \"paper\": the paper's simplified strain (κ ≈ |r″|) is planar only; a spatial scene uses strain = \"exact\" (the default)"
-                )));
-            }
-        }
         if !scene.torsion {
             let after_ancf = scene
                 .segments
@@ -129,7 +122,6 @@ impl Model<Spatial> {
         let mut s_pos = 0.0; // arc length at the segment root
         let mut prev_len = 0.0; // length of the previous segment (DOT1 row scale)
         for (si, seg) in scene.segments.iter().enumerate() {
-            let sp = seg.section_props();
             let first = si == 0;
             let root_pt = s_pos * ax;
             match seg.kind {
@@ -182,22 +174,8 @@ impl Model<Spatial> {
                 SegmentKind::Ancf => {
                     let ne = seg.elements.unwrap_or(1);
                     let le = seg.length / ne as f64;
-                    let g = seg.shear_modulus();
-                    let e = seg.youngs_modulus;
-                    let props = Ancf3Props {
-                        length: le,
-                        rho_a: seg.density * sp.area,
-                        rho_ip: seg.density * sp.polar,
-                        ea: e * sp.area,
-                        ei_y: e * sp.i_y,
-                        ei_z: e * sp.i_z,
-                        gj: g * sp.torsion,
-                        damping_time: seg.damping_time,
-                        torsion,
-                    };
-                    props
-                        .check()
-                        .map_err(|m| SceneError(format!("segments[{si}] ({}): {m}", seg.name)))?;
+                    let props = Ancf3Props::of_segment(seg, torsion)
+                        .map_err(|m| SceneError(format!("segments[{si}]: {m}")))?;
                     // node coordinates r, r_x (, r_y) at arc length s; held as the root asks
                     let node = |num: &mut Numbering, s: f64, free_r: bool, free_d: bool| {
                         let mut c = Coords::default();
