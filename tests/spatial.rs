@@ -484,25 +484,56 @@ fn b4_frequencies_of_the_case1_rod() {
 }
 
 /// The assembled Newton matrix (mass, damping, stiffness, joint rows and their λ-Hessian,
-/// tip force and moment) against central differences of the residual at a perturbed state.
+/// tip force and moment) of a spatial model against central differences of the residual at a
+/// perturbed state.
+fn check_spatial_newton_matrix(label: &str, header: &str, segs: &[String]) {
+    let s = scene(&format!("space = \"spatial\"\n{header}"), segs);
+    let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+    model.set_tip_force([0.3, -0.7, 0.2]);
+    model.set_tip_moment([0.01, 0.02, -0.03]);
+    let (n, m) = (model.coordinates(), model.constraints());
+    let worst = check_newton_matrix(&mut model);
+    eprintln!("Newton matrix, {label}: n = {n}, m = {m}, worst error {worst:.2e} of the tolerance");
+}
+
 #[test]
 fn newton_matrix_of_a_ball_rooted_hybrid_matches_central_differences() {
+    // ball root: the first frame's Euler parameters are free (normalization row); joints
+    // modal→ANCF (6 rows), ANCF→modal (6 rows)
     let d = 0.004;
-    let s = scene(
-        "space = \"spatial\"\nroot = \"ball\"\ngravity = [1.0, -9.81, 2.0]\n[initial]\norientation = [0.9, 0.1, -0.2, 0.3]",
+    check_spatial_newton_matrix(
+        "ball root, modal-ANCF-modal",
+        "root = \"ball\"\ngravity = [1.0, -9.81, 2.0]\n[initial]\norientation = [0.9, 0.1, -0.2, 0.3]",
         &[
             modal("m1", 0.2, &round(d), 2, true, "damping_ratio = 0.05"),
             ancf("a", 0.2, &round(d), 2, "damping_time = 1e-3"),
             modal("m2", 0.2, &round(d), 2, false, ""),
         ],
     );
-    let mut model = Model::<Spatial>::from_scene(&s).unwrap();
-    model.set_tip_force([0.3, -0.7, 0.2]);
-    model.set_tip_moment([0.01, 0.02, -0.03]);
-    let (n, m) = (model.coordinates(), model.constraints());
-    let worst = check_newton_matrix(&mut model);
-    eprintln!(
-        "Newton matrix vs central differences: n = {n}, m = {m}, worst error {worst:.2e} of the tolerance"
+}
+
+#[test]
+fn newton_matrix_of_clamped_and_cable_hybrids_matches_central_differences() {
+    let d = 0.004;
+    // clamped ANCF root (r, r_x, r_y held), modal middle with a modal→modal joint, ANCF tip
+    check_spatial_newton_matrix(
+        "clamped, ANCF-modal-modal-ANCF",
+        "gravity = [0.0, -9.81, 1.0]\n[initial]\norientation = [0.8, -0.3, 0.4, 0.1]",
+        &[
+            ancf("a1", 0.2, &round(d), 2, ""),
+            modal("m", 0.2, &round(d), 2, true, "damping_time = 1e-3"),
+            modal("m2", 0.1, &round(d), 2, false, ""),
+            ancf("a2", 0.2, &round(d), 2, ""),
+        ],
+    );
+    // the cable: modal→ANCF joint with 5 rows, ball root (modal frame free)
+    check_spatial_newton_matrix(
+        "ball root, cable, modal-ANCF",
+        "torsion = false\nroot = \"ball\"\ngravity = [0.5, -9.81, 0.0]",
+        &[
+            modal("m", 0.2, &round(d), 2, true, ""),
+            ancf("a", 0.2, &round(d), 3, "damping_time = 1e-3"),
+        ],
     );
 }
 
