@@ -6,7 +6,8 @@
 //! Geometry: the root frame → world rotation A₀ is `scene.root_orientation()`; the beam starts
 //! straight at the origin along A₀x̄ with its section axes A₀ȳ, A₀z̄, every segment in that
 //! frame. ANCF nodes are `[r, r_x, r_y]` (with torsion) or `[r, r_x]` (the cable); modal bodies
-//! `[R, p, a_y, a_z, a_t]` with p = A₀'s Euler parameters.
+//! `[R, p, a_y, a_z, a_t]` with p = A₀'s Euler parameters. A joint's DOT1 rows are scaled by
+//! the length of its upstream segment.
 
 use super::joint::RigidJoint3;
 use super::{
@@ -45,7 +46,7 @@ impl Coords {
         self.q0.push(value);
     }
 
-    /// Indices into the held values of the coordinates `range` (all held).
+    /// Indices into the held values of the `N` coordinates from `first` (all held).
     fn held<const N: usize>(&self, first: usize) -> [usize; N] {
         std::array::from_fn(|k| match self.dofs[first + k] {
             Dof::Held(j) => j as usize,
