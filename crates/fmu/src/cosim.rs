@@ -1,5 +1,6 @@
 //! The beam as a co-simulation model: the variable table derived from the scene and its
-//! mapping onto a [`Simulator`]. Implements [`CoSimModel`] for the FMI layer.
+//! mapping onto an [`AnySimulator`] (planar or spatial, from the scene's `space`). Implements
+//! [`CoSimModel`] for the FMI layer.
 //!
 //! The variables are declared in [`variables`].
 
@@ -8,11 +9,10 @@ pub mod variables;
 use fmi2::{CoSimModel, ModelInfo, StepError, Variable};
 
 use hybeam::error::SimError;
-use hybeam::model::Outputs;
 use hybeam::scene::Scene;
-use hybeam::simulator::Simulator;
+use hybeam::simulator::{AnyOutputs, AnySimulator};
 
-use variables::{Access, SceneParameter, Table};
+use variables::{Access, Table};
 
 /// The beam FMU model.
 #[derive(Debug)]
@@ -21,16 +21,15 @@ pub struct BeamFmu {
     scene_text: String,
     /// Scene as built (parameters overridden through the variables).
     base: Scene,
-    /// Scene with the current parameter values.
+    /// Scene with the current parameter values and the inputs the host set (tip force and
+    /// moment: `initialize` rebuilds the simulator from it).
     scene: Scene,
     /// The variables and how each is accessed.
     table: Table,
-    /// Input tip force [N].
-    input: [f64; 2],
-    sim: Simulator,
+    sim: AnySimulator,
     /// Outputs of the current state, computed once per state change (no direct feedthrough:
     /// setting an input does not change them).
-    outputs: Outputs,
+    outputs: AnyOutputs,
 }
 
 impl BeamFmu {
@@ -72,6 +71,12 @@ impl BeamFmu {
     }
 }
 
+/// The error for a variable the simulator's space does not have (a table of another space:
+/// cannot happen through the FMI layer, which only passes the table's variables).
+fn not_in_space(name: &str, sim: &AnySimulator) -> String {
+    format!("{name}: not a variable of this {:?} model", sim.space())
+}
+
 /// Model name, description and default experiment of a scene.
 fn model_info(scene: &Scene) -> ModelInfo {
     ModelInfo {
@@ -94,12 +99,11 @@ impl CoSimModel for BeamFmu {
     fn from_resource(scene_toml: &str) -> Result<Self, String> {
         let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
         let table = Table::of(&scene);
-        let sim = Simulator::new(scene.clone()).map_err(|e| e.to_string())?;
+        let sim = AnySimulator::new(scene.clone()).map_err(|e| e.to_string())?;
         let outputs = sim.outputs();
         Ok(Self {
             scene_text: scene_toml.to_string(),
             base: scene.clone(),
-            input: scene.tip_force_vec(),
             scene,
             table,
             sim,
@@ -117,13 +121,14 @@ impl CoSimModel for BeamFmu {
 
     fn get_real(&self, index: usize) -> Result<f64, String> {
         let access = self.table.access(index);
-        Ok(match access {
-            Access::TipForce(k) => self.sim.tip_force()[k],
-            Access::Output(read) => read(&self.outputs),
-            Access::Scene(_) | Access::Segment(..) => {
-                access.parameter(&self.scene).unwrap_or(f64::NAN)
+        let value = match access {
+            Access::Input(id) => self.sim.input(id),
+            Access::Output(id) => self.outputs.value(id),
+            Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
+                access.parameter(&self.scene)
             }
-        })
+        };
+        value.ok_or_else(|| not_in_space(&self.table.variables()[index].name, &self.sim))
     }
 
     fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
@@ -133,34 +138,35 @@ impl CoSimModel for BeamFmu {
         }
         let access = self.table.access(index);
         match access {
-            Access::TipForce(k) => {
-                self.input[k] = value;
-                self.sim.set_tip_force(self.input);
+            Access::Input(id) => {
+                if !self.sim.set_input(id, value) {
+                    return Err(not_in_space(name, &self.sim));
+                }
+                id.set_in_scene(&mut self.scene, value);
             }
             Access::Output(_) => return Err(format!("{name} is an output and cannot be set")),
-            Access::Scene(_) | Access::Segment(..) => {
+            Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
                 let mut scene = self.scene.clone();
                 access.set_parameter(&mut scene, value);
                 scene
                     .validate()
                     .map_err(|e| format!("{name} = {value}: {e}"))?;
-                self.scene = scene;
-                if let Access::Scene(SceneParameter {
-                    tune: Some(tune), ..
-                }) = access
-                {
-                    tune(&self.scene, &mut self.sim);
+                if let Access::Gravity(id) = access {
+                    // tunable: the running simulator takes it at its next step
+                    if !self.sim.set_input(id, value) {
+                        return Err(not_in_space(name, &self.sim));
+                    }
                     self.refresh_outputs();
                 }
+                self.scene = scene;
             }
         }
         Ok(())
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
-        let mut scene = self.scene.clone();
-        scene.tip.force = self.input.to_vec();
-        self.sim = Simulator::new_at(scene, start_time).map_err(|e| e.to_string())?;
+        let scene = self.scene.clone();
+        self.sim = AnySimulator::start_at(scene, start_time).map_err(|e| e.to_string())?;
         self.refresh_outputs();
         Ok(())
     }
@@ -198,13 +204,13 @@ impl CoSimModel for BeamFmu {
             ));
         }
         let (params, sim_bytes) = snapshot;
-        let scene = self.build_scene_with_parameters(&params)?;
-        let mut sim = Simulator::for_restore(scene.clone()).map_err(|e| e.to_string())?;
+        let mut scene = self.build_scene_with_parameters(&params)?;
+        let mut sim = AnySimulator::restorable(scene.clone()).map_err(|e| e.to_string())?;
         // a snapshot that does not fit is an error of the call (fmi2Error), not of a step
         sim.restore_snapshot(&sim_bytes)
             .map_err(|e| e.to_string())?;
+        sim.inputs_into(&mut scene);
         self.scene = scene;
-        self.input = sim.tip_force();
         self.sim = sim;
         self.refresh_outputs();
         Ok(())
@@ -212,7 +218,7 @@ impl CoSimModel for BeamFmu {
 }
 
 /// A serialized FMU state: the parameter values in table order, then the bytes of
-/// [`Simulator::snapshot`].
+/// [`AnySimulator::snapshot`].
 type FmuSnapshot = (Vec<f64>, Vec<u8>);
 
 /// The FMI outcome of a failed `advance`: the simulator kept its state from before the call, so
