@@ -289,6 +289,7 @@ mod tests {
             a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
         }
         a.set_real(at(&a, 2), -0.01).unwrap();
+        a.set_real(at(&a, 6), 2e-3).unwrap(); // tip.moment.z
         let bytes = a.save_state();
         let mut b = BeamFmu::from_resource(&text).unwrap();
         b.load_state(&bytes).unwrap();
@@ -304,6 +305,12 @@ mod tests {
                 v.name
             );
         }
+        assert_eq!(b.get_real(at(&b, 6)).unwrap(), 2e-3);
+        assert_eq!(
+            b.scene.tip.moment,
+            [2e-3],
+            "the restored input is the scene's for a reset"
+        );
         assert!(b.load_state(&bytes[..bytes.len() - 3]).is_err());
         assert!(b.load_state(b"garbage").is_err());
     }
@@ -321,6 +328,41 @@ mod tests {
             t += h;
             assert_eq!(m.sim.time().to_bits(), t.to_bits());
         }
+    }
+
+    /// A spatial scene's variables: z components, moments about three axes, the quaternion,
+    /// gravity.z; no planar angle. From the scene alone (no model is built).
+    #[test]
+    fn spatial_variables_follow_the_space() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/case1_3d.toml"
+        ))
+        .unwrap();
+        let scene = Scene::from_toml(&text).unwrap();
+        let table = Table::of(&scene);
+        let names: Vec<&str> = table.variables().iter().map(|v| v.name.as_str()).collect();
+        for name in [
+            "tip.force.z",
+            "tip.moment.x",
+            "tip.position.z",
+            "tip.orientation.e0",
+            "tip.angular_velocity.y",
+            "root.moment.x",
+            "gravity.z",
+        ] {
+            assert!(names.contains(&name), "{name} missing");
+        }
+        assert!(!names.contains(&"tip.angle"));
+        let g = table.variables().iter().find(|v| v.name == "gravity.z");
+        assert_eq!(g.and_then(|v| v.start), Some(-9.81));
+        let planar = Table::of(&Scene::from_toml(&case1()).unwrap());
+        let planar: Vec<&str> = planar.variables().iter().map(|v| v.name.as_str()).collect();
+        assert!(!planar.iter().any(|n| n.ends_with(".z")
+            && *n != "tip.moment.z"
+            && *n != "root.moment.z"
+            && *n != "tip.angular_velocity.z"));
+        assert!(!planar.iter().any(|n| n.contains("orientation")));
     }
 
     #[test]
