@@ -4,9 +4,9 @@
 //! fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only]
 //! ```
 //!
-//! 1. reads the scene and builds the model with `from_resource`, so that a scene the FMU could
-//!    not instantiate (bad values, an initial static solve that fails) fails here, with the
-//!    scene's message and exit code 1, not in the host;
+//! 1. reads the scene and (unless `--xml-only`) builds the model with `from_resource`, so that
+//!    a scene the FMU could not instantiate (bad values, an initial static solve that fails)
+//!    fails here, with the scene's message and exit code 1, not in the host;
 //! 2. writes modelDescription.xml (GUID, variable table, default experiment) from the scene
 //!    alone (`BeamFmu::model_description`);
 //! 3. runs `cargo build --profile fmu-release -p hybeam-fmu --lib` in this workspace (release
@@ -15,7 +15,9 @@
 //! 4. zips `modelDescription.xml`, `binaries/linux64/<id>.so`, `resources/scene.toml` into
 //!    `DIR/<id>.fmu`.
 //!
-//! `--xml-only` skips 3–4 and writes `DIR/<id>.xml` (the golden files in `modelDescription/`).
+//! `--xml-only` skips the model build of 1 (the scene is still read and validated) and 3–4, and
+//! writes `DIR/<id>.xml` (the golden files in `modelDescription/`): the description is a
+//! function of the scene alone.
 //! `<id>` (modelIdentifier) defaults to the scene file stem made a C identifier.
 //! Alias: `cargo fmu-build ...` (see `.cargo/config.toml`).
 
@@ -65,8 +67,10 @@ fn run(args: &Args) -> Result<PathBuf, String> {
         .map_err(|e| format!("cannot read {}: {e}", scene_path.display()))?;
     let text = std::str::from_utf8(&scene)
         .map_err(|_| format!("{} is not valid UTF-8", scene_path.display()))?;
-    FmuModel::from_resource(text)
-        .map_err(|e| format!("invalid scene {}: {e}", scene_path.display()))?;
+    if !args.xml_only {
+        FmuModel::from_resource(text)
+            .map_err(|e| format!("invalid scene {}: {e}", scene_path.display()))?;
+    }
     let id = match &args.id {
         Some(id) if xml::is_c_identifier(id) => id.clone(),
         Some(id) => return Err(format!("--id {id}: not a valid C identifier")),
@@ -75,7 +79,8 @@ fn run(args: &Args) -> Result<PathBuf, String> {
             xml::model_identifier_from_stem(&stem)
         }
     };
-    let description = FmuModel::model_description(text, &id)?;
+    let description = FmuModel::model_description(text, &id)
+        .map_err(|e| format!("invalid scene {}: {e}", scene_path.display()))?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
     if args.xml_only {
