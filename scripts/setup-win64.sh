@@ -5,11 +5,11 @@
 #     `-Zbuild-std` can build std for x86_64-pc-windows-gnu; rustup's toolchain stays the
 #     default for the linux64 build)
 #   - gcc-mingw-w64-x86-64 (linker, strip, the C test host)
-#   - wine64 (runs the C test host; tests only)
+#   - wine64, wine (run the C test host; tests only), unzip (unpacks the FMU in the test)
 # Idempotent: does nothing when everything is there. See docs/platforms.md.
 set -euo pipefail
 
-PKGS=(rustc-web cargo-web rust-web-src gcc-mingw-w64-x86-64 binutils-mingw-w64-x86-64 wine64)
+PKGS=(rustc-web cargo-web rust-web-src gcc-mingw-w64-x86-64 binutils-mingw-w64-x86-64 wine64 wine unzip)
 missing=()
 for p in "${PKGS[@]}"; do
     dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
