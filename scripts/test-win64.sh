@@ -66,6 +66,17 @@ WANT_EXPORTS=$( (grep -o 'b"fmi2[A-Za-z]*"' crates/fmu/tests/host/mod.rs | sed '
 
 passed=0
 failed=0
+# No dependency may bring a thread pool into the DLL (faer's default `rayon` feature does, through
+# spindle; its threads crash after FreeLibrary). A pool may start only for large problems, which
+# the run-time thread count below would not see, so the tree is checked too.
+pools=$(cargo tree -q -p hybeam-fmu -e normal --target x86_64-pc-windows-gnu --prefix none |
+    grep -Ei '^(rayon|rayon-core|spindle|crossbeam[a-z-]*|threadpool|tokio|async-std) ' | sort -u || true)
+if [ -n "$pools" ]; then
+    echo "FAIL the win64 dependency tree has thread pools: $pools"
+    failed=$((failed + 1))
+else
+    echo "dependency tree of hybeam-fmu for x86_64-pc-windows-gnu: no rayon/spindle/crossbeam/thread pool"
+fi
 fail() {
     echo "FAIL $1"
     failed=$((failed + 1))
