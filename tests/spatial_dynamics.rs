@@ -14,7 +14,7 @@ use common::*;
 use hybeam::error::{Refusal, SimError, SnapshotError};
 use hybeam::model::{Outputs, Planar, Spatial};
 use hybeam::scene::{Scene, SpaceKind};
-use hybeam::simulator::{AnySimulator, Simulator};
+use hybeam::simulator::{AnySimulator, InputId, InputKind, Simulator};
 use nalgebra::Vector3;
 
 /// Gauss–Legendre points and weights on [0, 1] (4 points: exact to degree 7; ρA r × ṙ of cubic
@@ -189,7 +189,11 @@ fn undamped_cable_pendulum_keeps_energy_and_vertical_angular_momentum() {
     }
     for r in &rows {
         // it swings down and out of the x–z plane
-        assert!(r.lowest < -0.3 && r.out_of_plane > 0.05, "{}", r.out_of_plane);
+        assert!(
+            r.lowest < -0.3 && r.out_of_plane > 0.05,
+            "{}",
+            r.out_of_plane
+        );
         assert!(r.energy_drift < 1e-3 && r.momentum_drift.unwrap() < 1e-3);
     }
     assert!(rows[1].energy_drift < 0.5 * rows[0].energy_drift);
@@ -281,4 +285,174 @@ fn case_3d_formulations_agree_and_match_the_planar_cases() {
         assert!(dh < hybrid_bound * peak && dm < modal_bound * peak);
         assert!(dp < 5e-5, "{case}: {dp:e}");
     }
+}
+
+/// An all-ANCF rod with torsion along x, clamped, `elements` elements, damping τ_d = 0.7 ms.
+fn twist_rod(elements: usize, header: &str) -> Scene {
+    scene(
+        &format!("space = \"spatial\"\n{header}"),
+        &[ancf("a", L, &round(D), elements, "damping_time = 7e-4")],
+    )
+}
+
+/// The error message of a failed build through both [`Simulator`] and [`AnySimulator`] (the
+/// same message).
+fn build_error(scene: Scene) -> String {
+    let e = Simulator::<Spatial>::start_at(scene.clone(), 0.0).expect_err("refused");
+    let any = AnySimulator::new(scene).expect_err("refused");
+    assert_eq!(e, any);
+    assert!(matches!(e, SimError::Scene(_)), "{e:?}");
+    e.to_string()
+}
+
+#[test]
+fn bad_spatial_scenes_are_refused_naming_the_field() {
+    let good = twist_rod(4, "gravity = [0.0, 0.0, -9.81]");
+    for bad in [
+        [0.0; 4],
+        [1.0, f64::NAN, 0.0, 0.0],
+        [f64::INFINITY, 0.0, 0.0, 0.0],
+    ] {
+        let mut s = good.clone();
+        s.initial.orientation = Some(bad);
+        let e = build_error(s);
+        eprintln!("orientation {bad:?}: {e}");
+        assert!(e.contains("initial.orientation"), "{e}");
+    }
+    // zero components alone are fine: [0, 0, 0, 1] turns the root frame by 180° about z
+    let mut s = good.clone();
+    s.initial.orientation = Some([0.0, 0.0, 0.0, 1.0]);
+    let sim = Simulator::<Spatial>::start_at(s, 0.0).unwrap();
+    let tip = Vector3::from(sim.outputs().tip_position);
+    assert!((tip - Vector3::new(-L, 0.0, 0.0)).norm() < 1e-15, "{tip}");
+    // vectors of the wrong length for a spatial scene
+    let cases: [(&str, fn(&mut Scene)); 3] = [
+        ("gravity", |s| s.gravity = vec![0.0, -9.81]),
+        ("tip.force", |s| s.tip.force = vec![0.0, 0.1, 0.0, 0.0]),
+        ("tip.moment", |s| s.tip.moment = vec![0.01]),
+    ];
+    for (field, spoil) in cases {
+        let mut s = good.clone();
+        spoil(&mut s);
+        let e = build_error(s);
+        eprintln!("{field}: {e}");
+        assert!(
+            e.contains(&format!("{field} = [")) && e.contains("a spatial scene takes 3 components"),
+            "{e}"
+        );
+    }
+    // a planar scene is not built as a spatial model
+    let mut s = good.clone();
+    s.space = SpaceKind::Planar;
+    s.gravity.clear();
+    let e = Simulator::<Spatial>::start_at(s, 0.0).expect_err("refused");
+    assert!(e.to_string().contains("space = \"planar\""), "{e}");
+    // a host input component this space does not have: refused, nothing changed
+    let mut any = AnySimulator::new(good).unwrap();
+    let fw = InputId {
+        kind: InputKind::TipForce,
+        component: 3,
+    };
+    assert!(!any.set_input(fw, 1.0) && any.input(fw).is_none());
+}
+
+/// Little-endian bytes of `v`, concatenated.
+fn bytes_of(v: &[f64]) -> Vec<u8> {
+    v.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+#[test]
+fn a_section_director_along_the_slope_is_refused_from_a_snapshot() {
+    let scene = twist_rod(4, "gravity = [0.0, 0.0, -9.81]");
+    let mut sim = Simulator::<Spatial>::start_at(scene.clone(), 0.0).unwrap();
+    sim.advance(2e-3).unwrap();
+    let bytes = sim.snapshot();
+    let q = sim.state().q.clone();
+    let at = bytes
+        .windows(8 * q.len())
+        .position(|w| w == bytes_of(&q))
+        .expect("the coordinates in the snapshot");
+    let n = q.len();
+    // the tip node is last: [r, r_x, r_y]; r_y := r_x (parallel), then r_y := 0
+    let rx = q[n - 6..n - 3].to_vec();
+    for (label, ry) in [("parallel", rx.clone()), ("zero", vec![0.0; 3])] {
+        let mut spoiled = bytes.clone();
+        let start = at + 8 * (n - 3);
+        spoiled[start..start + 24].copy_from_slice(&bytes_of(&ry));
+        let mut fresh = Simulator::<Spatial>::restorable(scene.clone()).unwrap();
+        let e = fresh.restore_snapshot(&spoiled).expect_err("refused");
+        eprintln!("r_y {label}: {e}");
+        assert!(
+            matches!(
+                &e,
+                SimError::Snapshot(SnapshotError::Refused(Refusal::SectionDirector { segment, .. }))
+                    if segment == "a"
+            ),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("r_y"), "{e}");
+        let mut any = AnySimulator::restorable(scene.clone()).unwrap();
+        assert_eq!(any.restore_snapshot(&spoiled).expect_err("refused"), e);
+        // the refusal left the simulator as it was: the intact bytes restore and continue
+        fresh.restore_snapshot(&bytes).unwrap();
+        assert_eq!(fresh.state(), sim.state());
+    }
+}
+
+#[test]
+fn twist_beyond_what_the_mesh_resolves_is_refused_and_keeps_the_last_good_state() {
+    // G·J of the round rod; a dead moment M about the axis twists each element of length l_e
+    // by M l_e/GJ statically, up to twice that dynamically
+    let g = E_STEEL / 2.6;
+    let gj = g * std::f64::consts::PI * D.powi(4) / 32.0;
+    let per_element = |m: f64, n: usize| (m * L / n as f64 / gj).to_degrees();
+    let m_small = 0.1;
+    let m_big = 1.0;
+    for any in [false, true] {
+        let coarse = twist_rod(2, "");
+        let mut sim = AnySimulator::new(coarse).unwrap();
+        let mx = InputId {
+            kind: InputKind::TipMoment,
+            component: 0,
+        };
+        sim.set_input(mx, m_small);
+        sim.advance(0.01).unwrap();
+        let before = sim.outputs();
+        sim.set_input(mx, m_big);
+        let e = if any {
+            sim.advance(0.02).expect_err("refused")
+        } else {
+            let AnySimulator::Spatial(s) = &mut sim else {
+                unreachable!()
+            };
+            s.advance(0.02).expect_err("refused")
+        };
+        eprintln!(
+            "twist {:.0}° per element (static) on 2 elements: {e}",
+            per_element(m_big, 2)
+        );
+        assert!(
+            matches!(&e, SimError::Refused { refusal: Refusal::Twist { segment, value }, .. } if segment == "a" && *value > std::f64::consts::FRAC_PI_4),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("more elements"), "{e}");
+        assert_eq!(sim.outputs(), before);
+        assert_eq!(sim.time(), 0.01);
+        // with the small moment again it goes on
+        sim.set_input(mx, m_small);
+        sim.advance(0.02).unwrap();
+    }
+    // the same moment on a mesh that resolves it (8 elements) runs
+    let mut fine = Simulator::<Spatial>::start_at(twist_rod(8, ""), 0.0).unwrap();
+    fine.set_tip_moment([m_big, 0.0, 0.0]);
+    fine.advance(0.02).unwrap();
+    let twist = fine.model().validity(&fine.state().q).max_twist.unwrap().1;
+    eprintln!(
+        "8 elements: {:.0}° per element static, {:.1}° at 20 ms",
+        per_element(m_big, 8),
+        twist.to_degrees()
+    );
+    // overdamped twist (τ_d ω ≫ 1): at the static twist per element M l_e/GJ by 20 ms
+    let want = m_big * L / 8.0 / gj;
+    assert!((twist / want - 1.0).abs() < 0.03 && twist < std::f64::consts::FRAC_PI_4);
 }
