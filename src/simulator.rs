@@ -606,17 +606,14 @@ impl<S: SpaceModel> Simulator<S> {
     /// `twist`, more twist within one element than [`MAX_TWIST_PER_ELEMENT`].
     fn section_refusal(&self, v: &ModelValidity, twist: bool) -> Option<Refusal> {
         let name = |si: usize| self.scene.segments[si].name.clone();
-        if let Some((si, value)) = v
-            .min_section_sine
-            .filter(|&(_, s)| !(s >= MIN_SECTION_SINE))
-        {
+        if let Some((si, value)) = v.min_section_sine.filter(|&(_, s)| s < MIN_SECTION_SINE) {
             return Some(Refusal::SectionDirector {
                 segment: name(si),
                 value,
             });
         }
         v.max_twist
-            .filter(|&(_, w)| twist && !(w <= MAX_TWIST_PER_ELEMENT))
+            .filter(|&(_, w)| twist && w > MAX_TWIST_PER_ELEMENT)
             .map(|(si, value)| Refusal::Twist {
                 segment: name(si),
                 value,

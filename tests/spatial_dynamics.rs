@@ -326,14 +326,14 @@ fn bad_spatial_scenes_are_refused_naming_the_field() {
     let tip = Vector3::from(sim.outputs().tip_position);
     assert!((tip - Vector3::new(-L, 0.0, 0.0)).norm() < 1e-15, "{tip}");
     // vectors of the wrong length for a spatial scene
-    let cases: [(&str, fn(&mut Scene)); 3] = [
-        ("gravity", |s| s.gravity = vec![0.0, -9.81]),
-        ("tip.force", |s| s.tip.force = vec![0.0, 0.1, 0.0, 0.0]),
-        ("tip.moment", |s| s.tip.moment = vec![0.01]),
-    ];
-    for (field, spoil) in cases {
+    for (field, len) in [("gravity", 2), ("tip.force", 4), ("tip.moment", 1)] {
         let mut s = good.clone();
-        spoil(&mut s);
+        let v = vec![0.1; len];
+        match field {
+            "gravity" => s.gravity = v,
+            "tip.force" => s.tip.force = v,
+            _ => s.tip.moment = v,
+        }
         let e = build_error(s);
         eprintln!("{field}: {e}");
         assert!(

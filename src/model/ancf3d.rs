@@ -793,7 +793,7 @@ impl Ancf3Props {
     /// within the element [rad], the angle about the node-1 tangent between the node-1 section
     /// axis and the node-0 one carried along by the smallest rotation that takes the node-0
     /// tangent to the node-1 tangent (π if the tangent turns back), and the smaller of the two
-    /// nodes' sines of the angle between r_x and r_y (0 for a vanishing r_y).
+    /// nodes' sines of the angle between r_x and r_y (0 for a vanishing r_y). Never NaN.
     pub fn section_measures(&self, e: &[f64]) -> (f64, f64) {
         let v = |i: usize| [e[i], e[i + 1], e[i + 2]];
         let unit = |a: [f64; 3]| {
@@ -814,15 +814,16 @@ impl Ancf3Props {
         let [[t0, a], [t1, b]] = frames;
         let w = cross(&t0, &t1);
         let c = dot(&t0, &t1);
-        if !(1.0 + c > 1e-12) || sine == 0.0 {
+        if c.is_nan() || 1.0 + c <= 1e-12 || sine == 0.0 {
             return (std::f64::consts::PI, sine);
         }
         // a carried by R = c I + [w]× + w wᵀ/(1 + c)
         let wa = cross(&w, &a);
         let f = dot(&w, &a) / (1.0 + c);
         let a1 = [0, 1, 2].map(|i| c * a[i] + wa[i] + f * w[i]);
-        let twist = dot(&t1, &cross(&a1, &b)).atan2(dot(&a1, &b));
-        (twist.abs(), sine)
+        let twist = dot(&t1, &cross(&a1, &b)).atan2(dot(&a1, &b)).abs();
+        let worst = std::f64::consts::PI;
+        (if twist.is_nan() { worst } else { twist }, sine)
     }
 
     /// Strain measures (ε, κ2, κ3, τ) at ξ ∈ [0, 1] of an element with torsion.

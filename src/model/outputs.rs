@@ -167,11 +167,10 @@ impl<S: Space> Model<S> {
                 }
             }
             if let Some((twist, sine)) = v.section {
-                // NaN (a vanishing director) counts as the worst
-                if out.max_twist.is_none_or(|(_, w)| !(twist <= w)) {
+                if out.max_twist.is_none_or(|(_, w)| twist > w) {
                     out.max_twist = Some((e.segment, twist));
                 }
-                if out.min_section_sine.is_none_or(|(_, w)| !(sine >= w)) {
+                if out.min_section_sine.is_none_or(|(_, w)| sine < w) {
                     out.min_section_sine = Some((e.segment, sine));
                 }
             }
