@@ -456,3 +456,51 @@ fn twist_beyond_what_the_mesh_resolves_is_refused_and_keeps_the_last_good_state(
     let want = m_big * L / 8.0 / gj;
     assert!((twist / want - 1.0).abs() < 0.03 && twist < std::f64::consts::FRAC_PI_4);
 }
+
+/// The twist measure behind the refusal against constructed node frames: node 1's slope bent by
+/// β about an axis ⟂ the node-0 tangent and its section axis turned by φ about its tangent
+/// (r_y stretched and sheared along r_x, which the measure must ignore): twist φ; the sine of
+/// the angle between r_x and r_y, closed form.
+#[test]
+fn twist_and_director_measures_match_constructed_frames() {
+    use hybeam::model::ancf3d::Ancf3Props;
+    use nalgebra::{Rotation3, Unit};
+    let props = Ancf3Props {
+        length: 0.05,
+        rho_a: 1.0,
+        rho_ip: 1.0,
+        ea: 1.0,
+        ei_y: 1.0,
+        ei_z: 1.0,
+        gj: 1.0,
+        damping_time: 0.0,
+        torsion: true,
+    };
+    let frame0 =
+        Rotation3::from_axis_angle(&Unit::new_normalize(Vector3::new(0.2, -0.7, 0.4)), 1.1);
+    let (x0, y0) = (frame0 * Vector3::x(), frame0 * Vector3::y());
+    for (beta, phi, shear) in [
+        (0.0, 0.3, 0.0),
+        (0.8, -0.6, 0.4),
+        (1.2, 1.4, -0.2),
+        (0.5, 3.0, 0.0),
+    ] {
+        // bend about an axis ⟂ x0 (in the section plane), then twist about the new tangent
+        let bend = Rotation3::from_axis_angle(
+            &Unit::new_normalize(frame0 * Vector3::new(0.0, 0.6, 0.8)),
+            beta,
+        );
+        let x1 = bend * x0;
+        let twist = Rotation3::from_axis_angle(&Unit::new_normalize(x1), phi);
+        let y1 = 1.7 * (twist * bend * y0) + shear * x1;
+        let mut e = Vec::new();
+        for (r, rx, ry) in [(Vector3::zeros(), x0, y0), (0.05 * x1, 1.02 * x1, y1)] {
+            e.extend(r.iter().chain(rx.iter()).chain(ry.iter()));
+        }
+        let (t, sine) = props.section_measures(&e);
+        let want_sine = x1.cross(&y1).norm() / y1.norm();
+        eprintln!("β = {beta}, φ = {phi}: twist {t:.15} (want {}), sine {sine:.15} (want {want_sine:.15})", phi.abs());
+        assert!((t - phi.abs()).abs() < 1e-12, "{t} vs {phi}");
+        assert!((sine - want_sine).abs() < 1e-14);
+    }
+}
