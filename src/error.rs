@@ -4,7 +4,9 @@
 
 use crate::integrator::{StaticFailure, StepFailure};
 use crate::scene::{SceneError, MIN_STEP};
-use crate::simulator::{MAX_AXIAL_STRAIN, MAX_MODAL_DEFLECTION};
+use crate::simulator::{
+    MAX_AXIAL_STRAIN, MAX_MODAL_DEFLECTION, MAX_TWIST_PER_ELEMENT, MIN_SECTION_SINE,
+};
 use thiserror::Error;
 
 /// A failure of the simulator. On every step failure, refusal or non-finite result the
@@ -142,6 +144,29 @@ pub enum Refusal {
         /// Largest axial strain [-].
         value: f64,
     },
+    /// An ANCF element twists more than [`MAX_TWIST_PER_ELEMENT`].
+    #[error(
+        "ANCF segment '{segment}' twists {:.0}° within one element, beyond the {:.0}° its elements resolve (the section director r_y is interpolated linearly, so the twist rate within an element grows uneven and the director vanishes at 180°); give the segment more elements, or reduce the tip moment about the beam axis",
+        .value.to_degrees(),
+        MAX_TWIST_PER_ELEMENT.to_degrees()
+    )]
+    Twist {
+        /// Scene name of the segment.
+        segment: String,
+        /// Largest twist within one element [rad].
+        value: f64,
+    },
+    /// A node's section director r_y is (nearly) parallel to its slope r_x: no section frame.
+    #[error(
+        "ANCF segment '{segment}': a node's section director r_y is within {:.1}° of its slope r_x (sine {value:.2e}, at least {MIN_SECTION_SINE} needed), so it defines no section frame; r_y must stay a unit vector across the section, perpendicular to r_x",
+        .value.clamp(-1.0, 1.0).asin().to_degrees()
+    )]
+    SectionDirector {
+        /// Scene name of the segment.
+        segment: String,
+        /// Smallest sine of the angle between r_x and r_y [-].
+        value: f64,
+    },
 }
 
 /// A snapshot that does not fit this simulator.
@@ -185,6 +210,9 @@ pub enum SnapshotError {
     /// The state or the inputs hold NaN or infinity.
     #[error("snapshot state or inputs hold non-finite values")]
     NonFinite,
+    /// The snapshot's state is one the model cannot continue from.
+    #[error("snapshot state refused: {0}")]
+    Refused(Refusal),
     /// The held Newton matrix could not be rebuilt.
     #[error("cannot rebuild the Newton matrix of the snapshot: {0}")]
     NewtonMatrix(#[source] StepFailure),

@@ -13,7 +13,7 @@ use crate::integrator::{
     solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
     CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
 };
-use crate::model::{Model, Outputs, Planar, Space, Spatial};
+use crate::model::{Model, ModelValidity, Outputs, Planar, Space, Spatial};
 use crate::scene::{InitialState, Scene, SceneError, SpaceKind};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -26,6 +26,16 @@ pub const MAX_MODAL_DEFLECTION: f64 = 0.3;
 /// Largest axial strain accepted: beyond it the linear elastic law of the model has no meaning
 /// for a metal rod, and the step is refused rather than returning a number.
 pub const MAX_AXIAL_STRAIN: f64 = 0.05;
+
+/// Largest twist within one ANCF element accepted [rad] (45°): the section director r_y is
+/// interpolated linearly, so at a twist φ per element the twist rate at the element's middle
+/// is sin φ/((1 + cos φ)/2) instead of φ (+5.5 % at 45°, +27 % at 90°), and the interpolated
+/// director vanishes at 180°.
+pub const MAX_TWIST_PER_ELEMENT: f64 = std::f64::consts::FRAC_PI_4;
+
+/// Smallest sine of the angle between an ANCF node's r_x and r_y accepted [-] (the nodal
+/// penalty keeps them perpendicular, sine 1; at 0 the section frame is undefined).
+pub const MIN_SECTION_SINE: f64 = 0.5;
 
 /// Internal step control carried from one communication step to the next.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -320,6 +330,9 @@ impl<S: SpaceModel> Simulator<S> {
         {
             return Err(SnapshotError::NonFinite.into());
         }
+        if let Some(r) = self.section_refusal(&self.model.validity(&s.q), false) {
+            return Err(SnapshotError::Refused(r).into());
+        }
         // the held Newton matrix was evaluated under the inputs of the last step (a dead tip
         // moment adds stiffness): rebuild it under those, whatever is set for the next step
         let next = Inputs::of(&self.model);
@@ -561,6 +574,10 @@ impl<S: SpaceModel> Simulator<S> {
                 },
             });
         }
+        if let Some(refusal) = self.section_refusal(&validity, true).filter(|_| finite) {
+            self.roll_back(saved, saved_step);
+            return Err(SimError::Refused { t: t_end, refusal });
+        }
         if !finite || strain > MAX_AXIAL_STRAIN {
             self.roll_back(saved, saved_step);
             return Err(if finite {
@@ -582,6 +599,25 @@ impl<S: SpaceModel> Simulator<S> {
             self.step.calm = self.step.calm.saturating_add(1);
         }
         Ok(())
+    }
+
+    /// The refusal of a configuration whose ANCF section directors the elements cannot
+    /// represent: a director (nearly) parallel to its slope ([`MIN_SECTION_SINE`]) and, with
+    /// `twist`, more twist within one element than [`MAX_TWIST_PER_ELEMENT`].
+    fn section_refusal(&self, v: &ModelValidity, twist: bool) -> Option<Refusal> {
+        let name = |si: usize| self.scene.segments[si].name.clone();
+        if let Some((si, value)) = v.min_section_sine.filter(|&(_, s)| s < MIN_SECTION_SINE) {
+            return Some(Refusal::SectionDirector {
+                segment: name(si),
+                value,
+            });
+        }
+        v.max_twist
+            .filter(|&(_, w)| twist && w > MAX_TWIST_PER_ELEMENT)
+            .map(|(si, value)| Refusal::Twist {
+                segment: name(si),
+                value,
+            })
     }
 
     /// Solves the static equilibrium from the current state under the current loads.

@@ -41,6 +41,10 @@ pub struct ModelValidity {
     /// Largest elastic deflection of a modal segment: (segment index in the scene, the
     /// element's deflection measure).
     pub modal_deflection: Option<(usize, f64)>,
+    /// Largest twist within one ANCF element [rad] (segment index, value).
+    pub max_twist: Option<(usize, f64)>,
+    /// Smallest sine of the angle between r_x and r_y at an ANCF node (segment index, value).
+    pub min_section_sine: Option<(usize, f64)>,
 }
 
 impl<S: Space> Model<S> {
@@ -160,6 +164,14 @@ impl<S: Space> Model<S> {
             if let Some(d) = v.modal_deflection {
                 if out.modal_deflection.is_none_or(|(_, w)| d > w) {
                     out.modal_deflection = Some((e.segment, d));
+                }
+            }
+            if let Some((twist, sine)) = v.section {
+                if out.max_twist.is_none_or(|(_, w)| twist > w) {
+                    out.max_twist = Some((e.segment, twist));
+                }
+                if out.min_section_sine.is_none_or(|(_, w)| sine < w) {
+                    out.min_section_sine = Some((e.segment, sine));
                 }
             }
         }

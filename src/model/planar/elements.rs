@@ -115,6 +115,7 @@ impl Element<Planar> for AncfElement {
         Validity {
             axial_strain: worst,
             modal_deflection: None,
+            section: None,
         }
     }
 
@@ -187,6 +188,7 @@ impl Element<Planar> for ModalElement {
         Validity {
             axial_strain: 0.0,
             modal_deflection: Some(w.max(b.tip_slope(q).abs())),
+            section: None,
         }
     }
 

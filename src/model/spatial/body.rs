@@ -260,6 +260,7 @@ impl Element<Spatial> for ModalElement3 {
         Validity {
             axial_strain: 0.0,
             modal_deflection: Some(self.body.deflection(q)),
+            section: None,
         }
     }
 

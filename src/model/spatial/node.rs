@@ -132,6 +132,7 @@ impl Element<Spatial> for AncfElement3 {
         Validity {
             axial_strain: self.props.max_axial_strain(&self.tables, q),
             modal_deflection: None,
+            section: self.props.torsion.then(|| self.props.section_measures(q)),
         }
     }
 
