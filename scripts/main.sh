@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Main job: set up, build the Case 1 FMU from scenes/case1.toml, simulate it with fmpy, write
-# out/case1_tip.csv and out/case1_tip.png (vertical tip deflection).
+# Main job: set up, build the FMU of a scene (default scenes/case1.toml), simulate it with fmpy,
+# write out/<scene>_tip.csv (every output) and out/<scene>_tip.png (tip deflection: y for a
+# planar scene, y and z for a spatial one, e.g. scenes/case1_3d.toml).
 # Usage: scripts/main.sh [SCENE.toml]   (default scenes/case1.toml)
 set -euo pipefail
 cd "$(dirname "$0")/.."

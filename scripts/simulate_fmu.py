@@ -1,5 +1,6 @@
-"""Simulate a hybeam FMU with fmpy and write the tip history (CSV) and a plot of the vertical
-tip deflection (PNG).
+"""Simulate a hybeam FMU with fmpy and write the history of every output (CSV) and a plot of
+the tip deflection (PNG): vertical (y) for a planar scene, y and z for a spatial one (the FMU
+has tip.position.z).
 
 usage: simulate_fmu.py FMU [--stop T] [--step H] [--out PREFIX]
 """
@@ -13,11 +14,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from fmpy import read_model_description, simulate_fmu  # noqa: E402
 
-OUTPUTS = ["tip.position.x", "tip.position.y", "tip.velocity.x", "tip.velocity.y", "tip.angle",
-           "root.force.x", "root.force.y", "root.moment.z",
-           "energy.kinetic", "energy.strain", "energy.potential"]
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("fmu")
@@ -28,24 +24,30 @@ def main():
     md = read_model_description(a.fmu)
     stop = a.stop or float(md.defaultExperiment.stopTime)
     step = a.step or float(md.defaultExperiment.stepSize)
-    res = simulate_fmu(a.fmu, stop_time=stop, output_interval=step, output=OUTPUTS)
+    outputs = [v.name for v in md.modelVariables if v.causality == "output"]
+    res = simulate_fmu(a.fmu, stop_time=stop, output_interval=step, output=outputs)
     with open(a.out + ".csv", "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["time"] + OUTPUTS)
+        w.writerow(["time"] + outputs)
         for row in res:
             w.writerow([repr(float(x)) for x in row])
-    y0 = res["tip.position.y"][0]
+    axes = ["y", "z"] if "tip.position.z" in outputs else ["y"]
     fig, ax = plt.subplots(figsize=(8, 4))
-    ax.plot(res["time"], 1e3 * (res["tip.position.y"] - y0))
+    lowest = []
+    for axis in axes:
+        d = res[f"tip.position.{axis}"] - res[f"tip.position.{axis}"][0]
+        ax.plot(res["time"], 1e3 * d, label=f"tip {axis}")
+        lowest.append(f"{axis} {1e3 * float(d.min()):.3f} mm")
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("vertical tip deflection [mm]")
+    ax.set_ylabel("tip deflection [mm]" if len(axes) > 1 else "vertical tip deflection [mm]")
     ax.set_title(f"{md.modelName}: tip deflection (fmpy, step {step:g} s)")
+    if len(axes) > 1:
+        ax.legend()
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
     fig.savefig(a.out + ".png", dpi=120)
-    ymin = float((res["tip.position.y"] - y0).min())
     print(f"{md.modelName}: {len(res)} samples to t = {res['time'][-1]:.3f} s; "
-          f"lowest tip deflection {1e3 * ymin:.3f} mm; wrote {a.out}.csv and {a.out}.png")
+          f"lowest tip deflection {', '.join(lowest)}; wrote {a.out}.csv and {a.out}.png")
 
 
 if __name__ == "__main__":

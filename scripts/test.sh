@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
-# Full test run: setup, Rust tests (unit, libloading host, golden XML), FMU packaging, and the
-# fmpy tests against the packaged FMU. Exits non-zero on any failure.
+# Full test run: setup, Rust tests (unit, libloading host, golden XML), FMU packaging, the
+# fmpy tests against the packaged FMU, and the win64 test under Wine (scripts/test-win64.sh)
+# when the win64 toolchain is installed. In CI (CI=true) or with HYBEAM_WIN64=1 the toolchain
+# is installed first (scripts/setup-win64.sh), so CI always runs it; HYBEAM_WIN64=0 skips it.
+# Exits non-zero on any failure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/setup.sh
+WIN64=${HYBEAM_WIN64:-$([ "${CI:-}" = true ] && echo 1 || echo auto)}
+if [ "$WIN64" = 1 ]; then
+    bash scripts/setup-win64.sh
+fi
 
 echo "== cargo test --workspace"
 cargo test --workspace
@@ -21,11 +28,23 @@ DEFAULT_SCENES=""
 for golden in modelDescription/*.xml; do
     DEFAULT_SCENES+=" scenes/$(basename "$golden" .xml).toml"
 done
+PLATFORMS=$([ "$WIN64" = 0 ] && echo "--platforms linux64" || true)
 for scene in ${FMU_SCENES:-$DEFAULT_SCENES}; do
-    FMUS+=("$(cargo fmu-build "$scene" --out target/fmu | tail -n 1)")
+    # every platform whose toolchain is installed (linux64, and win64 after setup-win64.sh)
+    FMUS+=("$(cargo fmu-build "$scene" --out target/fmu $PLATFORMS | tail -n 1)")
 done
 
 echo "== pytest (fmpy) on ${FMUS[*]}"
 for fmu in "${FMUS[@]}"; do
     .venv/bin/python -m pytest -q tests/python --fmu "$fmu"
 done
+
+if [ "$WIN64" = 0 ]; then
+    echo "== win64 test skipped (HYBEAM_WIN64=0)"
+elif [ "$WIN64" = 1 ] || { [ -x /usr/bin/cargo ] && command -v x86_64-w64-mingw32-gcc >/dev/null &&
+    command -v wine >/dev/null; }; then
+    echo "== win64 FMU under Wine"
+    bash scripts/test-win64.sh
+else
+    echo "== win64 test skipped: toolchain not installed (bash scripts/setup-win64.sh, or HYBEAM_WIN64=1)"
+fi

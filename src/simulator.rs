@@ -1,13 +1,21 @@
-//! A beam in time: model + integrator + state behind `advance` and `outputs`.
-//! This is what the command-line runner and the FMU adapter drive.
+//! A beam in time: model + integrator + state behind `advance` and `outputs`, for either space
+//! ([`Simulator<Planar>`], [`Simulator<Spatial>`]). The command-line runner and the FMU adapter
+//! drive [`AnySimulator`], the planar|spatial choice made once from `scene.space`, and read and
+//! write it through named scalars ([`OutputId`], [`InputId`]: `tip.position.x`,
+//! `tip.orientation.e0`, `tip.force.z`, …).
+
+mod any;
+
+pub use any::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
 
 use crate::error::{Refusal, SimError, SnapshotError, StepLimit};
 use crate::integrator::{
     solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
     CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
 };
-use crate::model::{Model, Outputs, Planar};
-use crate::scene::{InitialState, Scene};
+use crate::model::{Model, Outputs, Planar, Space, Spatial};
+use crate::scene::{InitialState, Scene, SceneError, SpaceKind};
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::hash::Hasher;
 
@@ -33,34 +41,102 @@ pub struct StepControl {
 /// this fraction.
 const STEP_ROUNDING: f64 = 1e-9;
 
-/// The inputs of the equations a host may change between communication steps.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Inputs {
-    /// Total tip force [N], global axes.
-    pub tip_force: [f64; 2],
-    /// Gravity [m/s²], global axes.
-    pub gravity: [f64; 2],
+/// A space a [`Simulator`] runs in: builds its model from a scene and names its orientation
+/// output. Implemented for [`Planar`] and [`Spatial`].
+pub trait SpaceModel:
+    Space<Vec: Serialize + DeserializeOwned, Moment: Serialize + DeserializeOwned>
+{
+    /// The scene's `space` this model is built for.
+    const KIND: SpaceKind;
+    /// Output name of the tip section's orientation (`tip.angle` in the plane,
+    /// `tip.orientation` in space) ...
+    const ATTITUDE: &'static str;
+    /// ... and the suffixes of its components (`[""]`: a scalar without suffix; `e0`–`e3`).
+    const ATTITUDE_COMPONENTS: &'static [&'static str];
+
+    /// The model of a scene of this space (an error naming the space otherwise).
+    fn model(scene: &Scene) -> Result<Model<Self>, SceneError>;
+    /// The components of an orientation, in the order of [`SpaceModel::ATTITUDE_COMPONENTS`].
+    fn attitude_components(a: &Self::Attitude) -> &[f64];
 }
 
-impl Inputs {
-    fn of(model: &Model) -> Self {
+impl SpaceModel for Planar {
+    const KIND: SpaceKind = SpaceKind::Planar;
+    const ATTITUDE: &'static str = "tip.angle";
+    const ATTITUDE_COMPONENTS: &'static [&'static str] = &[""];
+
+    fn model(scene: &Scene) -> Result<Model<Self>, SceneError> {
+        Model::<Planar>::from_scene(scene)
+    }
+
+    fn attitude_components(a: &f64) -> &[f64] {
+        std::slice::from_ref(a)
+    }
+}
+
+impl SpaceModel for Spatial {
+    const KIND: SpaceKind = SpaceKind::Spatial;
+    const ATTITUDE: &'static str = "tip.orientation";
+    const ATTITUDE_COMPONENTS: &'static [&'static str] = &["e0", "e1", "e2", "e3"];
+
+    fn model(scene: &Scene) -> Result<Model<Self>, SceneError> {
+        if scene.space != SpaceKind::Spatial {
+            return Err(SceneError(
+                "space = \"planar\": this scene builds a planar model, not a spatial one".into(),
+            ));
+        }
+        Model::<Spatial>::from_scene(scene)
+    }
+
+    fn attitude_components(a: &[f64; 4]) -> &[f64] {
+        a
+    }
+}
+
+/// The inputs of the equations a host may change between communication steps.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(bound = "")]
+pub struct Inputs<S: SpaceModel = Planar> {
+    /// Total tip force [N], global axes.
+    pub tip_force: S::Vec,
+    /// Total dead tip moment [N m], global axes (in the plane: about z, counter-clockwise).
+    pub tip_moment: S::Moment,
+    /// Gravity [m/s²], global axes.
+    pub gravity: S::Vec,
+}
+
+impl<S: SpaceModel> Inputs<S> {
+    fn of(model: &Model<S>) -> Self {
         Self {
             tip_force: model.tip_force(),
+            tip_moment: model.tip_moment(),
             gravity: model.gravity(),
         }
     }
 
-    fn apply(&self, model: &mut Model) {
+    fn apply(&self, model: &mut Model<S>) {
         model.set_tip_force(self.tip_force);
+        model.set_tip_moment(self.tip_moment);
         if model.gravity() != self.gravity {
             model.set_gravity(self.gravity);
         }
+    }
+
+    /// Whether every component is finite.
+    fn is_finite(&self) -> bool {
+        let (f, g) = (self.tip_force, self.gravity);
+        f.as_ref()
+            .iter()
+            .chain(S::moment_components(&self.tip_moment))
+            .chain(g.as_ref())
+            .all(|x| x.is_finite())
     }
 }
 
 /// Everything beyond the state that a snapshot must carry for a bit-identical restart.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Memory {
+#[serde(bound = "")]
+pub struct Memory<S: SpaceModel = Planar> {
     /// Integrator memory.
     pub integrator: IntegratorMemory,
     /// Step control.
@@ -68,17 +144,18 @@ pub struct Memory {
     /// The inputs the state's accelerations and multipliers are consistent with (those of the
     /// last step); the next [`Simulator::advance`] treats a difference from the current
     /// inputs as a jump at the current time.
-    pub applied: Inputs,
+    pub applied: Inputs<S>,
 }
 
 /// Format version of [`Simulator::snapshot`]; raise it when a field of [`Snapshot`] (or of the
 /// structs it holds) changes.
-pub const SNAPSHOT_VERSION: u32 = 1;
+pub const SNAPSHOT_VERSION: u32 = 2;
 
 /// The payload of [`Simulator::snapshot`], encoded with `postcard` (f64 as 8 little-endian
 /// bytes, so restored values are bit-identical).
 #[derive(Serialize, Deserialize)]
-struct Snapshot {
+#[serde(bound = "")]
+struct Snapshot<S: SpaceModel> {
     /// [`SNAPSHOT_VERSION`]; first, so that another version is reported as such.
     version: u32,
     /// Coordinates of the model.
@@ -87,15 +164,16 @@ struct Snapshot {
     constraints: u64,
     /// [`scene_key`] of the simulator's scene.
     scene: u64,
-    /// The inputs set for the next step (tip force [N], gravity [m/s²]).
-    inputs: Inputs,
+    /// The inputs set for the next step (tip force [N], tip moment [N m], gravity [m/s²]).
+    inputs: Inputs<S>,
     /// The state.
     state: State,
     /// The memory beyond the state.
-    memory: Memory,
+    memory: Memory<S>,
 }
 
-/// FNV-1a 64 of the canonical TOML of `scene` without its inputs (tip force and gravity, which
+/// FNV-1a 64 of the canonical TOML of `scene` without its inputs (tip force, tip moment and
+/// gravity, which
 /// a snapshot carries and a host may change): what binds a snapshot to its model.
 fn scene_key(scene: &Scene) -> u64 {
     let mut scene = scene.clone();
@@ -107,41 +185,54 @@ fn scene_key(scene: &Scene) -> u64 {
     h.finish()
 }
 
-/// A running simulation.
+/// A running simulation in the space `S`.
 #[derive(Debug)]
-pub struct Simulator {
+pub struct Simulator<S: SpaceModel = Planar> {
     scene: Scene,
-    model: Model,
+    model: Model<S>,
     integ: GeneralizedAlpha,
     state: State,
     step: StepControl,
     /// Inputs the state's q̈ and λ are consistent with (see [`Memory::applied`]).
-    applied: Inputs,
+    applied: Inputs<S>,
     /// Smallest internal step used so far [s].
     pub min_step_used: f64,
 }
 
-impl Simulator {
-    /// Builds the model and its initial state (straight, or static equilibrium) at t = 0, with
-    /// consistent accelerations.
+impl Simulator<Planar> {
+    /// A planar simulator: [`Simulator::start_at`] at t = 0 (the constructors named without
+    /// the space are the planar ones, so that `Simulator::new(scene)` needs no annotation).
     pub fn new(scene: Scene) -> Result<Self, SimError> {
-        Self::new_at(scene, 0.0)
+        Self::start_at(scene, 0.0)
     }
 
-    /// As [`Simulator::new`], with the clock starting at `t0` [s] (e.g. an FMU's start time).
+    /// A planar simulator: [`Simulator::start_at`].
     pub fn new_at(scene: Scene, t0: f64) -> Result<Self, SimError> {
+        Self::start_at(scene, t0)
+    }
+
+    /// A planar simulator: [`Simulator::restorable`].
+    pub fn for_restore(scene: Scene) -> Result<Self, SimError> {
+        Self::restorable(scene)
+    }
+}
+
+impl<S: SpaceModel> Simulator<S> {
+    /// Builds the model and its initial state (straight, or static equilibrium), with
+    /// consistent accelerations, the clock starting at `t0` [s] (e.g. an FMU's start time).
+    pub fn start_at(scene: Scene, t0: f64) -> Result<Self, SimError> {
         let mut sim = Self::build(scene, true)?;
         sim.state.t = t0;
         Ok(sim)
     }
 
     /// Builds the model without computing an initial state (the caller restores a snapshot).
-    pub fn for_restore(scene: Scene) -> Result<Self, SimError> {
+    pub fn restorable(scene: Scene) -> Result<Self, SimError> {
         Self::build(scene, false)
     }
 
     fn build(scene: Scene, initialize: bool) -> Result<Self, SimError> {
-        let mut model = Model::<Planar>::from_scene(&scene)?;
+        let mut model = S::model(&scene)?;
         let n = model.coordinates();
         let m = model.constraints();
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
@@ -177,7 +268,7 @@ impl Simulator {
     }
 
     /// The model.
-    pub fn model(&self) -> &Model {
+    pub fn model(&self) -> &Model<S> {
         &self.model
     }
 
@@ -192,7 +283,7 @@ impl Simulator {
     }
 
     /// The memory a snapshot must carry besides the state.
-    pub fn memory(&self) -> Memory {
+    pub fn memory(&self) -> Memory<S> {
         Memory {
             integrator: self.integ.memory(),
             step: self.step,
@@ -202,7 +293,7 @@ impl Simulator {
 
     /// Restores a state and memory taken from a simulator of the same scene (checked:
     /// dimensions, step sizes, finiteness); the run then continues bit for bit as the original.
-    fn restore(&mut self, s: State, mem: &Memory) -> Result<(), SimError> {
+    fn restore(&mut self, s: State, mem: &Memory<S>) -> Result<(), SimError> {
         if s.q.len() != self.state.q.len()
             || s.lambda.len() != self.state.lambda.len()
             || [&s.v, &s.acc, &s.aux].iter().any(|x| x.len() != s.q.len())
@@ -221,19 +312,23 @@ impl Simulator {
             }
         }
         let finite = |x: &[f64]| x.iter().all(|x| x.is_finite());
-        let applied = &mem.applied;
         if !(s.t.is_finite()
-            && finite(&applied.tip_force)
-            && finite(&applied.gravity)
+            && mem.applied.is_finite()
             && [&s.q, &s.v, &s.acc, &s.aux, &s.lambda]
                 .iter()
                 .all(|x| finite(x)))
         {
             return Err(SnapshotError::NonFinite.into());
         }
-        self.integ
-            .restore_memory(&mut self.model, &mem.integrator)
-            .map_err(SnapshotError::NewtonMatrix)?;
+        // the held Newton matrix was evaluated under the inputs of the last step (a dead tip
+        // moment adds stiffness): rebuild it under those, whatever is set for the next step
+        let next = Inputs::of(&self.model);
+        mem.applied.apply(&mut self.model);
+        if let Err(e) = self.integ.restore_memory(&mut self.model, &mem.integrator) {
+            next.apply(&mut self.model);
+            return Err(SnapshotError::NewtonMatrix(e).into());
+        }
+        next.apply(&mut self.model);
         self.state = s;
         self.step = mem.step;
         self.applied = mem.applied;
@@ -241,7 +336,7 @@ impl Simulator {
     }
 
     /// The simulator's state, memory and current inputs as bytes (format [`SNAPSHOT_VERSION`],
-    /// bound to the scene apart from its tip force and gravity):
+    /// bound to the scene apart from its inputs, tip force, tip moment and gravity):
     /// [`Simulator::restore_snapshot`] into a simulator of the same scene continues bit for
     /// bit as this one.
     pub fn snapshot(&self) -> Vec<u8> {
@@ -259,7 +354,7 @@ impl Simulator {
     }
 
     /// Restores bytes of [`Simulator::snapshot`] taken from a simulator of the same scene
-    /// (tip force and gravity may differ: the snapshot sets them). Checks the format version,
+    /// (tip force, tip moment and gravity may differ: the snapshot sets them). Checks the format version,
     /// the scene, the dimensions, finiteness and the step sizes; on error the simulator is
     /// unchanged.
     pub fn restore_snapshot(&mut self, bytes: &[u8]) -> Result<(), SimError> {
@@ -272,7 +367,7 @@ impl Simulator {
             }
             .into());
         }
-        let (snap, rest) = postcard::take_from_bytes::<Snapshot>(bytes).map_err(malformed)?;
+        let (snap, rest) = postcard::take_from_bytes::<Snapshot<S>>(bytes).map_err(malformed)?;
         if !rest.is_empty() {
             return Err(SnapshotError::Malformed(format!("{} trailing bytes", rest.len())).into());
         }
@@ -284,8 +379,7 @@ impl Simulator {
         {
             return Err(SnapshotError::Dimensions.into());
         }
-        let i = &snap.inputs;
-        if !i.tip_force.iter().chain(&i.gravity).all(|x| x.is_finite()) {
+        if !snap.inputs.is_finite() {
             return Err(SnapshotError::NonFinite.into());
         }
         self.restore(snap.state, &snap.memory)?;
@@ -294,7 +388,7 @@ impl Simulator {
     }
 
     /// Sets gravity [m/s²] (takes effect at the next step, as a jump of the inputs).
-    pub fn set_gravity(&mut self, g: [f64; 2]) {
+    pub fn set_gravity(&mut self, g: S::Vec) {
         self.model.set_gravity(g);
     }
 
@@ -305,22 +399,44 @@ impl Simulator {
 
     /// Sets the total tip force [N], global axes (replaces the scene's; takes effect at the
     /// next step, as a jump of the inputs at the current time: see [`Simulator::advance`]).
-    pub fn set_tip_force(&mut self, f: [f64; 2]) {
+    pub fn set_tip_force(&mut self, f: S::Vec) {
         self.model.set_tip_force(f);
     }
 
     /// The total tip force the model applies [N], global axes.
-    pub fn tip_force(&self) -> [f64; 2] {
+    pub fn tip_force(&self) -> S::Vec {
         self.model.tip_force()
     }
 
+    /// Sets the total dead tip moment [N m], global axes (in the plane: about z,
+    /// counter-clockwise; replaces the scene's; takes effect at the next step, as a jump of the
+    /// inputs like the tip force).
+    pub fn set_tip_moment(&mut self, m: S::Moment) {
+        self.model.set_tip_moment(m);
+    }
+
+    /// The total tip moment the model applies [N m], global axes.
+    pub fn tip_moment(&self) -> S::Moment {
+        self.model.tip_moment()
+    }
+
     /// Gravity [m/s²], global axes.
-    pub fn gravity(&self) -> [f64; 2] {
+    pub fn gravity(&self) -> S::Vec {
         self.model.gravity()
     }
 
+    /// The inputs set for the next step (tip force, tip moment, gravity).
+    pub fn inputs(&self) -> Inputs<S> {
+        Inputs::of(&self.model)
+    }
+
+    /// Sets all inputs (each takes effect at the next step, as a jump of the inputs).
+    pub fn set_inputs(&mut self, inputs: &Inputs<S>) {
+        inputs.apply(&mut self.model);
+    }
+
     /// Outputs of the current state.
-    pub fn outputs(&self) -> Outputs {
+    pub fn outputs(&self) -> Outputs<S> {
         let s = &self.state;
         self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda)
     }
@@ -340,7 +456,7 @@ impl Simulator {
     /// the state is the one at the start of the call and the error says why and what to
     /// change.
     ///
-    /// Inputs set since the last step (tip force, gravity) are a discontinuity at the current
+    /// Inputs set since the last step (tip force, tip moment, gravity) are a discontinuity at the current
     /// time: the step starts from accelerations and multipliers consistent with them
     /// ([`GeneralizedAlpha::change_inputs`]), so a force held over a communication step is
     /// integrated as exactly that force. Constant inputs leave the integrator untouched.
@@ -503,10 +619,14 @@ mod tests {
         a.advance(2e-3).unwrap();
         a.set_tip_force([0.3, -0.7]);
         a.set_gravity([0.5, -9.0]);
+        a.set_tip_moment(0.01);
         let bytes = a.snapshot();
         let mut b = Simulator::for_restore(case1()).unwrap();
         b.restore_snapshot(&bytes).unwrap();
-        assert_eq!((b.tip_force(), b.gravity()), ([0.3, -0.7], [0.5, -9.0]));
+        assert_eq!(
+            (b.tip_force(), b.tip_moment(), b.gravity()),
+            ([0.3, -0.7], 0.01, [0.5, -9.0])
+        );
         a.advance(5e-3).unwrap();
         b.advance(5e-3).unwrap();
         let bits = |s: &State| -> Vec<u64> {
@@ -517,6 +637,23 @@ mod tests {
         };
         assert_eq!(bits(a.state()), bits(b.state()));
         assert_eq!(a.time().to_bits(), b.time().to_bits());
+    }
+
+    /// A snapshot taken after steps under a tip moment (which adds stiffness to the held Newton
+    /// matrix) restores bit for bit: the matrix is rebuilt under the inputs it was built with.
+    #[test]
+    fn snapshot_under_a_tip_moment_restores_bit_for_bit() {
+        let mut a = Simulator::new(case1()).unwrap();
+        a.set_tip_moment(0.01);
+        a.advance(3e-3).unwrap();
+        let bytes = a.snapshot();
+        let mut b = Simulator::for_restore(case1()).unwrap();
+        b.restore_snapshot(&bytes).unwrap();
+        for k in 4..=8 {
+            a.advance(k as f64 * 1e-3).unwrap();
+            b.advance(k as f64 * 1e-3).unwrap();
+            assert_eq!(a.state(), b.state(), "t = {k} ms");
+        }
     }
 
     #[test]

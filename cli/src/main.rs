@@ -9,9 +9,8 @@
 //! command line, 1 for a bad scene or a failed simulation.
 
 use clap::{Args, Parser, Subcommand};
-use hybeam::model::Outputs;
-use hybeam::scene::Scene;
-use hybeam::simulator::Simulator;
+use hybeam::scene::{Scene, SpaceKind};
+use hybeam::simulator::{AnySimulator, OutputId};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -89,35 +88,46 @@ impl SceneArgs {
     }
 }
 
-/// A CSV column: its name and how its value is read.
-type Column = (&'static str, fn(&Outputs) -> f64);
-
-/// Columns of the CSV after `time`. The one place the CLI names its outputs (the names are the
-/// FMU's output variables, checked by the test `columns_are_fmu_outputs`).
-const COLUMNS: [Column; 6] = [
-    ("tip.position.x", |o| o.tip_position[0]),
-    ("tip.position.y", |o| o.tip_position[1]),
-    ("tip.angle", |o| o.tip_angle),
-    ("energy.kinetic", |o| o.kinetic),
-    ("energy.strain", |o| o.strain),
-    ("energy.potential", |o| o.potential),
+/// The CSV columns of a planar scene after `time` (a subset of its outputs, unchanged since the
+/// first release). A spatial scene's CSV has every output of the simulator.
+const PLANAR_COLUMNS: [&str; 6] = [
+    "tip.position.x",
+    "tip.position.y",
+    "tip.angle",
+    "energy.kinetic",
+    "energy.strain",
+    "energy.potential",
 ];
 
+/// The CSV columns after `time` of a scene in `space`: the simulator's named outputs (the same
+/// names as the FMU's output variables, checked by the test `columns_are_fmu_outputs`).
+fn columns(space: SpaceKind) -> Vec<(String, OutputId)> {
+    let all = OutputId::named(space);
+    match space {
+        SpaceKind::Planar => all
+            .into_iter()
+            .filter(|(name, _)| PLANAR_COLUMNS.contains(&name.as_str()))
+            .collect(),
+        SpaceKind::Spatial => all,
+    }
+}
+
 /// The CSV header line.
-fn header() -> String {
+fn header(columns: &[(String, OutputId)]) -> String {
     std::iter::once("time")
-        .chain(COLUMNS.iter().map(|(name, _)| *name))
+        .chain(columns.iter().map(|(name, _)| name.as_str()))
         .collect::<Vec<_>>()
         .join(",")
 }
 
 /// The CSV row of the current state: time to 10 digits, outputs to 18 (round trip). The
 /// outputs are computed once per row.
-fn row(sim: &Simulator) -> String {
+fn row(sim: &AnySimulator, columns: &[(String, OutputId)]) -> String {
     let mut s = format!("{:.9e}", sim.time());
     let o = sim.outputs();
-    for (_, value) in COLUMNS {
-        s.push_str(&format!(",{:.17e}", value(&o)));
+    for (_, id) in columns {
+        let value = o.value(*id).unwrap_or(f64::NAN);
+        s.push_str(&format!(",{value:.17e}"));
     }
     s
 }
@@ -133,17 +143,18 @@ fn run(args: &RunArgs) -> Result<(), String> {
     let t_end = scene.simulation.t_end;
     let dt = scene.simulation.output_step;
     let wall = Instant::now();
-    let mut sim = Simulator::new(scene).map_err(|e| e.to_string())?;
+    let columns = columns(scene.space);
+    let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     let mut out = Vec::with_capacity(64 * 1024);
-    writeln!(out, "{}", header()).map_err(|e| e.to_string())?;
-    writeln!(out, "{}", row(&sim)).map_err(|e| e.to_string())?;
+    writeln!(out, "{}", header(&columns)).map_err(|e| e.to_string())?;
+    writeln!(out, "{}", row(&sim, &columns)).map_err(|e| e.to_string())?;
     let n_out = (t_end / dt - 1e-9).ceil() as u64;
     let mut last_report = Instant::now();
     for k in 1..=n_out {
         let t = (k as f64 * dt).min(t_end);
         sim.advance(t)
             .map_err(|e| format!("at t = {:.6} s: {e}", sim.time()))?;
-        writeln!(out, "{}", row(&sim)).map_err(|e| e.to_string())?;
+        writeln!(out, "{}", row(&sim, &columns)).map_err(|e| e.to_string())?;
         if !args.quiet && last_report.elapsed().as_secs_f64() > 1.0 {
             eprint!("\r  t = {t:.4} / {t_end} s ({:.0} %)", 100.0 * t / t_end);
             last_report = Instant::now();
@@ -157,10 +168,15 @@ fn run(args: &RunArgs) -> Result<(), String> {
     if !args.quiet {
         eprint!("\r");
     }
+    let tip: Vec<String> = o
+        .tip_position()
+        .iter()
+        .map(|x| format!("{x:.6e}"))
+        .collect();
     println!(
-        "{}: t = {:.4} s, {} steps ({} rejected), {} Newton iterations, {} factorizations, wall {:.4} s; tip = ({:.6e}, {:.6e}) m -> {out_path}",
+        "{}: t = {:.4} s, {} steps ({} rejected), {} Newton iterations, {} factorizations, wall {:.4} s; tip = ({}) m -> {out_path}",
         args.scene.scene.display(), sim.time(), c.steps, c.rejected, c.iterations, c.factorizations, elapsed,
-        o.tip_position[0], o.tip_position[1]
+        tip.join(", ")
     );
     Ok(())
 }
@@ -168,10 +184,11 @@ fn run(args: &RunArgs) -> Result<(), String> {
 fn statics(args: &SceneArgs) -> Result<(), String> {
     let scene = args.load()?;
     let wall = Instant::now();
-    let mut sim = Simulator::new(scene).map_err(|e| e.to_string())?;
+    let columns = columns(scene.space);
+    let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     let it = sim.solve_static().map_err(|e| e.to_string())?;
-    println!("{}", header());
-    println!("{}", row(&sim));
+    println!("{}", header(&columns));
+    println!("{}", row(&sim, &columns));
     eprintln!(
         "static equilibrium: {it} Newton iterations, wall {:.4} s",
         wall.elapsed().as_secs_f64()
@@ -261,9 +278,18 @@ mod tests {
 
     #[test]
     fn header_names_every_column_of_a_row() {
+        let planar = columns(SpaceKind::Planar);
         assert_eq!(
-            header(),
+            header(&planar),
             "time,tip.position.x,tip.position.y,tip.angle,energy.kinetic,energy.strain,energy.potential"
+        );
+        assert_eq!(
+            header(&columns(SpaceKind::Spatial)),
+            "time,tip.position.x,tip.position.y,tip.position.z,tip.velocity.x,tip.velocity.y,\
+             tip.velocity.z,tip.orientation.e0,tip.orientation.e1,tip.orientation.e2,\
+             tip.orientation.e3,tip.angular_velocity.x,tip.angular_velocity.y,\
+             tip.angular_velocity.z,root.force.x,root.force.y,root.force.z,root.moment.x,\
+             root.moment.y,root.moment.z,energy.kinetic,energy.strain,energy.potential"
         );
         let scene = Scene::from_toml(
             "name = \"t\"\n[[segments]]\nname = \"a\"\nkind = \"ancf\"\nlength = 0.4\n\
@@ -271,38 +297,44 @@ mod tests {
              elements = 2\n",
         )
         .unwrap();
-        let sim = Simulator::new(scene).unwrap();
-        assert_eq!(row(&sim).split(',').count(), header().split(',').count());
+        let sim = AnySimulator::new(scene).unwrap();
+        let row = row(&sim, &planar);
+        assert_eq!(row.split(',').count(), header(&planar).split(',').count());
+        assert!(!row.contains("NaN"), "{row}");
     }
 
-    /// Every CSV column after `time` is an FMU output of the same name that reads the same
-    /// value (docs/fmu-variables.md), on a state where positions, energies and the angle are
-    /// all nonzero.
+    /// Every CSV column after `time` of either space is an FMU output of the same name that
+    /// reads the same quantity (docs/fmu-variables.md); on a planar state where positions,
+    /// energies and the angle are all nonzero, the same value.
     #[test]
     fn columns_are_fmu_outputs() {
         use hybeam_fmu::cosim::variables::{Access, Table};
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/case1.toml");
-        let scene = Scene::from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
-        let table = Table::of(&scene);
-        let mut sim = Simulator::new(scene).unwrap();
+        let read = |name: &str| {
+            let path = format!("{}/../scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+            Scene::from_toml(&std::fs::read_to_string(path).unwrap()).unwrap()
+        };
+        let mut sim = AnySimulator::new(read("case1")).unwrap();
         sim.advance(2e-3).unwrap();
         let outputs = sim.outputs();
-        for (name, value) in COLUMNS {
-            let index = table
-                .variables()
-                .iter()
-                .position(|v| v.name == name)
-                .unwrap_or_else(|| panic!("CSV column {name} is not an FMU variable"));
-            assert_eq!(table.variables()[index].causality, fmi2::Causality::Output);
-            let Access::Output(read) = table.access(index) else {
-                panic!("{name} is not read from the outputs");
-            };
-            assert_ne!(value(&outputs), 0.0, "{name} must discriminate");
-            assert_eq!(
-                read(&outputs).to_bits(),
-                value(&outputs).to_bits(),
-                "{name}"
-            );
+        for scene in [read("case1"), read("case1_3d")] {
+            let table = Table::of(&scene);
+            let planar = scene.space == SpaceKind::Planar;
+            for (name, id) in columns(scene.space) {
+                let index = table
+                    .variables()
+                    .iter()
+                    .position(|v| v.name == name)
+                    .unwrap_or_else(|| panic!("CSV column {name} is not an FMU variable"));
+                assert_eq!(table.variables()[index].causality, fmi2::Causality::Output);
+                let Access::Output(fmu) = table.access(index) else {
+                    panic!("{name} is not read from the outputs");
+                };
+                assert_eq!(fmu, id, "{name}");
+                if planar {
+                    let value = outputs.value(id).unwrap();
+                    assert_ne!(value, 0.0, "{name} must discriminate");
+                }
+            }
         }
     }
 }

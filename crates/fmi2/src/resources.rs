@@ -7,8 +7,14 @@ use std::path::PathBuf;
 /// Accepted forms: `file:///abs/dir`, `file://localhost/abs/dir`, `file:/abs/dir` (each with or
 /// without a trailing slash, percent-encoded bytes such as `%20` decoded; scheme and host
 /// case-insensitive, RFC 3986), and, leniently, a plain absolute path `/abs/dir` (some hosts
-/// pass one). Anything else is refused with a message.
+/// pass one). On Windows the path may start with a drive, `file:///C:/dir` (RFC 8089 E.2;
+/// Wine's `file:///Z:/...` alike) or a plain `C:\dir`. Anything else is refused with a message.
 pub fn resource_dir(location: &str) -> Result<PathBuf, String> {
+    resource_dir_for(location, cfg!(windows))
+}
+
+/// [`resource_dir`] with the platform's drive rule given (`windows`), so both are unit-tested.
+fn resource_dir_for(location: &str, windows: bool) -> Result<PathBuf, String> {
     let scheme = location
         .get(..5)
         .filter(|s| s.eq_ignore_ascii_case("file:"));
@@ -34,16 +40,30 @@ pub fn resource_dir(location: &str) -> Result<PathBuf, String> {
                  (expected file:///path/to/resources)"
             ));
         }
-    } else if location.starts_with('/') {
+    } else if location.starts_with('/') || (windows && is_drive(location)) {
         location
     } else {
         return Err(format!(
             "resource location \"{location}\" is not a file URI (expected file:///path/to/resources)"
         ));
     };
+    // `/C:/dir` → `C:/dir`: the URI path's first segment is a drive letter.
+    let path = match path.strip_prefix('/') {
+        Some(rest) if windows && is_drive(rest) => rest,
+        _ => path,
+    };
     let bytes =
         percent_decode(path).map_err(|e| format!("resource location \"{location}\": {e}"))?;
     Ok(bytes_to_path(bytes))
+}
+
+/// Whether `s` starts with a Windows drive: a letter and `:`, then `/`, `\\` or nothing.
+fn is_drive(s: &str) -> bool {
+    let b = s.as_bytes();
+    b.len() >= 2
+        && b[0].is_ascii_alphabetic()
+        && b[1] == b':'
+        && matches!(b.get(2), None | Some(b'/') | Some(b'\\'))
 }
 
 fn percent_decode(s: &str) -> Result<Vec<u8>, String> {
@@ -124,5 +144,41 @@ mod tests {
         ] {
             assert!(resource_dir(uri).is_err(), "{uri}");
         }
+    }
+
+    /// Windows hosts pass `file:///C:/...` (Wine: `file:///Z:/...`) or a plain drive path; the
+    /// drive is kept and the URI's leading slash dropped. Elsewhere `/C:/x` stays a Unix path.
+    #[test]
+    fn windows_drive_forms() {
+        for (uri, want) in [
+            (
+                "file:///C:/Users/a%20b/fmu/resources",
+                "C:/Users/a b/fmu/resources",
+            ),
+            ("file:///z:/tmp/x/", "z:/tmp/x/"),
+            ("file:/C:/x", "C:/x"),
+            ("file://localhost/C:/x", "C:/x"),
+            ("file:///C:", "C:"),
+            ("C:\\Temp\\fmu\\resources", "C:\\Temp\\fmu\\resources"),
+            ("/tmp/plain", "/tmp/plain"),
+        ] {
+            assert_eq!(
+                resource_dir_for(uri, true).unwrap(),
+                PathBuf::from(want),
+                "{uri}"
+            );
+        }
+        assert_eq!(
+            resource_dir_for("file:///C:/x", false).unwrap(),
+            PathBuf::from("/C:/x")
+        );
+        assert_eq!(
+            resource_dir_for("file:///CD:/x", true).unwrap(),
+            PathBuf::from("/CD:/x")
+        );
+        for uri in ["C:\\x", "C:relative", "file:C:/x"] {
+            assert!(resource_dir_for(uri, false).is_err(), "{uri}");
+        }
+        assert!(resource_dir_for("C:relative", true).is_err());
     }
 }

@@ -1,5 +1,6 @@
 //! The beam as a co-simulation model: the variable table derived from the scene and its
-//! mapping onto a [`Simulator`]. Implements [`CoSimModel`] for the FMI layer.
+//! mapping onto an [`AnySimulator`] (planar or spatial, from the scene's `space`). Implements
+//! [`CoSimModel`] for the FMI layer.
 //!
 //! The variables are declared in [`variables`].
 
@@ -8,11 +9,10 @@ pub mod variables;
 use fmi2::{CoSimModel, ModelInfo, StepError, Variable};
 
 use hybeam::error::SimError;
-use hybeam::model::Outputs;
 use hybeam::scene::Scene;
-use hybeam::simulator::Simulator;
+use hybeam::simulator::{AnyOutputs, AnySimulator};
 
-use variables::{Access, SceneParameter, Table};
+use variables::{Access, Table};
 
 /// The beam FMU model.
 #[derive(Debug)]
@@ -21,16 +21,15 @@ pub struct BeamFmu {
     scene_text: String,
     /// Scene as built (parameters overridden through the variables).
     base: Scene,
-    /// Scene with the current parameter values.
+    /// Scene with the current parameter values and the inputs the host set (tip force and
+    /// moment: `initialize` rebuilds the simulator from it).
     scene: Scene,
     /// The variables and how each is accessed.
     table: Table,
-    /// Input tip force [N].
-    input: [f64; 2],
-    sim: Simulator,
+    sim: AnySimulator,
     /// Outputs of the current state, computed once per state change (no direct feedthrough:
     /// setting an input does not change them).
-    outputs: Outputs,
+    outputs: AnyOutputs,
 }
 
 impl BeamFmu {
@@ -72,6 +71,12 @@ impl BeamFmu {
     }
 }
 
+/// The error for a variable the simulator's space does not have (a table of another space:
+/// cannot happen through the FMI layer, which only passes the table's variables).
+fn not_in_space(name: &str, sim: &AnySimulator) -> String {
+    format!("{name}: not a variable of this {:?} model", sim.space())
+}
+
 /// Model name, description and default experiment of a scene.
 fn model_info(scene: &Scene) -> ModelInfo {
     ModelInfo {
@@ -94,12 +99,11 @@ impl CoSimModel for BeamFmu {
     fn from_resource(scene_toml: &str) -> Result<Self, String> {
         let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
         let table = Table::of(&scene);
-        let sim = Simulator::new(scene.clone()).map_err(|e| e.to_string())?;
+        let sim = AnySimulator::new(scene.clone()).map_err(|e| e.to_string())?;
         let outputs = sim.outputs();
         Ok(Self {
             scene_text: scene_toml.to_string(),
             base: scene.clone(),
-            input: scene.tip_force_vec(),
             scene,
             table,
             sim,
@@ -117,13 +121,14 @@ impl CoSimModel for BeamFmu {
 
     fn get_real(&self, index: usize) -> Result<f64, String> {
         let access = self.table.access(index);
-        Ok(match access {
-            Access::TipForce(k) => self.sim.tip_force()[k],
-            Access::Output(read) => read(&self.outputs),
-            Access::Scene(_) | Access::Segment(..) => {
-                access.parameter(&self.scene).unwrap_or(f64::NAN)
+        let value = match access {
+            Access::Input(id) => self.sim.input(id),
+            Access::Output(id) => self.outputs.value(id),
+            Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
+                access.parameter(&self.scene)
             }
-        })
+        };
+        value.ok_or_else(|| not_in_space(&self.table.variables()[index].name, &self.sim))
     }
 
     fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
@@ -133,34 +138,35 @@ impl CoSimModel for BeamFmu {
         }
         let access = self.table.access(index);
         match access {
-            Access::TipForce(k) => {
-                self.input[k] = value;
-                self.sim.set_tip_force(self.input);
+            Access::Input(id) => {
+                if !self.sim.set_input(id, value) {
+                    return Err(not_in_space(name, &self.sim));
+                }
+                id.set_in_scene(&mut self.scene, value);
             }
             Access::Output(_) => return Err(format!("{name} is an output and cannot be set")),
-            Access::Scene(_) | Access::Segment(..) => {
+            Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
                 let mut scene = self.scene.clone();
                 access.set_parameter(&mut scene, value);
                 scene
                     .validate()
                     .map_err(|e| format!("{name} = {value}: {e}"))?;
-                self.scene = scene;
-                if let Access::Scene(SceneParameter {
-                    tune: Some(tune), ..
-                }) = access
-                {
-                    tune(&self.scene, &mut self.sim);
+                if let Access::Gravity(id) = access {
+                    // tunable: the running simulator takes it at its next step
+                    if !self.sim.set_input(id, value) {
+                        return Err(not_in_space(name, &self.sim));
+                    }
                     self.refresh_outputs();
                 }
+                self.scene = scene;
             }
         }
         Ok(())
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
-        let mut scene = self.scene.clone();
-        scene.tip.force = self.input.to_vec();
-        self.sim = Simulator::new_at(scene, start_time).map_err(|e| e.to_string())?;
+        let scene = self.scene.clone();
+        self.sim = AnySimulator::start_at(scene, start_time).map_err(|e| e.to_string())?;
         self.refresh_outputs();
         Ok(())
     }
@@ -198,13 +204,13 @@ impl CoSimModel for BeamFmu {
             ));
         }
         let (params, sim_bytes) = snapshot;
-        let scene = self.build_scene_with_parameters(&params)?;
-        let mut sim = Simulator::for_restore(scene.clone()).map_err(|e| e.to_string())?;
+        let mut scene = self.build_scene_with_parameters(&params)?;
+        let mut sim = AnySimulator::restorable(scene.clone()).map_err(|e| e.to_string())?;
         // a snapshot that does not fit is an error of the call (fmi2Error), not of a step
         sim.restore_snapshot(&sim_bytes)
             .map_err(|e| e.to_string())?;
+        sim.inputs_into(&mut scene);
         self.scene = scene;
-        self.input = sim.tip_force();
         self.sim = sim;
         self.refresh_outputs();
         Ok(())
@@ -212,7 +218,7 @@ impl CoSimModel for BeamFmu {
 }
 
 /// A serialized FMU state: the parameter values in table order, then the bytes of
-/// [`Simulator::snapshot`].
+/// [`AnySimulator::snapshot`].
 type FmuSnapshot = (Vec<f64>, Vec<u8>);
 
 /// The FMI outcome of a failed `advance`: the simulator kept its state from before the call, so
@@ -283,6 +289,7 @@ mod tests {
             a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
         }
         a.set_real(at(&a, 2), -0.01).unwrap();
+        a.set_real(at(&a, 6), 2e-3).unwrap(); // tip.moment.z
         let bytes = a.save_state();
         let mut b = BeamFmu::from_resource(&text).unwrap();
         b.load_state(&bytes).unwrap();
@@ -298,6 +305,12 @@ mod tests {
                 v.name
             );
         }
+        assert_eq!(b.get_real(at(&b, 6)).unwrap(), 2e-3);
+        assert_eq!(
+            b.scene.tip.moment,
+            [2e-3],
+            "the restored input is the scene's for a reset"
+        );
         assert!(b.load_state(&bytes[..bytes.len() - 3]).is_err());
         assert!(b.load_state(b"garbage").is_err());
     }
@@ -314,6 +327,104 @@ mod tests {
             m.do_step(t, h).unwrap();
             t += h;
             assert_eq!(m.sim.time().to_bits(), t.to_bits());
+        }
+    }
+
+    /// A spatial scene's variables: z components, moments about three axes, the quaternion,
+    /// gravity.z; no planar angle. From the scene alone (no model is built).
+    #[test]
+    fn spatial_variables_follow_the_space() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/case1_3d.toml"
+        ))
+        .unwrap();
+        let scene = Scene::from_toml(&text).unwrap();
+        let table = Table::of(&scene);
+        let names: Vec<&str> = table.variables().iter().map(|v| v.name.as_str()).collect();
+        for name in [
+            "tip.force.z",
+            "tip.moment.x",
+            "tip.position.z",
+            "tip.orientation.e0",
+            "tip.angular_velocity.y",
+            "root.moment.x",
+            "gravity.z",
+        ] {
+            assert!(names.contains(&name), "{name} missing");
+        }
+        assert!(!names.contains(&"tip.angle"));
+        let g = table.variables().iter().find(|v| v.name == "gravity.z");
+        assert_eq!(g.and_then(|v| v.start), Some(-9.81));
+        let planar = Table::of(&Scene::from_toml(&case1()).unwrap());
+        let planar: Vec<&str> = planar.variables().iter().map(|v| v.name.as_str()).collect();
+        assert!(!planar.iter().any(|n| n.ends_with(".z")
+            && *n != "tip.moment.z"
+            && *n != "root.moment.z"
+            && *n != "tip.angular_velocity.z"));
+        assert!(!planar.iter().any(|n| n.contains("orientation")));
+    }
+
+    /// A spatial instance of `text`, or `None` while the spatial model is not built yet (any
+    /// other error fails).
+    fn spatial(text: &str) -> Option<BeamFmu> {
+        match BeamFmu::from_resource(text) {
+            Ok(m) => Some(m),
+            Err(e) if e.contains("spatial model is not built yet") => {
+                eprintln!("no spatial model yet: {e}");
+                None
+            }
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    /// Through the FMU a spatial scene runs like a planar one: host inputs (tip force along y,
+    /// tip moment about x, a torsion) set at t = 0 give the outputs of a scene that holds them
+    /// (the jump treatment), and a snapshot restores bit for bit in a fresh instance.
+    #[test]
+    fn spatial_inputs_jump_and_snapshot_restores() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/case1_3d.toml"
+        ))
+        .unwrap();
+        let loaded = text.replace(
+            "[initial]",
+            "[tip]\nforce = [0.0, 0.01, 0.0]\nmoment = [2e-3, 0.0, 0.0]\n\n[initial]",
+        );
+        let (Some(mut a), Some(mut b)) = (spatial(&text), spatial(&loaded)) else {
+            return;
+        };
+        a.initialize(0.0).unwrap();
+        b.initialize(0.0).unwrap();
+        a.set_real(at(&a, 2), 0.01).unwrap(); // tip.force.y
+        a.set_real(at(&a, 4), 2e-3).unwrap(); // tip.moment.x
+        let mut worst = 0.0f64;
+        for k in 0..30 {
+            a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+            b.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+            for i in 0..a.variables().len() {
+                let d = a.get_real(i).unwrap() - b.get_real(i).unwrap();
+                worst = worst.max(d.abs());
+            }
+        }
+        let wx = at(&a, 28); // tip.angular_velocity.x: the moment twists the rod
+        println!(
+            "largest difference {worst:.3e}; twist rate {:.3e} rad/s",
+            a.get_real(wx).unwrap()
+        );
+        assert!(worst <= 1e-12, "largest difference {worst:e}");
+        assert!(a.get_real(wx).unwrap().abs() > 1e-3);
+        let bytes = a.save_state();
+        let mut c = spatial(&text).unwrap();
+        c.load_state(&bytes).unwrap();
+        for k in 30..40 {
+            a.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+            c.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+        }
+        for (i, v) in a.variables().iter().enumerate() {
+            let (x, y) = (a.get_real(i).unwrap(), c.get_real(i).unwrap());
+            assert_eq!(x.to_bits(), y.to_bits(), "{}", v.name);
         }
     }
 

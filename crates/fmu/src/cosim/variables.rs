@@ -2,26 +2,30 @@
 //! causality, variability, unit, description and how the model reads and writes it). The table
 //! is a function of the [`Scene`] alone: listing the variables needs no simulator.
 //!
-//! Value references come from the scene's structure, never from an enumeration order that could
-//! shift: inputs 1–2, outputs 10–20, gravity 100–101, solver 110–112, and segment i's field k at
-//! 1000·(i + 1) + k (k: length 1, diameter 2, width 3, height 4, youngs_modulus 5, density 6,
-//! damping_time 7, damping_ratio 8). A scene only gets the variables it needs: no damping
+//! The names come from the simulator ([`InputId::named`], [`OutputId::named`]: the scene's
+//! space decides which exist); this file gives each name its value reference, unit and
+//! description. Value references belong to the name, the same in both spaces, never to an
+//! enumeration order that could shift: inputs 1–6, outputs 10–32, gravity 100–102, solver
+//! 110–112, and segment i's field k at 1000·(i + 1) + k (k: length 1, diameter 2, width 3,
+//! height 4, youngs_modulus 5, density 6, damping_time 7, damping_ratio 8). A scene only gets
+//! the variables it needs: no z or quaternion in the plane, no `tip.angle` in space, no damping
 //! parameters without damping, no width/height on a round section. `docs/fmu-variables.md` is
 //! checked against this table by `tests/variables_doc.rs`.
 
 use fmi2::{Causality, Variability, Variable};
-use hybeam::model::Outputs;
 use hybeam::scene::{Scene, Section, Segment, SegmentKind};
-use hybeam::simulator::Simulator;
+use hybeam::simulator::{InputId, OutputId};
 
 /// How the model reads and writes one variable.
 #[derive(Debug, Clone, Copy)]
 pub enum Access {
-    /// Component `k` (0 = global x, 1 = global y) of the input tip force [N].
-    TipForce(usize),
+    /// An input of the simulator set by the host (tip force, tip moment).
+    Input(InputId),
     /// An output of the current state (read only).
-    Output(fn(&Outputs) -> f64),
-    /// A scene-wide parameter.
+    Output(OutputId),
+    /// A component of gravity: a tunable parameter, passed on to the running simulator.
+    Gravity(InputId),
+    /// A scene-wide fixed parameter.
     Scene(&'static SceneParameter),
     /// A field of the segment with this index (root = 0).
     Segment(usize, &'static SegmentField),
@@ -31,38 +35,103 @@ impl Access {
     /// The parameter's value in `scene`; `None` for inputs and outputs.
     pub fn parameter(self, scene: &Scene) -> Option<f64> {
         match self {
+            Access::Gravity(id) => Some(id.scene_value(scene)),
             Access::Scene(p) => Some((p.get)(scene)),
             Access::Segment(i, f) => Some((f.get)(&scene.segments[i])),
-            Access::TipForce(_) | Access::Output(_) => None,
+            Access::Input(_) | Access::Output(_) => None,
         }
     }
 
     /// Sets the parameter in `scene` (not validated); no effect for inputs and outputs.
     pub fn set_parameter(self, scene: &mut Scene, x: f64) {
         match self {
+            Access::Gravity(id) => id.set_in_scene(scene, x),
             Access::Scene(p) => (p.set)(scene, x),
             Access::Segment(i, f) => (f.set)(&mut scene.segments[i], x),
-            Access::TipForce(_) | Access::Output(_) => {}
+            Access::Input(_) | Access::Output(_) => {}
         }
     }
 }
 
-/// An output row.
-#[derive(Debug)]
-pub struct OutputRow {
-    /// Variable name.
-    pub name: &'static str,
-    /// Value reference.
-    pub vr: u32,
-    /// Unit symbol.
-    pub unit: &'static str,
-    /// One-line description.
-    pub description: &'static str,
-    /// Reads it from the outputs of a state.
-    pub read: fn(&Outputs) -> f64,
-}
+/// A named variable of the simulator: (name, value reference, unit, description).
+pub type Row = (&'static str, u32, Option<&'static str>, &'static str);
 
-/// A scene-wide parameter row.
+/// Inputs of both spaces (the plane has `tip.force.{x,y}` and `tip.moment.z`).
+pub const INPUTS: [Row; 6] = [
+    (
+        "tip.force.x",
+        1,
+        Some("N"),
+        "force applied at the free end, global axes",
+    ),
+    (
+        "tip.force.y",
+        2,
+        Some("N"),
+        "force applied at the free end, global axes",
+    ),
+    (
+        "tip.force.z",
+        3,
+        Some("N"),
+        "force applied at the free end, global axes",
+    ),
+    (
+        "tip.moment.x",
+        4,
+        Some("N.m"),
+        "moment applied at the free end, global axes",
+    ),
+    (
+        "tip.moment.y",
+        5,
+        Some("N.m"),
+        "moment applied at the free end, global axes",
+    ),
+    (
+        "tip.moment.z",
+        6,
+        Some("N.m"),
+        "moment applied at the free end, global axes (counter-clockwise in the plane)",
+    ),
+];
+
+/// Outputs of both spaces (no direct feedthrough), in the order of the description: the
+/// plane's 10–20 first as before, its `tip.angular_velocity.z` appended at 21.
+pub const OUTPUTS: [Row; 23] = [
+    ("tip.position.x", 10, Some("m"), "free end position, global x"),
+    ("tip.position.y", 11, Some("m"), "free end position, global y"),
+    ("tip.position.z", 22, Some("m"), "free end position, global z"),
+    ("tip.velocity.x", 12, Some("m/s"), "free end velocity, global x"),
+    ("tip.velocity.y", 13, Some("m/s"), "free end velocity, global y"),
+    ("tip.velocity.z", 23, Some("m/s"), "free end velocity, global z"),
+    ("tip.angle", 14, Some("rad"), "angle of the end tangent from global x, counter-clockwise, in (-pi, pi]"),
+    ("tip.orientation.e0", 24, None, "Euler parameter e0 (scalar) of the tip section frame to world rotation"),
+    ("tip.orientation.e1", 25, None, "Euler parameter e1 of the tip section frame to world rotation"),
+    ("tip.orientation.e2", 26, None, "Euler parameter e2 of the tip section frame to world rotation"),
+    ("tip.orientation.e3", 27, None, "Euler parameter e3 of the tip section frame to world rotation"),
+    ("root.force.x", 15, Some("N"), "force of the support on the beam, global x"),
+    ("root.force.y", 16, Some("N"), "force of the support on the beam, global y"),
+    ("root.force.z", 30, Some("N"), "force of the support on the beam, global z"),
+    ("root.moment.x", 31, Some("N.m"), "moment of the support on the beam about the root, global x"),
+    ("root.moment.y", 32, Some("N.m"), "moment of the support on the beam about the root, global y"),
+    ("root.moment.z", 17, Some("N.m"), "moment of the support on the beam about the root, global z (counter-clockwise in the plane)"),
+    ("energy.kinetic", 18, Some("J"), "kinetic energy"),
+    ("energy.strain", 19, Some("J"), "elastic strain energy"),
+    ("energy.potential", 20, Some("J"), "gravity potential energy (zero at the origin)"),
+    ("tip.angular_velocity.x", 28, Some("rad/s"), "angular velocity of the tip section, global x"),
+    ("tip.angular_velocity.y", 29, Some("rad/s"), "angular velocity of the tip section, global y"),
+    ("tip.angular_velocity.z", 21, Some("rad/s"), "angular velocity of the tip section, global z (counter-clockwise in the plane)"),
+];
+
+/// Gravity, tunable parameters of both spaces.
+pub const GRAVITY: [Row; 3] = [
+    ("gravity.x", 100, Some("m/s2"), "gravity, global axes"),
+    ("gravity.y", 101, Some("m/s2"), "gravity, global axes"),
+    ("gravity.z", 102, Some("m/s2"), "gravity, global axes"),
+];
+
+/// A scene-wide fixed parameter row.
 #[derive(Debug)]
 pub struct SceneParameter {
     /// Variable name.
@@ -77,8 +146,6 @@ pub struct SceneParameter {
     pub get: fn(&Scene) -> f64,
     /// Writes it into a scene (not validated).
     pub set: fn(&mut Scene, f64),
-    /// For a tunable parameter: passes the scene's new value on to the running simulator.
-    pub tune: Option<fn(&Scene, &mut Simulator)>,
 }
 
 /// A segment field exposed as a fixed parameter `<segment>.<name>` with value reference
@@ -99,116 +166,8 @@ pub struct SegmentField {
     pub set: fn(&mut Segment, f64),
 }
 
-/// Input tip force: (name, value reference, component).
-const INPUTS: [(&str, u32, usize); 2] = [("tip.force.x", 1, 0), ("tip.force.y", 2, 1)];
-
-/// Outputs, value references 10–20 (no direct feedthrough).
-pub const OUTPUTS: [OutputRow; 11] = [
-    OutputRow {
-        name: "tip.position.x",
-        vr: 10,
-        unit: "m",
-        description: "free end position, global x",
-        read: |o| o.tip_position[0],
-    },
-    OutputRow {
-        name: "tip.position.y",
-        vr: 11,
-        unit: "m",
-        description: "free end position, global y",
-        read: |o| o.tip_position[1],
-    },
-    OutputRow {
-        name: "tip.velocity.x",
-        vr: 12,
-        unit: "m/s",
-        description: "free end velocity, global x",
-        read: |o| o.tip_velocity[0],
-    },
-    OutputRow {
-        name: "tip.velocity.y",
-        vr: 13,
-        unit: "m/s",
-        description: "free end velocity, global y",
-        read: |o| o.tip_velocity[1],
-    },
-    OutputRow {
-        name: "tip.angle",
-        vr: 14,
-        unit: "rad",
-        description: "angle of the end tangent from global x, counter-clockwise, in (-pi, pi]",
-        read: |o| o.tip_angle,
-    },
-    OutputRow {
-        name: "root.force.x",
-        vr: 15,
-        unit: "N",
-        description: "force of the support on the beam, global x",
-        read: |o| o.root_force[0],
-    },
-    OutputRow {
-        name: "root.force.y",
-        vr: 16,
-        unit: "N",
-        description: "force of the support on the beam, global y",
-        read: |o| o.root_force[1],
-    },
-    OutputRow {
-        name: "root.moment.z",
-        vr: 17,
-        unit: "N.m",
-        description: "moment of the support on the beam about the root, counter-clockwise",
-        read: |o| o.root_moment,
-    },
-    OutputRow {
-        name: "energy.kinetic",
-        vr: 18,
-        unit: "J",
-        description: "kinetic energy",
-        read: |o| o.kinetic,
-    },
-    OutputRow {
-        name: "energy.strain",
-        vr: 19,
-        unit: "J",
-        description: "elastic strain energy",
-        read: |o| o.strain,
-    },
-    OutputRow {
-        name: "energy.potential",
-        vr: 20,
-        unit: "J",
-        description: "gravity potential energy (zero at the origin)",
-        read: |o| o.potential,
-    },
-];
-
-/// Scene-wide parameters: gravity 100–101 (tunable), solver 110–112 (fixed).
-const SCENE_PARAMETERS: [SceneParameter; 5] = [
-    SceneParameter {
-        name: "gravity.x",
-        vr: 100,
-        unit: Some("m/s2"),
-        description: "gravity, global axes",
-        get: |s| s.gravity_vec::<2>()[0],
-        set: |s, x| {
-            s.gravity = s.gravity_vec::<2>().to_vec();
-            s.gravity[0] = x
-        },
-        tune: Some(|s, sim| sim.set_gravity(s.gravity_vec())),
-    },
-    SceneParameter {
-        name: "gravity.y",
-        vr: 101,
-        unit: Some("m/s2"),
-        description: "gravity, global axes",
-        get: |s| s.gravity_vec::<2>()[1],
-        set: |s, x| {
-            s.gravity = s.gravity_vec::<2>().to_vec();
-            s.gravity[1] = x
-        },
-        tune: Some(|s, sim| sim.set_gravity(s.gravity_vec())),
-    },
+/// Scene-wide fixed parameters: solver 110–112.
+const SCENE_PARAMETERS: [SceneParameter; 3] = [
     SceneParameter {
         name: "solver.rho_inf",
         vr: 110,
@@ -216,7 +175,6 @@ const SCENE_PARAMETERS: [SceneParameter; 5] = [
         description: "generalized-alpha spectral radius at infinity, [0, 1)",
         get: |s| s.solver.rho_inf,
         set: |s, x| s.solver.rho_inf = x,
-        tune: None,
     },
     SceneParameter {
         name: "solver.max_step",
@@ -225,7 +183,6 @@ const SCENE_PARAMETERS: [SceneParameter; 5] = [
         description: "largest internal step",
         get: |s| s.solver.max_step,
         set: |s, x| s.solver.max_step = x,
-        tune: None,
     },
     SceneParameter {
         name: "solver.tolerance",
@@ -234,7 +191,6 @@ const SCENE_PARAMETERS: [SceneParameter; 5] = [
         description: "relative Newton tolerance",
         get: |s| s.solver.tolerance,
         set: |s, x| s.solver.tolerance = x,
-        tune: None,
     },
 ];
 
@@ -322,39 +278,49 @@ pub struct Table {
 }
 
 impl Table {
-    /// The table of `scene`: inputs, outputs, scene parameters, then each segment's fields.
+    /// The table of `scene`: inputs, outputs, gravity, solver parameters, then each segment's
+    /// fields. Inputs, outputs and gravity are the simulator's named scalars of the scene's
+    /// space, in the order of [`INPUTS`], [`OUTPUTS`] and [`GRAVITY`].
     pub fn of(scene: &Scene) -> Self {
         let mut t = Table {
             variables: Vec::new(),
             access: Vec::new(),
         };
-        for (name, vr, k) in INPUTS {
-            t.push(
-                Variable {
-                    name: name.into(),
-                    vr,
-                    causality: Causality::Input,
-                    variability: Variability::Continuous,
-                    start: Some(scene.tip.force[k]),
-                    unit: Some("N"),
-                    description: "force applied at the free end, global axes".into(),
-                },
-                Access::TipForce(k),
-            );
+        let inputs = InputId::named(scene.space);
+        let outputs = OutputId::named(scene.space);
+        // the rows whose name the simulator has in this space, with its id
+        fn present<'a, I: Copy>(
+            rows: &'a [Row],
+            ids: &'a [(String, I)],
+        ) -> impl Iterator<Item = (&'a Row, I)> + 'a {
+            rows.iter().filter_map(move |row| {
+                let (_, id) = ids.iter().find(|(name, _)| name == row.0)?;
+                Some((row, *id))
+            })
         }
-        for o in &OUTPUTS {
-            t.push(
-                Variable {
-                    name: o.name.into(),
-                    vr: o.vr,
-                    causality: Causality::Output,
-                    variability: Variability::Continuous,
-                    start: None,
-                    unit: Some(o.unit),
-                    description: o.description.into(),
-                },
-                Access::Output(o.read),
-            );
+        let variable =
+            |(name, vr, unit, description): &Row, causality, variability, start| Variable {
+                name: (*name).into(),
+                vr: *vr,
+                causality,
+                variability,
+                start,
+                unit: *unit,
+                description: (*description).into(),
+            };
+        for (row, id) in present(&INPUTS, &inputs) {
+            let start = Some(id.scene_value(scene));
+            let v = variable(row, Causality::Input, Variability::Continuous, start);
+            t.push(v, Access::Input(id));
+        }
+        for (row, id) in present(&OUTPUTS, &outputs) {
+            let v = variable(row, Causality::Output, Variability::Continuous, None);
+            t.push(v, Access::Output(id));
+        }
+        for (row, id) in present(&GRAVITY, &inputs) {
+            let start = Some(id.scene_value(scene));
+            let v = variable(row, Causality::Parameter, Variability::Tunable, start);
+            t.push(v, Access::Gravity(id));
         }
         for p in &SCENE_PARAMETERS {
             t.push(
@@ -362,11 +328,7 @@ impl Table {
                     name: p.name.into(),
                     vr: p.vr,
                     causality: Causality::Parameter,
-                    variability: if p.tune.is_some() {
-                        Variability::Tunable
-                    } else {
-                        Variability::Fixed
-                    },
+                    variability: Variability::Fixed,
                     start: Some((p.get)(scene)),
                     unit: p.unit,
                     description: p.description.into(),
@@ -410,9 +372,43 @@ impl Table {
 
     /// The parameters' accesses, in table order (the order of a snapshot's parameter block).
     pub fn parameters(&self) -> impl Iterator<Item = Access> + '_ {
-        self.access
-            .iter()
-            .copied()
-            .filter(|a| matches!(a, Access::Scene(_) | Access::Segment(..)))
+        self.access.iter().copied().filter(|a| {
+            matches!(
+                a,
+                Access::Gravity(_) | Access::Scene(_) | Access::Segment(..)
+            )
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hybeam::scene::SpaceKind;
+
+    /// Every named scalar of the simulator, in both spaces, has exactly one row (a name without
+    /// a row would silently not be exported), every row is a name of some space, and no two
+    /// rows share a value reference.
+    #[test]
+    fn every_named_scalar_has_one_row_and_vrs_are_unique() {
+        let rows: Vec<&Row> = INPUTS.iter().chain(&OUTPUTS).chain(&GRAVITY).collect();
+        let mut names = Vec::new();
+        for space in [SpaceKind::Planar, SpaceKind::Spatial] {
+            let inputs = InputId::named(space).into_iter().map(|(n, _)| n);
+            names.extend(inputs.chain(OutputId::named(space).into_iter().map(|(n, _)| n)));
+        }
+        for name in &names {
+            let n = rows.iter().filter(|r| r.0 == name).count();
+            assert_eq!(n, 1, "{name}: {n} rows");
+        }
+        for row in &rows {
+            assert!(names.iter().any(|n| n == row.0), "{} is in no space", row.0);
+        }
+        let mut vrs: Vec<u32> = rows.iter().map(|r| r.1).collect();
+        vrs.extend(SCENE_PARAMETERS.iter().map(|p| p.vr));
+        vrs.sort();
+        let n = vrs.len();
+        vrs.dedup();
+        assert_eq!(vrs.len(), n, "duplicate value references");
     }
 }

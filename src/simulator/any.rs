@@ -1,0 +1,492 @@
+//! The planar|spatial choice in one place ([`AnySimulator`], [`AnyOutputs`]) and the named
+//! scalars callers read and write: outputs ([`OutputId`]) and inputs ([`InputId`]), named from
+//! [`Space::AXES`], [`Space::MOMENT_AXES`] and the orientation's components
+//! ([`SpaceModel::ATTITUDE`]).
+
+use super::{Inputs, Simulator, SpaceModel};
+use crate::error::SimError;
+use crate::integrator::Counters;
+use crate::model::{Outputs, Planar, Space, Spatial};
+use crate::scene::{Scene, SpaceKind};
+
+/// A quantity of the outputs of a state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Quantity {
+    /// `tip.position.<axis>` [m], global axes.
+    TipPosition,
+    /// `tip.velocity.<axis>` [m/s], global axes.
+    TipVelocity,
+    /// Orientation of the tip section: `tip.angle` [rad] in the plane (tangent from global x,
+    /// in (−π, π]), `tip.orientation.e0`–`e3` in space (Euler parameters of the tip section
+    /// frame → world, scalar first).
+    TipAttitude,
+    /// `tip.angular_velocity.<moment axis>` [rad/s] of the tip section, global axes.
+    TipAngularVelocity,
+    /// `root.force.<axis>` [N]: force of the support on the beam, global axes.
+    RootForce,
+    /// `root.moment.<moment axis>` [N m]: moment of the support on the beam about the root.
+    RootMoment,
+    /// `energy.kinetic` [J].
+    KineticEnergy,
+    /// `energy.strain` [J].
+    StrainEnergy,
+    /// `energy.potential` [J] (gravity, zero at the origin).
+    PotentialEnergy,
+}
+
+/// One scalar output: a quantity and the index of its component (in [`Space::AXES`],
+/// [`Space::MOMENT_AXES`] or [`SpaceModel::ATTITUDE_COMPONENTS`]; 0 for an energy).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct OutputId {
+    /// The quantity.
+    pub quantity: Quantity,
+    /// The component's index.
+    pub component: usize,
+}
+
+/// `stem.suffix`, or `stem` for an empty suffix.
+fn dotted(stem: &str, suffix: &str) -> String {
+    if suffix.is_empty() {
+        stem.to_string()
+    } else {
+        format!("{stem}.{suffix}")
+    }
+}
+
+/// `stem.suffix` and `id(what, component index)` for every suffix of every group
+/// `(what, stem, suffixes)`, in order.
+fn named_components<T: Copy, I>(
+    groups: &[(T, &str, &[&str])],
+    id: impl Fn(T, usize) -> I,
+) -> Vec<(String, I)> {
+    let mut out = Vec::new();
+    for &(what, stem, suffixes) in groups {
+        for (k, suffix) in suffixes.iter().enumerate() {
+            out.push((dotted(stem, suffix), id(what, k)));
+        }
+    }
+    out
+}
+
+impl OutputId {
+    /// The scalar outputs of a space with their names, in this order: tip position, velocity,
+    /// orientation, angular velocity, root force, root moment, energies.
+    pub fn named(space: SpaceKind) -> Vec<(String, OutputId)> {
+        match space {
+            SpaceKind::Planar => Self::named_in::<Planar>(),
+            SpaceKind::Spatial => Self::named_in::<Spatial>(),
+        }
+    }
+
+    fn named_in<S: SpaceModel>() -> Vec<(String, OutputId)> {
+        use Quantity::*;
+        let groups: [(Quantity, &str, &[&str]); 9] = [
+            (TipPosition, "tip.position", S::AXES),
+            (TipVelocity, "tip.velocity", S::AXES),
+            (TipAttitude, S::ATTITUDE, S::ATTITUDE_COMPONENTS),
+            (TipAngularVelocity, "tip.angular_velocity", S::MOMENT_AXES),
+            (RootForce, "root.force", S::AXES),
+            (RootMoment, "root.moment", S::MOMENT_AXES),
+            (KineticEnergy, "energy.kinetic", &[""]),
+            (StrainEnergy, "energy.strain", &[""]),
+            (PotentialEnergy, "energy.potential", &[""]),
+        ];
+        named_components(&groups, |quantity, component| OutputId {
+            quantity,
+            component,
+        })
+    }
+}
+
+impl<S: SpaceModel> Outputs<S> {
+    /// The value of one scalar output; `None` for a component this space does not have.
+    pub fn value(&self, id: OutputId) -> Option<f64> {
+        use Quantity::*;
+        let k = id.component;
+        let one = |x: f64| (k == 0).then_some(x);
+        match id.quantity {
+            TipPosition => self.tip_position.as_ref().get(k).copied(),
+            TipVelocity => self.tip_velocity.as_ref().get(k).copied(),
+            TipAttitude => S::attitude_components(&self.tip_angle).get(k).copied(),
+            TipAngularVelocity => S::moment_components(&self.tip_angular_velocity)
+                .get(k)
+                .copied(),
+            RootForce => self.root_force.as_ref().get(k).copied(),
+            RootMoment => S::moment_components(&self.root_moment).get(k).copied(),
+            KineticEnergy => one(self.kinetic),
+            StrainEnergy => one(self.strain),
+            PotentialEnergy => one(self.potential),
+        }
+    }
+}
+
+/// An input of the equations a host may change between communication steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum InputKind {
+    /// `tip.force.<axis>` [N]: total dead force at the free end, global axes.
+    TipForce,
+    /// `tip.moment.<moment axis>` [N m]: total dead moment at the free end, global axes (in the
+    /// plane: about z, counter-clockwise).
+    TipMoment,
+    /// `gravity.<axis>` [m/s²], global axes.
+    Gravity,
+}
+
+/// One scalar input: its kind and the index of its component (in [`Space::AXES`] or
+/// [`Space::MOMENT_AXES`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct InputId {
+    /// The input.
+    pub kind: InputKind,
+    /// The component's index.
+    pub component: usize,
+}
+
+impl InputId {
+    /// The scalar inputs of a space with their names: tip force, tip moment, gravity.
+    pub fn named(space: SpaceKind) -> Vec<(String, InputId)> {
+        match space {
+            SpaceKind::Planar => Self::named_in::<Planar>(),
+            SpaceKind::Spatial => Self::named_in::<Spatial>(),
+        }
+    }
+
+    fn named_in<S: Space>() -> Vec<(String, InputId)> {
+        let groups: [(InputKind, &str, &[&str]); 3] = [
+            (InputKind::TipForce, "tip.force", S::AXES),
+            (InputKind::TipMoment, "tip.moment", S::MOMENT_AXES),
+            (InputKind::Gravity, "gravity", S::AXES),
+        ];
+        named_components(&groups, |kind, component| InputId { kind, component })
+    }
+
+    /// The scene's vector of this input (`tip.force`, `tip.moment` or `gravity`).
+    fn scene_vector(self, scene: &Scene) -> &Vec<f64> {
+        match self.kind {
+            InputKind::TipForce => &scene.tip.force,
+            InputKind::TipMoment => &scene.tip.moment,
+            InputKind::Gravity => &scene.gravity,
+        }
+    }
+
+    /// The scene's value of this input (0 where the scene leaves the component out).
+    pub fn scene_value(self, scene: &Scene) -> f64 {
+        self.scene_vector(scene)
+            .get(self.component)
+            .copied()
+            .unwrap_or(0.0)
+    }
+
+    /// Writes this input into the scene (not validated; the vector gets all the components of
+    /// the scene's space).
+    pub fn set_in_scene(self, scene: &mut Scene, x: f64) {
+        let (space, k) = (scene.space, self.component);
+        let (v, n) = match self.kind {
+            InputKind::TipForce => (&mut scene.tip.force, space.dim()),
+            InputKind::TipMoment => (&mut scene.tip.moment, space.moment_dim()),
+            InputKind::Gravity => (&mut scene.gravity, space.dim()),
+        };
+        v.resize(n.max(v.len()).max(k + 1), 0.0);
+        v[k] = x;
+    }
+}
+
+impl<S: SpaceModel> Inputs<S> {
+    /// The value of one input; `None` for a component this space does not have.
+    pub fn get(&self, id: InputId) -> Option<f64> {
+        let k = id.component;
+        match id.kind {
+            InputKind::TipForce => self.tip_force.as_ref().get(k).copied(),
+            InputKind::TipMoment => S::moment_components(&self.tip_moment).get(k).copied(),
+            InputKind::Gravity => self.gravity.as_ref().get(k).copied(),
+        }
+    }
+
+    /// Sets one input; `false` (and no change) for a component this space does not have.
+    pub fn set(&mut self, id: InputId, x: f64) -> bool {
+        let k = id.component;
+        let slot = match id.kind {
+            InputKind::TipForce => self.tip_force.as_mut().get_mut(k),
+            InputKind::TipMoment => S::moment_components_mut(&mut self.tip_moment).get_mut(k),
+            InputKind::Gravity => self.gravity.as_mut().get_mut(k),
+        };
+        slot.map(|s| *s = x).is_some()
+    }
+}
+
+/// A simulator of either space, chosen by the scene's `space`: the one type the FMU and the
+/// command-line runner hold.
+#[derive(Debug)]
+pub enum AnySimulator {
+    /// `space = "planar"`.
+    Planar(Simulator<Planar>),
+    /// `space = "spatial"`.
+    Spatial(Simulator<Spatial>),
+}
+
+/// The outputs of a state of either space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyOutputs {
+    /// Of a planar simulator.
+    Planar(Outputs<Planar>),
+    /// Of a spatial simulator.
+    Spatial(Outputs<Spatial>),
+}
+
+/// `$body` with `$s` bound to the simulator inside `$any`, whichever its space.
+macro_rules! each {
+    ($any:expr, $s:ident => $body:expr) => {
+        match $any {
+            AnySimulator::Planar($s) => $body,
+            AnySimulator::Spatial($s) => $body,
+        }
+    };
+}
+
+impl AnySimulator {
+    /// [`Simulator::start_at`] in the scene's space.
+    pub fn start_at(scene: Scene, t0: f64) -> Result<Self, SimError> {
+        Ok(match scene.space {
+            SpaceKind::Planar => Self::Planar(Simulator::start_at(scene, t0)?),
+            SpaceKind::Spatial => Self::Spatial(Simulator::start_at(scene, t0)?),
+        })
+    }
+
+    /// [`Simulator::start_at`] at t = 0 in the scene's space.
+    pub fn new(scene: Scene) -> Result<Self, SimError> {
+        Self::start_at(scene, 0.0)
+    }
+
+    /// [`Simulator::restorable`] in the scene's space.
+    pub fn restorable(scene: Scene) -> Result<Self, SimError> {
+        Ok(match scene.space {
+            SpaceKind::Planar => Self::Planar(Simulator::restorable(scene)?),
+            SpaceKind::Spatial => Self::Spatial(Simulator::restorable(scene)?),
+        })
+    }
+
+    /// The space.
+    pub fn space(&self) -> SpaceKind {
+        match self {
+            Self::Planar(_) => SpaceKind::Planar,
+            Self::Spatial(_) => SpaceKind::Spatial,
+        }
+    }
+
+    /// [`Simulator::scene`].
+    pub fn scene(&self) -> &Scene {
+        each!(self, s => s.scene())
+    }
+
+    /// [`Simulator::time`].
+    pub fn time(&self) -> f64 {
+        each!(self, s => s.time())
+    }
+
+    /// [`Simulator::counters`].
+    pub fn counters(&self) -> Counters {
+        each!(self, s => s.counters())
+    }
+
+    /// [`Simulator::min_step_used`](Simulator#structfield.min_step_used).
+    pub fn min_step_used(&self) -> f64 {
+        each!(self, s => s.min_step_used)
+    }
+
+    /// [`Simulator::advance`].
+    pub fn advance(&mut self, t_end: f64) -> Result<(), SimError> {
+        each!(self, s => s.advance(t_end))
+    }
+
+    /// [`Simulator::solve_static`].
+    pub fn solve_static(&mut self) -> Result<usize, SimError> {
+        each!(self, s => s.solve_static())
+    }
+
+    /// [`Simulator::snapshot`].
+    pub fn snapshot(&self) -> Vec<u8> {
+        each!(self, s => s.snapshot())
+    }
+
+    /// [`Simulator::restore_snapshot`].
+    pub fn restore_snapshot(&mut self, bytes: &[u8]) -> Result<(), SimError> {
+        each!(self, s => s.restore_snapshot(bytes))
+    }
+
+    /// Outputs of the current state.
+    pub fn outputs(&self) -> AnyOutputs {
+        match self {
+            Self::Planar(s) => AnyOutputs::Planar(s.outputs()),
+            Self::Spatial(s) => AnyOutputs::Spatial(s.outputs()),
+        }
+    }
+
+    /// The value of an input set for the next step; `None` for a component this space does
+    /// not have.
+    pub fn input(&self, id: InputId) -> Option<f64> {
+        each!(self, s => s.inputs().get(id))
+    }
+
+    /// Sets an input (takes effect at the next step, as a jump of the inputs: see
+    /// [`Simulator::advance`]); `false` (and no change) for a component this space does not
+    /// have.
+    pub fn set_input(&mut self, id: InputId, x: f64) -> bool {
+        each!(self, s => {
+            let mut inputs = s.inputs();
+            let known = inputs.set(id, x);
+            if known {
+                s.set_inputs(&inputs);
+            }
+            known
+        })
+    }
+
+    /// Writes the inputs set for the next step (tip force, tip moment, gravity) into `scene`.
+    pub fn inputs_into(&self, scene: &mut Scene) {
+        for (_, id) in InputId::named(self.space()) {
+            if let Some(x) = self.input(id) {
+                id.set_in_scene(scene, x);
+            }
+        }
+    }
+}
+
+impl AnyOutputs {
+    /// The value of one scalar output; `None` for a component this space does not have.
+    pub fn value(&self, id: OutputId) -> Option<f64> {
+        match self {
+            Self::Planar(o) => o.value(id),
+            Self::Spatial(o) => o.value(id),
+        }
+    }
+
+    /// Tip position [m], global axes (2 or 3 components).
+    pub fn tip_position(&self) -> &[f64] {
+        match self {
+            Self::Planar(o) => &o.tip_position,
+            Self::Spatial(o) => &o.tip_position,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(v: Vec<(String, impl Sized)>) -> Vec<String> {
+        v.into_iter().map(|(n, _)| n).collect()
+    }
+
+    #[test]
+    fn names_follow_the_axes_and_the_attitude() {
+        assert_eq!(
+            names(OutputId::named(SpaceKind::Planar)).join(" "),
+            "tip.position.x tip.position.y tip.velocity.x tip.velocity.y tip.angle \
+             tip.angular_velocity.z root.force.x root.force.y root.moment.z energy.kinetic \
+             energy.strain energy.potential"
+        );
+        assert_eq!(
+            names(OutputId::named(SpaceKind::Spatial)).join(" "),
+            "tip.position.x tip.position.y tip.position.z tip.velocity.x tip.velocity.y \
+             tip.velocity.z tip.orientation.e0 tip.orientation.e1 tip.orientation.e2 \
+             tip.orientation.e3 tip.angular_velocity.x tip.angular_velocity.y \
+             tip.angular_velocity.z root.force.x root.force.y root.force.z root.moment.x \
+             root.moment.y root.moment.z energy.kinetic energy.strain energy.potential"
+        );
+        assert_eq!(
+            names(InputId::named(SpaceKind::Planar)).join(" "),
+            "tip.force.x tip.force.y tip.moment.z gravity.x gravity.y"
+        );
+        assert_eq!(
+            names(InputId::named(SpaceKind::Spatial)).join(" "),
+            "tip.force.x tip.force.y tip.force.z tip.moment.x tip.moment.y tip.moment.z \
+             gravity.x gravity.y gravity.z"
+        );
+    }
+
+    /// Every named output reads its own field and component (distinct values in, the same
+    /// values out), and no component beyond the space's exists.
+    #[test]
+    fn outputs_read_their_own_component() {
+        let o = Outputs::<Spatial> {
+            tip_position: [1.0, 2.0, 3.0],
+            tip_velocity: [4.0, 5.0, 6.0],
+            tip_angle: [7.0, 8.0, 9.0, 10.0],
+            tip_angular_velocity: [11.0, 12.0, 13.0],
+            root_force: [14.0, 15.0, 16.0],
+            root_moment: [17.0, 18.0, 19.0],
+            kinetic: 20.0,
+            strain: 21.0,
+            potential: 22.0,
+        };
+        let read: Vec<f64> = OutputId::named(SpaceKind::Spatial)
+            .iter()
+            .map(|(_, id)| o.value(*id).unwrap())
+            .collect();
+        assert_eq!(read, (1..=22).map(f64::from).collect::<Vec<_>>());
+        let p = Outputs::<Planar> {
+            tip_position: [1.0, 2.0],
+            tip_velocity: [3.0, 4.0],
+            tip_angle: 5.0,
+            tip_angular_velocity: 6.0,
+            root_force: [7.0, 8.0],
+            root_moment: 9.0,
+            kinetic: 10.0,
+            strain: 11.0,
+            potential: 12.0,
+        };
+        let read: Vec<f64> = OutputId::named(SpaceKind::Planar)
+            .iter()
+            .map(|(_, id)| p.value(*id).unwrap())
+            .collect();
+        assert_eq!(read, (1..=12).map(f64::from).collect::<Vec<_>>());
+        let z = OutputId {
+            quantity: Quantity::TipPosition,
+            component: 2,
+        };
+        assert_eq!((p.value(z), o.value(z)), (None, Some(3.0)));
+    }
+
+    #[test]
+    fn inputs_by_component_and_into_the_scene() {
+        let mut i = Inputs::<Spatial> {
+            tip_force: [0.0; 3],
+            tip_moment: [0.0; 3],
+            gravity: [0.0; 3],
+        };
+        let named = InputId::named(SpaceKind::Spatial);
+        for (k, (_, id)) in named.iter().enumerate() {
+            assert!(i.set(*id, k as f64 + 1.0));
+        }
+        assert_eq!(
+            (i.tip_force, i.tip_moment, i.gravity),
+            ([1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.0])
+        );
+        let mut p = Inputs::<Planar> {
+            tip_force: [0.0; 2],
+            tip_moment: 0.0,
+            gravity: [0.0; 2],
+        };
+        let mz = InputId {
+            kind: InputKind::TipMoment,
+            component: 0,
+        };
+        assert!(p.set(mz, 0.5) && p.tip_moment == 0.5);
+        let fz = InputId {
+            kind: InputKind::TipForce,
+            component: 2,
+        };
+        assert!(!p.set(fz, 1.0) && p.get(fz).is_none());
+        let mut scene = Scene::from_toml(
+            "name = \"t\"\n[[segments]]\nname = \"a\"\nkind = \"ancf\"\nlength = 0.4\n\
+             section = \"round\"\ndiameter = 0.002\nyoungs_modulus = 2.1e11\ndensity = 7850.0\n\
+             elements = 2\n",
+        )
+        .unwrap();
+        mz.set_in_scene(&mut scene, 0.25);
+        assert_eq!(
+            (scene.tip.moment.clone(), mz.scene_value(&scene)),
+            (vec![0.25], 0.25)
+        );
+    }
+}
