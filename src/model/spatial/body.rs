@@ -339,8 +339,6 @@ impl TipDirectors {
             g: [[Vector3::zeros(); 3]; 5],
             h: [[Vector3::zeros(); 6]; 5],
         };
-        // the first-order evaluation takes the diagonal pairs of the same hyper-dual numbers,
-        // so that its values and first derivatives are those of the full one bit for bit
         for (pi, &(i, j)) in PAIRS.iter().take(if second { 6 } else { 3 }).enumerate() {
             let mut y = x.map(HyperDual64::from_re);
             y[i].eps1 = 1.0;
@@ -410,25 +408,28 @@ impl ModalTipPort3 {
         }
         let pos = frame_field(q, &att, d, true, u, &dv, &ddv, second);
         // directors: functions of (v′, w′, θ), each linear in its amplitudes with the
-        // coefficients (local index, ∂x/∂q_k) of `coord`
+        // coefficients (local index, ∂x/∂q_k) of `coef`
         let (_, slope, th) = b.tip_elastic(q);
         let dirs = TipDirectors::new([slope[0], slope[1], th], second);
-        // variable i's k-th coordinate: (local index, ∂x_i/∂q)
-        let count = [nb, nb, 2];
-        let coord = |i: usize, k: usize| -> (usize, f64) {
+        let coef = |i: usize| -> Vec<(usize, f64)> {
             match i {
-                0 => (b.iy(k), b.basis.tip_slope[k] / l),
-                1 => (b.iz(k), b.basis.tip_slope[k] / l),
-                _ => (b.it(k), b.chi_tip[k]),
+                0 => (0..nb)
+                    .map(|n| (b.iy(n), b.basis.tip_slope[n] / l))
+                    .collect(),
+                1 => (0..nb)
+                    .map(|n| (b.iz(n), b.basis.tip_slope[n] / l))
+                    .collect(),
+                _ => (0..2).map(|m| (b.it(m), b.chi_tip[m])).collect(),
             }
         };
+        let coef = [coef(0), coef(1), coef(2)];
         let mut field = |n: usize| {
             dv.clear();
             ddv.clear();
-            for (i, &c) in count.iter().enumerate() {
+            for (i, c) in coef.iter().enumerate() {
                 let g = dirs.g[n][i];
                 if g != Vector3::zeros() {
-                    dv.extend((0..c).map(|k| coord(i, k)).map(|(k, x)| (k, g * x)));
+                    dv.extend(c.iter().map(|&(k, x)| (k, g * x)));
                 }
             }
             if second {
@@ -437,12 +438,10 @@ impl ModalTipPort3 {
                     if h == Vector3::zeros() {
                         continue;
                     }
-                    for a in 0..count[i] {
-                        let (k, x) = coord(i, a);
+                    for (a, &(k, x)) in coef[i].iter().enumerate() {
                         // each unordered pair once: k ≤ l (the variables' indices increase)
                         let from = if i == j { a } else { 0 };
-                        for c in from..count[j] {
-                            let (kl, y) = coord(j, c);
+                        for &(kl, y) in &coef[j][from..] {
                             ddv.push((k, kl, h * (x * y)));
                         }
                     }
