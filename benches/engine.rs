@@ -1,20 +1,25 @@
 //! Engine kernels: one ANCF element (forces + tangent; planar and spatial), one Newton iteration (assembly +
-//! factorization + solve) and one full step of Case 1.
+//! factorization + solve), one full step of Case 1 (planar and spatial) and the spatial cost per
+//! element (all-ANCF rods of 8 to 512 elements, with a fit printed to stderr).
 #![allow(missing_docs)] // criterion's macros generate undocumented items
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
 use hybeam::model::ancf3d::Ancf3Props;
-use hybeam::model::{Model, Planar};
+use hybeam::model::{Model, Planar, Spatial};
 use hybeam::scene::{Scene, StrainModel};
 use hybeam::simulator::Simulator;
 use std::hint::black_box;
+use std::time::Instant;
+
+fn scene(name: &str) -> Scene {
+    let path = format!("{}/scenes/{name}", env!("CARGO_MANIFEST_DIR"));
+    Scene::from_toml(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
 
 fn case1() -> Scene {
-    let text =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/case1.toml")).unwrap();
-    Scene::from_toml(&text).unwrap()
+    scene("case1.toml")
 }
 
 fn element(c: &mut Criterion) {
@@ -85,6 +90,98 @@ fn step(c: &mut Criterion) {
     });
 }
 
+/// One full step of spatial Case 1 (`scenes/case1_3d.toml`, the twin of the planar bench's
+/// scene), h = max_step: the issue's target is at most 3× the planar step.
+fn spatial_step(c: &mut Criterion) {
+    let mut sim = Simulator::<Spatial>::start_at(scene("case1_3d.toml"), 0.0).unwrap();
+    let h = sim.scene().solver.max_step;
+    c.bench_function("spatial case 1 full step (h = max_step)", |b| {
+        b.iter(|| {
+            let t = sim.time() + h;
+            sim.advance(t).unwrap();
+        })
+    });
+}
+
+/// A clamped spatial all-ANCF steel rod (0.4 m, d = 2 mm, with torsion) of `n` elements.
+fn spatial_rod(n: usize) -> Model<Spatial> {
+    let text = format!(
+        "name = \"rod\"\nspace = \"spatial\"\ngravity = [0.0, 0.0, -9.81]\nroot = \"clamped\"\n\
+         [[segments]]\nname = \"a\"\nkind = \"ancf\"\nlength = 0.4\nsection = \"round\"\n\
+         diameter = 0.002\nyoungs_modulus = 2.1e11\ndensity = 7850.0\nelements = {n}\n"
+    );
+    Model::<Spatial>::from_scene(&Scene::from_toml(&text).unwrap()).unwrap()
+}
+
+/// Cost per element of the spatial model: one Newton iteration (assemble with the matrix +
+/// factorize + solve) of all-ANCF rods of 8 to 512 elements, sagging state (q from the
+/// straight one bent by gravity-like offsets). Prints the least-squares fit t = a + b·n and the
+/// log–log slope (1 = linear) of best-of-batches timings to stderr.
+fn spatial_sweep(c: &mut Criterion) {
+    let req = EvalRequest {
+        sd: 1e-8,
+        matrix: Some((1.1, 1e-4, 1e-8)),
+        lambda_hessian: true,
+    };
+    let mut points = Vec::new();
+    for n in [8usize, 32, 128, 512] {
+        let mut model = spatial_rod(n);
+        let (nc, m) = (model.coordinates(), model.constraints());
+        let mut q = model.initial_coordinates().to_vec();
+        for (k, x) in q.iter_mut().enumerate() {
+            *x += 1e-4 * ((k as f64) * 0.37).sin();
+        }
+        let z = vec![0.0; nc];
+        let lam = vec![0.0; m];
+        let mut res = vec![0.0; nc + m];
+        let mut iteration = || {
+            model.eval(StateRef::new(&q, &z, &z, &lam), req, &mut res);
+            model.factorize().unwrap();
+            black_box(model.solve(&mut res));
+        };
+        c.bench_function(
+            &format!("spatial all-ANCF {n} el.: assemble + factorize + solve"),
+            |b| b.iter(&mut iteration),
+        );
+        let reps = (4096 / n).max(4);
+        let best = (0..7)
+            .map(|_| {
+                let t0 = Instant::now();
+                for _ in 0..reps {
+                    iteration();
+                }
+                t0.elapsed().as_secs_f64() / reps as f64
+            })
+            .fold(f64::INFINITY, f64::min);
+        points.push((n as f64, best));
+    }
+    let k = points.len() as f64;
+    let (sx, sy) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0, b + p.1));
+    let (sxx, sxy) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 * p.0, b + p.0 * p.1));
+    let slope = (k * sxy - sx * sy) / (k * sxx - sx * sx);
+    let icpt = (sy - slope * sx) / k;
+    let ln: Vec<(f64, f64)> = points.iter().map(|p| (p.0.ln(), p.1.ln())).collect();
+    let (lx, ly) = ln.iter().fold((0.0, 0.0), |(a, b), p| (a + p.0, b + p.1));
+    let (lxx, lxy) = ln
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 * p.0, b + p.0 * p.1));
+    let expo = (k * lxy - lx * ly) / (k * lxx - lx * lx);
+    eprintln!(
+        "spatial sweep (best of 7): {}; fit t = {:.2} µs + {:.3} µs/element, log-log slope {expo:.3}",
+        points
+            .iter()
+            .map(|(n, t)| format!("{n} el. {:.1} µs", t * 1e6))
+            .collect::<Vec<_>>()
+            .join(", "),
+        icpt * 1e6,
+        slope * 1e6
+    );
+}
+
 /// The spatial ANCF element (with torsion, and the cable) on the planar bench's rod and state
 /// (bent in the x–y plane, r_y = ẑ × r_x): forces only and forces + exact tangent (AD).
 fn spatial_element(c: &mut Criterion) {
@@ -138,5 +235,13 @@ fn spatial_element(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, element, spatial_element, newton, step);
+criterion_group!(
+    benches,
+    element,
+    spatial_element,
+    newton,
+    step,
+    spatial_step,
+    spatial_sweep
+);
 criterion_main!(benches);

@@ -18,7 +18,7 @@ mod common;
 use common::*;
 use hybeam::integrator::{solve_static, GeneralizedAlpha, Integrable, State};
 use hybeam::model::{Model, Planar, Space, Spatial};
-use hybeam::scene::{Root, Scene, SegmentKind, SpaceKind};
+use hybeam::scene::{Root, Scene, SpaceKind};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 
 /// The spatial twin of a planar scene: the same beam in the x–y plane of space (root frame
@@ -128,29 +128,15 @@ fn b9_every_planar_scene_has_a_spatial_twin_with_the_same_history() {
             hp.len()
         );
         worst = (worst.0.max(dpos), worst.1.max(dout), worst.2.max(dang));
-        // a joint at a modal tip: the spatial DOT1 rows hold the next segment's tangent
-        // exactly ⟂ n̄1 = ȳ − v′x̄ (relative angle atan v′, docs/spatial.md §3.1), the planar
-        // row at the angle θ + v′: the formulations differ by v′ − atan v′ ≈ v′³/3
-        let modal_tip_joint = planar
-            .segments
-            .iter()
-            .rev()
-            .skip(1)
-            .any(|s| s.kind == SegmentKind::Modal);
-        if !modal_tip_joint {
-            assert!(dpos < 1e-10, "{}: tip differs by {dpos:e} m", planar.name);
-        }
+        // the spatial modal tip's normals follow the planar joint (next segment at θ + v′,
+        // docs/spatial.md "Joint") and its frame angle is the planar θ + v′: every twin agrees
+        assert!(dpos < 1e-10, "{}: tip differs by {dpos:e} m", planar.name);
         assert!(dout < 1e-12, "{}: out-of-plane {dout:e}", planar.name);
-        // an ANCF tip reports atan2 of r_x in both spaces; a planar modal tip reports the
-        // linearized θ + v′, the spatial one the exact frame of its tangent (they differ by
-        // about v′³/3): reported, not compared
-        if !modal_tip_joint && planar.segments.last().unwrap().kind == SegmentKind::Ancf {
-            assert!(
-                dang < 1e-9,
-                "{}: tip angle differs by {dang:e}",
-                planar.name
-            );
-        }
+        assert!(
+            dang < 1e-9,
+            "{}: tip angle differs by {dang:e}",
+            planar.name
+        );
     }
     eprintln!("B9 worst: {worst:?}");
 }
@@ -255,9 +241,9 @@ fn gravity_in_any_transverse_direction_gives_the_same_deflection() {
                 );
                 assert!(rel.abs() < tol, "{name} {g:?}: {rel:e}");
                 assert!(off.norm() < 1e-12 + tol * u.norm(), "{name} {g:?}: {off:?}");
-                // the all-ANCF model is the planar one in any plane; the hybrid's joint at the
-                // modal tip differs from the planar row by v′ − atan v′ (see the B9 test)
-                if *name == "all-ANCF" && (!torsion || g[1] == -1.0 || g[2] == -1.0) {
+                // both models are the planar one in any plane (the modal tip's joint is the
+                // planar joint turned into the bending plane, docs/spatial.md "Joint")
+                if !torsion || g[1] == -1.0 || g[2] == -1.0 {
                     assert!(rel_planar.abs() < 1e-9, "{name} {g:?}: {rel_planar:e}");
                 }
             }

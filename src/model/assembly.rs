@@ -323,7 +323,11 @@ impl<S: Space> Integrable for Model<S> {
             let dofs = &tip.dofs;
             let d = dofs.len();
             dofs.gather(x.q, held, &mut work.q[..d]);
-            let kin = tip.part.kinematics(&work.q[..d]);
+            let kin = if matrix.is_some() {
+                tip.part.kinematics(&work.q[..d])
+            } else {
+                tip.part.kinematics_first(&work.q[..d])
+            };
             point_force_residual::<S>(&kin, &f, &mut work.r[..d]);
             dofs.scatter_add(req.sd, &work.r[..d], res);
             if let Some((_, _, cx)) = matrix {
@@ -342,7 +346,7 @@ impl<S: Space> Integrable for Model<S> {
             let dofs = &tip.dofs;
             let d = dofs.len();
             dofs.gather(x.q, held, &mut work.q[..d]);
-            let kin = tip.part.kinematics(&work.q[..d]);
+            let kin = tip.part.kinematics_first(&work.q[..d]);
             moment_residual::<S>(&kin, &m, &mut work.r[..d]);
             dofs.scatter_add(req.sd, &work.r[..d], res);
             if let Some((_, _, cx)) = matrix {

@@ -219,6 +219,14 @@ pub trait Port<S: Space>: Debug + Send + Sync + 'static {
     /// Kinematics at the local coordinates `q`.
     fn kinematics(&self, q: &[f64]) -> S::PortKin;
 
+    /// Kinematics at `q` for uses that need no second derivatives (residuals, Jacobians,
+    /// outputs): positions, directors, first derivatives and rotations as
+    /// [`Port::kinematics`], second derivatives possibly absent (a port may skip them to save
+    /// work). Default: [`Port::kinematics`].
+    fn kinematics_first(&self, q: &[f64]) -> S::PortKin {
+        self.kinematics(q)
+    }
+
     /// Stiffness of a dead moment `m` [N m] (global axes) at the port: adds
     /// `−m·∂²θ/∂q_i∂q_j` (the derivative of the residual `−m·∂θ/∂q_i` with respect to q_j, see
     /// [`super::PortKin::rotation_jacobian`]) through `add(i, j, value)` (local indices).

@@ -54,7 +54,7 @@ impl<S: Space> Model<S> {
         let tip = &self.tip.dofs;
         let x = &mut buf[..tip.len()];
         tip.gather(q, &self.held, x);
-        let kin = self.tip.part.kinematics(x);
+        let kin = self.tip.part.kinematics_first(x);
         let mut vel = S::Vec::default();
         let mut omega = S::Moment::default();
         for k in 0..tip.len() {
@@ -117,7 +117,7 @@ impl<S: Space> Model<S> {
         if tip.has_held() {
             let x = &mut buf[..tip.len()];
             tip.gather(q, &self.held, x);
-            let kin = self.tip.part.kinematics(x);
+            let kin = self.tip.part.kinematics_first(x);
             local.resize(tip.len(), 0.0);
             point_force_residual::<S>(&kin, &self.tip_force, &mut local);
             tip.scatter_held(&local, &mut r);

@@ -79,7 +79,9 @@ impl Attitude {
 }
 
 /// The field A(p)·v̄(a) (+ R if `with_r`) over `dim` local coordinates, from v̄ at the current
-/// a, its derivatives `dv` (local index, ∂v̄/∂q_k) and second derivatives `ddv` (k ≤ l).
+/// a, its derivatives `dv` (local index, ∂v̄/∂q_k) and second derivatives `ddv` (k ≤ l); the
+/// second derivatives of the field only if `second` (else `dd` stays empty and `ddv` unused).
+#[allow(clippy::too_many_arguments)]
 fn frame_field(
     q: &[f64],
     att: &Attitude,
@@ -88,12 +90,13 @@ fn frame_field(
     v: Vector3<f64>,
     dv: &[(usize, Vector3<f64>)],
     ddv: &[(usize, usize, Vector3<f64>)],
+    second: bool,
 ) -> Field3 {
     let a = &att.a;
     let mut f = Field3 {
         v: a * v,
         d: vec![Vector3::zeros(); dim],
-        dd: Vec::with_capacity(10 + 4 * dv.len() + ddv.len()),
+        dd: Vec::new(),
     };
     if with_r {
         for c in 0..3 {
@@ -104,6 +107,13 @@ fn frame_field(
     for (k, da) in att.da.iter().enumerate() {
         f.d[P0 + k] = da * v;
     }
+    for &(k, b) in dv {
+        f.d[k] += a * b;
+    }
+    if !second {
+        return f;
+    }
+    f.dd.reserve(10 + 4 * dv.len() + ddv.len());
     let mut push = |i: usize, j: usize, h: Vector3<f64>| {
         if h != Vector3::zeros() {
             f.dd.push((i, j, h));
@@ -123,9 +133,6 @@ fn frame_field(
     }
     for &(k, l, c) in ddv {
         push(k, l, a * c);
-    }
-    for &(k, b) in dv {
-        f.d[k] += a * b;
     }
     f
 }
@@ -269,10 +276,89 @@ impl Element<Spatial> for ModalElement3 {
     }
 }
 
+/// sin σ/σ and (1 − cos σ)/σ² as functions of x = σ² (smooth at 0: power series below
+/// x = 1/4, to rounding; closed form above).
+fn rotation_coefficients<T: Real>(x: T) -> (T, T) {
+    if x.re() < 0.25 {
+        // Σ (−x)^k/(2k+1)!, Σ (−x)^k/(2k+2)!, k = 0..8 (next term < 1e-18)
+        let (mut a, mut b) = (T::zero(), T::zero());
+        let mut fact = [1.0; 20];
+        for k in 1..20 {
+            fact[k] = fact[k - 1] * k as f64;
+        }
+        for k in (0..9).rev() {
+            a = a * (-x) + T::from(1.0 / fact[2 * k + 1]);
+            b = b * (-x) + T::from(1.0 / fact[2 * k + 2]);
+        }
+        (a, b)
+    } else {
+        let s = x.sqrt();
+        (s.sin() / s, (T::one() - s.cos()) / x)
+    }
+}
+
+/// The tip directors in the body frame as functions of the tip slopes v′, w′ and the tip twist
+/// θ: `[t̂, s̄, n̄1, n̄2, n̄3]`, the columns of R(ψ)·R_x(θ) with R(ψ) the rotation by the vector
+/// ψ = (0, −w′, v′) (angle σ = |(v′, w′)|, about the normal of the bending plane): t̂ = R x̄,
+/// n̄1 = R ȳ, n̄2 = R z̄, s̄ = cos θ n̄1 + sin θ n̄2, n̄3 = cos θ n̄2 − sin θ n̄1. In the x–y plane
+/// (w′ = 0) n̄1 = (−sin v′, cos v′, 0), n̄2 = z̄: the frame is turned by exactly v′ about z̄, as
+/// the planar joint places the next segment (θ + v′, the linearized slope used as an angle); in
+/// the x–z plane likewise n̄2 = (−sin w′, 0, cos w′). Isotropic (a bending plane turned about x̄
+/// turns the directors with it); to first order t̂ = x̄ + v′ȳ + w′z̄, n̄1 = ȳ − v′x̄,
+/// n̄2 = z̄ − w′x̄, s̄ = ȳ + θz̄ − v′x̄, n̄3 = z̄ − θȳ − w′x̄.
+fn tip_directors<T: Real>(vs: T, ws: T, th: T) -> [V3<T>; 5] {
+    let (a, b) = rotation_coefficients(vs * vs + ws * ws);
+    let one = T::one();
+    let t = [one - b * (vs * vs + ws * ws), a * vs, a * ws];
+    let n1 = [-(a * vs), one - b * vs * vs, -(b * vs * ws)];
+    let n2 = [-(a * ws), -(b * vs * ws), one - b * ws * ws];
+    let (st, ct) = (th.sin(), th.cos());
+    let s = body3d::add(body3d::scale(n1, ct), body3d::scale(n2, st));
+    let n3 = body3d::add(body3d::scale(n2, ct), body3d::scale(n1, -st));
+    [t, s, n1, n2, n3]
+}
+
+/// Pairs (i, j) of the variables (v′, w′, θ) of [`tip_directors`]: the diagonal first (enough
+/// for the first derivatives), then the mixed ones.
+const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+
+/// [`tip_directors`] with its first and (if asked) second derivatives by (v′, w′, θ), exact
+/// (hyper-dual numbers: 3 evaluations for the first derivatives, 6 with the second).
+struct TipDirectors {
+    /// Values.
+    v: [Vector3<f64>; 5],
+    /// ∂/∂(v′, w′, θ).
+    g: [[Vector3<f64>; 3]; 5],
+    /// ∂²/∂x_i∂x_j in the order of [`PAIRS`] (zero if not asked).
+    h: [[Vector3<f64>; 6]; 5],
+}
+
+impl TipDirectors {
+    fn new(x: [f64; 3], second: bool) -> Self {
+        let mut out = Self {
+            v: [Vector3::zeros(); 5],
+            g: [[Vector3::zeros(); 3]; 5],
+            h: [[Vector3::zeros(); 6]; 5],
+        };
+        for (pi, &(i, j)) in PAIRS.iter().take(if second { 6 } else { 3 }).enumerate() {
+            let mut y = x.map(HyperDual64::from_re);
+            y[i].eps1 = 1.0;
+            y[j].eps2 = 1.0;
+            for (n, r) in tip_directors(y[0], y[1], y[2]).iter().enumerate() {
+                out.v[n] = Vector3::new(r[0].re, r[1].re, r[2].re);
+                out.g[n][i] = Vector3::new(r[0].eps1, r[1].eps1, r[2].eps1);
+                out.h[n][pi] = Vector3::new(r[0].eps1eps2, r[1].eps1eps2, r[2].eps1eps2);
+            }
+        }
+        out
+    }
+}
+
 /// The tip (ξ = 1) of a spatial modal body, on the body's local coordinates:
-/// p = R + Aū_T(a) (foreshortening in both planes), tangent A(x̄ + v′ȳ + w′z̄), section
-/// A(ȳ + θz̄ − v′x̄), normals A n̄1 = A(ȳ − v′x̄), A n̄2 = A(z̄ − w′x̄), A n̄3 = A(z̄ − θȳ − w′x̄);
-/// frame = orthonormalized (tangent, section), rotation its exact derivative.
+/// p = R + Aū_T(a) (foreshortening in both planes) and the directors A·[`tip_directors`] of the
+/// tip slopes v′ = φ′(1)ᵀa_y/L, w′ = φ′(1)ᵀa_z/L and twist θ = χ(1)ᵀa_t: tangent A t̂, section
+/// A s̄, normals A n̄1, A n̄2, A n̄3; frame A[t̂, s̄, n̄3] (orthonormal by construction), rotation
+/// its exact derivative.
 #[derive(Debug, Clone)]
 pub struct ModalTipPort3(pub Arc<ModalBody3>);
 
@@ -289,75 +375,93 @@ impl ModalTipPort3 {
         }
         let th = q[b.it(0)] * b.chi_tip[0] + q[b.it(1)] * b.chi_tip[1];
         let a = euler_rotation([q[P0], q[P0 + 1], q[P0 + 2], q[P0 + 3]]);
-        let one = T::one();
-        (
-            body3d::mul(&a, [one, vs, ws]),
-            body3d::mul(&a, [-vs, one, th]),
-        )
+        let [t, s, ..] = tip_directors(vs, ws, th);
+        (body3d::mul(&a, t), body3d::mul(&a, s))
     }
-}
 
-impl Port<Spatial> for ModalTipPort3 {
-    fn kinematics(&self, q: &[f64]) -> EndKin3 {
+    /// The kinematics, with the fields' second derivatives only if `second`.
+    fn end(&self, q: &[f64], second: bool) -> EndKin3 {
         let b = &*self.0;
         let nb = b.modes();
         let d = b.dim();
         let l = b.props.length;
         let att = Attitude::new(q);
-        let (_, slope, th) = b.tip_elastic(q);
-        let (vs, ws) = (slope[0], slope[1]);
-        let (x, y, z) = (Vector3::x(), Vector3::y(), Vector3::z());
         // position: ū_T and its derivatives
         let u = Vector3::from(b.tip_local(q));
         let gy = b.foreshortening_gradient(&q[b.iy(0)..b.iy(0) + nb]);
         let gz = b.foreshortening_gradient(&q[b.iz(0)..b.iz(0) + nb]);
-        let mut du = Vec::with_capacity(2 * nb);
-        let mut ddu = Vec::new();
+        let mut dv = Vec::with_capacity(2 * nb + 2);
+        let mut ddv = Vec::new();
         for n in 0..nb {
-            du.push((b.iy(n), Vector3::new(-gy[n], b.basis.tip[n], 0.0)));
-            du.push((b.iz(n), Vector3::new(-gz[n], 0.0, b.basis.tip[n])));
+            dv.push((b.iy(n), Vector3::new(-gy[n], b.basis.tip[n], 0.0)));
+            dv.push((b.iz(n), Vector3::new(-gz[n], 0.0, b.basis.tip[n])));
+            if !second {
+                continue;
+            }
             for m in n..nb {
                 let g = b.basis.slope_gram[n * nb + m];
                 if g != 0.0 {
                     let h = Vector3::new(-g / l, 0.0, 0.0);
-                    ddu.push((b.iy(n), b.iy(m), h));
-                    ddu.push((b.iz(n), b.iz(m), h));
+                    ddv.push((b.iy(n), b.iy(m), h));
+                    ddv.push((b.iz(n), b.iz(m), h));
                 }
             }
         }
-        let pos = frame_field(q, &att, d, true, u, &du, &ddu);
-        // director derivatives: v′ by a_y, w′ by a_z, θ by a_t
-        let sy = |dir: Vector3<f64>| -> Vec<(usize, Vector3<f64>)> {
-            (0..nb)
-                .map(|n| (b.iy(n), dir * (b.basis.tip_slope[n] / l)))
-                .collect()
+        let pos = frame_field(q, &att, d, true, u, &dv, &ddv, second);
+        // directors: functions of (v′, w′, θ), each linear in its amplitudes with the
+        // coefficients (local index, ∂x/∂q_k) of `coef`
+        let (_, slope, th) = b.tip_elastic(q);
+        let dirs = TipDirectors::new([slope[0], slope[1], th], second);
+        let coef = |i: usize| -> Vec<(usize, f64)> {
+            match i {
+                0 => (0..nb)
+                    .map(|n| (b.iy(n), b.basis.tip_slope[n] / l))
+                    .collect(),
+                1 => (0..nb)
+                    .map(|n| (b.iz(n), b.basis.tip_slope[n] / l))
+                    .collect(),
+                _ => (0..2).map(|m| (b.it(m), b.chi_tip[m])).collect(),
+            }
         };
-        let sz = |dir: Vector3<f64>| -> Vec<(usize, Vector3<f64>)> {
-            (0..nb)
-                .map(|n| (b.iz(n), dir * (b.basis.tip_slope[n] / l)))
-                .collect()
+        let coef = [coef(0), coef(1), coef(2)];
+        let mut field = |n: usize| {
+            dv.clear();
+            ddv.clear();
+            for (i, c) in coef.iter().enumerate() {
+                let g = dirs.g[n][i];
+                if g != Vector3::zeros() {
+                    dv.extend(c.iter().map(|&(k, x)| (k, g * x)));
+                }
+            }
+            if second {
+                for (pi, &(i, j)) in PAIRS.iter().enumerate() {
+                    let h = dirs.h[n][pi];
+                    if h == Vector3::zeros() {
+                        continue;
+                    }
+                    for (a, &(k, x)) in coef[i].iter().enumerate() {
+                        // each unordered pair once: k ≤ l (the variables' indices increase)
+                        let from = if i == j { a } else { 0 };
+                        for &(kl, y) in &coef[j][from..] {
+                            ddv.push((k, kl, h * (x * y)));
+                        }
+                    }
+                }
+            }
+            frame_field(q, &att, d, false, dirs.v[n], &dv, &ddv, second)
         };
-        let st = |dir: Vector3<f64>| -> Vec<(usize, Vector3<f64>)> {
-            (0..2).map(|m| (b.it(m), dir * b.chi_tip[m])).collect()
-        };
-        let tangent = {
-            let mut dv = sy(y);
-            dv.extend(sz(z));
-            frame_field(q, &att, d, false, x + vs * y + ws * z, &dv, &[])
-        };
-        let section = {
-            let mut dv = sy(-x);
-            dv.extend(st(z));
-            frame_field(q, &att, d, false, y + th * z - vs * x, &dv, &[])
-        };
-        let n1 = frame_field(q, &att, d, false, y - vs * x, &sy(-x), &[]);
-        let n2 = frame_field(q, &att, d, false, z - ws * x, &sz(-x), &[]);
-        let n3 = {
-            let mut dv = st(-y);
-            dv.extend(sz(-x));
-            frame_field(q, &att, d, false, z - th * y - ws * x, &dv, &[])
-        };
+        let [tangent, section, n1, n2, n3] = [0, 1, 2, 3, 4].map(&mut field);
         end_kin(pos, tangent, section, [n1, n2, n3])
+    }
+}
+
+impl Port<Spatial> for ModalTipPort3 {
+    fn kinematics(&self, q: &[f64]) -> EndKin3 {
+        self.end(q, true)
+    }
+
+    fn kinematics_first(&self, q: &[f64]) -> EndKin3 {
+        self.end(q, false)
     }
 
     /// Exact −m·∂²θ/∂q∂q of the tip frame (hyper-dual numbers over p and the amplitudes).
@@ -377,14 +481,25 @@ impl Port<Spatial> for ModalTipPort3 {
 #[derive(Debug, Clone)]
 pub struct ModalRootPort3(pub Arc<ModalBody3>);
 
-impl Port<Spatial> for ModalRootPort3 {
-    fn kinematics(&self, q: &[f64]) -> EndKin3 {
+impl ModalRootPort3 {
+    /// The kinematics, with the fields' second derivatives only if `second`.
+    fn end(&self, q: &[f64], second: bool) -> EndKin3 {
         let d = self.0.dim();
         let att = Attitude::new(q);
-        let f = |v: Vector3<f64>| frame_field(q, &att, d, false, v, &[], &[]);
-        let pos = frame_field(q, &att, d, true, Vector3::zeros(), &[], &[]);
+        let f = |v: Vector3<f64>| frame_field(q, &att, d, false, v, &[], &[], second);
+        let pos = frame_field(q, &att, d, true, Vector3::zeros(), &[], &[], second);
         let (x, y, z) = (Vector3::x(), Vector3::y(), Vector3::z());
         end_kin(pos, f(x), f(y), [f(y), f(z), f(z)])
+    }
+}
+
+impl Port<Spatial> for ModalRootPort3 {
+    fn kinematics(&self, q: &[f64]) -> EndKin3 {
+        self.end(q, true)
+    }
+
+    fn kinematics_first(&self, q: &[f64]) -> EndKin3 {
+        self.end(q, false)
     }
 
     /// Exact −m·∂²θ/∂p∂p of the frame A(p) (hyper-dual numbers).

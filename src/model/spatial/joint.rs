@@ -79,8 +79,12 @@ impl Constraint for RigidJoint3 {
     }
 
     fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut) {
-        let ku = self.up.kinematics(&q[..self.up_len]);
-        let kd = self.down.kinematics(&q[self.up_len..]);
+        let (qu, qd) = q.split_at(self.up_len);
+        let (ku, kd) = if lambda.is_some() {
+            (self.up.kinematics(qu), self.down.kinematics(qd))
+        } else {
+            (self.up.kinematics_first(qu), self.down.kinematics_first(qd))
+        };
         let d = q.len();
         let (ou, od) = (0, self.up_len);
         // position rows
