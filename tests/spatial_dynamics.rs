@@ -283,7 +283,9 @@ fn case_3d_formulations_agree_and_match_the_planar_cases() {
         );
         assert!(peak > 1e-3);
         assert!(dh < hybrid_bound * peak && dm < modal_bound * peak);
-        assert!(dp < 5e-5, "{case}: {dp:e}");
+        // through the simulator (each model's own step control): 1.1e-14, 5.0e-13 and 7.3e-10 m
+        // measured; at fixed steps tests/spatial.rs holds the twins to 1e-10 m
+        assert!(dp < 2e-9, "{case}: {dp:e}");
     }
 }
 
