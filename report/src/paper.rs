@@ -142,6 +142,47 @@ fn max_abs(a: &[f64]) -> f64 {
     a.iter().fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
+/// `paper_<key>_deflection.svg`: the vertical tip component `up` (1 = y, 2 = z) of each run
+/// over time, with the linear static sag of `case`.
+fn plot_deflection(
+    key: &str,
+    case: &Case,
+    runs: &[(&str, Run)],
+    up: usize,
+    where_: &str,
+) -> Result<(), String> {
+    let series: Vec<Series> = runs
+        .iter()
+        .map(|(f, r)| {
+            Series::line(
+                f,
+                r.t.iter()
+                    .zip(&r.tip)
+                    .map(|(t, p)| (*t, p[up] * 1e3))
+                    .collect(),
+            )
+        })
+        .collect();
+    plot::plot(
+        &format!("paper_{key}_deflection.svg"),
+        &Axes {
+            title: &format!(
+                "{}{where_}: vertical deflection of the end node",
+                case.title
+            ),
+            x: "time [s]",
+            y: if up == 2 { "tip z [mm]" } else { "tip y [mm]" },
+            log_x: false,
+            log_y: false,
+        },
+        &series,
+        &Extras {
+            hlines: vec![(-case.beam.sag * 1e3, "linear static sag".into())],
+            ..Default::default()
+        },
+    )
+}
+
 /// One row of a peak table: the peak of `sp` near each frequency of `f0s`.
 fn peak_row(form: &str, sp: &[(f64, f64)], f0s: &[f64]) -> Vec<String> {
     let mut row = vec![form.to_string()];
@@ -219,8 +260,10 @@ pub fn run() -> Result<(), String> {
          position of the end node (tip y) over 2 s; the spectra are the single-sided amplitude \
          spectra of tip y minus its mean (Hann window, 4× zero padding) from {T_SPECTRUM} s runs \
          sampled every {OUT} s. Peaks are located by parabolic interpolation within ±15 % of each \
-         Euler–Bernoulli frequency of docs/references.md §4c (steel assumed). All numbers below are measured by \
-         the command above.\n\n",
+         Euler–Bernoulli frequency of docs/references.md §4c (steel assumed). The spatial twins \
+         (`scenes/caseN_3d*.toml`) and the out-of-plane strip (`scenes/strip_3d.toml`) follow the \
+         planar cases. All numbers below are measured by the command above, on a machine shared \
+         with other jobs (wall times are indicative only).\n\n",
         common::machine()
     );
     let mut prog = Progress::new("paper", 3 * 3 + 3 * 3 + 2 * 3 + 3 * 3 * 2 + 2);
@@ -254,33 +297,7 @@ pub fn run() -> Result<(), String> {
             ],
             &csv,
         )?;
-        let series: Vec<Series> = runs
-            .iter()
-            .map(|(f, r)| {
-                Series::line(
-                    f,
-                    r.t.iter()
-                        .zip(&r.tip)
-                        .map(|(t, p)| (*t, p[1] * 1e3))
-                        .collect(),
-                )
-            })
-            .collect();
-        plot::plot(
-            &format!("paper_{}_deflection.svg", case.key),
-            &Axes {
-                title: &format!("{}: vertical deflection of the end node", case.title),
-                x: "time [s]",
-                y: "tip y [mm]",
-                log_x: false,
-                log_y: false,
-            },
-            &series,
-            &Extras {
-                hlines: vec![(-case.beam.sag * 1e3, "linear static sag".into())],
-                ..Default::default()
-            },
-        )?;
+        plot_deflection(case.key, case, &runs, 1, "")?;
         // measured comparison
         let anc = ys(&runs[2].1);
         let peak_abs = anc.iter().fold(0.0f64, |m, y| m.max(y.abs()));
@@ -575,36 +592,7 @@ fn spatial(planar: &[Vec<(&str, Run)>], prog: &mut Progress) -> Result<String, S
             ],
             &csv,
         )?;
-        let series: Vec<Series> = runs
-            .iter()
-            .map(|(f, r)| {
-                Series::line(
-                    f,
-                    r.t.iter()
-                        .zip(&r.tip)
-                        .map(|(t, p)| (*t, p[2] * 1e3))
-                        .collect(),
-                )
-            })
-            .collect();
-        plot::plot(
-            &format!("paper_{key}_deflection.svg"),
-            &Axes {
-                title: &format!(
-                    "{} in space: vertical deflection of the end node",
-                    case.title
-                ),
-                x: "time [s]",
-                y: "tip z [mm]",
-                log_x: false,
-                log_y: false,
-            },
-            &series,
-            &Extras {
-                hlines: vec![(-case.beam.sag * 1e3, "linear static sag".into())],
-                ..Default::default()
-            },
-        )?;
+        plot_deflection(&key, case, &runs, 2, " in space")?;
         let anc = comp(&runs[2].1, 2);
         let peak_abs = max_abs(&anc);
         let pct = |d: f64| format!("{} ({:.2} %)", e3(d), 100.0 * d / peak_abs);
