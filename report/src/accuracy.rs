@@ -1,10 +1,11 @@
-//! Work-precision: error against converged references vs wall time, for Cases 1–3 and the soft
-//! rod; cost per step vs element count; static errors against the elastica.
+//! Work-precision: error against converged references vs wall time, for Cases 1–3, the soft
+//! rod and the spatial Case 1 (beside the planar one); cost per step vs element count; static
+//! errors against the elastica.
 
 use super::common::{self, e3, md_table, scene, timed, tip_errors, Progress};
 use super::plot::{self, Axes, Extras, Series};
 use super::statics;
-use hybeam::scene::{Scene, SegmentKind};
+use hybeam::scene::{Scene, SegmentKind, SpaceKind};
 use std::fmt::Write as _;
 
 /// Options of the accuracy report.
@@ -63,6 +64,18 @@ const SPECS: &[Spec] = &[
         main: "case3",
         variants: &[("all-ANCF", "case3_ancf"), ("all-modal", "case3_modal")],
         ancf: "case3_ancf",
+        refine: 4,
+        grid: &[0.25, 0.5, 1.0],
+    },
+    Spec {
+        key: "case1_3d",
+        title: "Spatial Case 1 (case1_3d: the Case 1 rod in space, z up, undamped)",
+        main: "case1_3d",
+        variants: &[
+            ("all-ANCF", "case1_3d_ancf"),
+            ("all-modal", "case1_3d_modal"),
+        ],
+        ancf: "case1_3d_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
     },
@@ -308,7 +321,7 @@ fn plan(spec: &Spec, main: &Scene, quick: bool) -> Result<Vec<Point>, String> {
 
 /// Reference tip history of a scene file refined: elements × `refine`, 12 modes, step
 /// `h`, tolerance 1e-12.
-fn reference(file: &str, refine: usize, h: f64, fresh: bool) -> Result<Vec<[f64; 2]>, String> {
+fn reference(file: &str, refine: usize, h: f64, fresh: bool) -> Result<Vec<[f64; 3]>, String> {
     let base = scene(file, &[])?;
     let mut sets = refine_sets(&base, refine);
     if has_modal(&base) {
@@ -322,17 +335,28 @@ fn reference(file: &str, refine: usize, h: f64, fresh: bool) -> Result<Vec<[f64;
 
 struct SceneResult {
     rows: Vec<Row>,
+    /// The physical reference's tip history.
+    phys: Vec<[f64; 3]>,
     ref_check: f64,
     /// Model error floor of each formulation, or why its converged model could not be run.
     floors: Vec<(String, Result<f64, String>)>,
 }
 
+/// Index of the vertical axis of a scene: y in the plane, z in the spatial scenes (z up).
+fn up(s: &Scene) -> usize {
+    match s.space {
+        SpaceKind::Planar => 1,
+        SpaceKind::Spatial => 2,
+    }
+}
+
 fn measure(spec: &Spec, opts: &Opts, prog: &mut Progress) -> Result<SceneResult, String> {
     let main = scene(spec.main, &[])?;
+    let up = up(&main);
     let phys = reference(spec.ancf, spec.refine, H_REF, opts.fresh)?;
     // reference check: half the refinement, twice the step
     let check = reference(spec.ancf, spec.refine / 2, 2.0 * H_REF, opts.fresh)?;
-    let ref_check = tip_errors(&check, &phys, 1).0;
+    let ref_check = tip_errors(&check, &phys, 1, up).0;
     // own-formulation references (converged model of the same formulation)
     let mut own = std::collections::HashMap::new();
     own.insert(spec.ancf, phys.clone());
@@ -343,7 +367,7 @@ fn measure(spec: &Spec, opts: &Opts, prog: &mut Progress) -> Result<SceneResult,
         }
         match reference(file, spec.refine, H_REF, opts.fresh) {
             Ok(r) => {
-                floors.push((file.to_string(), Ok(tip_errors(&r, &phys, 1).0)));
+                floors.push((file.to_string(), Ok(tip_errors(&r, &phys, 1, up).0)));
                 own.insert(file, r);
             }
             // e.g. a modal segment beyond its validity: the engine refuses the run
@@ -369,10 +393,10 @@ fn measure(spec: &Spec, opts: &Opts, prog: &mut Progress) -> Result<SceneResult,
             rows.push(failed(p, e.to_string()));
             continue;
         }
-        let (err_max, err_end, err_max_y) = tip_errors(&r.tip, &phys, stride);
+        let (err_max, err_end, err_max_y) = tip_errors(&r.tip, &phys, stride, up);
         let own_max = own
             .get(p.file)
-            .map_or(f64::NAN, |o| tip_errors(&r.tip, o, stride).0);
+            .map_or(f64::NAN, |o| tip_errors(&r.tip, o, stride, up).0);
         rows.push(Row {
             p,
             wall: r.wall,
@@ -389,6 +413,7 @@ fn measure(spec: &Spec, opts: &Opts, prog: &mut Progress) -> Result<SceneResult,
     }
     Ok(SceneResult {
         rows,
+        phys,
         ref_check,
         floors,
     })
@@ -445,7 +470,7 @@ const TABLE_HEAD: &[&str] = &[
     "factor.",
     "max tip err [m]",
     "end err [m]",
-    "max y err [m]",
+    "max vertical err [m]",
     "max err vs own-formulation ref [m]",
     "status",
 ];
@@ -493,6 +518,7 @@ pub fn run(opts: &Opts) -> Result<(), String> {
     }
     let mut prog = Progress::new("accuracy", total);
     let mut case1_target = String::new();
+    let (mut planar1, mut spatial1) = (None, None);
     for spec in SPECS {
         let res = measure(spec, opts, &mut prog)?;
         let rows = &res.rows;
@@ -536,7 +562,7 @@ pub fn run(opts: &Opts) -> Result<(), String> {
                 "rejected",
                 "max_tip_err_m",
                 "end_tip_err_m",
-                "max_tip_y_err_m",
+                "max_tip_vertical_err_m",
                 "max_tip_err_own_ref_m",
                 "status",
             ],
@@ -703,8 +729,16 @@ pub fn run(opts: &Opts) -> Result<(), String> {
             spec.key,
             md_table(TABLE_HEAD, &all_rows)
         );
+        match spec.key {
+            "case1" => planar1 = Some(res),
+            "case1_3d" => spatial1 = Some(res),
+            _ => {}
+        }
     }
     prog.finish();
+    if let (Some(p), Some(s)) = (&planar1, &spatial1) {
+        md.push_str(&side_by_side(p, s));
+    }
     let head = format!(
         "## Summary\n\n{case1_target}\n\n| scene | cheapest ≤ 1e-5 m vs physical reference | \
          cheapest ≤ 1e-5 m vs own-formulation converged model |\n|---|---|---|\n{summary}\n"
@@ -719,6 +753,71 @@ pub fn run(opts: &Opts) -> Result<(), String> {
     Ok(())
 }
 
+/// The planar Case 1 and the spatial Case 1 (`case1_3d`) runs of the same settings side by
+/// side, and the distance between the two converged references (planar y against spatial z).
+fn side_by_side(planar: &SceneResult, spatial: &SceneResult) -> String {
+    const FAMILIES: [&str; 4] = ["step", "elements", "all-ANCF step", "all-modal step"];
+    let mut rows = Vec::new();
+    for p in planar
+        .rows
+        .iter()
+        .filter(|r| FAMILIES.contains(&r.p.family.as_str()))
+    {
+        let Some(s) = spatial
+            .rows
+            .iter()
+            .find(|s| s.p.family == p.p.family && s.p.param == p.p.param)
+        else {
+            continue;
+        };
+        rows.push(vec![
+            p.p.family.clone(),
+            p.p.formulation.clone(),
+            format!("`{}`", p.p.param),
+            format!("{:.4}", p.wall),
+            e3(p.err_max),
+            format!("{:.4}", s.wall),
+            e3(s.err_max),
+            e3(s.own_max),
+            format!("{:.2}", s.wall / p.wall),
+        ]);
+    }
+    // the converged references: planar (x, y) against spatial (x, z); spatial y must stay 0
+    let (mut d_ref, mut y_out) = (0.0f64, 0.0f64);
+    for (a, b) in planar.phys.iter().zip(&spatial.phys) {
+        d_ref = d_ref.max(((a[0] - b[0]).powi(2) + (a[1] - b[2]).powi(2)).sqrt());
+        y_out = y_out.max(b[1].abs());
+    }
+    let n = planar.phys.len().min(spatial.phys.len());
+    format!(
+        "## Spatial Case 1 beside planar Case 1 (same machine, same run)\n\n\
+         The same settings of `scenes/case1*.toml` (planar, gravity along −y) and \
+         `scenes/case1_3d*.toml` (spatial, gravity along −z), each against the converged all-ANCF \
+         reference of its own space (4× elements, step 1e-5 s, tolerance 1e-12). The two \
+         converged references are the same rod: over their {n} samples the largest distance \
+         between the planar tip (x, y) and the spatial tip (x, z) is **{} m**, and the spatial \
+         tip's largest out-of-plane |y| is **{} m**. Wall times are single runs on a machine \
+         shared with other jobs (see the top of the page): compare them within a row, not \
+         across pages.\n\n{}\n",
+        e3(d_ref),
+        e3(y_out),
+        md_table(
+            &[
+                "family",
+                "formulation",
+                "setting",
+                "planar wall [s]",
+                "planar max tip err [m]",
+                "spatial wall [s]",
+                "spatial max tip err [m]",
+                "spatial err vs own-formulation ref [m]",
+                "wall spatial / planar",
+            ],
+            &rows
+        )
+    )
+}
+
 const METHOD: &str = "## Method\n\n\
 - Every run simulates 2 s from the scene's initial state and samples the tip position every \
 1 ms (runs with an internal step above 1 ms advance, and are compared, every step).\n\
@@ -727,7 +826,8 @@ outputs at every sample (the median of the repetitions).\n\
 - **Physical reference:** the all-ANCF twin of the scene (exact strain measures, no modal \
 linearization) with refined mesh and step 1e-5 s. *Max tip error* is the largest Euclidean \
 distance of the tip from the reference over all samples, *end error* the distance at t = 2 s, \
-*max y error* the largest vertical difference.\n\
+*max vertical error* the largest difference of the vertical component (y in the plane, z in \
+the spatial scenes).\n\
 - **Own-formulation reference:** the same scene file with 12 modes per modal segment, the \
 refined mesh and step 1e-5 s. The error against it is the discretization error of a run; the \
 distance between it and the physical reference is the model error of the formulation (a modal \

@@ -3,8 +3,8 @@
 
 use hybeam::error::SimError;
 use hybeam::integrator::Counters;
-use hybeam::scene::Scene;
-use hybeam::simulator::Simulator;
+use hybeam::scene::{Scene, SpaceKind};
+use hybeam::simulator::AnySimulator;
 use std::fmt::Write as _;
 use std::hash::Hasher as _;
 use std::path::{Path, PathBuf};
@@ -62,8 +62,8 @@ pub fn scene(name: &str, overrides: &[String]) -> Result<Scene, String> {
 pub struct Run {
     /// Sample times [s].
     pub t: Vec<f64>,
-    /// Tip positions [m].
-    pub tip: Vec<[f64; 2]>,
+    /// Tip positions [m], global axes (z = 0 for a planar scene).
+    pub tip: Vec<[f64; 3]>,
     /// Wall time [s] (median over repetitions), building the simulator included.
     pub wall: f64,
     /// Work counters at the end.
@@ -74,7 +74,14 @@ pub struct Run {
     pub err: Option<SimError>,
 }
 
-/// Simulates to `t_end`, advancing (and sampling) in chunks of `chunk`.
+/// The tip position of a state as three components (z = 0 in the plane).
+fn tip3(sim: &AnySimulator) -> [f64; 3] {
+    let o = sim.outputs();
+    let p = o.tip_position();
+    [p[0], p[1], p.get(2).copied().unwrap_or(0.0)]
+}
+
+/// Simulates to `t_end` in the scene's space, advancing (and sampling) in chunks of `chunk`.
 pub fn simulate(scene: &Scene, t_end: f64, chunk: f64) -> Run {
     let start = Instant::now();
     let mut run = Run {
@@ -85,7 +92,7 @@ pub fn simulate(scene: &Scene, t_end: f64, chunk: f64) -> Run {
         min_step: f64::INFINITY,
         err: None,
     };
-    let mut sim = match Simulator::new(scene.clone()) {
+    let mut sim = match AnySimulator::new(scene.clone()) {
         Ok(s) => s,
         Err(e) => {
             run.err = Some(e);
@@ -93,7 +100,7 @@ pub fn simulate(scene: &Scene, t_end: f64, chunk: f64) -> Run {
         }
     };
     run.t.push(0.0);
-    run.tip.push(sim.outputs().tip_position);
+    run.tip.push(tip3(&sim));
     let n = (t_end / chunk).round().max(1.0) as usize;
     for k in 1..=n {
         let t = k as f64 * chunk;
@@ -102,11 +109,11 @@ pub fn simulate(scene: &Scene, t_end: f64, chunk: f64) -> Run {
             break;
         }
         run.t.push(t);
-        run.tip.push(sim.outputs().tip_position);
+        run.tip.push(tip3(&sim));
     }
     run.wall = start.elapsed().as_secs_f64();
     run.counters = sim.counters();
-    run.min_step = sim.min_step_used;
+    run.min_step = sim.min_step_used();
     run
 }
 
@@ -152,14 +159,17 @@ fn fnv1a(s: &str) -> u64 {
 const CACHE_VERSION: &str = "v1";
 
 /// A reference tip history, computed once and cached under `target/report-cache/`, keyed by
-/// the full scene (after overrides), end time and sampling step. `fresh` recomputes it.
+/// the full scene (after overrides), end time and sampling step. `fresh` recomputes it. The
+/// file holds `time,tip.x,tip.y` (planar: the layout of earlier caches, so they stay valid) or
+/// `time,tip.x,tip.y,tip.z` (spatial).
 pub fn cached(
     label: &str,
     scene: &Scene,
     t_end: f64,
     chunk: f64,
     fresh: bool,
-) -> Result<Vec<[f64; 2]>, String> {
+) -> Result<Vec<[f64; 3]>, String> {
+    let spatial = scene.space == SpaceKind::Spatial;
     let key = format!(
         "{CACHE_VERSION}\n{}\nt_end={t_end:e}\nchunk={chunk:e}",
         scene.to_toml()
@@ -169,12 +179,16 @@ pub fn cached(
     let path = dir.join(format!("{label}-{:016x}.csv", fnv1a(&key)));
     if !fresh {
         if let Ok(text) = std::fs::read_to_string(&path) {
-            let tip: Vec<[f64; 2]> = text
+            let tip: Vec<[f64; 3]> = text
                 .lines()
                 .skip(1)
                 .filter_map(|l| {
                     let v: Vec<f64> = l.split(',').filter_map(|x| x.parse().ok()).collect();
-                    (v.len() == 3).then(|| [v[1], v[2]])
+                    match v.len() {
+                        3 if !spatial => Some([v[1], v[2], 0.0]),
+                        4 if spatial => Some([v[1], v[2], v[3]]),
+                        _ => None,
+                    }
                 })
                 .collect();
             if tip.len() == (t_end / chunk).round() as usize + 1 {
@@ -190,9 +204,17 @@ pub fn cached(
     if let Some(e) = r.err {
         return Err(format!("reference {label} failed: {e}"));
     }
-    let mut s = String::from("time,tip.x,tip.y\n");
+    let mut s = String::from(if spatial {
+        "time,tip.x,tip.y,tip.z\n"
+    } else {
+        "time,tip.x,tip.y\n"
+    });
     for (t, p) in r.t.iter().zip(&r.tip) {
-        let _ = writeln!(s, "{t:.9e},{:.17e},{:.17e}", p[0], p[1]);
+        let _ = write!(s, "{t:.9e},{:.17e},{:.17e}", p[0], p[1]);
+        if spatial {
+            let _ = write!(s, ",{:.17e}", p[2]);
+        }
+        s.push('\n');
     }
     std::fs::write(&path, s).map_err(|e| e.to_string())?;
     eprintln!("  reference {label}: wall {:.1} s", r.wall);
@@ -293,8 +315,14 @@ impl Progress {
 }
 
 /// Largest Euclidean distance between two tip histories, and the distance at the end;
-/// `stride` picks every stride-th reference sample. Also the largest vertical difference.
-pub fn tip_errors(run: &[[f64; 2]], reference: &[[f64; 2]], stride: usize) -> (f64, f64, f64) {
+/// `stride` picks every stride-th reference sample. Also the largest difference of the
+/// vertical component `up` (1 = y in the plane, 2 = z in the spatial scenes).
+pub fn tip_errors(
+    run: &[[f64; 3]],
+    reference: &[[f64; 3]],
+    stride: usize,
+    up: usize,
+) -> (f64, f64, f64) {
     let mut max = 0.0f64;
     let mut max_y = 0.0f64;
     let mut end = f64::NAN;
@@ -302,12 +330,12 @@ pub fn tip_errors(run: &[[f64; 2]], reference: &[[f64; 2]], stride: usize) -> (f
         let Some(r) = reference.get(k * stride) else {
             return (f64::NAN, f64::NAN, f64::NAN);
         };
-        let d = ((p[0] - r[0]).powi(2) + (p[1] - r[1]).powi(2)).sqrt();
+        let d = ((p[0] - r[0]).powi(2) + (p[1] - r[1]).powi(2) + (p[2] - r[2]).powi(2)).sqrt();
         if !d.is_finite() {
             return (f64::NAN, f64::NAN, f64::NAN);
         }
         max = max.max(d);
-        max_y = max_y.max((p[1] - r[1]).abs());
+        max_y = max_y.max((p[up] - r[up]).abs());
         end = d;
     }
     (max, end, max_y)

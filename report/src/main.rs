@@ -30,7 +30,8 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Work-precision, cost per step and static references -> docs/accuracy.md.
+    /// Work-precision (Cases 1-3, soft rod, spatial Case 1 beside planar Case 1), cost per step
+    /// and static references -> docs/accuracy.md.
     Accuracy {
         #[command(flatten)]
         depth: Depth,
@@ -38,9 +39,10 @@ enum Command {
         #[arg(long)]
         fresh: bool,
     },
-    /// The paper's figures (Cases 1-3) -> docs/paper-figures.md.
+    /// The paper's figures (Cases 1-3, planar and spatial, and the spatial strip) ->
+    /// docs/paper-figures.md.
     Paper,
-    /// Extreme cases -> docs/stability.md.
+    /// Extreme cases, planar and spatial -> docs/stability.md.
     Stability {
         #[command(flatten)]
         depth: Depth,

@@ -104,3 +104,16 @@ fn random_force_energy_balance() {
         "energy balance off by {rel:.3e} of the energy scale"
     );
 }
+
+/// The spatial thin rod (64 elements with twist) at the step sizes of the fast subset.
+#[test]
+fn spatial_thin_rod() {
+    run_matching(|c| c.name.starts_with("3D stiff"));
+}
+
+/// Spatial twist under a tip moment about the axis, the ball-rooted spin-up and swing, and
+/// long communication steps.
+#[test]
+fn spatial_twist_spin_swing_and_long_steps() {
+    run_matching(|c| c.name.starts_with("3D") && !c.name.starts_with("3D stiff"));
+}
