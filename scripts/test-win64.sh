@@ -19,7 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # The scenes tested; adding one is one word here (or WIN64_SCENES="..." overrides the list).
-SCENES=${WIN64_SCENES:-"scenes/case1.toml scenes/case3.toml"}
+SCENES=${WIN64_SCENES:-"scenes/case1.toml scenes/case3.toml scenes/case1_3d.toml"}
 
 bash scripts/setup-win64.sh
 OUT=target/win64-test
