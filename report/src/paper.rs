@@ -183,6 +183,31 @@ fn plot_deflection(
     )
 }
 
+/// An amplitude spectrum plot (log amplitude) with the Euler–Bernoulli frequencies of `case`
+/// marked.
+fn plot_spectrum(file: &str, title: &str, series: &[Series], case: &Case) -> Result<(), String> {
+    plot::plot(
+        file,
+        &Axes {
+            title,
+            x: "frequency [Hz]",
+            y: "amplitude [m]",
+            log_x: false,
+            log_y: true,
+        },
+        series,
+        &Extras {
+            vlines: case
+                .beam
+                .frequencies
+                .iter()
+                .map(|f| (*f, format!("EB {f}")))
+                .collect(),
+            ..Default::default()
+        },
+    )
+}
+
 /// One row of a peak table: the peak of `sp` near each frequency of `f0s`.
 fn peak_row(form: &str, sp: &[(f64, f64)], f0s: &[f64]) -> Vec<String> {
     let mut row = vec![form.to_string()];
@@ -438,25 +463,11 @@ pub fn run() -> Result<(), String> {
             }
             let tag = if undamped { "undamped" } else { "shipped" };
             spectrum_csv(&format!("paper_{}_spectrum_{tag}.csv", case.key), &csv_cols)?;
-            plot::plot(
+            plot_spectrum(
                 &format!("paper_{}_spectrum_{tag}.svg", case.key),
-                &Axes {
-                    title: &format!("{}, {vname}: amplitude spectrum of tip y", case.title),
-                    x: "frequency [Hz]",
-                    y: "amplitude [m]",
-                    log_x: false,
-                    log_y: true,
-                },
+                &format!("{}, {vname}: amplitude spectrum of tip y", case.title),
                 &spec_series,
-                &Extras {
-                    vlines: case
-                        .beam
-                        .frequencies
-                        .iter()
-                        .map(|f| (*f, format!("EB {f}")))
-                        .collect(),
-                    ..Default::default()
-                },
+                case,
             )?;
             let notes = if vname.starts_with("as shipped (undamped)") || undamped {
                 let h = scene(case.key, &[])?.solver.max_step;
@@ -647,28 +658,14 @@ fn spatial(planar: &[Vec<(&str, Run)>], prog: &mut Progress) -> Result<String, S
             cols.push((form, sp));
         }
         spectrum_csv(&format!("paper_{key}_spectrum_shipped.csv"), &cols)?;
-        plot::plot(
+        plot_spectrum(
             &format!("paper_{key}_spectrum_shipped.svg"),
-            &Axes {
-                title: &format!(
-                    "{} in space, as shipped: amplitude spectrum of tip z",
-                    case.title
-                ),
-                x: "frequency [Hz]",
-                y: "amplitude [m]",
-                log_x: false,
-                log_y: true,
-            },
+            &format!(
+                "{} in space, as shipped: amplitude spectrum of tip z",
+                case.title
+            ),
             &spec_series,
-            &Extras {
-                vlines: case
-                    .beam
-                    .frequencies
-                    .iter()
-                    .map(|f| (*f, format!("EB {f}")))
-                    .collect(),
-                ..Default::default()
-            },
+            case,
         )?;
         let head = peak_head(&case.beam.frequencies);
         let head: Vec<&str> = head.iter().map(String::as_str).collect();

@@ -488,8 +488,8 @@ impl ModalRootPort3 {
         let att = Attitude::new(q);
         let f = |v: Vector3<f64>| frame_field(q, &att, d, false, v, &[], &[], second);
         let pos = frame_field(q, &att, d, true, Vector3::zeros(), &[], &[], second);
-        let (x, y, z) = (Vector3::x(), Vector3::y(), Vector3::z());
-        end_kin(pos, f(x), f(y), [f(y), f(z), f(z)])
+        let (fy, fz) = (f(Vector3::y()), f(Vector3::z()));
+        end_kin(pos, f(Vector3::x()), fy.clone(), [fy, fz.clone(), fz])
     }
 }
 
