@@ -154,7 +154,6 @@ impl Platform {
             let target_dir = target_dir(root)?.join("win64");
             cmd.env("RUSTC", Win64Tools::from_env().rustc)
                 .env("RUSTC_BOOTSTRAP", "1")
-                .env(BINDGEN_ARGS, bindgen_args())
                 .args(["-Zbuild-std=std,panic_unwind", "--target", WIN64_TARGET])
                 .arg("--target-dir")
                 .arg(&target_dir);
@@ -255,26 +254,6 @@ impl Win64Tools {
         let sysroot = String::from_utf8(out.stdout).ok()?;
         Some(Path::new(sysroot.trim()).join("lib/rustlib/src/rust/library/std"))
     }
-}
-
-/// fmi-sys runs bindgen (libclang) on the FMI headers for the target; for the mingw target
-/// libclang finds the mingw headers but not its own `mm_malloc.h`, which mingw's `malloc.h`
-/// includes. The mingw gcc's builtin header folder fills that gap (`-idirafter`: searched last,
-/// so only headers found nowhere else come from it). A value the user set is kept.
-const BINDGEN_ARGS: &str = "BINDGEN_EXTRA_CLANG_ARGS_x86_64_pc_windows_gnu";
-
-fn bindgen_args() -> std::ffi::OsString {
-    if let Some(v) = std::env::var_os(BINDGEN_ARGS) {
-        return v;
-    }
-    let include = Command::new(WIN64_LINKER)
-        .arg("-print-file-name=include")
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned())
-        .unwrap_or_default();
-    format!("-idirafter {include}").into()
 }
 
 /// Whether an executable `name` is on PATH.

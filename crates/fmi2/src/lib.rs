@@ -30,6 +30,7 @@ pub mod log;
 pub mod model;
 pub mod resources;
 pub mod state;
+pub mod sys;
 pub mod types;
 pub mod xml;
 

@@ -1,16 +1,16 @@
-//! FMI 2.0 C types and status codes, taken from the `fmi-sys` bindings of the official headers.
+//! FMI 2.0 C types and status codes, from the bindings of the official headers in [`crate::sys`].
 //!
 //! Only the ten or so types the exporter needs are re-exported here, under their C names, plus a
 //! small Rust [`Status`] enum ordered by severity (so statuses combine with `max`).
 
-pub use fmi_sys::fmi2::{
+pub use crate::sys::{
     fmi2Boolean, fmi2Byte, fmi2CallbackFunctions, fmi2CallbackLogger, fmi2Char, fmi2Component,
     fmi2ComponentEnvironment, fmi2FMUstate, fmi2Integer, fmi2Real, fmi2Status, fmi2StatusKind,
     fmi2String, fmi2Type, fmi2ValueReference,
 };
 
-/// The raw `fmi-sys` bindings (function-pointer types used to check the exported signatures).
-pub use fmi_sys::fmi2 as sys;
+/// The raw bindings (function-pointer types used to check the exported signatures).
+pub use crate::sys;
 
 /// `fmi2True`.
 pub const FMI2_TRUE: fmi2Boolean = sys::fmi2True as fmi2Boolean;

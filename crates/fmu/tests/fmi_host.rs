@@ -894,7 +894,8 @@ fn unavailable_status_kinds_are_discard() {
 }
 
 /// Item 3: the shared library exports exactly the 34 fmi2 functions (nothing from dependencies,
-/// e.g. `callback_log` of the FMI header bindings, that could clash between FMUs loaded with
+/// e.g. a `#[no_mangle]` helper such as `fmi-sys`'s `callback_log`, which is why the FMI types are
+/// checked in rather than linked from that crate, that could clash between FMUs loaded with
 /// `RTLD_GLOBAL`).
 #[test]
 fn exports_exactly_the_34_fmi2_functions() {
