@@ -3,6 +3,8 @@
 # fmpy tests against the packaged FMU, and the win64 test under Wine (scripts/test-win64.sh)
 # when the win64 toolchain is installed. In CI (CI=true) or with HYBEAM_WIN64=1 the toolchain
 # is installed first (scripts/setup-win64.sh), so CI always runs it; HYBEAM_WIN64=0 skips it.
+# Likewise HYBEAM_GLIBC=1 (CI) installs cargo-zigbuild (scripts/setup-glibc.sh): the linux64
+# binaries are then linked against glibc 2.31 and checked for it (scripts/check-glibc.sh).
 # Exits non-zero on any failure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,6 +13,10 @@ bash scripts/setup.sh
 WIN64=${HYBEAM_WIN64:-$([ "${CI:-}" = true ] && echo 1 || echo auto)}
 if [ "$WIN64" = 1 ]; then
     bash scripts/setup-win64.sh
+fi
+GLIBC=${HYBEAM_GLIBC:-$([ "${CI:-}" = true ] && echo 1 || echo auto)}
+if [ "$GLIBC" = 1 ]; then
+    bash scripts/setup-glibc.sh
 fi
 
 echo "== cargo test --workspace"
@@ -33,6 +39,11 @@ for scene in ${FMU_SCENES:-$DEFAULT_SCENES}; do
     # every platform whose toolchain is installed (linux64, and win64 after setup-win64.sh)
     FMUS+=("$(cargo fmu-build "$scene" --out target/fmu $PLATFORMS | tail -n 1)")
 done
+
+if [ "$GLIBC" = 1 ]; then
+    echo "== glibc floor of the linux64 binaries"
+    bash scripts/check-glibc.sh "${FMUS[@]}"
+fi
 
 echo "== pytest (fmpy) on ${FMUS[*]}"
 for fmu in "${FMUS[@]}"; do

@@ -159,7 +159,7 @@ pub enum Refusal {
     /// A node's section director r_y is (nearly) parallel to its slope r_x: no section frame.
     #[error(
         "ANCF segment '{segment}': a node's section director r_y is within {:.1}° of its slope r_x (sine {value:.2e}, at least {MIN_SECTION_SINE} needed), so it defines no section frame; r_y must stay a unit vector across the section, perpendicular to r_x",
-        .value.clamp(-1.0, 1.0).asin().to_degrees()
+        crate::math::asin(value.clamp(-1.0, 1.0)).to_degrees()
     )]
     SectionDirector {
         /// Scene name of the segment.

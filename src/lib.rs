@@ -14,6 +14,7 @@
 pub mod error;
 pub mod integrator;
 pub mod linalg;
+pub mod math;
 pub mod model;
 pub mod scene;
 pub mod simulator;

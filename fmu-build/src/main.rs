@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! fmu-build SCENE.toml [--out DIR] [--id NAME] [--xml-only] [--platforms linux64,win64]
+//!           [--glibc 2.31|host]
 //! ```
 //!
 //! 1. reads the scene and (unless `--xml-only`) builds the model with `from_resource`, so that
@@ -17,7 +18,9 @@
 //!
 //! Without `--platforms`, every platform whose toolchain is installed is built and each skipped
 //! one is reported with how to install it (win64: `bash scripts/setup-win64.sh`); a platform
-//! named in `--platforms` whose toolchain is missing is an error.
+//! named in `--platforms` whose toolchain is missing is an error. The linux64 binary is linked
+//! against glibc 2.31 when cargo-zigbuild is installed (`bash scripts/setup-glibc.sh`), else
+//! against this machine's glibc (said so); `--glibc` chooses explicitly.
 //!
 //! `--xml-only` skips the model build of 1 (the scene is still read and validated) and 3–4, and
 //! writes `DIR/<id>.xml` (the golden files in `modelDescription/`): the description is a
@@ -54,6 +57,10 @@ struct Args {
     /// toolchain is installed; skipped ones are reported].
     #[arg(long, value_name = "LIST")]
     platforms: Option<String>,
+    /// glibc the linux64 binary is linked against: 2.31 (cargo-zigbuild) or host [default: 2.31
+    /// when cargo-zigbuild is installed, else host].
+    #[arg(long, value_name = "VERSION")]
+    glibc: Option<String>,
 }
 
 fn main() -> ExitCode {
@@ -104,9 +111,14 @@ fn run(args: &Args) -> Result<PathBuf, String> {
         eprintln!("fmu-build: {s}");
     }
     let root = workspace_root();
+    let glibc = if platforms.contains(&platform::Platform::Linux64) {
+        platform::Glibc::choose(args.glibc.as_deref(), &root)?
+    } else {
+        platform::Glibc::Host
+    };
     let mut binaries = Vec::new();
     for p in platforms {
-        binaries.push((p, p.build(&root)?));
+        binaries.push((p, p.build(&root, &glibc)?));
     }
     let path = args.out.join(format!("{id}.fmu"));
     package::write_fmu(&path, &description, &binaries, &id, &scene)?;

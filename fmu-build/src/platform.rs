@@ -1,6 +1,10 @@
 //! The platforms an FMU can carry, how each binary is built, and which toolchains are present.
 //!
-//! - `linux64`: `binaries/linux64/<id>.so`, built by the cargo that runs this tool (rustup's).
+//! - `linux64`: `binaries/linux64/<id>.so`, built by the cargo that runs this tool (rustup's),
+//!   linked against glibc 2.31 by `cargo zigbuild` (target `x86_64-unknown-linux-gnu.2.31`, own
+//!   target directory `<target>/glibc231`) when cargo-zigbuild is installed
+//!   (`scripts/setup-glibc.sh`: a venv in `<target>/zig/venv`), else against this machine's
+//!   glibc (Debian 12: the .so then needs glibc ≥ 2.34). See [`Glibc`].
 //! - `win64`: `binaries/win64/<id>.dll` for `x86_64-pc-windows-gnu` (Windows 10 and later),
 //!   built by Debian's `/usr/bin/cargo` + `/usr/bin/rustc` (`rustc-web` 1.96) with
 //!   `RUSTC_BOOTSTRAP=1 -Zbuild-std=std,panic_unwind` from the std sources of `rust-web-src`,
@@ -36,9 +40,65 @@ const WIN64_TARGET: &str = "x86_64-pc-windows-gnu";
 const WIN64_LINKER: &str = "x86_64-w64-mingw32-gcc";
 /// The binutils that strip the win64 DLL.
 const WIN64_STRIP: &str = "x86_64-w64-mingw32-strip";
+/// The zig-linked Linux target: glibc 2.31 (Ubuntu 20.04, Debian 11, RHEL 9 has 2.34).
+const GLIBC_TARGET: &str = "x86_64-unknown-linux-gnu.2.31";
+/// How to install the glibc-2.31 toolchain.
+pub const GLIBC_SETUP: &str =
+    "bash scripts/setup-glibc.sh (cargo-zigbuild + ziglang from PyPI in target/zig/venv)";
 /// How to install the win64 toolchain.
 pub const WIN64_SETUP: &str = "bash scripts/setup-win64.sh (Debian 12: apt rustc-web cargo-web \
                                rust-web-src gcc-mingw-w64-x86-64)";
+
+/// How the linux64 binary is linked against glibc (`--glibc`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Glibc {
+    /// `cargo-zigbuild` (this path) links against glibc 2.31's symbol versions: the .so loads on
+    /// glibc ≥ 2.31 (2020 long-term-support distributions).
+    Zig(PathBuf),
+    /// The build machine's glibc: the .so needs the symbol versions found there.
+    Host,
+}
+
+impl Glibc {
+    /// `--glibc 2.31` (needs cargo-zigbuild), `--glibc host`, or `None`: 2.31 when
+    /// cargo-zigbuild is installed, else host (with a note on what that means and how to get
+    /// 2.31).
+    pub fn choose(arg: Option<&str>, root: &Path) -> Result<Glibc, String> {
+        let zig = zigbuild(root);
+        match (arg, zig) {
+            (Some("host"), _) => Ok(Glibc::Host),
+            (Some("2.31") | None, Some(z)) => Ok(Glibc::Zig(z)),
+            (Some("2.31"), None) => Err(format!(
+                "--glibc 2.31 needs cargo-zigbuild; install with {GLIBC_SETUP}"
+            )),
+            (None, None) => {
+                eprintln!(
+                    "fmu-build: linux64 linked against this machine's glibc (the .so needs the \
+                     glibc versions found here, 2.34 on Debian 12); for glibc 2.31: {GLIBC_SETUP}"
+                );
+                Ok(Glibc::Host)
+            }
+            (Some(other), _) => Err(format!("--glibc \"{other}\": expected 2.31 or host")),
+        }
+    }
+}
+
+/// cargo-zigbuild: `HYBEAM_ZIGBUILD`, else `<target>/zig/venv/bin/cargo-zigbuild` (what
+/// `scripts/setup-glibc.sh` installs), else on PATH.
+fn zigbuild(root: &Path) -> Option<PathBuf> {
+    if let Some(p) = std::env::var_os("HYBEAM_ZIGBUILD") {
+        return Some(PathBuf::from(p));
+    }
+    let venv = target_dir(root).ok()?.join("zig/venv/bin/cargo-zigbuild");
+    if venv.is_file() {
+        return Some(venv);
+    }
+    std::env::var_os("PATH").and_then(|path| {
+        std::env::split_paths(&path)
+            .map(|d| d.join("cargo-zigbuild"))
+            .find(|p| p.is_file())
+    })
+}
 
 impl Platform {
     /// The folder name under `binaries/`.
@@ -110,8 +170,8 @@ impl Platform {
 
     /// Builds the `hybeam-fmu` cdylib for this platform in the workspace `root` and strips it;
     /// returns the stripped copy (`stripped/` beside the library cargo reports).
-    pub fn build(self, root: &Path) -> Result<PathBuf, String> {
-        let library = self.cargo_build(root)?;
+    pub fn build(self, root: &Path, glibc: &Glibc) -> Result<PathBuf, String> {
+        let library = self.cargo_build(root, glibc)?;
         let dir = library.parent().unwrap_or(Path::new(".")).join("stripped");
         std::fs::create_dir_all(&dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -142,14 +202,35 @@ impl Platform {
     }
 
     /// `cargo build` of the cdylib; returns the library path cargo reports.
-    fn cargo_build(self, root: &Path) -> Result<PathBuf, String> {
-        let cargo = match self {
-            Platform::Linux64 => std::env::var_os("CARGO").map_or("cargo".into(), PathBuf::from),
-            Platform::Win64 => Win64Tools::from_env().cargo,
+    fn cargo_build(self, root: &Path, glibc: &Glibc) -> Result<PathBuf, String> {
+        let zig = match (self, glibc) {
+            (Platform::Linux64, Glibc::Zig(z)) => Some(z),
+            _ => None,
+        };
+        let cargo = match (self, zig) {
+            (Platform::Linux64, Some(z)) => z.clone(),
+            (Platform::Linux64, None) => {
+                std::env::var_os("CARGO").map_or("cargo".into(), PathBuf::from)
+            }
+            (Platform::Win64, _) => Win64Tools::from_env().cargo,
         };
         let mut cmd = Command::new(&cargo);
         cmd.current_dir(root)
-            .args(["build", "--profile", PROFILE, "-p", "hybeam-fmu", "--lib"]);
+            .arg(if zig.is_some() { "zigbuild" } else { "build" });
+        cmd.args(["--profile", PROFILE, "-p", "hybeam-fmu", "--lib"]);
+        if let Some(z) = zig {
+            // zig itself comes from the venv's ziglang (`python -m ziglang`): its bin first
+            let mut path = vec![z.parent().unwrap_or(Path::new(".")).to_path_buf()];
+            path.extend(std::env::split_paths(
+                &std::env::var_os("PATH").unwrap_or_default(),
+            ));
+            cmd.env(
+                "PATH",
+                std::env::join_paths(path).map_err(|e| format!("PATH: {e}"))?,
+            )
+            .args(["--target", GLIBC_TARGET, "--target-dir"])
+            .arg(target_dir(root)?.join("glibc231"));
+        }
         if self == Platform::Win64 {
             let target_dir = target_dir(root)?.join("win64");
             cmd.env("RUSTC", Win64Tools::from_env().rustc)

@@ -12,6 +12,7 @@ use super::{
     scaled_norm, Counters, EvalRequest, Integrable, IntegrationParameters, State, StateRef,
     REFRESH_RATE,
 };
+use crate::math;
 
 /// The four generalized-α coefficients from ρ∞.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -344,7 +345,7 @@ impl GeneralizedAlpha {
         let mut fresh = false;
         let mut last = f64::INFINITY;
         // the rate estimate of earlier steps is trusted less as steps go by (Hairer & Wanner)
-        let mut eta = self.eta.max(f64::EPSILON).powf(0.8);
+        let mut eta = math::pow(self.eta.max(f64::EPSILON), 0.8);
         for it in 0..self.max_iter {
             // the held matrix steers modified Newton only: a step size that differs in its last
             // bits (t_end − t0 of consecutive communication steps) does not call for a new one

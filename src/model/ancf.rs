@@ -10,6 +10,7 @@
 //! [`StrainModel::Paper`] uses ε = ½(r′ᵀr′ − 1) and κ ≈ |r″| (constant bending stiffness).
 //! Kelvin–Voigt damping (retardation time τ) adds EAτ ε̇ δε + EIτ K̇ δK.
 
+use crate::math;
 use crate::scene::StrainModel;
 use nalgebra::{SMatrix, SVector, Vector2};
 
@@ -450,7 +451,7 @@ pub fn cross(a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
 
 /// Coordinates of a straight, unstretched element from `p0` along `angle`.
 pub fn straight(p0: [f64; 2], angle: f64, l: f64) -> Vec8 {
-    let (s, c) = angle.sin_cos();
+    let (s, c) = math::sin_cos(angle);
     Vec8::from_column_slice(&[p0[0], p0[1], c, s, p0[0] + l * c, p0[1] + l * s, c, s])
 }
 

@@ -27,6 +27,7 @@
 //! same generic code by forward-mode AD (`num-dual`).
 
 use super::ancf::{GAUSS3, GAUSS5};
+use crate::math;
 use crate::scene::{Segment, StrainModel};
 use num_dual::{DualNum, DualSVec64};
 
@@ -821,7 +822,7 @@ impl Ancf3Props {
         let wa = cross(&w, &a);
         let f = dot(&w, &a) / (1.0 + c);
         let a1 = [0, 1, 2].map(|i| c * a[i] + wa[i] + f * w[i]);
-        let twist = dot(&t1, &cross(&a1, &b)).atan2(dot(&a1, &b)).abs();
+        let twist = math::atan2(dot(&t1, &cross(&a1, &b)), dot(&a1, &b)).abs();
         let worst = std::f64::consts::PI;
         (if twist.is_nan() { worst } else { twist }, sine)
     }

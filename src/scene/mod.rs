@@ -7,6 +7,7 @@
 
 mod overrides;
 
+use crate::math;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -349,7 +350,7 @@ pub fn rectangle_torsion_constant(b: f64, h: f64) -> f64 {
     let sum: f64 = (0..50)
         .map(|k| {
             let n = (2 * k + 1) as f64;
-            (n * PI * a / (2.0 * b)).tanh() / n.powi(5)
+            math::tanh(n * PI * a / (2.0 * b)) / n.powi(5)
         })
         .sum();
     a * b * b * b * (1.0 / 3.0 - 64.0 / PI.powi(5) * (b / a) * sum)

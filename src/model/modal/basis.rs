@@ -8,6 +8,7 @@
 //! eigenproblem, so that the final shapes satisfy ∫φ_iφ_j dξ = δ_ij and ∫φ_i″φ_j″ dξ = Λ_i δ_ij
 //! (Λ_i = λ_i⁴ for the pure clamped–free basis). All invariants are computed once here.
 
+use crate::math;
 use nalgebra::{DMatrix, DVector};
 
 /// Roots of 1 + cos λ cosh λ = 0 are refined from these guesses by Newton's method.
@@ -18,8 +19,8 @@ fn clamped_free_root(n: usize) -> f64 {
         (n as f64 - 0.5) * std::f64::consts::PI
     };
     for _ in 0..50 {
-        let f = 1.0 + x.cos() * x.cosh();
-        let df = -x.sin() * x.cosh() + x.cos() * x.sinh();
+        let f = 1.0 + math::cos(x) * math::cosh(x);
+        let df = -math::sin(x) * math::cosh(x) + math::cos(x) * math::sinh(x);
         let dx = f / df;
         x -= dx;
         if dx.abs() < 1e-15 * x {
@@ -50,9 +51,9 @@ impl Raw {
             } => {
                 let x = l * xi;
                 // cosh − σ sinh written as e^{−x} + (1 − σ) sinh x to avoid cancellation.
-                let em = (-x).exp();
-                let (sh, ch) = (x.sinh(), x.cosh());
-                let (sn, cs) = x.sin_cos();
+                let em = math::exp(-x);
+                let (sh, ch) = (math::sinh(x), math::cosh(x));
+                let (sn, cs) = math::sin_cos(x);
                 let v = em + (1.0 - s) * sh - cs + s * sn;
                 let d1 = l * (-em + (1.0 - s) * ch + sn + s * cs);
                 let d2 = l * l * (em + (1.0 - s) * sh + cs - s * sn);
@@ -118,7 +119,7 @@ impl ModalBasis {
         let mut raw: Vec<Raw> = (1..=modes)
             .map(|n| {
                 let l = clamped_free_root(n);
-                let sigma = (l.sinh() - l.sin()) / (l.cosh() + l.cos());
+                let sigma = (math::sinh(l) - math::sin(l)) / (math::cosh(l) + math::cos(l));
                 Raw::Mode { lambda: l, sigma }
             })
             .collect();

@@ -14,11 +14,12 @@
 //! ∂F/∂q̈ (mass matrix), ∂F/∂q̇ and ∂F/∂q.
 
 use super::basis::ModalBasis;
+use crate::math;
 use nalgebra::{DMatrix, DVector, Matrix2, Vector2};
 
 /// Rotation matrix A(θ).
 pub fn rot(theta: f64) -> Matrix2<f64> {
-    let (s, c) = theta.sin_cos();
+    let (s, c) = math::sin_cos(theta);
     Matrix2::new(c, -s, s, c)
 }
 

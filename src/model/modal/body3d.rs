@@ -19,6 +19,7 @@
 //! Newton block ([`ModalBody3::newton_block`]).
 
 use super::basis::ModalBasis;
+use crate::math;
 use crate::scene::Segment;
 use nalgebra::{Matrix2, Vector2};
 use num_dual::{Dual64, DualNum};
@@ -172,7 +173,7 @@ pub const TORSION_SHAPES: usize = 2;
 
 /// The torsion shapes χ_m(ξ) and their slopes χ_m′(ξ) (per ξ).
 pub fn torsion_shapes(xi: f64) -> ([f64; 2], [f64; 2]) {
-    let (s, c) = (PI * xi).sin_cos();
+    let (s, c) = math::sin_cos(PI * xi);
     ([xi, SQRT_2 * s], [1.0, SQRT_2 * PI * c])
 }
 

@@ -6,6 +6,7 @@ use super::elements::{AncfElement, ModalElement};
 use super::ends::{ModalRootPort, ModalTipPort, NodePort, RootSupport};
 use super::joint::RigidJoint;
 use super::Planar;
+use crate::math;
 use crate::model::ancf::AncfProps;
 use crate::model::assembly::{Model, Parts};
 use crate::model::component::{Constraint, Element, Port};
@@ -40,7 +41,7 @@ impl Model<Planar> {
                 "space = \"spatial\": this scene builds a spatial model, not a planar one".into(),
             ));
         }
-        let (sa, ca) = scene.initial.angle.sin_cos();
+        let (sa, ca) = math::sin_cos(scene.initial.angle);
         let dir = [ca, sa];
         let clamped = scene.root == Root::Clamped;
         let lref = scene.total_length();

@@ -5,6 +5,7 @@
 //! its length is the axial stretch).
 
 use super::Planar;
+use crate::math;
 use crate::model::ancf::cross;
 use crate::model::component::{Port, Support};
 use crate::model::modal::{rot, ModalBody};
@@ -86,7 +87,7 @@ impl EndKin {
     pub fn angle(&self) -> f64 {
         match &self.orient {
             Orientation::Angle(psi, _) => *psi,
-            Orientation::Slope(s, _) => s[1].atan2(s[0]),
+            Orientation::Slope(s, _) => math::atan2(s[1], s[0]),
         }
     }
 }

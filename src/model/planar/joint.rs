@@ -5,6 +5,7 @@
 
 use super::ends::{EndKin, Orientation};
 use super::Planar;
+use crate::math;
 use crate::model::component::{Constraint, ConstraintOut, Port};
 use nalgebra::Vector2;
 
@@ -103,7 +104,7 @@ fn angle_slope(
     hess: &mut Vec<(usize, usize, f64)>,
 ) -> f64 {
     let (dpsi, oa) = (a.dpsi, a.at);
-    let (sn, cs) = a.psi.sin_cos();
+    let (sn, cs) = math::sin_cos(a.psi);
     let n = Vector2::new(-sn, cs);
     let t = Vector2::new(cs, sn);
     let phi = n.dot(s);

@@ -293,6 +293,7 @@ fn rotation_coefficients<T: Real>(x: T) -> (T, T) {
         (a, b)
     } else {
         let s = x.sqrt();
+        // (math: num-dual receiver): T may be f64 or a dual number
         (s.sin() / s, (T::one() - s.cos()) / x)
     }
 }
@@ -312,6 +313,7 @@ fn tip_directors<T: Real>(vs: T, ws: T, th: T) -> [V3<T>; 5] {
     let t = [one - b * (vs * vs + ws * ws), a * vs, a * ws];
     let n1 = [-(a * vs), one - b * vs * vs, -(b * vs * ws)];
     let n2 = [-(a * ws), -(b * vs * ws), one - b * ws * ws];
+    // (math: num-dual receiver): T may be f64 or a dual number
     let (st, ct) = (th.sin(), th.cos());
     let s = body3d::add(body3d::scale(n1, ct), body3d::scale(n2, st));
     let n3 = body3d::add(body3d::scale(n2, ct), body3d::scale(n1, -st));
