@@ -3,8 +3,10 @@
 //! platform's C library (glibc on linux64, msvcrt on win64), whose last bits differ: the
 //! paper's Case 3 moved by 7.6e-10 m between the two FMU binaries before this module
 //! (docs/platforms.md). `tests/portable_math.rs` keeps std's versions out of `src/` (outside test
-//! modules). sqrt is correctly rounded everywhere and stays std's. The dual-number (num-dual)
-//! paths of the spatial model still use std's functions inside num-dual.
+//! modules). sqrt is correctly rounded everywhere and stays std's. Code generic over num-dual
+//! numbers takes sin and cos from [`sin_cos_dual`] (num-dual's own call std's).
+
+use num_dual::DualNum;
 
 /// sin x (x in rad).
 #[inline]
@@ -66,8 +68,68 @@ pub fn pow(x: f64, y: f64) -> f64 {
     libm::pow(x, y)
 }
 
+/// (sin x, cos x) of a num-dual number (or f64) from this module's f64 functions: with r the
+/// real part and d = x − r the infinitesimal part, sin x = sin r·cos d + cos r·sin d, the
+/// series of sin d and cos d ending at d^NDERIV (exact: higher powers of d vanish). For f64,
+/// d = 0 and the result is bit for bit [`sin_cos`].
+pub fn sin_cos_dual<T: DualNum<Primitive = f64> + Copy>(x: T) -> (T, T) {
+    let r = x.re();
+    let (s, c) = sin_cos(r);
+    let d = x - T::from(r);
+    let (mut sd, mut cd) = (T::zero(), T::one());
+    let mut term = T::one(); // d^k / k!
+    for k in 1..=T::NDERIV {
+        term = term * d / k as f64;
+        match k % 4 {
+            1 => sd += term,
+            2 => cd -= term,
+            3 => sd -= term,
+            _ => cd += term,
+        }
+    }
+    (
+        T::from(s) * cd + T::from(c) * sd,
+        T::from(c) * cd - T::from(s) * sd,
+    )
+}
+
 #[cfg(test)]
 mod tests {
+    use num_dual::{Dual2_64, Dual3_64, HyperDual64};
+
+    /// The dual version carries the exact derivatives (against the closed forms) and is the
+    /// f64 version bit for bit on plain numbers.
+    #[test]
+    fn sin_cos_dual_has_exact_derivatives() {
+        for k in 0..200 {
+            let x = -6.0 + 0.061 * k as f64;
+            assert_eq!(super::sin_cos_dual(x), super::sin_cos(x));
+            let (s, c) = super::sin_cos(x);
+            let close = |a: f64, b: f64| (a - b).abs() <= 4.0 * f64::EPSILON;
+            let d3 = Dual3_64::new(x, 1.0, 0.0, 0.0);
+            let (s3, c3) = super::sin_cos_dual(d3);
+            for (got, want) in [
+                (s3.re, s),
+                (s3.v1, c),
+                (s3.v2, -s),
+                (s3.v3, -c),
+                (c3.re, c),
+                (c3.v1, -s),
+                (c3.v2, -c),
+                (c3.v3, s),
+            ] {
+                assert!(close(got, want), "x {x}: {got} vs {want}");
+            }
+            let d2 = Dual2_64::new(x, 1.0, 0.0);
+            let (s2, _) = super::sin_cos_dual(d2);
+            assert!(close(s2.v2, -s));
+            let h = HyperDual64::new(x, 1.0, 1.0, 0.0);
+            let (sh, ch) = super::sin_cos_dual(h);
+            assert!(close(sh.eps1, c) && close(sh.eps1eps2, -s));
+            assert!(close(ch.eps2, -s) && close(ch.eps1eps2, -c));
+        }
+    }
+
     /// Agrees with std's functions to a few ulp (they differ only in the last bits).
     #[test]
     fn agrees_with_std() {

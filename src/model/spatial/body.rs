@@ -9,6 +9,7 @@
 //! constant ∂²(Av̄)/∂p² (shared spatial brief §2.1), valid for any p.
 
 use super::{EndKin3, Field3, Spatial};
+use crate::math;
 use crate::model::assembly::Model;
 use crate::model::component::{
     Constraint, ConstraintOut, Element, ElementOut, Energies, Env, LocalState, Port, Support,
@@ -293,8 +294,8 @@ fn rotation_coefficients<T: Real>(x: T) -> (T, T) {
         (a, b)
     } else {
         let s = x.sqrt();
-        // (math: num-dual receiver): T may be f64 or a dual number
-        (s.sin() / s, (T::one() - s.cos()) / x)
+        let (sn, cs) = math::sin_cos_dual(s);
+        (sn / s, (T::one() - cs) / x)
     }
 }
 
@@ -313,8 +314,7 @@ fn tip_directors<T: Real>(vs: T, ws: T, th: T) -> [V3<T>; 5] {
     let t = [one - b * (vs * vs + ws * ws), a * vs, a * ws];
     let n1 = [-(a * vs), one - b * vs * vs, -(b * vs * ws)];
     let n2 = [-(a * ws), -(b * vs * ws), one - b * ws * ws];
-    // (math: num-dual receiver): T may be f64 or a dual number
-    let (st, ct) = (th.sin(), th.cos());
+    let (st, ct) = math::sin_cos_dual(th);
     let s = body3d::add(body3d::scale(n1, ct), body3d::scale(n2, st));
     let n3 = body3d::add(body3d::scale(n2, ct), body3d::scale(n1, -st));
     [t, s, n1, n2, n3]
