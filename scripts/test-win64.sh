@@ -12,7 +12,7 @@
 # A Wine run fails on a non-zero exit code, a missing "HOST: OK", or any "Unhandled" exception
 # in Wine's output (a thread crashing after FreeLibrary does not change the exit code).
 # Also checked: the DLL exports exactly the 34 fmi2 functions and no test-only file is in the
-# FMU; `fmpy validate` on the FMU when the .venv exists.
+# FMU; `fmpy validate` on the FMU when the .venv exists; `fmutool -check` (its own venv in target/).
 # Installs the toolchain on demand (scripts/setup-win64.sh). Ends with "win64: N passed, M failed".
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,6 +21,13 @@ cd "$(dirname "$0")/.."
 SCENES=${WIN64_SCENES:-"scenes/case1.toml scenes/case3.toml scenes/case1_3d.toml"}
 
 bash scripts/setup-win64.sh
+# fmutool 1.7.4.1 (PyPI, pulls PyQt5) in its own venv inside target/, created on first use
+FMUTOOL_VENV=${CARGO_TARGET_DIR:-target}/fmutool/venv
+FMUTOOL=$FMUTOOL_VENV/bin/fmutool
+if [ ! -x "$FMUTOOL" ]; then
+    python3 -m venv "$FMUTOOL_VENV"
+    "$FMUTOOL_VENV/bin/pip" install -q fmutool==1.7.4.1
+fi
 if [ "${WIN64_STRICT:-1}" = 0 ]; then unset WIN64_STRICT; else export WIN64_STRICT=1; fi
 OUT=target/win64-test
 BIN=$OUT/bin
@@ -105,6 +112,14 @@ for scene in $SCENES; do
         else
             echo "fmpy validate: $(tail -n 1 "$OUT/$id.validate.txt")"
         fi
+    fi
+    # fmutool (fmu-manipulation-toolbox) generic conformity check of the two-platform FMU
+    if ! "$FMUTOOL" -input "$fmu" -check >"$OUT/$id.fmutool.txt" 2>&1 ||
+        ! grep -q "compliant with FMI-2.0" "$OUT/$id.fmutool.txt" || grep -q "ERROR" "$OUT/$id.fmutool.txt"; then
+        cat "$OUT/$id.fmutool.txt"
+        ok=0
+    else
+        echo "fmutool -check: $(grep compliant "$OUT/$id.fmutool.txt")"
     fi
 
     "$BIN/host" "$(realpath "$dir")" "$OUT/$id.linux64.csv" >"$OUT/$id.linux64.out" 2>&1 ||
