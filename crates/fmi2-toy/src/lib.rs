@@ -2,14 +2,17 @@
 //! beside its `fmi2Functions.c`): a 2D point mass on a spring-damper anchored at the origin,
 //! `m ẍ = −k x − c ẋ + m g + F`, integrated with semi-implicit Euler at a fixed internal step.
 //! A step fails (state untouched, a recoverable fmi2Discard) when `|F| > max_force` or when it
-//! needs more than a million substeps. Built from the resource `toy.toml`; the whole model is a
+//! needs more than a million substeps. It offers the optional FMI calls: input derivatives of
+//! F (orders 1, 2: F(τ) = F + F′τ + ½F″τ² over the next step), output derivatives (orders 1, 2,
+//! of the continuous model), and the directional derivative of its acceleration outputs,
+//! which depend directly on F (∂a/∂F = 1/m). Built from the resource `toy.toml`; the whole model is a
 //! [`CoSimModel`] plus one line, `fmi2::export_fmi2!(Toy)`. `benches/fmi_overhead.rs` measures
 //! the layer's cost per fmi2DoStep with it.
 
 use serde::Deserialize;
 
 use fmi2::hash::fnv1a64;
-use fmi2::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+use fmi2::{Capabilities, Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
 
 /// Work cap of one communication step (substeps).
 const MAX_SUBSTEPS: f64 = 1e6;
@@ -74,10 +77,13 @@ mod vr {
     pub const VEL_X: u32 = 22;
     pub const VEL_Y: u32 = 23;
     pub const KINETIC: u32 = 24;
+    pub const ACC_X: u32 = 25;
+    pub const ACC_Y: u32 = 26;
 }
 
-const STATE_MAGIC: &[u8; 8] = b"HYBTOY01";
-const STATE_LEN: usize = 8 + 8 + 15 * 8;
+const STATE_MAGIC: &[u8; 8] = b"HYBTOY02";
+/// Magic, scene hash, [`Toy::state_f64s`].
+const STATE_LEN: usize = 8 + 8 + 19 * 8;
 
 /// The toy model.
 #[derive(Debug, Clone)]
@@ -89,6 +95,8 @@ pub struct Toy {
     initial: Initial,
     p: Params,
     force: [f64; 2],
+    /// d/dt and d²/dt² of the force over the next step (fmi2SetRealInputDerivatives).
+    force_rate: [[f64; 2]; 2],
     x: [f64; 2],
     v: [f64; 2],
 }
@@ -129,6 +137,11 @@ fn variables(p: &Params) -> Vec<Variable> {
         start,
         unit: Some(unit),
         description: description.into(),
+        depends_on: Vec::new(),
+    };
+    let acc = |name: &str, vr, input, description: &str| Variable {
+        depends_on: vec![input],
+        ..v(name, vr, Output, Continuous, None, "m/s2", description)
     };
     vec![
         v(
@@ -248,11 +261,34 @@ fn variables(p: &Params) -> Vec<Variable> {
             "J",
             "Kinetic energy",
         ),
+        acc(
+            "tip.acceleration.x",
+            vr::ACC_X,
+            vr::FORCE_X,
+            "Acceleration of the mass, x (depends directly on tip.force.x)",
+        ),
+        acc(
+            "tip.acceleration.y",
+            vr::ACC_Y,
+            vr::FORCE_Y,
+            "Acceleration of the mass, y (depends directly on tip.force.y)",
+        ),
     ]
 }
 
 impl Toy {
-    fn state_f64s(&self) -> [f64; 15] {
+    /// Acceleration of the continuous model, component `i` [m/s²], with force `f`.
+    fn acceleration(&self, i: usize, x: f64, v: f64, f: f64) -> f64 {
+        let p = &self.p;
+        (f - p.stiffness * x - p.damping * v) / p.mass + p.gravity[i]
+    }
+
+    /// Force component `i` at `tau` seconds into the current step [N].
+    fn force_at(&self, i: usize, tau: f64) -> f64 {
+        self.force[i] + self.force_rate[0][i] * tau + 0.5 * self.force_rate[1][i] * tau * tau
+    }
+
+    fn state_f64s(&self) -> [f64; 19] {
         let p = &self.p;
         [
             p.mass,
@@ -270,6 +306,10 @@ impl Toy {
             self.v[1],
             0.0,
             0.0,
+            self.force_rate[0][0],
+            self.force_rate[0][1],
+            self.force_rate[1][0],
+            self.force_rate[1][1],
         ]
     }
 }
@@ -305,12 +345,18 @@ impl CoSimModel for Toy {
                 start_time: e.start_time,
                 stop_time: e.stop_time,
                 step_size: e.step_size,
+                capabilities: Capabilities {
+                    input_derivative_order: 2,
+                    output_derivative_order: 2,
+                    directional_derivative: true,
+                },
             },
             vars: variables(&scene.parameters),
             scene_params: scene.parameters,
             initial: init,
             p: scene.parameters,
             force: [0.0; 2],
+            force_rate: [[0.0; 2]; 2],
             x: init.position,
             v: init.velocity,
         })
@@ -341,6 +387,10 @@ impl CoSimModel for Toy {
             vr::VEL_X => self.v[0],
             vr::VEL_Y => self.v[1],
             vr::KINETIC => 0.5 * p.mass * (self.v[0] * self.v[0] + self.v[1] * self.v[1]),
+            vr::ACC_X | vr::ACC_Y => {
+                let i = (r - vr::ACC_X) as usize;
+                self.acceleration(i, self.x[i], self.v[i], self.force[i])
+            }
             _ => return Err(format!("value reference {r} is not a variable of the toy")),
         })
     }
@@ -359,7 +409,11 @@ impl CoSimModel for Toy {
                 if !value.is_finite() {
                     return Err(format!("tip force {value} is not finite"));
                 }
-                self.force[(r - vr::FORCE_X) as usize] = value;
+                let i = (r - vr::FORCE_X) as usize;
+                self.force[i] = value;
+                // a new value starts a new input polynomial
+                self.force_rate[0][i] = 0.0;
+                self.force_rate[1][i] = 0.0;
                 return Ok(());
             }
             _ => return Err(format!("value reference {r} cannot be set")),
@@ -395,9 +449,10 @@ impl CoSimModel for Toy {
         }
         let dt = h / n;
         let (mut x, mut v) = (self.x, self.v);
-        for _ in 0..n as u64 {
+        for k in 0..n as u64 {
+            let tau = k as f64 * dt;
             for i in 0..2 {
-                let a = (f[i] - p.stiffness * x[i] - p.damping * v[i]) / p.mass + p.gravity[i];
+                let a = self.acceleration(i, x[i], v[i], self.force_at(i, tau));
                 v[i] += dt * a;
                 x[i] += dt * v[i];
             }
@@ -407,12 +462,15 @@ impl CoSimModel for Toy {
         }
         self.x = x;
         self.v = v;
+        // the input derivatives held for this step only
+        self.force_rate = [[0.0; 2]; 2];
         Ok(())
     }
 
     fn reset(&mut self) -> Result<(), String> {
         self.p = self.scene_params;
         self.force = [0.0; 2];
+        self.force_rate = [[0.0; 2]; 2];
         self.x = self.initial.position;
         self.v = self.initial.velocity;
         Ok(())
@@ -431,7 +489,7 @@ impl CoSimModel for Toy {
     fn load_state(&mut self, bytes: &[u8]) -> Result<(), String> {
         if bytes.len() != STATE_LEN || &bytes[..8] != STATE_MAGIC {
             return Err(format!(
-                "not a toy state of format 1 ({} bytes)",
+                "not a toy state of format 2 ({} bytes)",
                 bytes.len()
             ));
         }
@@ -443,7 +501,7 @@ impl CoSimModel for Toy {
         if u64::from_le_bytes(word(0)) != self.scene_hash {
             return Err("the state belongs to another scene".into());
         }
-        let f: Vec<f64> = (1..16).map(|i| f64::from_le_bytes(word(i))).collect();
+        let f: Vec<f64> = (1..20).map(|i| f64::from_le_bytes(word(i))).collect();
         let p = Params {
             mass: f[0],
             stiffness: f[1],
@@ -453,14 +511,63 @@ impl CoSimModel for Toy {
             internal_step: f[6],
         };
         check_params(&p)?;
-        if f[7..13].iter().any(|x| !x.is_finite()) {
+        if f[7..13].iter().chain(&f[15..19]).any(|x| !x.is_finite()) {
             return Err("the state holds non-finite values".into());
         }
         self.p = p;
         self.force = [f[7], f[8]];
         self.x = [f[9], f[10]];
         self.v = [f[11], f[12]];
+        self.force_rate = [[f[15], f[16]], [f[17], f[18]]];
         Ok(())
+    }
+
+    fn set_input_derivative(&mut self, index: usize, order: u32, value: f64) -> Result<(), String> {
+        let r = self.vars[index].vr;
+        match (r, order) {
+            (vr::FORCE_X | vr::FORCE_Y, 1 | 2) => {
+                self.force_rate[order as usize - 1][(r - vr::FORCE_X) as usize] = value;
+                Ok(())
+            }
+            _ => Err(format!(
+                "value reference {r} has no input derivative of order {order}"
+            )),
+        }
+    }
+
+    /// Time derivatives of the continuous model at the current time (x′ = v, v′ = a,
+    /// a′ = (F′ − k v − c a)/m, a″ = (F″ − k a − c a′)/m).
+    fn get_output_derivative(&self, index: usize, order: u32) -> Result<f64, String> {
+        let r = self.vars[index].vr;
+        let p = &self.p;
+        let i = match r {
+            vr::POS_X | vr::VEL_X | vr::ACC_X => 0,
+            vr::POS_Y | vr::VEL_Y | vr::ACC_Y => 1,
+            _ => return Err(format!("value reference {r} has no output derivative")),
+        };
+        let a = self.acceleration(i, self.x[i], self.v[i], self.force[i]);
+        let a1 = (self.force_rate[0][i] - p.stiffness * self.v[i] - p.damping * a) / p.mass;
+        let a2 = (self.force_rate[1][i] - p.stiffness * a - p.damping * a1) / p.mass;
+        // derivatives of x: [v, a, a′, a″]; velocity starts one later, acceleration two
+        let chain = [self.v[i], a, a1, a2];
+        let shift = match r {
+            vr::POS_X | vr::POS_Y => 0,
+            vr::VEL_X | vr::VEL_Y => 1,
+            _ => 2,
+        };
+        chain
+            .get(shift + order as usize - 1)
+            .copied()
+            .ok_or_else(|| format!("order {order} of value reference {r} is not available"))
+    }
+
+    /// ∂a_i/∂F_i = 1/m (the only direct dependencies).
+    fn partial_derivative(&self, output: usize, input: usize) -> Result<f64, String> {
+        let (o, i) = (self.vars[output].vr, self.vars[input].vr);
+        match (o, i) {
+            (vr::ACC_X, vr::FORCE_X) | (vr::ACC_Y, vr::FORCE_Y) => Ok(1.0 / self.p.mass),
+            _ => Err(format!("no direct dependency of {o} on {i}")),
+        }
     }
 }
 
@@ -488,7 +595,8 @@ mod tests {
             .unwrap_err()
             .message()
             .contains("max_force"));
-        assert_eq!(m.save_state()[..STATE_LEN - 64], saved[..STATE_LEN - 64]);
+        // the parameters (before the force, which was set, and the state) are unchanged
+        assert_eq!(m.save_state()[..STATE_LEN - 96], saved[..STATE_LEN - 96]);
         let mut n = Toy::from_resource(SCENE).unwrap();
         n.load_state(&saved).unwrap();
         m.load_state(&saved).unwrap();

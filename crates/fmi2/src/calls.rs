@@ -433,34 +433,167 @@ impl<M: CoSimModel> Instance<M> {
         })
     }
 
-    /// fmi2GetDirectionalDerivative: not provided (`providesDirectionalDerivative="false"`).
-    pub fn get_directional_derivative(&self) -> Status {
+    /// The variable of `vr` if it has `causality` and is continuous, else the message.
+    fn continuous(&self, vr: fmi2ValueReference, causality: Causality) -> Result<usize, String> {
+        let Some(index) = self.index_of(vr) else {
+            return Err(format!(
+                "value reference {vr} is not a variable of this model"
+            ));
+        };
+        let var = &self.model.variables()[index];
+        if var.causality != causality || var.variability != Variability::Continuous {
+            let what = match causality {
+                Causality::Input => "a continuous input",
+                _ => "a continuous output",
+            };
+            return Err(format!("{} (value reference {vr}) is not {what}", var.name));
+        }
+        Ok(index)
+    }
+
+    /// An order of a derivative call: 1..=`max` (`attribute` names the modelDescription flag).
+    fn check_order(order: fmi2Integer, max: u32, attribute: &str) -> Result<u32, String> {
+        match u32::try_from(order) {
+            Ok(o) if (1..=max).contains(&o) => Ok(o),
+            _ => Err(format!(
+                "order {order} is outside 1..={max} ({attribute} = {max})"
+            )),
+        }
+    }
+
+    /// fmi2GetDirectionalDerivative: dv_unknown = Σ ∂unknown/∂known · dv_known for outputs
+    /// (unknowns) and inputs (knowns); the partial derivatives are the model's for the inputs
+    /// an output lists in `depends_on`, zero for the others. Needs
+    /// `providesDirectionalDerivative="true"`. Every reference and seed is checked first.
+    pub fn get_directional_derivative(
+        &self,
+        unknowns: &[fmi2ValueReference],
+        knowns: &[fmi2ValueReference],
+        dv_known: &[f64],
+        dv_unknown: &mut [f64],
+    ) -> Status {
         let f = F::GetDirectionalDerivative;
         tri!(self.check_state(f));
-        self.error(
-            f,
-            "not provided by this FMU (providesDirectionalDerivative=\"false\")",
-        )
+        if !self.model.model_info().capabilities.directional_derivative {
+            return self.error(
+                f,
+                "not provided by this FMU (providesDirectionalDerivative=\"false\")",
+            );
+        }
+        let mut known_index = Vec::with_capacity(knowns.len());
+        for (&r, &dv) in knowns.iter().zip(dv_known) {
+            match self.continuous(r, Causality::Input) {
+                Ok(i) => known_index.push(i),
+                Err(e) => return self.error(f, format!("vKnown_ref: {e}")),
+            }
+            if !dv.is_finite() {
+                return self.error(
+                    f,
+                    format!("dvKnown of value reference {r} = {dv} is not finite"),
+                );
+            }
+        }
+        let mut unknown_index = Vec::with_capacity(unknowns.len());
+        for &r in unknowns {
+            match self.continuous(r, Causality::Output) {
+                Ok(i) => unknown_index.push(i),
+                Err(e) => return self.error(f, format!("vUnknown_ref: {e}")),
+            }
+        }
+        let vars = self.model.variables();
+        for (out, &u) in dv_unknown.iter_mut().zip(&unknown_index) {
+            let mut sum = 0.0;
+            for ((&k, &kr), &dv) in known_index.iter().zip(knowns).zip(dv_known) {
+                if !vars[u].depends_on.contains(&kr) {
+                    continue;
+                }
+                match self.model.partial_derivative(u, k) {
+                    Ok(d) => sum += d * dv,
+                    Err(e) => {
+                        return self.error(f, format!("∂{}/∂{}: {e}", vars[u].name, vars[k].name))
+                    }
+                }
+            }
+            *out = sum;
+        }
+        Status::Ok
     }
 
-    /// fmi2SetRealInputDerivatives: not supported (`canInterpolateInputs="false"`).
-    pub fn set_real_input_derivatives(&mut self) -> Status {
+    /// fmi2SetRealInputDerivatives: `value[k]` is the `order[k]`-th time derivative of the
+    /// continuous input `vr[k]`, for the next fmi2DoStep (the model forgets it when that step
+    /// completes). Needs `canInterpolateInputs="true"`; orders 1..=the model's
+    /// [`Capabilities::input_derivative_order`]. All entries are checked before any is set.
+    ///
+    /// [`Capabilities::input_derivative_order`]: crate::Capabilities
+    pub fn set_real_input_derivatives(
+        &mut self,
+        vrs: &[fmi2ValueReference],
+        orders: &[fmi2Integer],
+        values: &[f64],
+    ) -> Status {
         let f = F::SetRealInputDerivatives;
         tri!(self.check_state(f));
-        self.error(
-            f,
-            "not supported by this FMU (canInterpolateInputs=\"false\")",
-        )
+        let max = self.model.model_info().capabilities.input_derivative_order;
+        if max == 0 {
+            return self.error(
+                f,
+                "not supported by this FMU (canInterpolateInputs=\"false\")",
+            );
+        }
+        let mut checked = Vec::with_capacity(vrs.len());
+        for ((&r, &o), &v) in vrs.iter().zip(orders).zip(values) {
+            let index = tri!(self
+                .continuous(r, Causality::Input)
+                .map_err(|e| self.error(f, e)));
+            let order = tri!(
+                Self::check_order(o, max, "the input derivative order of this FMU")
+                    .map_err(|e| self.error(f, format!("value reference {r}: {e}")))
+            );
+            if !v.is_finite() {
+                return self.error(
+                    f,
+                    format!("value reference {r}: derivative of order {order} = {v} is not finite"),
+                );
+            }
+            checked.push((index, order, v));
+        }
+        for (index, order, v) in checked {
+            if let Err(e) = self.model.set_input_derivative(index, order, v) {
+                return self.error(f, e);
+            }
+        }
+        Status::Ok
     }
 
-    /// fmi2GetRealOutputDerivatives: not supported (`maxOutputDerivativeOrder="0"`).
-    pub fn get_real_output_derivatives(&self) -> Status {
+    /// fmi2GetRealOutputDerivatives: `value[k]` = the `order[k]`-th time derivative of the
+    /// continuous output `vr[k]` at the current time; orders 1..=`maxOutputDerivativeOrder`.
+    pub fn get_real_output_derivatives(
+        &self,
+        vrs: &[fmi2ValueReference],
+        orders: &[fmi2Integer],
+        out: &mut [f64],
+    ) -> Status {
         let f = F::GetRealOutputDerivatives;
         tri!(self.check_state(f));
-        self.error(
-            f,
-            "not supported by this FMU (maxOutputDerivativeOrder=\"0\")",
-        )
+        let max = self.model.model_info().capabilities.output_derivative_order;
+        if max == 0 {
+            return self.error(
+                f,
+                "not supported by this FMU (maxOutputDerivativeOrder=\"0\")",
+            );
+        }
+        for ((&r, &o), slot) in vrs.iter().zip(orders).zip(out.iter_mut()) {
+            let index = tri!(self
+                .continuous(r, Causality::Output)
+                .map_err(|e| self.error(f, e)));
+            let order = tri!(Self::check_order(o, max, "maxOutputDerivativeOrder")
+                .map_err(|e| self.error(f, format!("value reference {r}: {e}"))));
+            match self.model.get_output_derivative(index, order) {
+                Ok(v) => *slot = v,
+                Err(e) => return self.error(f, format!("value reference {r}: {e}")),
+            }
+        }
+        Status::Ok
     }
 
     /// fmi2DoStep: checks the step (`h` finite and > 0, `t` finite, `t + h` finite and later

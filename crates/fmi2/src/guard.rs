@@ -472,19 +472,35 @@ guarded! {
         *out = Box::into_raw(Box::new(tri!(i.deserialize_fmu_state(bytes)))) as fmi2FMUstate;
         Status::Ok
     };
-    /// fmi2GetDirectionalDerivative (not provided).
+    /// fmi2GetDirectionalDerivative: `vUnknown_ref[..nUnknown]`, `vKnown_ref[..nKnown]`,
+    /// `dvKnown[..nKnown]`, `dvUnknown[..nUnknown]`.
     fmi2GetDirectionalDerivative GetDirectionalDerivative
-    (_v_unknown_ref: *const fmi2ValueReference, _n_unknown: usize,
-     _v_known_ref: *const fmi2ValueReference, _n_known: usize, _dv_known: *const fmi2Real,
-     _dv_unknown: *mut fmi2Real) |i, _f| i.get_directional_derivative();
-    /// fmi2SetRealInputDerivatives (not supported).
+    (v_unknown_ref: *const fmi2ValueReference, n_unknown: usize,
+     v_known_ref: *const fmi2ValueReference, n_known: usize, dv_known: *const fmi2Real,
+     dv_unknown: *mut fmi2Real) |i, f| {
+        let unknowns = tri!(slice_in(i, f, ("vUnknown_ref[]", "nUnknown"), v_unknown_ref, n_unknown));
+        let knowns = tri!(slice_in(i, f, ("vKnown_ref[]", "nKnown"), v_known_ref, n_known));
+        let seeds = tri!(slice_in(i, f, ("dvKnown[]", "nKnown"), dv_known, n_known));
+        let out = tri!(slice_out(i, f, ("dvUnknown[]", "nUnknown"), dv_unknown, n_unknown));
+        i.get_directional_derivative(unknowns, knowns, seeds, out)
+    };
+    /// fmi2SetRealInputDerivatives: `vr[..nvr]`, `order[..nvr]`, `value[..nvr]`.
     fmi2SetRealInputDerivatives SetRealInputDerivatives
-    (_vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer,
-     _value: *const fmi2Real) |i, _f| i.set_real_input_derivatives();
-    /// fmi2GetRealOutputDerivatives (not supported).
+    (vr: *const fmi2ValueReference, nvr: usize, order: *const fmi2Integer,
+     value: *const fmi2Real) |i, f| {
+        let vrs = tri!(slice_in(i, f, VR, vr, nvr));
+        let orders = tri!(slice_in(i, f, ("order[]", "nvr"), order, nvr));
+        let values = tri!(slice_in(i, f, VALUE, value, nvr));
+        i.set_real_input_derivatives(vrs, orders, values)
+    };
+    /// fmi2GetRealOutputDerivatives: `vr[..nvr]`, `order[..nvr]`, `value[..nvr]`.
     fmi2GetRealOutputDerivatives GetRealOutputDerivatives
-    (_vr: *const fmi2ValueReference, _nvr: usize, _order: *const fmi2Integer,
-     _value: *mut fmi2Real) |i, _f| i.get_real_output_derivatives();
+    (vr: *const fmi2ValueReference, nvr: usize, order: *const fmi2Integer,
+     value: *mut fmi2Real) |i, f| {
+        let vrs = tri!(slice_in(i, f, VR, vr, nvr));
+        let orders = tri!(slice_in(i, f, ("order[]", "nvr"), order, nvr));
+        i.get_real_output_derivatives(vrs, orders, tri!(slice_out(i, f, VALUE, value, nvr)))
+    };
     /// fmi2DoStep.
     fmi2DoStep DoStep (t: fmi2Real, h: fmi2Real, _no_set_fmu_state_prior: fmi2Boolean)
     |i, _f| i.do_step(t, h);

@@ -35,6 +35,6 @@ pub mod types;
 pub mod xml;
 
 pub use instance::Instance;
-pub use model::{Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+pub use model::{Capabilities, Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
 pub use state::{Function, ModelState};
 pub use types::Status;

@@ -41,6 +41,24 @@ pub struct Variable {
     pub unit: Option<&'static str>,
     /// One-line description.
     pub description: String,
+    /// Outputs only: value references of the inputs this output depends on directly (at the
+    /// same instant, not only through the state): ModelStructure `dependencies`, and the
+    /// knowns for which fmi2GetDirectionalDerivative gives a non-zero partial derivative.
+    /// Empty: no direct feedthrough.
+    pub depends_on: Vec<u32>,
+}
+
+/// Optional co-simulation capabilities (the CoSimulation flags of modelDescription.xml and
+/// the calls they enable). The default offers none of them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Capabilities {
+    /// Highest input derivative order used by [`CoSimModel::set_input_derivative`]: 0 = none
+    /// (`canInterpolateInputs="false"`), 1 or 2 (`"true"`).
+    pub input_derivative_order: u32,
+    /// `maxOutputDerivativeOrder`: orders 1..=this of [`CoSimModel::get_output_derivative`].
+    pub output_derivative_order: u32,
+    /// `providesDirectionalDerivative`: [`CoSimModel::partial_derivative`] is implemented.
+    pub directional_derivative: bool,
 }
 
 /// Identity and default experiment of a model.
@@ -56,6 +74,8 @@ pub struct ModelInfo {
     pub stop_time: f64,
     /// DefaultExperiment stepSize [s] (a preferred communication step).
     pub step_size: f64,
+    /// Optional capabilities.
+    pub capabilities: Capabilities,
 }
 
 /// Why a communication step did not complete. Either way the model is still in its state at
@@ -136,4 +156,30 @@ pub trait CoSimModel: Sized + Send + 'static {
     fn save_state(&self) -> Vec<u8>;
     /// Restores bytes from `save_state`; refuses bytes of another resource or format version.
     fn load_state(&mut self, bytes: &[u8]) -> Result<(), String>;
+
+    /// fmi2SetRealInputDerivatives for the continuous input `variables()[index]`: its
+    /// `order`-th time derivative (1 ≤ order ≤ [`Capabilities::input_derivative_order`], value
+    /// finite: the layer checked both) at the current time, used over the next communication
+    /// step only (the input follows u + u′τ + ½u″τ² inside it); the model forgets the
+    /// derivatives of an input when that step completes or when the input is set again.
+    fn set_input_derivative(&mut self, index: usize, order: u32, value: f64) -> Result<(), String> {
+        let _ = (index, order, value);
+        Err("input derivatives are not supported by this model".into())
+    }
+
+    /// fmi2GetRealOutputDerivatives: the `order`-th time derivative of the output
+    /// `variables()[index]` at the current time (1 ≤ order ≤
+    /// [`Capabilities::output_derivative_order`]).
+    fn get_output_derivative(&self, index: usize, order: u32) -> Result<f64, String> {
+        let _ = (index, order);
+        Err("output derivatives are not supported by this model".into())
+    }
+
+    /// fmi2GetDirectionalDerivative: the partial derivative of the output `variables()[output]`
+    /// with respect to the input `variables()[input]` at the current state (the input is one
+    /// the output lists in [`Variable::depends_on`]; others are zero and not asked).
+    fn partial_derivative(&self, output: usize, input: usize) -> Result<f64, String> {
+        let _ = (output, input);
+        Err("directional derivatives are not provided by this model".into())
+    }
 }

@@ -5,8 +5,11 @@
 //! follows fmpy's copy of `fmi2ModelDescription.xsd`: element order CoSimulation,
 //! UnitDefinitions, LogCategories, DefaultExperiment, ModelVariables, ModelStructure.
 //!
-//! ModelStructure: `<Outputs>` lists every output by 1-based index with `dependencies=""` (no
-//! direct feedthrough: outputs depend on inputs only through the state). `<InitialUnknowns>`
+//! ModelStructure: `<Outputs>` lists every output by 1-based index with `dependencies` = the
+//! indices of the inputs in its [`Variable::depends_on`] (`dependenciesKind="dependent"` each),
+//! `""` when it has none (no direct feedthrough: it depends on inputs only through the state).
+//! The CoSimulation flags `canInterpolateInputs`, `maxOutputDerivativeOrder` and
+//! `providesDirectionalDerivative` come from [`ModelInfo::capabilities`]. `<InitialUnknowns>`
 //! lists exactly the outputs (all have `initial="calculated"`) without a `dependencies`
 //! attribute, i.e. "may depend on every known", because initial outputs do depend on parameters.
 
@@ -158,6 +161,21 @@ pub fn validate(info: &ModelInfo, vars: &[Variable], model_identifier: &str) -> 
                 ))
             }
         }
+        if !v.depends_on.is_empty() && v.causality != Causality::Output {
+            return Err(format!(
+                "{who}: only an output may list direct dependencies"
+            ));
+        }
+        for &d in &v.depends_on {
+            if !vars
+                .iter()
+                .any(|x| x.vr == d && x.causality == Causality::Input)
+            {
+                return Err(format!(
+                    "{who}: depends_on lists value reference {d}, which is not an input"
+                ));
+            }
+        }
     }
     Ok(())
 }
@@ -203,6 +221,18 @@ fn write_document(
         ("variableNamingConvention", "structured"),
         ("numberOfEventIndicators", "0"),
     ]);
+    let caps = info.capabilities;
+    let interpolate = if caps.input_derivative_order > 0 {
+        "true"
+    } else {
+        "false"
+    };
+    let output_order = caps.output_derivative_order.to_string();
+    let directional = if caps.directional_derivative {
+        "true"
+    } else {
+        "false"
+    };
     w.create_element("fmiModelDescription")
         .with_attributes(root)
         .write_inner_content(|w| {
@@ -211,14 +241,14 @@ fn write_document(
                     ("modelIdentifier", ids.model_identifier),
                     ("needsExecutionTool", "false"),
                     ("canHandleVariableCommunicationStepSize", "true"),
-                    ("canInterpolateInputs", "false"),
-                    ("maxOutputDerivativeOrder", "0"),
+                    ("canInterpolateInputs", interpolate),
+                    ("maxOutputDerivativeOrder", output_order.as_str()),
                     ("canRunAsynchronuously", "false"),
                     ("canBeInstantiatedOnlyOncePerProcess", "false"),
                     ("canNotUseMemoryManagementFunctions", "true"),
                     ("canGetAndSetFMUstate", "true"),
                     ("canSerializeFMUstate", "true"),
-                    ("providesDirectionalDerivative", "false"),
+                    ("providesDirectionalDerivative", directional),
                 ])
                 .write_empty()?;
             write_units(w, vars)?;
@@ -322,20 +352,36 @@ fn write_variable(w: &mut Writer<Vec<u8>>, v: &Variable) -> io::Result<()> {
 }
 
 fn write_structure(w: &mut Writer<Vec<u8>>, vars: &[Variable]) -> io::Result<()> {
-    let outputs: Vec<String> = vars
+    // (1-based index, dependencies, dependenciesKind) of every output
+    let index_of = |vr: u32| vars.iter().position(|v| v.vr == vr).map(|i| i + 1);
+    let structure: Vec<(String, String, String)> = vars
         .iter()
         .enumerate()
         .filter(|(_, v)| v.causality == Causality::Output)
-        .map(|(i, _)| (i + 1).to_string())
+        .map(|(i, v)| {
+            let deps: Vec<String> = v
+                .depends_on
+                .iter()
+                .filter_map(|&vr| index_of(vr))
+                .map(|k| k.to_string())
+                .collect();
+            let kinds = vec!["dependent"; deps.len()].join(" ");
+            ((i + 1).to_string(), deps.join(" "), kinds)
+        })
         .collect();
+    let outputs: Vec<&String> = structure.iter().map(|(i, _, _)| i).collect();
     w.create_element("ModelStructure")
         .write_inner_content(|w| {
             if !outputs.is_empty() {
                 w.create_element("Outputs").write_inner_content(|w| {
-                    for i in &outputs {
-                        w.create_element("Unknown")
-                            .with_attributes([("index", i.as_str()), ("dependencies", "")])
-                            .write_empty()?;
+                    for (i, deps, kinds) in &structure {
+                        let mut e = w
+                            .create_element("Unknown")
+                            .with_attributes([("index", i.as_str()), ("dependencies", deps)]);
+                        if !deps.is_empty() {
+                            e = e.with_attribute(("dependenciesKind", kinds.as_str()));
+                        }
+                        e.write_empty()?;
                     }
                     Ok(())
                 })?;
@@ -367,6 +413,7 @@ mod tests {
             start,
             unit: Some("m"),
             description: "d <&> \"q\"".into(),
+            depends_on: Vec::new(),
         }
     }
 
@@ -383,6 +430,7 @@ mod tests {
             start_time: 0.0,
             stop_time: 1.0,
             step_size: 1e-3,
+            capabilities: Default::default(),
         }
     }
 

@@ -85,6 +85,8 @@ fn model_info(scene: &Scene) -> ModelInfo {
         start_time: 0.0,
         stop_time: scene.simulation.t_end,
         step_size: scene.simulation.output_step,
+        // a fixed-root beam has no direct feedthrough and no input interpolation
+        capabilities: fmi2::Capabilities::default(),
     }
 }
 

@@ -39,6 +39,7 @@ impl CoSimModel for Panicky {
                 start: None,
                 unit: None,
                 description: String::new(),
+                depends_on: Vec::new(),
             }],
         })
     }
@@ -49,6 +50,7 @@ impl CoSimModel for Panicky {
             start_time: 0.0,
             stop_time: 1.0,
             step_size: 0.1,
+            capabilities: Default::default(),
         }
     }
     fn variables(&self) -> &[Variable] {

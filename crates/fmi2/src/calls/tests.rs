@@ -26,6 +26,7 @@ fn var(name: &str, vr: u32, causality: Causality, variability: Variability) -> V
         start,
         unit: None,
         description: String::new(),
+        depends_on: Vec::new(),
     }
 }
 
@@ -59,6 +60,7 @@ impl CoSimModel for Ramp {
             start_time: 0.0,
             stop_time: 1.0,
             step_size: 0.1,
+            capabilities: Default::default(),
         }
     }
     fn variables(&self) -> &[Variable] {

@@ -307,6 +307,7 @@ impl Table {
                 start,
                 unit: *unit,
                 description: (*description).into(),
+                depends_on: Vec::new(),
             };
         for (row, id) in present(&INPUTS, &inputs) {
             let start = Some(id.scene_value(scene));
@@ -332,6 +333,7 @@ impl Table {
                     start: Some((p.get)(scene)),
                     unit: p.unit,
                     description: p.description.into(),
+                    depends_on: Vec::new(),
                 },
                 Access::Scene(p),
             );
@@ -347,6 +349,7 @@ impl Table {
                         start: Some((f.get)(seg)),
                         unit: f.unit,
                         description: format!("segment '{}' {}", seg.name, f.name),
+                        depends_on: Vec::new(),
                     },
                     Access::Segment(i, f),
                 );
