@@ -1,7 +1,7 @@
 //! [`export_fmi2!`](crate::export_fmi2): the 34 `extern "C"` FMI 2.0 co-simulation symbols,
 //! generated from the one function table ([`state`](crate::state)). Each symbol forwards to
 //! the function of the same name in [`guard`](crate::guard), and a compile-time check compares
-//! its signature with the `fmi-sys` binding of the official header.
+//! its signature with the binding of the official header ([`sys`](crate::sys)).
 
 /// Exports the 34 FMI 2.0 co-simulation functions (`fmi2Instantiate`, `fmi2DoStep`, ...) as
 /// `#[no_mangle] extern "C"` symbols driving the model type `$model` (a

@@ -147,7 +147,7 @@ pub mod masks {
 }
 
 /// The one table of the 34 FMI 2.0 co-simulation functions, in the order of the standard's
-/// header: the [`Function`] variant, the C name, the `fmi-sys` function-pointer type of the
+/// header: the [`Function`] variant, the C name, the function-pointer type (`crate::sys`) of the
 /// official header, the allowed states (a [`masks`] constant) and the C parameters and result.
 /// It calls `$callback! { $($extra)* <rows> }`: [`Function`] is generated from it here, the
 /// exported shims in [`export_fmi2!`](crate::export_fmi2). Parameter and type names are

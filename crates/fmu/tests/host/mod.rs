@@ -133,7 +133,7 @@ macro_rules! api {
                 // SAFETY: loading our own cdylib, whose initialisers are Rust's own.
                 let lib = unsafe { Library::new(path) }
                     .unwrap_or_else(|e| panic!("cannot load {}: {e}", path.display()));
-                // SAFETY: the symbol types are the fmi-sys bindings of the official header.
+                // SAFETY: the symbol types are the bindings of the official header (fmi2::sys).
                 unsafe {
                     Api {
                         $($field: *lib.get::<sys::$ty>($sym).unwrap_or_else(|e| panic!("{e}")),)*

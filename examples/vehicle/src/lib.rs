@@ -1,0 +1,574 @@
+//! The vehicle side of the mounted-beam co-simulation example (issue 10): a pitch-plane car as
+//! an FMI 2.0 co-simulation FMU on the generic `fmi2` layer (like `crates/fmi2-toy`).
+//!
+//! Model (resource `vehicle.toml`; x forward, y up, pitch θ nose-up positive, SI): a sprung
+//! body (mass m, pitch inertia I about its centre of mass) on two suspensions (spring k, damper
+//! c) at distances a (front) and b (rear) from the centre of mass, each on a wheel of mass m_w
+//! with a linear tire spring k_t that never leaves the road. The car drives at constant speed V
+//! (the drive absorbs every longitudinal force) over a one-period cosine bump h(x). States
+//! y (body heave), θ, y_f, y_r (wheel heaves), all measured from the configuration with every
+//! spring at free length (so gravity sags them), and their rates:
+//!
+//! ```text
+//! F_f = k_f (y_f − y − aθ) + c_f (ẏ_f − ẏ − aθ̇)        suspension force on the body, front
+//! F_r = k_r (y_r − y + bθ) + c_r (ẏ_r − ẏ + bθ̇)        rear
+//! m ÿ  = F_f + F_r − m g + Q_y                           Q: generalized forces of the beam
+//! I θ̈  = a F_f − b F_r + Q_θ
+//! m_w ÿ_f = −F_f + k_t (h(x_f) − y_f) − m_w g           x_f = V t + a, x_r = V t − b
+//! m_w ÿ_r = −F_r + k_t (h(x_r) − y_r) − m_w g
+//! ```
+//!
+//! Small-angle suspension geometry; the mount point (body-frame offset s̄ from the centre of
+//! mass) moves rigidly and exactly: r = R(θ) s̄, position (V t, h_cg + y) + r. The beam acts
+//! through its reaction (inputs `beam.root.force.{x,y}`, `beam.root.moment.z`: the force and
+//! moment of the support ON THE BEAM, as the beam FMU outputs them; the car takes their
+//! negative at the mount point): Q_y = −F_y, Q_θ = (r × (−F))_z − M. Integrated with RK4 at a
+//! fixed internal step; the inputs are held over a communication step or follow the host's
+//! input derivatives (orders 1, 2). The energy ledger (road work, beam work, damper
+//! dissipation) is integrated with the state, so E − E₀ = W_road + W_beam − D closes to the
+//! integrator's accuracy. Not modelled: the beam's rigid inertia at the mount (interface mass,
+//! spatial.md §5.3), tire lift-off, longitudinal dynamics.
+
+use serde::Deserialize;
+
+use fmi2::hash::fnv1a64;
+use fmi2::{Capabilities, Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+
+fmi2::export_fmi2!(Vehicle);
+
+/// Work cap of one communication step (internal steps).
+const MAX_STEPS: f64 = 1e6;
+
+/// The resource (`vehicle.toml`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Scene {
+    model: SceneModel,
+    experiment: Experiment,
+    body: Body,
+    suspension: Suspension,
+    wheels: Wheels,
+    road: Road,
+    mount: Mount,
+    solver: Solver,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneModel {
+    name: String,
+    #[serde(default)]
+    description: String,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Experiment {
+    start_time: f64,
+    stop_time: f64,
+    step_size: f64,
+}
+
+/// Sprung body.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Body {
+    /// Mass [kg].
+    pub mass: f64,
+    /// Pitch inertia about the centre of mass [kg m²].
+    pub pitch_inertia: f64,
+    /// Centre of mass above the road with unloaded springs [m].
+    pub cg_height: f64,
+    /// Centre of mass to front axle [m].
+    pub front: f64,
+    /// Centre of mass to rear axle [m].
+    pub rear: f64,
+}
+
+/// Suspensions.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Suspension {
+    /// [N/m].
+    pub front_stiffness: f64,
+    /// [N/m].
+    pub rear_stiffness: f64,
+    /// [N s/m].
+    pub front_damping: f64,
+    /// [N s/m].
+    pub rear_damping: f64,
+}
+
+/// Wheels (each).
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Wheels {
+    /// [kg].
+    pub mass: f64,
+    /// [N/m].
+    pub tire_stiffness: f64,
+}
+
+/// Road and speed.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Road {
+    /// Constant forward speed [m/s].
+    pub speed: f64,
+    /// Start of the bump [m] (the centre of mass starts at x = 0).
+    pub bump_start: f64,
+    /// [m].
+    pub bump_length: f64,
+    /// [m].
+    pub bump_height: f64,
+}
+
+/// Roof mount point.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mount {
+    /// Body-frame offset from the centre of mass (forward, up) [m].
+    pub position: [f64; 2],
+}
+
+/// Gravity and step.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Solver {
+    /// [m/s²].
+    pub gravity: f64,
+    /// Fixed RK4 step [s].
+    pub internal_step: f64,
+}
+
+/// The car's constant data.
+#[derive(Debug, Clone, Copy)]
+pub struct Car {
+    /// Sprung body.
+    pub body: Body,
+    /// Suspensions.
+    pub suspension: Suspension,
+    /// Wheels.
+    pub wheels: Wheels,
+    /// Road and speed.
+    pub road: Road,
+    /// Mount point.
+    pub mount: Mount,
+    /// Gravity and step.
+    pub solver: Solver,
+}
+
+/// State indices: y, θ, y_f, y_r, their rates, then the energy ledger.
+const N: usize = 11;
+const W_ROAD: usize = 8;
+const W_BEAM: usize = 9;
+const DISSIPATED: usize = 10;
+
+impl Car {
+    /// Road height h(x) [m] and slope dh/dx.
+    pub fn road(&self, x: f64) -> (f64, f64) {
+        let r = &self.road;
+        let u = (x - r.bump_start) / r.bump_length;
+        if !(0.0..=1.0).contains(&u) {
+            return (0.0, 0.0);
+        }
+        let w = 2.0 * std::f64::consts::PI;
+        (
+            0.5 * r.bump_height * (1.0 - (w * u).cos()),
+            0.5 * r.bump_height * w * (w * u).sin() / r.bump_length,
+        )
+    }
+
+    /// Mount offset r = R(θ) s̄ [m] (world axes).
+    pub fn offset(&self, theta: f64) -> [f64; 2] {
+        let (s, c) = theta.sin_cos();
+        let [x, y] = self.mount.position;
+        [c * x - s * y, s * x + c * y]
+    }
+
+    /// Suspension forces on the body (front, rear) [N].
+    fn suspension(&self, s: &[f64; N]) -> (f64, f64) {
+        let (a, b, p) = (self.body.front, self.body.rear, &self.suspension);
+        let ff = p.front_stiffness * (s[2] - s[0] - a * s[1])
+            + p.front_damping * (s[6] - s[4] - a * s[5]);
+        let fr =
+            p.rear_stiffness * (s[3] - s[0] + b * s[1]) + p.rear_damping * (s[7] - s[4] + b * s[5]);
+        (ff, fr)
+    }
+
+    /// Generalized forces (heave, pitch) of the beam reaction `f`, `m` (support on beam).
+    pub fn beam_forces(&self, theta: f64, f: [f64; 2], m: f64) -> (f64, f64) {
+        let r = self.offset(theta);
+        // the car feels −f at the mount point and −m
+        (-f[1], -(r[0] * f[1] - r[1] * f[0]) - m)
+    }
+
+    /// ds/dt at time `t` with the beam reaction `f`, `m`.
+    pub fn rate(&self, t: f64, s: &[f64; N], f: [f64; 2], m: f64) -> [f64; N] {
+        let (b, w, g) = (&self.body, &self.wheels, self.solver.gravity);
+        let (ff, fr) = self.suspension(s);
+        let (qy, qt) = self.beam_forces(s[1], f, m);
+        let v = self.road.speed;
+        let (hf, sf) = self.road(v * t + b.front);
+        let (hr, sr) = self.road(v * t - b.rear);
+        let (tf, tr) = (
+            w.tire_stiffness * (hf - s[2]),
+            w.tire_stiffness * (hr - s[3]),
+        );
+        let p = &self.suspension;
+        let dvf = s[6] - s[4] - b.front * s[5];
+        let dvr = s[7] - s[4] + b.rear * s[5];
+        let mut d = [0.0; N];
+        d[..4].copy_from_slice(&s[4..8]);
+        d[4] = (ff + fr + qy) / b.mass - g;
+        d[5] = (b.front * ff - b.rear * fr + qt) / b.pitch_inertia;
+        d[6] = (-ff + tf) / w.mass - g;
+        d[7] = (-fr + tr) / w.mass - g;
+        d[W_ROAD] = tf * sf * v + tr * sr * v;
+        d[W_BEAM] = qy * s[4] + qt * s[5];
+        d[DISSIPATED] = p.front_damping * dvf * dvf + p.rear_damping * dvr * dvr;
+        d
+    }
+
+    /// Mechanical energy of the car [J]: kinetic, springs and tires, gravity (heights from the
+    /// free-length configuration).
+    pub fn energy(&self, t: f64, s: &[f64; N]) -> f64 {
+        let (b, w, p, g) = (
+            &self.body,
+            &self.wheels,
+            &self.suspension,
+            self.solver.gravity,
+        );
+        let v = self.road.speed;
+        let kinetic = 0.5 * b.mass * s[4] * s[4]
+            + 0.5 * b.pitch_inertia * s[5] * s[5]
+            + 0.5 * w.mass * (s[6] * s[6] + s[7] * s[7]);
+        let df = s[2] - s[0] - b.front * s[1];
+        let dr = s[3] - s[0] + b.rear * s[1];
+        let (hf, _) = self.road(v * t + b.front);
+        let (hr, _) = self.road(v * t - b.rear);
+        let springs = 0.5 * p.front_stiffness * df * df
+            + 0.5 * p.rear_stiffness * dr * dr
+            + 0.5 * w.tire_stiffness * ((hf - s[2]).powi(2) + (hr - s[3]).powi(2));
+        kinetic + springs + g * (b.mass * s[0] + w.mass * (s[2] + s[3]))
+    }
+
+    /// One RK4 step of `dt` from `t` with the beam reaction polynomial `input(τ)`.
+    fn rk4(
+        &self,
+        t: f64,
+        dt: f64,
+        s: &[f64; N],
+        input: impl Fn(f64) -> ([f64; 2], f64),
+    ) -> [f64; N] {
+        let at = |tau: f64, s: &[f64; N]| {
+            let (f, m) = input(tau);
+            self.rate(t + tau, s, f, m)
+        };
+        let add = |s: &[f64; N], d: &[f64; N], h: f64| std::array::from_fn(|i| s[i] + h * d[i]);
+        let k1 = at(0.0, s);
+        let k2 = at(0.5 * dt, &add(s, &k1, 0.5 * dt));
+        let k3 = at(0.5 * dt, &add(s, &k2, 0.5 * dt));
+        let k4 = at(dt, &add(s, &k3, dt));
+        std::array::from_fn(|i| s[i] + dt / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]))
+    }
+}
+
+/// Value references (stable).
+pub mod vr {
+    /// Inputs: the beam's reaction (support on beam).
+    pub const BEAM_FORCE_X: u32 = 1;
+    /// .
+    pub const BEAM_FORCE_Y: u32 = 2;
+    /// .
+    pub const BEAM_MOMENT_Z: u32 = 3;
+    /// Outputs: mount kinematics (world).
+    pub const MOUNT_X: u32 = 10;
+    /// .
+    pub const MOUNT_Y: u32 = 11;
+    /// .
+    pub const MOUNT_ANGLE: u32 = 12;
+    /// .
+    pub const MOUNT_VX: u32 = 13;
+    /// .
+    pub const MOUNT_VY: u32 = 14;
+    /// .
+    pub const MOUNT_OMEGA: u32 = 15;
+    /// .
+    pub const MOUNT_AX: u32 = 16;
+    /// .
+    pub const MOUNT_AY: u32 = 17;
+    /// .
+    pub const MOUNT_ALPHA: u32 = 18;
+    /// Body heave y [m].
+    pub const HEAVE: u32 = 20;
+    /// Body pitch θ [rad].
+    pub const PITCH: u32 = 21;
+    /// Energy ledger [J].
+    pub const ENERGY: u32 = 22;
+    /// .
+    pub const W_ROAD: u32 = 23;
+    /// .
+    pub const W_BEAM: u32 = 24;
+    /// .
+    pub const DISSIPATED: u32 = 25;
+}
+
+/// The car as an FMU model.
+#[derive(Debug, Clone)]
+pub struct Vehicle {
+    scene_hash: u64,
+    info: ModelInfo,
+    vars: Vec<Variable>,
+    /// Constant data.
+    pub car: Car,
+    t: f64,
+    s: [f64; N],
+    /// Beam reaction input and its first two time derivatives over the next step.
+    force: [[f64; 3]; 3],
+}
+
+fn variables() -> Vec<Variable> {
+    use Causality::*;
+    let v = |name: &str, vr, causality, unit: &'static str, description: &str| Variable {
+        name: name.into(),
+        vr,
+        causality,
+        variability: Variability::Continuous,
+        start: (causality == Input).then_some(0.0),
+        unit: Some(unit),
+        description: description.into(),
+        depends_on: Vec::new(),
+    };
+    let beam = [vr::BEAM_FORCE_X, vr::BEAM_FORCE_Y, vr::BEAM_MOMENT_Z];
+    // accelerations depend at once on the forces applied now
+    let acc = |name: &str, vr, unit, description: &str| Variable {
+        depends_on: beam.to_vec(),
+        ..v(name, vr, Output, unit, description)
+    };
+    vec![
+        v("beam.root.force.x", vr::BEAM_FORCE_X, Input, "N", "Force of the mount on the beam, x (the beam FMU's root.force.x); the car feels its negative"),
+        v("beam.root.force.y", vr::BEAM_FORCE_Y, Input, "N", "Force of the mount on the beam, y (root.force.y); the car feels its negative"),
+        v("beam.root.moment.z", vr::BEAM_MOMENT_Z, Input, "N.m", "Moment of the mount on the beam about the mount point (root.moment.z); the car feels its negative"),
+        v("mount.position.x", vr::MOUNT_X, Output, "m", "Roof mount point, x (world)"),
+        v("mount.position.y", vr::MOUNT_Y, Output, "m", "Roof mount point, y (world)"),
+        v("mount.angle", vr::MOUNT_ANGLE, Output, "rad", "Mount frame angle = body pitch (nose up positive)"),
+        v("mount.velocity.x", vr::MOUNT_VX, Output, "m/s", "Mount point velocity, x"),
+        v("mount.velocity.y", vr::MOUNT_VY, Output, "m/s", "Mount point velocity, y"),
+        v("mount.angular_velocity", vr::MOUNT_OMEGA, Output, "rad/s", "Pitch rate"),
+        acc("mount.acceleration.x", vr::MOUNT_AX, "m/s2", "Mount point acceleration, x"),
+        acc("mount.acceleration.y", vr::MOUNT_AY, "m/s2", "Mount point acceleration, y"),
+        acc("mount.angular_acceleration", vr::MOUNT_ALPHA, "rad/s2", "Pitch acceleration"),
+        v("body.heave", vr::HEAVE, Output, "m", "Body centre-of-mass heave from the free-length configuration"),
+        v("body.pitch", vr::PITCH, Output, "rad", "Body pitch"),
+        v("energy.total", vr::ENERGY, Output, "J", "Kinetic + spring + tire + gravity energy of the car"),
+        v("energy.road_work", vr::W_ROAD, Output, "J", "Work done by the road on the tires since the start"),
+        v("energy.beam_work", vr::W_BEAM, Output, "J", "Work done by the beam on the car (heave and pitch) since the start"),
+        v("energy.dissipated", vr::DISSIPATED, Output, "J", "Energy dissipated in the dampers since the start"),
+    ]
+}
+
+impl Vehicle {
+    /// Beam reaction at `tau` into the current step: (force, moment).
+    fn input_at(&self, tau: f64) -> ([f64; 2], f64) {
+        let [u, d1, d2] = self.force;
+        let at = |k: usize| u[k] + d1[k] * tau + 0.5 * d2[k] * tau * tau;
+        ([at(0), at(1)], at(2))
+    }
+
+    /// Mount kinematics now: position, angle, velocity, angular velocity, acceleration,
+    /// angular acceleration (world).
+    pub fn mount(&self) -> [f64; 9] {
+        let (c, s) = (&self.car, &self.s);
+        let (f, m) = self.input_at(0.0);
+        let d = c.rate(self.t, s, f, m);
+        let r = c.offset(s[1]);
+        let (w, al) = (s[5], d[5]);
+        [
+            c.road.speed * self.t + r[0],
+            c.body.cg_height + s[0] + r[1],
+            s[1],
+            c.road.speed - w * r[1],
+            s[4] + w * r[0],
+            w,
+            -al * r[1] - w * w * r[0],
+            d[4] + al * r[0] - w * w * r[1],
+            al,
+        ]
+    }
+}
+
+impl CoSimModel for Vehicle {
+    const RESOURCE: &'static str = "vehicle.toml";
+    const GUID_NAMESPACE: &'static str = "hybeam-vehicle";
+    const BUILD_ID: &'static str = concat!("hybeam-vehicle/", env!("CARGO_PKG_VERSION"));
+    const GENERATION_TOOL: &'static str = "hybeam fmi2 layer";
+    const STATE_MAGIC: [u8; 8] = *b"HYBCAR01";
+
+    fn from_resource(text: &str) -> Result<Self, String> {
+        let scene: Scene = toml::from_str(text).map_err(|e| format!("vehicle.toml: {e}"))?;
+        let car = Car {
+            body: scene.body,
+            suspension: scene.suspension,
+            wheels: scene.wheels,
+            road: scene.road,
+            mount: scene.mount,
+            solver: scene.solver,
+        };
+        let positive = [
+            ("body.mass", car.body.mass),
+            ("body.pitch_inertia", car.body.pitch_inertia),
+            ("body.front", car.body.front),
+            ("body.rear", car.body.rear),
+            ("wheels.mass", car.wheels.mass),
+            ("wheels.tire_stiffness", car.wheels.tire_stiffness),
+            ("road.bump_length", car.road.bump_length),
+            ("solver.internal_step", car.solver.internal_step),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(format!("{name} = {v}: must be finite and > 0"));
+            }
+        }
+        let e = &scene.experiment;
+        Ok(Self {
+            scene_hash: fnv1a64(text.as_bytes()),
+            info: ModelInfo {
+                model_name: scene.model.name,
+                description: scene.model.description,
+                start_time: e.start_time,
+                stop_time: e.stop_time,
+                step_size: e.step_size,
+                capabilities: Capabilities {
+                    input_derivative_order: 2,
+                    output_derivative_order: 0,
+                    directional_derivative: false,
+                },
+            },
+            vars: variables(),
+            car,
+            t: 0.0,
+            s: [0.0; N],
+            force: [[0.0; 3]; 3],
+        })
+    }
+
+    fn model_info(&self) -> ModelInfo {
+        self.info.clone()
+    }
+
+    fn variables(&self) -> &[Variable] {
+        &self.vars
+    }
+
+    fn get_real(&self, index: usize) -> Result<f64, String> {
+        let r = self.vars[index].vr;
+        let m = self.mount();
+        Ok(match r {
+            vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z => self.force[0][(r - vr::BEAM_FORCE_X) as usize],
+            vr::MOUNT_X..=vr::MOUNT_ALPHA => m[(r - vr::MOUNT_X) as usize],
+            vr::HEAVE => self.s[0],
+            vr::PITCH => self.s[1],
+            vr::ENERGY => self.car.energy(self.t, &self.s),
+            vr::W_ROAD => self.s[W_ROAD],
+            vr::W_BEAM => self.s[W_BEAM],
+            vr::DISSIPATED => self.s[DISSIPATED],
+            _ => return Err(format!("value reference {r} is not a variable of the car")),
+        })
+    }
+
+    fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
+        let r = self.vars[index].vr;
+        match r {
+            vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z if value.is_finite() => {
+                let k = (r - vr::BEAM_FORCE_X) as usize;
+                self.force[0][k] = value;
+                self.force[1][k] = 0.0;
+                self.force[2][k] = 0.0;
+                Ok(())
+            }
+            _ => Err(format!("value reference {r} cannot be set to {value}")),
+        }
+    }
+
+    fn initialize(&mut self, start_time: f64) -> Result<(), String> {
+        self.t = start_time;
+        self.s = [0.0; N];
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), StepError> {
+        let n = (h / self.car.solver.internal_step - 1e-9).ceil().max(1.0);
+        if n > MAX_STEPS {
+            return Err(StepError::Discard(format!(
+                "h = {h} s needs {n:e} internal steps, more than {MAX_STEPS:e}: split the communication step"
+            )));
+        }
+        let dt = h / n;
+        let mut s = self.s;
+        for k in 0..n as u64 {
+            let t0 = k as f64 * dt;
+            s = self.car.rk4(t + t0, dt, &s, |tau| self.input_at(t0 + tau));
+        }
+        if s.iter().any(|x| !x.is_finite()) {
+            return Err(StepError::Discard("the state became non-finite".into()));
+        }
+        self.s = s;
+        self.t = t + h;
+        self.force[1] = [0.0; 3];
+        self.force[2] = [0.0; 3];
+        Ok(())
+    }
+
+    fn reset(&mut self) -> Result<(), String> {
+        self.t = 0.0;
+        self.s = [0.0; N];
+        self.force = [[0.0; 3]; 3];
+        Ok(())
+    }
+
+    fn save_state(&self) -> Vec<u8> {
+        let mut b = Vec::with_capacity(8 * (2 + N + 9));
+        b.extend_from_slice(&self.scene_hash.to_le_bytes());
+        let all = std::iter::once(self.t)
+            .chain(self.s)
+            .chain(self.force.iter().flatten().copied());
+        for x in all {
+            b.extend_from_slice(&x.to_le_bytes());
+        }
+        b
+    }
+
+    fn load_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        if bytes.len() != 8 * (2 + N + 9) {
+            return Err(format!("not a car state ({} bytes)", bytes.len()));
+        }
+        let word = |i: usize| u64::from_le_bytes(bytes[8 * i..8 * i + 8].try_into().unwrap());
+        if word(0) != self.scene_hash {
+            return Err("the state belongs to another vehicle.toml".into());
+        }
+        let f: Vec<f64> = (1..2 + N + 9).map(|i| f64::from_bits(word(i))).collect();
+        if f.iter().any(|x| !x.is_finite()) {
+            return Err("the state holds non-finite values".into());
+        }
+        self.t = f[0];
+        self.s.copy_from_slice(&f[1..1 + N]);
+        for (k, row) in self.force.iter_mut().enumerate() {
+            row.copy_from_slice(&f[1 + N + 3 * k..4 + N + 3 * k]);
+        }
+        Ok(())
+    }
+
+    fn set_input_derivative(&mut self, index: usize, order: u32, value: f64) -> Result<(), String> {
+        let r = self.vars[index].vr;
+        match (r, order) {
+            (vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z, 1 | 2) => {
+                self.force[order as usize][(r - vr::BEAM_FORCE_X) as usize] = value;
+                Ok(())
+            }
+            _ => Err(format!(
+                "value reference {r} has no input derivative of order {order}"
+            )),
+        }
+    }
+}
