@@ -167,6 +167,23 @@ pub enum Refusal {
         /// Smallest sine of the angle between r_x and r_y [-].
         value: f64,
     },
+    /// The mount moved further in one communication step than the bound (a host's pose that
+    /// jumps, e.g. a teleport or a unit mistake).
+    #[error(
+        "mount pose jumps by {distance:.3e} m and {:.1}° from the predicted pose in one communication step, beyond the bound of {:.0} % of the beam length and {:.0}°; move the mount continuously (a pose with consistent velocity and acceleration inputs), or shorten the communication step",
+        .angle.to_degrees(),
+        100.0 * crate::simulator::MAX_MOUNT_JUMP_LENGTH,
+        crate::simulator::MAX_MOUNT_JUMP_ANGLE.to_degrees()
+    )]
+    MountJump {
+        /// Distance of the host's mount point from the predicted one [m].
+        distance: f64,
+        /// Angle of the rotation between the host's and the predicted orientation [rad].
+        angle: f64,
+    },
+    /// A mount input that defines no motion.
+    #[error("mount input refused: {0}")]
+    MountInput(String),
 }
 
 /// A snapshot that does not fit this simulator.

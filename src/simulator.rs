@@ -5,16 +5,18 @@
 //! `tip.orientation.e0`, `tip.force.z`, …).
 
 mod any;
+mod mount;
 
 pub use any::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
+pub use mount::{MountInput, MountState};
 
 use crate::error::{Refusal, SimError, SnapshotError, StepLimit};
 use crate::integrator::{
     solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
     CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
 };
-use crate::model::{Model, ModelValidity, Outputs, Planar, Space, Spatial};
-use crate::scene::{InitialState, Scene, SceneError, SpaceKind};
+use crate::model::{Model, ModelValidity, Motion, MotionRates, Outputs, Planar, Space, Spatial};
+use crate::scene::{InitialState, Mount, Scene, SceneError, SpaceKind};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::hash::Hasher;
@@ -37,6 +39,15 @@ pub const MAX_TWIST_PER_ELEMENT: f64 = std::f64::consts::FRAC_PI_4;
 /// penalty keeps them perpendicular, sine 1; at 0 the section frame is undefined).
 pub const MIN_SECTION_SINE: f64 = 0.5;
 
+/// Largest jump of the mount point from its predicted position in one communication step, as a
+/// fraction of the beam's length: beyond it the host's pose is refused (a teleport or a unit
+/// mistake), not re-anchored.
+pub const MAX_MOUNT_JUMP_LENGTH: f64 = 0.1;
+
+/// Largest rotation of the mount frame from its predicted orientation in one communication step
+/// [rad] (30°).
+pub const MAX_MOUNT_JUMP_ANGLE: f64 = std::f64::consts::FRAC_PI_6;
+
 /// Internal step control carried from one communication step to the next.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct StepControl {
@@ -54,7 +65,11 @@ const STEP_ROUNDING: f64 = 1e-9;
 /// A space a [`Simulator`] runs in: builds its model from a scene and names its orientation
 /// output. Implemented for [`Planar`] and [`Spatial`].
 pub trait SpaceModel:
-    Space<Vec: Serialize + DeserializeOwned, Moment: Serialize + DeserializeOwned>
+    Space<
+    Vec: Serialize + DeserializeOwned,
+    Moment: Serialize + DeserializeOwned,
+    Attitude: Serialize + DeserializeOwned,
+>
 {
     /// The scene's `space` this model is built for.
     const KIND: SpaceKind;
@@ -68,6 +83,10 @@ pub trait SpaceModel:
     fn model(scene: &Scene) -> Result<Model<Self>, SceneError>;
     /// The components of an orientation, in the order of [`SpaceModel::ATTITUDE_COMPONENTS`].
     fn attitude_components(a: &Self::Attitude) -> &[f64];
+    /// The components of an orientation, mutable.
+    fn attitude_components_mut(a: &mut Self::Attitude) -> &mut [f64];
+    /// The orientation of a scene's `[mount]` table.
+    fn attitude_from(m: &Mount) -> Self::Attitude;
 }
 
 impl SpaceModel for Planar {
@@ -81,6 +100,14 @@ impl SpaceModel for Planar {
 
     fn attitude_components(a: &f64) -> &[f64] {
         std::slice::from_ref(a)
+    }
+
+    fn attitude_components_mut(a: &mut f64) -> &mut [f64] {
+        std::slice::from_mut(a)
+    }
+
+    fn attitude_from(m: &Mount) -> f64 {
+        m.angle
     }
 }
 
@@ -100,6 +127,15 @@ impl SpaceModel for Spatial {
 
     fn attitude_components(a: &[f64; 4]) -> &[f64] {
         a
+    }
+
+    fn attitude_components_mut(a: &mut [f64; 4]) -> &mut [f64] {
+        a
+    }
+
+    fn attitude_from(m: &Mount) -> [f64; 4] {
+        let e = m.orientation.unwrap_or([1.0, 0.0, 0.0, 0.0]);
+        Self::normalized_attitude(&e).unwrap_or([1.0, 0.0, 0.0, 0.0])
     }
 }
 
@@ -155,11 +191,15 @@ pub struct Memory<S: SpaceModel = Planar> {
     /// last step); the next [`Simulator::advance`] treats a difference from the current
     /// inputs as a jump at the current time.
     pub applied: Inputs<S>,
+    /// The mount's path and pending input (`None` for a fixed root).
+    pub mount: Option<MountState<S>>,
+    /// The mount motion the held Newton matrix was evaluated at (mounted scenes).
+    pub mount_at_matrix: Option<Motion<S>>,
 }
 
 /// Format version of [`Simulator::snapshot`]; raise it when a field of [`Snapshot`] (or of the
 /// structs it holds) changes.
-pub const SNAPSHOT_VERSION: u32 = 2;
+pub const SNAPSHOT_VERSION: u32 = 3;
 
 /// The payload of [`Simulator::snapshot`], encoded with `postcard` (f64 as 8 little-endian
 /// bytes, so restored values are bit-identical).
@@ -205,6 +245,9 @@ pub struct Simulator<S: SpaceModel = Planar> {
     step: StepControl,
     /// Inputs the state's q̈ and λ are consistent with (see [`Memory::applied`]).
     applied: Inputs<S>,
+    /// The mount's motion (`root = "mounted"`; boxed: a fixed root carries no more than a
+    /// pointer).
+    mount: Option<Box<MountState<S>>>,
     /// Smallest internal step used so far [s].
     pub min_step_used: f64,
 }
@@ -233,6 +276,9 @@ impl<S: SpaceModel> Simulator<S> {
     pub fn start_at(scene: Scene, t0: f64) -> Result<Self, SimError> {
         let mut sim = Self::build(scene, true)?;
         sim.state.t = t0;
+        if let Some(m) = &mut sim.mount {
+            m.t0 = t0;
+        }
         Ok(sim)
     }
 
@@ -247,9 +293,28 @@ impl<S: SpaceModel> Simulator<S> {
         let m = model.constraints();
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
         let mut integ = GeneralizedAlpha::new(&scene.solver, n, m);
+        let mount = MountState::<S>::of_scene(&scene, 0.0);
         if initialize && scene.initial.state == InitialState::Static {
-            solve_static(&mut model, &mut state, scene.solver.static_tolerance())
-                .map_err(SimError::InitialStatic)?;
+            // in the mount frame (built there, at rest): gravity minus the mount's acceleration
+            // (a mount with a static state does not turn)
+            let g = model.gravity();
+            if let Some(ms) = &mount {
+                let mut ge = g;
+                for k in 0..S::DIM {
+                    ge[k] -= ms.base.acceleration[k];
+                }
+                model.set_gravity(S::to_frame(&ms.base.attitude, &ge));
+            }
+            let solved = solve_static(&mut model, &mut state, scene.solver.static_tolerance());
+            if mount.is_some() {
+                model.set_gravity(g);
+            }
+            solved.map_err(SimError::InitialStatic)?;
+        }
+        if let Some(ms) = &mount {
+            // at rest relative to the mount: carried to its pose with its rigid velocity field
+            model.carry_state(&ms.base, &mut state.q, &mut state.v);
+            model.set_mount(&ms.base);
         }
         if initialize {
             integ
@@ -268,6 +333,7 @@ impl<S: SpaceModel> Simulator<S> {
             state,
             step,
             applied,
+            mount: mount.map(Box::new),
             min_step_used: f64::INFINITY,
         })
     }
@@ -298,6 +364,8 @@ impl<S: SpaceModel> Simulator<S> {
             integrator: self.integ.memory(),
             step: self.step,
             applied: self.applied,
+            mount: self.mount.as_deref().cloned(),
+            mount_at_matrix: self.model.mount_at_matrix(),
         }
     }
 
@@ -335,16 +403,30 @@ impl<S: SpaceModel> Simulator<S> {
         }
         // the held Newton matrix was evaluated under the inputs of the last step (a dead tip
         // moment adds stiffness): rebuild it under those, whatever is set for the next step
+        if mem.mount.is_some() != self.mount.is_some() {
+            return Err(SnapshotError::OtherModel.into());
+        }
         let next = Inputs::of(&self.model);
         mem.applied.apply(&mut self.model);
+        let current_mount = self.model.mount_motion().copied();
+        if let Some(m) = &mem.mount_at_matrix {
+            self.model.set_mount(m);
+        }
         if let Err(e) = self.integ.restore_memory(&mut self.model, &mem.integrator) {
             next.apply(&mut self.model);
+            if let Some(m) = &current_mount {
+                self.model.set_mount(m);
+            }
             return Err(SnapshotError::NewtonMatrix(e).into());
         }
         next.apply(&mut self.model);
+        if let Some(ms) = &mem.mount {
+            self.model.set_mount(&ms.at(s.t));
+        }
         self.state = s;
         self.step = mem.step;
         self.applied = mem.applied;
+        self.mount = mem.mount.clone().map(Box::new);
         Ok(())
     }
 
@@ -454,12 +536,132 @@ impl<S: SpaceModel> Simulator<S> {
         self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda)
     }
 
-    /// Returns to the state and step control of the start of an `advance` call after a failed
-    /// or refused communication step (the held Newton matrix belongs to the abandoned attempt).
-    fn roll_back(&mut self, saved: State, saved_step: StepControl) {
+    /// Returns to the state, step control and mount path of the start of an `advance` call
+    /// after a failed or refused communication step (the held Newton matrix belongs to the
+    /// abandoned attempt).
+    fn roll_back(
+        &mut self,
+        saved: State,
+        saved_step: StepControl,
+        mount: Option<Box<MountState<S>>>,
+    ) {
+        if let Some(ms) = &mount {
+            self.model.set_mount(&ms.at(saved.t));
+        }
+        self.mount = mount;
         self.state = saved;
         self.step = saved_step;
         self.integ.invalidate();
+    }
+
+    /// Sets the mount's motion at the current time for the next step (`root = "mounted"`):
+    /// checked (finite, a defined orientation, which is normalized), with accelerations
+    /// estimated from the velocities when `input.accelerations` is false. It takes effect at
+    /// the next [`Simulator::advance`]: a pose or velocity that differs from the path's
+    /// prediction re-anchors the beam rigidly, an acceleration that differs is a jump of the
+    /// inputs; a pose further than [`MAX_MOUNT_JUMP_LENGTH`] · length or
+    /// [`MAX_MOUNT_JUMP_ANGLE`] from the prediction is refused there.
+    pub fn set_mount(&mut self, input: MountInput<S>) -> Result<(), SimError> {
+        let t = self.state.t;
+        let Some(ms) = &mut self.mount else {
+            return Err(SimError::Refused {
+                t,
+                refusal: Refusal::MountInput(
+                    "this scene's root is not mounted (set root = \"mounted\" to drive it)".into(),
+                ),
+            });
+        };
+        ms.checked(input, t)
+            .map_err(|refusal| SimError::Refused { t, refusal })?;
+        ms.pending = Some(input);
+        Ok(())
+    }
+
+    /// The mount input set for the next step, else the motion now (`None` for a fixed root).
+    pub fn mount_input(&self) -> Option<MountInput<S>> {
+        self.mount.as_ref().map(|m| m.input_or_now(self.state.t))
+    }
+
+    /// Sets the mount input for the next step without checking it (a host writing one scalar
+    /// at a time; [`Simulator::advance`] checks it): `false` for a fixed root.
+    pub fn set_mount_unchecked(&mut self, input: MountInput<S>) -> bool {
+        match &mut self.mount {
+            Some(m) => {
+                m.pending = Some(input);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The mount's motion now (`None` for a fixed root).
+    pub fn mount(&self) -> Option<Motion<S>> {
+        self.mount.as_ref().map(|m| m.at(self.state.t))
+    }
+
+    /// Whether mount accelerations are inputs (else estimated from velocities).
+    pub fn mount_accelerations_given(&self) -> Option<bool> {
+        self.mount.as_ref().map(|m| m.accelerations_given)
+    }
+
+    /// Takes the pending mount input at the start of a communication step: refuses a jump,
+    /// re-anchors a pose or velocity that differs from the prediction, and returns the motion
+    /// whose accelerations differ from the prediction (a jump of the inputs), if any.
+    fn take_mount_input(&mut self) -> Result<Option<Motion<S>>, SimError> {
+        let t0 = self.state.t;
+        let length = self.scene.total_length();
+        let Some(ms) = &mut self.mount else {
+            return Ok(None);
+        };
+        let Some(raw) = ms.pending.take() else {
+            // input derivatives hold for one step: continue the path without them
+            if ms.rates != MotionRates::default() {
+                ms.base = ms.at(t0);
+                ms.t0 = t0;
+                ms.rates = MotionRates::default();
+            }
+            return Ok(None);
+        };
+        let input = match ms.checked(raw, t0) {
+            Ok(i) => i,
+            Err(refusal) => {
+                ms.pending = Some(raw);
+                return Err(SimError::Refused { t: t0, refusal });
+            }
+        };
+        let pred = ms.at(t0);
+        let target = input.motion;
+        let d2: f64 = (0..S::DIM)
+            .map(|k| (target.position[k] - pred.position[k]).powi(2))
+            .sum();
+        let (distance, angle) = (
+            d2.sqrt(),
+            S::attitude_angle(&pred.attitude, &target.attitude),
+        );
+        if !(distance <= MAX_MOUNT_JUMP_LENGTH * length && angle <= MAX_MOUNT_JUMP_ANGLE) {
+            ms.pending = Some(raw);
+            return Err(SimError::Refused {
+                t: t0,
+                refusal: Refusal::MountJump { distance, angle },
+            });
+        }
+        let mid = target.with_accelerations_of(&pred);
+        if mid != pred {
+            let s = &mut self.state;
+            self.model.reanchor(
+                &pred,
+                &mid,
+                &mut s.q,
+                &mut s.v,
+                &mut [&mut s.acc, &mut s.aux],
+            );
+            self.model.set_mount(&mid);
+        }
+        ms.t0 = t0;
+        ms.base = target;
+        ms.rates = input.rates;
+        ms.last = Some((t0, target));
+        Ok((target != mid).then_some(target))
     }
 
     /// Advances to `t_end` in equal internal steps no larger than `solver.max_step`, halving
@@ -501,12 +703,30 @@ impl<S: SpaceModel> Simulator<S> {
         let h_start = self.step.h_ok;
         let saved = self.state.clone();
         let saved_step = self.step;
+        let saved_mount = self.mount.clone();
         let inputs = Inputs::of(&self.model);
-        if inputs != self.applied {
+        let mount_jump = match self.take_mount_input() {
+            Ok(j) => j,
+            Err(e) => {
+                self.roll_back(saved, saved_step, saved_mount);
+                return Err(e);
+            }
+        };
+        if inputs != self.applied || mount_jump.is_some() {
             self.applied.apply(&mut self.model);
-            self.integ
-                .change_inputs(&mut self.model, &mut self.state, |m| inputs.apply(m))
-                .map_err(|source| SimError::InputJump { t: t0, source })?;
+            let changed = self
+                .integ
+                .change_inputs(&mut self.model, &mut self.state, |m| {
+                    inputs.apply(m);
+                    if let Some(j) = &mount_jump {
+                        m.set_mount(j);
+                    }
+                })
+                .map_err(|source| SimError::InputJump { t: t0, source });
+            if let Err(e) = changed {
+                self.roll_back(saved, saved_step, saved_mount);
+                return Err(e);
+            }
         }
         // more steps of a reduced h_ok than the cap allows: start from span / cap (≤ h_max)
         let mut steps = ((span / h_start * (1.0 - STEP_ROUNDING)).ceil().max(1.0) as u64).min(cap);
@@ -516,6 +736,14 @@ impl<S: SpaceModel> Simulator<S> {
         while done < steps {
             let h = span / steps as f64;
             attempts += 1;
+            if let Some(ms) = &self.mount {
+                let t_next = if done + 1 == steps {
+                    t_end
+                } else {
+                    t0 + span * ((done + 1) as f64 / steps as f64)
+                };
+                self.model.set_mount(&ms.at(t_next));
+            }
             match self.integ.step(&mut self.model, &mut self.state, h) {
                 Ok(_) => {
                     done += 1;
@@ -539,7 +767,7 @@ impl<S: SpaceModel> Simulator<S> {
                         None
                     };
                     if let Some(limit) = limit {
-                        self.roll_back(saved, saved_step);
+                        self.roll_back(saved, saved_step, saved_mount);
                         return Err(SimError::Step {
                             t: self.state.t,
                             halvings: halvings - 1,
@@ -565,7 +793,7 @@ impl<S: SpaceModel> Simulator<S> {
             .modal_deflection
             .filter(|&(_, d)| finite && d > MAX_MODAL_DEFLECTION);
         if let Some((si, d)) = modal {
-            self.roll_back(saved, saved_step);
+            self.roll_back(saved, saved_step, saved_mount);
             return Err(SimError::Refused {
                 t: t_end,
                 refusal: Refusal::ModalDeflection {
@@ -575,11 +803,11 @@ impl<S: SpaceModel> Simulator<S> {
             });
         }
         if let Some(refusal) = self.section_refusal(&validity, true).filter(|_| finite) {
-            self.roll_back(saved, saved_step);
+            self.roll_back(saved, saved_step, saved_mount);
             return Err(SimError::Refused { t: t_end, refusal });
         }
         if !finite || strain > MAX_AXIAL_STRAIN {
-            self.roll_back(saved, saved_step);
+            self.roll_back(saved, saved_step, saved_mount);
             return Err(if finite {
                 SimError::Refused {
                     t: t_end,

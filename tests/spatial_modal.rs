@@ -684,6 +684,7 @@ fn precession(h: f64, t_end: f64) -> Precession {
         gravity: [0.0; 3],
         tip_force: [0.0; 3],
         tip_moment: [0.0; 3],
+        mounted: false,
     });
     let (n, m) = (model.coordinates(), model.constraints());
     assert_eq!((n, m), (d, 1));
@@ -829,6 +830,7 @@ fn clamped_segment_statics_match_beam_theory_in_both_planes_and_torsion() {
         gravity: [0.0; 3],
         tip_force: f.into(),
         tip_moment: m.into(),
+        mounted: false,
     });
     assert!(std::ptr::eq(model.modal_body(0), &*body));
     let mut s = State::at_rest(0.0, model.initial_coordinates().to_vec(), 0);

@@ -9,7 +9,7 @@
 //! command line, 1 for a bad scene or a failed simulation.
 
 use clap::{Args, Parser, Subcommand};
-use hybeam::scene::{Scene, SpaceKind};
+use hybeam::scene::{Root, Scene, SpaceKind};
 use hybeam::simulator::{AnySimulator, OutputId};
 use std::io::Write;
 use std::path::PathBuf;
@@ -100,15 +100,17 @@ const PLANAR_COLUMNS: [&str; 6] = [
 ];
 
 /// The CSV columns after `time` of a scene in `space`: the simulator's named outputs (the same
-/// names as the FMU's output variables, checked by the test `columns_are_fmu_outputs`).
-fn columns(space: SpaceKind) -> Vec<(String, OutputId)> {
-    let all = OutputId::named(space);
+/// names as the FMU's output variables, checked by the test `columns_are_fmu_outputs`). A
+/// mounted scene's CSV has every output, the reactions and the rigid inertia at the mount
+/// included.
+fn columns(space: SpaceKind, mounted: bool) -> Vec<(String, OutputId)> {
+    let all = OutputId::named_with(space, mounted);
     match space {
-        SpaceKind::Planar => all
+        SpaceKind::Planar if !mounted => all
             .into_iter()
             .filter(|(name, _)| PLANAR_COLUMNS.contains(&name.as_str()))
             .collect(),
-        SpaceKind::Spatial => all,
+        _ => all,
     }
 }
 
@@ -143,7 +145,7 @@ fn run(args: &RunArgs) -> Result<(), String> {
     let t_end = scene.simulation.t_end;
     let dt = scene.simulation.output_step;
     let wall = Instant::now();
-    let columns = columns(scene.space);
+    let columns = columns(scene.space, scene.root == Root::Mounted);
     let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     let mut out = Vec::with_capacity(64 * 1024);
     writeln!(out, "{}", header(&columns)).map_err(|e| e.to_string())?;
@@ -184,7 +186,7 @@ fn run(args: &RunArgs) -> Result<(), String> {
 fn statics(args: &SceneArgs) -> Result<(), String> {
     let scene = args.load()?;
     let wall = Instant::now();
-    let columns = columns(scene.space);
+    let columns = columns(scene.space, scene.root == Root::Mounted);
     let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     let it = sim.solve_static().map_err(|e| e.to_string())?;
     println!("{}", header(&columns));
@@ -278,13 +280,13 @@ mod tests {
 
     #[test]
     fn header_names_every_column_of_a_row() {
-        let planar = columns(SpaceKind::Planar);
+        let planar = columns(SpaceKind::Planar, false);
         assert_eq!(
             header(&planar),
             "time,tip.position.x,tip.position.y,tip.angle,energy.kinetic,energy.strain,energy.potential"
         );
         assert_eq!(
-            header(&columns(SpaceKind::Spatial)),
+            header(&columns(SpaceKind::Spatial, false)),
             "time,tip.position.x,tip.position.y,tip.position.z,tip.velocity.x,tip.velocity.y,\
              tip.velocity.z,tip.orientation.e0,tip.orientation.e1,tip.orientation.e2,\
              tip.orientation.e3,tip.angular_velocity.x,tip.angular_velocity.y,\
@@ -319,7 +321,7 @@ mod tests {
         for scene in [read("case1"), read("case1_3d")] {
             let table = Table::of(&scene);
             let planar = scene.space == SpaceKind::Planar;
-            for (name, id) in columns(scene.space) {
+            for (name, id) in columns(scene.space, scene.root == Root::Mounted) {
                 let index = table
                     .variables()
                     .iter()

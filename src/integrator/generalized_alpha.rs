@@ -207,26 +207,11 @@ impl GeneralizedAlpha {
         let x = StateRef::new(&s.q, &s.v, &zeros_n, &zeros_m);
         model.eval(x, req, &mut self.res);
         let mut rhs: Vec<f64> = self.res.iter().map(|r| -r).collect();
-        // acceleration-level constraint: Φ_q q̈ = −(Φ_q q̇)_q q̇ (second difference along q̇)
-        if m > 0 && s.v.iter().any(|x| *x != 0.0) {
-            let vmax = scaled_norm(&s.v, model.scales()).max(1e-300);
-            let eps = 1e-4 / vmax;
-            let mut phi = |q: &[f64]| {
-                let mut r = vec![0.0; n + m];
-                let req = EvalRequest {
-                    sd: 0.0,
-                    matrix: None,
-                    lambda_hessian: false,
-                };
-                let x = StateRef::new(q, &zeros_n, &zeros_n, &zeros_m).with_load(0.0);
-                model.eval(x, req, &mut r);
-                r.split_off(n)
-            };
-            let qp: Vec<f64> = s.q.iter().zip(&s.v).map(|(q, v)| q + eps * v).collect();
-            let qm: Vec<f64> = s.q.iter().zip(&s.v).map(|(q, v)| q - eps * v).collect();
-            let (pp, p0, pm) = (phi(&qp), phi(&s.q), phi(&qm));
+        // acceleration-level constraint: Φ_q q̈ = −d²Φ/dt² at q̈ = 0 (second difference along q̇
+        // and the held coordinates' motion)
+        if let Some(c) = constraint_drift(model, &s.q, &s.v) {
             for i in 0..m {
-                rhs[n + i] = -(pp[i] - 2.0 * p0[i] + pm[i]) / (eps * eps);
+                rhs[n + i] = -c[i];
             }
         } else {
             for r in rhs.iter_mut().skip(n) {
@@ -279,7 +264,17 @@ impl GeneralizedAlpha {
             lambda_hessian: false,
         };
         model.eval(x, req, &mut before);
+        let drift_before = if model.held_rate() > 0.0 {
+            constraint_drift(model, &s.q, &s.v)
+        } else {
+            None
+        };
         change(model);
+        let drift_after = if drift_before.is_some() || model.held_rate() > 0.0 {
+            constraint_drift(model, &s.q, &s.v)
+        } else {
+            None
+        };
         let req = EvalRequest {
             sd: 1.0,
             matrix: Some((1.0, 0.0, 0.0)),
@@ -291,11 +286,22 @@ impl GeneralizedAlpha {
             .factorize()
             .map_err(|_| StepFailure::Singular { h: 0.0 })?;
         self.counters.factorizations += 1;
-        // the constraint rows are Φ(q_n) both times: their difference is zero
         for (r, b) in self.res.iter_mut().zip(&before).take(n) {
             *r = b - *r;
         }
+        // Φ(q_n) is the same both times; a moving support changes the acceleration-level
+        // constraint by Φ_h Δḧ: Φ_q Δq̈ = −(d²Φ/dt²⁺ − d²Φ/dt²⁻)
         self.res[n..].fill(0.0);
+        if drift_before.is_some() || drift_after.is_some() {
+            let zero = vec![0.0; m];
+            let (b, a) = (
+                drift_before.as_deref().unwrap_or(&zero),
+                drift_after.as_deref().unwrap_or(&zero),
+            );
+            for j in 0..m {
+                self.res[n + j] = b[j] - a[j];
+            }
+        }
         if !model.solve(&mut self.res) || self.res.iter().any(|x| !x.is_finite()) {
             return Err(StepFailure::Singular { h: 0.0 });
         }
@@ -430,6 +436,35 @@ impl GeneralizedAlpha {
         self.eta = 1.0;
         Err(StepFailure::NoConvergence { h, last_norm: last })
     }
+}
+
+/// d²Φ/dt² at q̈ = 0 along (q̇, the held coordinates' motion), by a central second
+/// difference; `None` without constraint rows or without motion.
+fn constraint_drift<M: Integrable + ?Sized>(
+    model: &mut M,
+    q: &[f64],
+    v: &[f64],
+) -> Option<Vec<f64>> {
+    let m = model.constraints();
+    let held = model.held_rate();
+    if m == 0 || (held == 0.0 && v.iter().all(|x| *x == 0.0)) {
+        return None;
+    }
+    let vmax = scaled_norm(v, model.scales()).max(held).max(1e-300);
+    let eps = 1e-4 / vmax;
+    let mut phi = |q: &[f64], dt: f64| {
+        let mut r = vec![0.0; m];
+        model.constraint_values(q, dt, &mut r);
+        r
+    };
+    let qp: Vec<f64> = q.iter().zip(v).map(|(q, v)| q + eps * v).collect();
+    let qm: Vec<f64> = q.iter().zip(v).map(|(q, v)| q - eps * v).collect();
+    let (pp, p0, pm) = (phi(&qp, eps), phi(q, 0.0), phi(&qm, -eps));
+    Some(
+        (0..m)
+            .map(|i| (pp[i] - 2.0 * p0[i] + pm[i]) / (eps * eps))
+            .collect(),
+    )
 }
 
 #[cfg(test)]

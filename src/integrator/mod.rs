@@ -11,7 +11,7 @@ pub use generalized_alpha::{
     AlphaParams, GeneralizedAlpha, IntegratorMemory, JacobianPoint, StepFailure,
 };
 pub use parameters::*;
-pub use seam::{EvalRequest, Integrable, StateRef};
+pub use seam::{constraint_rows, EvalRequest, Integrable, StateRef};
 pub use statics::{solve_static, StaticFailure};
 
 /// Dynamic state of the model.

@@ -72,6 +72,20 @@ pub trait Integrable {
     /// Solves with the held factorization in place; false if the result is not finite.
     fn solve(&mut self, rhs: &mut [f64]) -> bool;
 
+    /// Φ at `q` (m rows into `out`) with the held (eliminated) coordinates moved `dt` [s] along
+    /// their prescribed motion (value + ḣ dt + ½ ḧ dt²): the second difference along (q̇, ḣ)
+    /// gives the acceleration-level constraint of a moving support. Default: Φ(q) through
+    /// [`Integrable::eval`] (held coordinates that do not move).
+    fn constraint_values(&mut self, q: &[f64], _dt: f64, out: &mut [f64]) {
+        constraint_rows(self, q, out);
+    }
+
+    /// How fast the held coordinates move: max |ḣ| + √max |ḧ| (held values in m or unit
+    /// directions) [1/s]; 0 when they are fixed (the default).
+    fn held_rate(&self) -> f64 {
+        0.0
+    }
+
     /// Applies a Newton increment `dq` (n) to the coordinates `q` (Chrono's
     /// `StateIncrementX`). Additive by default; a model whose coordinates live on a manifold
     /// (Euler parameters) may override it. Rates and accelerations stay additive.
@@ -80,4 +94,20 @@ pub trait Integrable {
             *q += d;
         }
     }
+}
+
+/// Φ(q) (m rows into `out`) through [`Integrable::eval`] at rest under no load.
+pub fn constraint_rows<M: Integrable + ?Sized>(model: &mut M, q: &[f64], out: &mut [f64]) {
+    let (n, m) = (model.coordinates(), model.constraints());
+    let zeros_n = vec![0.0; n];
+    let zeros_m = vec![0.0; m];
+    let mut r = vec![0.0; n + m];
+    let req = EvalRequest {
+        sd: 0.0,
+        matrix: None,
+        lambda_hessian: false,
+    };
+    let x = StateRef::new(q, &zeros_n, &zeros_n, &zeros_m).with_load(0.0);
+    model.eval(x, req, &mut r);
+    out.copy_from_slice(&r[n..]);
 }

@@ -64,6 +64,10 @@ pub struct Parts<S: Space> {
     pub tip_force: S::Vec,
     /// Dead tip moment at build (the scene's) [N m], global axes.
     pub tip_moment: S::Moment,
+    /// Whether the held root coordinates follow a moving mount (`root = "mounted"`); the
+    /// numbering's rigid groups say how. Built in the mount frame: the held values at build are
+    /// the mount-frame ones.
+    pub mounted: bool,
 }
 
 /// Reused local work arrays of the assembly's ports and constraints (sized for the largest
@@ -84,6 +88,17 @@ pub struct Model<S: Space = Planar> {
     pub(crate) tip: Placed<dyn Port<S>>,
     pub(crate) support: Box<dyn Support<S>>,
     pub(crate) held: Vec<f64>,
+    /// Rates and accelerations of the held coordinates (empty unless mounted: not moving).
+    pub(crate) held_v: Vec<f64>,
+    pub(crate) held_a: Vec<f64>,
+    /// Held values in the mount frame (the build's; empty unless mounted).
+    pub(crate) held_ref: Vec<f64>,
+    /// How coordinate groups move rigidly (mount, re-anchoring, rigid inertia).
+    pub(crate) groups: Vec<crate::model::dofs::RigidGroup>,
+    /// The mount motion the held coordinates follow (`None`: the root is fixed).
+    pub(crate) mount: Option<Box<crate::model::mount::Motion<S>>>,
+    /// The mount motion of the last matrix evaluation (what a snapshot needs to rebuild it).
+    pub(crate) mount_at_matrix: Option<Box<crate::model::mount::Motion<S>>>,
     pub(crate) gravity: S::Vec,
     /// The one total tip force [N], global axes: the scene's at build, then whatever
     /// [`Model::set_tip_force`] sets (no split into scene part and input part).
@@ -113,7 +128,7 @@ impl<S: Space> Model<S> {
     /// the LU (symbolic analysis once).
     pub fn assemble(parts: Parts<S>) -> Self {
         let Parts {
-            numbering,
+            mut numbering,
             elements,
             constraints,
             tip,
@@ -121,8 +136,21 @@ impl<S: Space> Model<S> {
             gravity,
             tip_force,
             tip_moment,
+            mounted,
         } = parts;
+        let groups = numbering.take_groups();
         let (q0, scale, held) = numbering.finish();
+        let (held_ref, held_v, held_a, mount) = if mounted {
+            let nh = held.len();
+            (
+                held.clone(),
+                vec![0.0; nh],
+                vec![0.0; nh],
+                Some(Box::default()),
+            )
+        } else {
+            (Vec::new(), Vec::new(), Vec::new(), None)
+        };
         let n = q0.len();
         let mut row = 0;
         let mut constraints: Vec<PlacedConstraint> = constraints
@@ -203,6 +231,12 @@ impl<S: Space> Model<S> {
             tip,
             support,
             held,
+            held_v,
+            held_a,
+            held_ref,
+            groups,
+            mount,
+            mount_at_matrix: None,
             gravity,
             tip_force,
             tip_moment,
@@ -296,6 +330,9 @@ impl<S: Space> Integrable for Model<S> {
         let matrix = req.matrix;
         if matrix.is_some() {
             self.values.fill(0.0);
+            if self.mount.is_some() {
+                self.mount_at_matrix.clone_from(&self.mount);
+            }
         }
         let force = self.tip_force;
         let moment = self.tip_moment;
@@ -304,6 +341,8 @@ impl<S: Space> Integrable for Model<S> {
             constraints,
             tip,
             held,
+            held_v,
+            held_a,
             gravity,
             values,
             work,
@@ -314,7 +353,7 @@ impl<S: Space> Integrable for Model<S> {
             load: x.load,
         };
         for e in elements.iter_mut() {
-            let local = LocalState::new(&e.at.dofs, held, (x.q, x.v, x.a));
+            let local = LocalState::moving(&e.at.dofs, (held, held_v, held_a), (x.q, x.v, x.a));
             let out = ElementOut::new(matrix, &e.at.dofs, req.sd, res, values);
             e.at.part.eval(&local, &env, out);
         }
@@ -390,6 +429,25 @@ impl<S: Space> Integrable for Model<S> {
                 }
             }
         }
+    }
+
+    fn constraint_values(&mut self, q: &[f64], dt: f64, out: &mut [f64]) {
+        let moved = self.mount.is_some() && dt != 0.0;
+        let saved = moved.then(|| self.held.clone());
+        if moved {
+            for ((h, v), a) in self.held.iter_mut().zip(&self.held_v).zip(&self.held_a) {
+                *h += dt * v + 0.5 * dt * dt * a;
+            }
+        }
+        crate::integrator::constraint_rows(self, q, out);
+        if let Some(h) = saved {
+            self.held = h;
+        }
+    }
+
+    fn held_rate(&self) -> f64 {
+        let max = |x: &[f64]| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        max(&self.held_v) + max(&self.held_a).sqrt()
     }
 
     fn factorize(&mut self) -> Result<(), SingularMatrix> {
@@ -510,6 +568,7 @@ mod tests {
             gravity: [0.0, -G],
             tip_force: [0.0, 0.0],
             tip_moment: 0.0,
+            mounted: false,
         })
     }
 

@@ -18,17 +18,27 @@ use std::fmt::Debug;
 #[derive(Debug, Clone, Copy)]
 pub struct LocalState<'a> {
     dofs: &'a LocalDofs,
-    held: &'a [f64],
+    held: (&'a [f64], &'a [f64], &'a [f64]),
     q: &'a [f64],
     v: &'a [f64],
     a: &'a [f64],
 }
 
 impl<'a> LocalState<'a> {
-    /// The view through `dofs` of the global (q, q̇, q̈) and the held values.
+    /// The view through `dofs` of the global (q, q̇, q̈) and the held values (not moving).
     pub fn new(
         dofs: &'a LocalDofs,
         held: &'a [f64],
+        state: (&'a [f64], &'a [f64], &'a [f64]),
+    ) -> Self {
+        Self::moving(dofs, (held, &[], &[]), state)
+    }
+
+    /// The view through `dofs` of the global (q, q̇, q̈) and the held values, rates and
+    /// accelerations (the rates and accelerations empty: not moving).
+    pub fn moving(
+        dofs: &'a LocalDofs,
+        held: (&'a [f64], &'a [f64], &'a [f64]),
         (q, v, a): (&'a [f64], &'a [f64], &'a [f64]),
     ) -> Self {
         Self {
@@ -50,7 +60,7 @@ impl<'a> LocalState<'a> {
         self.dofs.is_empty()
     }
 
-    /// (q, q̇, q̈) into slices of length d (held coordinates at their values, not moving).
+    /// (q, q̇, q̈) into slices of length d (held coordinates at their values and rates).
     #[inline]
     pub fn gather(&self, q: &mut [f64], v: &mut [f64], a: &mut [f64]) {
         let global = (self.q, self.v, self.a);

@@ -22,6 +22,29 @@ pub struct Numbering {
     q0: Vec<f64>,
     scale: Vec<f64>,
     held: Vec<f64>,
+    groups: Vec<RigidGroup>,
+}
+
+/// How a group of coordinates moves when the whole beam moves rigidly (a mount carrying it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rigid {
+    /// A point [m] (DIM coordinates): r ↦ R + A r.
+    Point,
+    /// A direction or gradient (DIM coordinates): d ↦ A d.
+    Direction,
+    /// A planar frame angle [rad] (1 coordinate): θ ↦ θ_b + θ.
+    Angle,
+    /// Euler parameters of a frame (4 coordinates, scalar first): p ↦ p_b ⊗ p.
+    Euler,
+}
+
+/// Coordinates that move together under a rigid motion of the beam (all free or all held).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidGroup {
+    /// What they are.
+    pub kind: Rigid,
+    /// The coordinates.
+    pub dofs: Vec<Dof>,
 }
 
 impl Numbering {
@@ -45,6 +68,24 @@ impl Numbering {
         } else {
             self.held(value)
         }
+    }
+
+    /// Declares how `dofs` (all free or all held) move under a rigid motion of the beam; the
+    /// coordinates not in any group (modal amplitudes) are invariant.
+    pub fn rigid(&mut self, kind: Rigid, dofs: &[Dof]) {
+        debug_assert!(
+            dofs.iter().all(|d| matches!(d, Dof::Free(_)))
+                || dofs.iter().all(|d| matches!(d, Dof::Held(_)))
+        );
+        self.groups.push(RigidGroup {
+            kind,
+            dofs: dofs.to_vec(),
+        });
+    }
+
+    /// The rigid groups declared so far (moved out).
+    pub fn take_groups(&mut self) -> Vec<RigidGroup> {
+        std::mem::take(&mut self.groups)
     }
 
     /// Number of free coordinates so far.
@@ -120,12 +161,12 @@ impl LocalDofs {
     }
 
     /// Local (q, q̇, q̈) from the global vectors in one pass: held coordinates at their held
-    /// values, not moving.
+    /// values, with the held rates and accelerations `held_motion` (empty: not moving).
     #[inline]
     pub fn gather_state(
         &self,
         (q, v, a): (&[f64], &[f64], &[f64]),
-        held: &[f64],
+        (held, held_v, held_a): (&[f64], &[f64], &[f64]),
         (ql, vl, al): (&mut [f64], &mut [f64], &mut [f64]),
     ) {
         // equal lengths let one bounds check on q cover q̇ and q̈
@@ -137,7 +178,11 @@ impl LocalDofs {
                     let i = i as usize;
                     (q[i], v[i], a[i])
                 }
-                Dof::Held(j) => (held[j as usize], 0.0, 0.0),
+                Dof::Held(j) => {
+                    let j = j as usize;
+                    let rate = |x: &[f64]| x.get(j).copied().unwrap_or(0.0);
+                    (held[j], rate(held_v), rate(held_a))
+                }
             };
         }
     }
@@ -229,7 +274,7 @@ mod tests {
         let (mut v, mut a) = ([0.0; 3], [0.0; 3]);
         dofs.gather_state(
             (&q0, &[7.0, 8.0], &[5.0, 6.0]),
-            &held,
+            (&held, &[], &[]),
             (&mut x, &mut v, &mut a),
         );
         assert_eq!(

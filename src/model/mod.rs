@@ -21,6 +21,7 @@ pub mod component;
 pub mod dofs;
 pub mod load;
 pub mod modal;
+pub mod mount;
 pub mod outputs;
 pub mod planar;
 pub mod space;
@@ -31,7 +32,8 @@ pub use component::{
     Constraint, ConstraintOut, Element, ElementOut, Energies, Env, LocalState, Port, Support,
     Validity,
 };
-pub use dofs::{Dof, LocalDofs, Numbering};
+pub use dofs::{Dof, LocalDofs, Numbering, Rigid, RigidGroup};
+pub use mount::{Motion, MotionRates, MountInertia};
 pub use outputs::{ModelValidity, Outputs};
 pub use planar::Planar;
 pub use space::{PortKin, Space};

@@ -31,6 +31,8 @@ pub struct Outputs<S: Space = Planar> {
     /// Moment of the support on the beam about the root point [N m] (in the plane:
     /// counter-clockwise positive; zero for a pinned root).
     pub root_moment: S::Moment,
+    /// The beam's rigid inertia at the mount (`root = "mounted"` only).
+    pub mount: Option<super::mount::MountInertia<S>>,
 }
 
 /// Validity measures of a model at one configuration.
@@ -81,7 +83,7 @@ impl<S: Space> Model<S> {
             ..Default::default()
         };
         for e in &self.elements {
-            let x = LocalState::new(&e.at.dofs, &self.held, (q, v, acc));
+            let x = LocalState::moving(&e.at.dofs, self.held_state(), (q, v, acc));
             let en = e.at.part.energies(&x, &self.gravity);
             o.kinetic += en.kinetic;
             o.strain += en.strain;
@@ -89,7 +91,13 @@ impl<S: Space> Model<S> {
         }
         let r = self.held_residual((q, v, acc), lam, &mut buf);
         (o.root_force, o.root_moment) = self.support.reaction(&r, &self.held);
+        o.mount = self.mount_inertia(q);
         o
+    }
+
+    /// The held values, rates and accelerations.
+    pub(crate) fn held_state(&self) -> (&[f64], &[f64], &[f64]) {
+        (&self.held, &self.held_v, &self.held_a)
     }
 
     /// Residual `M q̈ + f − f_ext + Φ_qᵀλ` of the held coordinates at full load: the generalized
@@ -108,7 +116,7 @@ impl<S: Space> Model<S> {
         };
         let mut local = Vec::new();
         for e in self.elements.iter().filter(|e| e.at.dofs.has_held()) {
-            let x = LocalState::new(&e.at.dofs, &self.held, (q, v, acc));
+            let x = LocalState::moving(&e.at.dofs, self.held_state(), (q, v, acc));
             local.resize(x.len(), 0.0);
             e.at.part.residual(&x, &env, &mut local);
             e.at.dofs.scatter_held(&local, &mut r);

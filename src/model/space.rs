@@ -3,6 +3,8 @@
 //! types and its port kinematics. [`super::planar::Planar`] is the plane; a spatial model is a
 //! second implementation beside it.
 
+use super::dofs::Rigid;
+use super::mount::{Motion, MotionRates};
 use std::fmt::Debug;
 use std::ops::{Index, IndexMut};
 
@@ -38,6 +40,39 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
     fn moment_components(m: &Self::Moment) -> &[f64];
     /// The components of a moment, mutable.
     fn moment_components_mut(m: &mut Self::Moment) -> &mut [f64];
+
+    /// The identity orientation (a frame aligned with the global axes).
+    fn attitude_identity() -> Self::Attitude;
+
+    /// Number of coordinates of a [`Rigid`] group.
+    fn rigid_len(kind: Rigid) -> usize;
+
+    /// World (q, q̇, q̈) of a group carried by the frame moving as `m`, from its values, rates
+    /// and accelerations relative to the frame (in frame axes) `rel`.
+    fn carry(kind: Rigid, m: &Motion<Self>, rel: [&[f64]; 3], out: [&mut [f64]; 3]);
+
+    /// The inverse of [`Space::carry`]: values, rates and accelerations relative to the frame
+    /// moving as `m` from world ones.
+    fn uncarry(kind: Rigid, m: &Motion<Self>, abs: [&[f64]; 3], out: [&mut [f64]; 3]);
+
+    /// The motion `tau` [s] after `m` along a path whose acceleration and angular acceleration
+    /// change at the rates `rates` (jerk, snap): positions and plane angles exactly; spatial
+    /// orientations by the two-term Magnus expansion of the rotation (exact for an angular
+    /// acceleration parallel to the angular velocity, error O(τ⁴|α||ω|²) otherwise).
+    fn advance_motion(m: &Motion<Self>, rates: &MotionRates<Self>, tau: f64) -> Motion<Self>;
+
+    /// Angle [rad] of the rotation from orientation `a` to `b`.
+    fn attitude_angle(a: &Self::Attitude, b: &Self::Attitude) -> f64;
+
+    /// Unit orientation from any nonzero representation (Euler parameters normalized), `None`
+    /// if it has none (zero or not finite).
+    fn normalized_attitude(a: &Self::Attitude) -> Option<Self::Attitude>;
+
+    /// `R`ᵀ`v`: a world vector in the axes of the frame at orientation `a`.
+    fn to_frame(a: &Self::Attitude, v: &Self::Vec) -> Self::Vec;
+
+    /// `R v`: a vector in the axes of the frame at orientation `a` in world axes.
+    fn from_frame(a: &Self::Attitude, v: &Self::Vec) -> Self::Vec;
 }
 
 /// Kinematics of a port at one state, over the port's local coordinates: what loads and

@@ -66,6 +66,58 @@ pub enum Root {
     Pinned,
     /// Position fixed, orientation free (spatial scenes: a spherical joint to the ground).
     Ball,
+    /// Clamped to a moving mount frame that a host drives (position, orientation, their rates
+    /// and accelerations: the `[mount]` table gives the start values). The beam is built in the
+    /// mount frame: root at the mount point, along the frame's x axis turned by `initial.angle`
+    /// (planar) or `initial.orientation` (spatial).
+    Mounted,
+}
+
+/// Which mount inputs define the base motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum MotionInput {
+    /// Pose, velocities and accelerations are inputs (exact base motion).
+    #[default]
+    PoseVelocityAcceleration,
+    /// Pose and velocities only: the accelerations are estimated by backward differences of
+    /// the velocity inputs between communication points (or taken from the velocities' first
+    /// input derivatives when a host gives them).
+    PoseVelocity,
+}
+
+/// The `[mount]` table of a `root = "mounted"` scene: the mount frame's motion at the start,
+/// world axes, SI (an FMU takes these as the start values of its mount inputs). Vectors have
+/// 2 components `[x, y]` in a planar scene, 3 in a spatial one; angular quantities 1 (`[z]`) or
+/// 3. Missing vectors are zero.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Mount {
+    /// Mount point [m].
+    #[serde(default)]
+    pub position: Vec<f64>,
+    /// Planar scenes: angle of the mount frame's x axis from global x [rad], counter-clockwise.
+    #[serde(default)]
+    pub angle: f64,
+    /// Spatial scenes: mount frame → world, Euler parameters `[e0, e1, e2, e3]` (scalar first,
+    /// normalized on reading; identity if not given).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<[f64; 4]>,
+    /// Velocity of the mount point [m/s].
+    #[serde(default)]
+    pub velocity: Vec<f64>,
+    /// Angular velocity of the mount frame [rad/s], world axes.
+    #[serde(default)]
+    pub angular_velocity: Vec<f64>,
+    /// Acceleration of the mount point [m/s²].
+    #[serde(default)]
+    pub acceleration: Vec<f64>,
+    /// Angular acceleration of the mount frame [rad/s²], world axes.
+    #[serde(default)]
+    pub angular_acceleration: Vec<f64>,
+    /// `pose_velocity_acceleration` (default) or `pose_velocity`.
+    #[serde(default)]
+    pub motion_input: MotionInput,
 }
 
 /// Kind of a segment.
@@ -269,6 +321,9 @@ pub struct Scene {
     /// Root boundary condition.
     #[serde(default)]
     pub root: Root,
+    /// The mount's start motion (`root = "mounted"` only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mount: Option<Mount>,
     /// Initial condition.
     #[serde(default)]
     pub initial: Initial,
@@ -485,6 +540,7 @@ impl Scene {
                 }
             }
         }
+        self.validate_mount()?;
         let s = &self.solver;
         if !(s.rho_inf.is_finite() && (0.0..1.0).contains(&s.rho_inf)) {
             return Err(SceneError(format!(
@@ -646,6 +702,103 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    fn validate_mount(&self) -> Result<(), SceneError> {
+        let sp = self.space;
+        let Some(m) = &self.mount else {
+            return Ok(());
+        };
+        if self.root != Root::Mounted {
+            return Err(SceneError(format!(
+                "[mount]: only a root = \"mounted\" scene has a mount (root = {:?}); remove the table or set root = \"mounted\"",
+                self.root
+            ).replace("Clamped", "\"clamped\"").replace("Pinned", "\"pinned\"").replace("Ball", "\"ball\"")));
+        }
+        let (n, nm) = (sp.dim(), sp.moment_dim());
+        for (field, v, k) in [
+            ("mount.position", &m.position, n),
+            ("mount.velocity", &m.velocity, n),
+            ("mount.acceleration", &m.acceleration, n),
+            ("mount.angular_velocity", &m.angular_velocity, nm),
+            ("mount.angular_acceleration", &m.angular_acceleration, nm),
+        ] {
+            if !v.is_empty() && v.len() != k {
+                let space = if sp == SpaceKind::Planar {
+                    "planar"
+                } else {
+                    "spatial"
+                };
+                return Err(SceneError(format!(
+                    "{field} = {v:?}: a {space} scene takes {k} components here (or leave it out for zero)"
+                )));
+            }
+            for (i, x) in v.iter().enumerate() {
+                check_finite(&format!("{field}[{i}]"), *x)?;
+            }
+        }
+        check_finite("mount.angle", m.angle)?;
+        match sp {
+            SpaceKind::Planar => {
+                if m.orientation.is_some() {
+                    return Err(SceneError(
+                        "mount.orientation: a planar scene gives the mount frame as mount.angle [rad]; remove orientation or set space = \"spatial\"".into(),
+                    ));
+                }
+            }
+            SpaceKind::Spatial => {
+                if m.angle != 0.0 {
+                    return Err(SceneError(format!(
+                        "mount.angle = {}: a spatial scene gives the mount frame as mount.orientation = [e0, e1, e2, e3]",
+                        m.angle
+                    )));
+                }
+                if let Some(e) = m.orientation {
+                    let norm = e.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    if !(norm.is_finite() && norm > 1e-6) {
+                        return Err(SceneError(format!(
+                            "mount.orientation = {e:?}: Euler parameters must be finite and not all zero (identity: [1, 0, 0, 0])"
+                        )));
+                    }
+                }
+            }
+        }
+        let spins = m
+            .angular_velocity
+            .iter()
+            .chain(&m.angular_acceleration)
+            .any(|x| *x != 0.0);
+        if self.initial.state == InitialState::Static && spins {
+            return Err(SceneError(
+                "initial.state = \"static\" with a turning mount (mount.angular_velocity or angular_acceleration nonzero): a static state in the mount frame exists only for a mount that does not turn; use initial.state = \"straight\"".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The mount's start motion (`[mount]`, or at rest at the origin), every vector with all its
+    /// components; `None` unless `root = "mounted"`.
+    pub fn mount_start(&self) -> Option<Mount> {
+        if self.root != Root::Mounted {
+            return None;
+        }
+        let mut m = self.mount.clone().unwrap_or_default();
+        let (n, nm) = (self.space.dim(), self.space.moment_dim());
+        for (v, k) in [
+            (&mut m.position, n),
+            (&mut m.velocity, n),
+            (&mut m.acceleration, n),
+            (&mut m.angular_velocity, nm),
+            (&mut m.angular_acceleration, nm),
+        ] {
+            v.resize(k, 0.0);
+        }
+        if self.space == SpaceKind::Spatial {
+            let e = m.orientation.unwrap_or([1.0, 0.0, 0.0, 0.0]);
+            let norm = e.iter().map(|x| x * x).sum::<f64>().sqrt();
+            m.orientation = Some(e.map(|x| x / norm));
+        }
+        Some(m)
     }
 
     /// Total undeformed length [m].

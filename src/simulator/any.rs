@@ -3,7 +3,7 @@
 //! [`Space::AXES`], [`Space::MOMENT_AXES`] and the orientation's components
 //! ([`SpaceModel::ATTITUDE`]).
 
-use super::{Inputs, Simulator, SpaceModel};
+use super::{Inputs, MountInput, Simulator, SpaceModel};
 use crate::error::SimError;
 use crate::integrator::Counters;
 use crate::model::{Outputs, Planar, Space, Spatial};
@@ -32,7 +32,26 @@ pub enum Quantity {
     StrainEnergy,
     /// `energy.potential` [J] (gravity, zero at the origin).
     PotentialEnergy,
+    /// `root.mass` [kg]: the beam's mass (mounted root).
+    MountMass,
+    /// `root.center_of_mass.<axis>` [m]: the beam's centre of mass relative to the mount
+    /// point, mount frame axes (mounted root).
+    MountCenterOfMass,
+    /// `root.inertia.<pair>` [kg m²]: the beam's inertia tensor about the mount point, mount
+    /// frame axes (`zz` in the plane; `xx yy zz xy xz yz` in space) (mounted root).
+    MountInertia,
 }
+
+/// Components of the inertia tensor as outputs: names and row-major 3×3 indices (the plane
+/// keeps only `zz`, stored at index 0).
+const INERTIA_SPATIAL: [(&str, usize); 6] = [
+    ("xx", 0),
+    ("yy", 4),
+    ("zz", 8),
+    ("xy", 1),
+    ("xz", 2),
+    ("yz", 5),
+];
 
 /// One scalar output: a quantity and the index of its component (in [`Space::AXES`],
 /// [`Space::MOMENT_AXES`] or [`SpaceModel::ATTITUDE_COMPONENTS`]; 0 for an energy).
@@ -78,6 +97,32 @@ impl OutputId {
         }
     }
 
+    /// [`OutputId::named`] and, for a mounted root, the rigid inertia at the mount after them:
+    /// `root.mass`, `root.center_of_mass.<axis>`, `root.inertia.<pair>`.
+    pub fn named_with(space: SpaceKind, mounted: bool) -> Vec<(String, OutputId)> {
+        let mut out = Self::named(space);
+        if mounted {
+            let inertia: &[&str] = match space {
+                SpaceKind::Planar => &["zz"],
+                SpaceKind::Spatial => &["xx", "yy", "zz", "xy", "xz", "yz"],
+            };
+            let axes: &[&str] = match space {
+                SpaceKind::Planar => Planar::AXES,
+                SpaceKind::Spatial => Spatial::AXES,
+            };
+            let groups: [(Quantity, &str, &[&str]); 3] = [
+                (Quantity::MountMass, "root.mass", &[""]),
+                (Quantity::MountCenterOfMass, "root.center_of_mass", axes),
+                (Quantity::MountInertia, "root.inertia", inertia),
+            ];
+            out.extend(named_components(&groups, |quantity, component| OutputId {
+                quantity,
+                component,
+            }));
+        }
+        out
+    }
+
     fn named_in<S: SpaceModel>() -> Vec<(String, OutputId)> {
         use Quantity::*;
         let groups: [(Quantity, &str, &[&str]); 9] = [
@@ -116,6 +161,17 @@ impl<S: SpaceModel> Outputs<S> {
             KineticEnergy => one(self.kinetic),
             StrainEnergy => one(self.strain),
             PotentialEnergy => one(self.potential),
+            MountMass => self.mount.and_then(|m| one(m.mass)),
+            MountCenterOfMass => self
+                .mount
+                .and_then(|m| m.center_of_mass.as_ref().get(k).copied()),
+            MountInertia => self.mount.and_then(|m| {
+                if S::DIM == 2 {
+                    one(m.inertia[0])
+                } else {
+                    INERTIA_SPATIAL.get(k).map(|&(_, i)| m.inertia[i])
+                }
+            }),
         }
     }
 }
@@ -130,6 +186,29 @@ pub enum InputKind {
     TipMoment,
     /// `gravity.<axis>` [m/s²], global axes.
     Gravity,
+    /// `root.position.<axis>` [m]: the mount point, world axes (mounted root).
+    MountPosition,
+    /// The mount frame → world: `root.angle` [rad] in the plane, `root.orientation.e0`–`e3`
+    /// (Euler parameters, scalar first, renormalized) in space (mounted root).
+    MountAttitude,
+    /// `root.velocity.<axis>` [m/s] (mounted root).
+    MountVelocity,
+    /// `root.angular_velocity` [rad/s] (plane; `.x/.y/.z` world axes in space).
+    MountAngularVelocity,
+    /// `root.acceleration.<axis>` [m/s²] (mounted root).
+    MountAcceleration,
+    /// `root.angular_acceleration` [rad/s²] (plane; `.x/.y/.z` world axes in space).
+    MountAngularAcceleration,
+}
+
+impl InputKind {
+    /// Whether this is a mount input.
+    pub fn is_mount(self) -> bool {
+        !matches!(
+            self,
+            InputKind::TipForce | InputKind::TipMoment | InputKind::Gravity
+        )
+    }
 }
 
 /// One scalar input: its kind and the index of its component (in [`Space::AXES`] or
@@ -160,21 +239,66 @@ impl InputId {
         named_components(&groups, |kind, component| InputId { kind, component })
     }
 
-    /// The scene's vector of this input (`tip.force`, `tip.moment` or `gravity`).
-    fn scene_vector(self, scene: &Scene) -> &Vec<f64> {
-        match self.kind {
-            InputKind::TipForce => &scene.tip.force,
-            InputKind::TipMoment => &scene.tip.moment,
-            InputKind::Gravity => &scene.gravity,
+    /// [`InputId::named`] and, for a mounted root, the mount inputs after them (planar:
+    /// `root.position.{x,y}`, `root.angle`, `root.velocity.{x,y}`, `root.angular_velocity`,
+    /// `root.acceleration.{x,y}`, `root.angular_acceleration`; spatial: the vectors with
+    /// `.x/.y/.z` and `root.orientation.e0`–`e3`).
+    pub fn named_with(space: SpaceKind, mounted: bool) -> Vec<(String, InputId)> {
+        let mut out = Self::named(space);
+        if mounted {
+            out.extend(match space {
+                SpaceKind::Planar => Self::mount_in::<Planar>(),
+                SpaceKind::Spatial => Self::mount_in::<Spatial>(),
+            });
         }
+        out
     }
 
-    /// The scene's value of this input (0 where the scene leaves the component out).
+    fn mount_in<S: SpaceModel>() -> Vec<(String, InputId)> {
+        use InputKind::*;
+        let angular: &[&str] = if S::DIM == 2 { &[""] } else { S::MOMENT_AXES };
+        let attitude = if S::DIM == 2 {
+            "root.angle"
+        } else {
+            "root.orientation"
+        };
+        let groups: [(InputKind, &str, &[&str]); 6] = [
+            (MountPosition, "root.position", S::AXES),
+            (MountAttitude, attitude, S::ATTITUDE_COMPONENTS),
+            (MountVelocity, "root.velocity", S::AXES),
+            (MountAngularVelocity, "root.angular_velocity", angular),
+            (MountAcceleration, "root.acceleration", S::AXES),
+            (
+                MountAngularAcceleration,
+                "root.angular_acceleration",
+                angular,
+            ),
+        ];
+        named_components(&groups, |kind, component| InputId { kind, component })
+    }
+
+    /// The scene's value of this input (0 where the scene leaves the component out; the
+    /// mount's from `[mount]`).
     pub fn scene_value(self, scene: &Scene) -> f64 {
-        self.scene_vector(scene)
-            .get(self.component)
-            .copied()
-            .unwrap_or(0.0)
+        let k = self.component;
+        let get = |v: &Vec<f64>| v.get(k).copied().unwrap_or(0.0);
+        let mount = || scene.mount_start().unwrap_or_default();
+        match self.kind {
+            InputKind::TipForce => get(&scene.tip.force),
+            InputKind::TipMoment => get(&scene.tip.moment),
+            InputKind::Gravity => get(&scene.gravity),
+            InputKind::MountPosition => get(&mount().position),
+            InputKind::MountAttitude => match scene.space {
+                SpaceKind::Planar => mount().angle,
+                SpaceKind::Spatial => mount()
+                    .orientation
+                    .map_or(if k == 0 { 1.0 } else { 0.0 }, |e| e[k.min(3)]),
+            },
+            InputKind::MountVelocity => get(&mount().velocity),
+            InputKind::MountAngularVelocity => get(&mount().angular_velocity),
+            InputKind::MountAcceleration => get(&mount().acceleration),
+            InputKind::MountAngularAcceleration => get(&mount().angular_acceleration),
+        }
     }
 
     /// Writes this input into the scene (not validated; the vector gets all the components of
@@ -185,6 +309,8 @@ impl InputId {
             InputKind::TipForce => (&mut scene.tip.force, space.dim()),
             InputKind::TipMoment => (&mut scene.tip.moment, space.moment_dim()),
             InputKind::Gravity => (&mut scene.gravity, space.dim()),
+            // the mount's inputs are not scene values
+            _ => return,
         };
         v.resize(n.max(v.len()).max(k + 1), 0.0);
         v[k] = x;
@@ -192,13 +318,15 @@ impl InputId {
 }
 
 impl<S: SpaceModel> Inputs<S> {
-    /// The value of one input; `None` for a component this space does not have.
+    /// The value of one input; `None` for a component this space does not have (and for the
+    /// mount's inputs, which are not part of these).
     pub fn get(&self, id: InputId) -> Option<f64> {
         let k = id.component;
         match id.kind {
             InputKind::TipForce => self.tip_force.as_ref().get(k).copied(),
             InputKind::TipMoment => S::moment_components(&self.tip_moment).get(k).copied(),
             InputKind::Gravity => self.gravity.as_ref().get(k).copied(),
+            _ => None,
         }
     }
 
@@ -209,8 +337,63 @@ impl<S: SpaceModel> Inputs<S> {
             InputKind::TipForce => self.tip_force.as_mut().get_mut(k),
             InputKind::TipMoment => S::moment_components_mut(&mut self.tip_moment).get_mut(k),
             InputKind::Gravity => self.gravity.as_mut().get_mut(k),
+            _ => None,
         };
         slot.map(|s| *s = x).is_some()
+    }
+}
+
+impl<S: SpaceModel> MountInput<S> {
+    /// The slot of one mount input component (`None`: not a mount input, or a component this
+    /// space does not have).
+    fn slot(&mut self, id: InputId) -> Option<&mut f64> {
+        let (m, k) = (&mut self.motion, id.component);
+        match id.kind {
+            InputKind::MountPosition => m.position.as_mut().get_mut(k),
+            InputKind::MountAttitude => S::attitude_components_mut(&mut m.attitude).get_mut(k),
+            InputKind::MountVelocity => m.velocity.as_mut().get_mut(k),
+            InputKind::MountAngularVelocity => {
+                S::moment_components_mut(&mut m.angular_velocity).get_mut(k)
+            }
+            InputKind::MountAcceleration => m.acceleration.as_mut().get_mut(k),
+            InputKind::MountAngularAcceleration => {
+                S::moment_components_mut(&mut m.angular_acceleration).get_mut(k)
+            }
+            _ => None,
+        }
+    }
+
+    /// The slot of a derivative of order 1 or 2 of one mount input that defines the motion:
+    /// the accelerations' (jerk, snap), or, when the scene's accelerations are not inputs
+    /// (`velocity_mode`), the velocities' (acceleration, jerk). `None` for the pose and for
+    /// derivatives implied by other inputs.
+    fn derivative_slot(
+        &mut self,
+        id: InputId,
+        order: u32,
+        velocity_mode: bool,
+    ) -> Option<&mut f64> {
+        let k = id.component;
+        let (r, m) = (&mut self.rates, &mut self.motion);
+        match (id.kind, order, velocity_mode) {
+            (InputKind::MountAcceleration, 1, false) => r.jerk.as_mut().get_mut(k),
+            (InputKind::MountAcceleration, 2, false) => r.snap.as_mut().get_mut(k),
+            (InputKind::MountAngularAcceleration, 1, false) => {
+                S::moment_components_mut(&mut r.angular_jerk).get_mut(k)
+            }
+            (InputKind::MountAngularAcceleration, 2, false) => {
+                S::moment_components_mut(&mut r.angular_snap).get_mut(k)
+            }
+            (InputKind::MountVelocity, 1, true) => m.acceleration.as_mut().get_mut(k),
+            (InputKind::MountVelocity, 2, true) => r.jerk.as_mut().get_mut(k),
+            (InputKind::MountAngularVelocity, 1, true) => {
+                S::moment_components_mut(&mut m.angular_acceleration).get_mut(k)
+            }
+            (InputKind::MountAngularVelocity, 2, true) => {
+                S::moment_components_mut(&mut r.angular_jerk).get_mut(k)
+            }
+            _ => None,
+        }
     }
 }
 
@@ -321,16 +504,28 @@ impl AnySimulator {
         }
     }
 
-    /// The value of an input set for the next step; `None` for a component this space does
-    /// not have.
+    /// The value of an input set for the next step; `None` for a component this space (or a
+    /// fixed root) does not have.
     pub fn input(&self, id: InputId) -> Option<f64> {
+        if id.kind.is_mount() {
+            return each!(self, s => s.mount_input().and_then(|mut m| m.slot(id).map(|x| *x)));
+        }
         each!(self, s => s.inputs().get(id))
     }
 
     /// Sets an input (takes effect at the next step, as a jump of the inputs: see
-    /// [`Simulator::advance`]); `false` (and no change) for a component this space does not
-    /// have.
+    /// [`Simulator::advance`]; a mount input is checked there); `false` (and no change) for a
+    /// component this space (or a fixed root) does not have.
     pub fn set_input(&mut self, id: InputId, x: f64) -> bool {
+        if id.kind.is_mount() {
+            return each!(self, s => {
+                let Some(mut m) = s.mount_input() else {
+                    return false;
+                };
+                let known = m.slot(id).map(|slot| *slot = x).is_some();
+                known && s.set_mount_unchecked(m)
+            });
+        }
         each!(self, s => {
             let mut inputs = s.inputs();
             let known = inputs.set(id, x);
@@ -338,6 +533,37 @@ impl AnySimulator {
                 s.set_inputs(&inputs);
             }
             known
+        })
+    }
+
+    /// Sets the derivative of order 1 or 2 of an input over the coming communication step
+    /// (FMI input derivatives; they hold for the next step only). Mount inputs: the
+    /// accelerations' derivatives (or, with `motion_input = "pose_velocity"`, the velocities')
+    /// shape the base motion; derivatives of the pose, implied by the velocities, are accepted
+    /// and not used. `false` for an input without derivatives here (tip loads, gravity).
+    pub fn set_input_derivative(&mut self, id: InputId, order: u32, x: f64) -> bool {
+        if !id.kind.is_mount() || !(1..=2).contains(&order) {
+            return false;
+        }
+        each!(self, s => {
+            let (Some(mut m), Some(given)) = (s.mount_input(), s.mount_accelerations_given())
+            else {
+                return false;
+            };
+            if m.slot(id).is_none() {
+                return false;
+            }
+            let Some(slot) = m.derivative_slot(id, order, !given) else {
+                // a derivative implied by other inputs (the pose's, or the velocities' when
+                // accelerations are inputs): accepted, not used
+                return true;
+            };
+            *slot = x;
+            if !given && order == 1 {
+                // the velocity's derivative given: no backward-difference estimate
+                m.accelerations = true;
+            }
+            s.set_mount_unchecked(m)
         })
     }
 
@@ -418,6 +644,7 @@ mod tests {
             kinetic: 20.0,
             strain: 21.0,
             potential: 22.0,
+            mount: None,
         };
         let read: Vec<f64> = OutputId::named(SpaceKind::Spatial)
             .iter()
@@ -434,6 +661,7 @@ mod tests {
             kinetic: 10.0,
             strain: 11.0,
             potential: 12.0,
+            mount: None,
         };
         let read: Vec<f64> = OutputId::named(SpaceKind::Planar)
             .iter()

@@ -10,7 +10,7 @@ use crate::math;
 use crate::model::ancf::AncfProps;
 use crate::model::assembly::{Model, Parts};
 use crate::model::component::{Constraint, Element, Port};
-use crate::model::dofs::{Dof, LocalDofs, Numbering};
+use crate::model::dofs::{Dof, LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody};
 use crate::scene::{Root, Scene, SceneError, SegmentKind, SpaceKind};
 use std::sync::Arc;
@@ -43,7 +43,7 @@ impl Model<Planar> {
         }
         let (sa, ca) = math::sin_cos(scene.initial.angle);
         let dir = [ca, sa];
-        let clamped = scene.root == Root::Clamped;
+        let clamped = matches!(scene.root, Root::Clamped | Root::Mounted);
         let lref = scene.total_length();
         let mut num = Numbering::default();
         let mut ancf: Vec<(LocalDofs, Box<dyn Element<Planar>>, usize)> = Vec::new();
@@ -85,6 +85,8 @@ impl Model<Planar> {
                         num.coordinate(!first, root_pt[1], lref),
                         num.coordinate(free_th, scene.initial.angle, 1.0),
                     ];
+                    num.rigid(Rigid::Point, &dofs[..2]);
+                    num.rigid(Rigid::Angle, &dofs[2..3]);
                     dofs.extend((0..body.modes()).map(|_| num.free(0.0, lref)));
                     if first {
                         support = Some(RootSupport::Frame {
@@ -127,11 +129,12 @@ impl Model<Planar> {
                         let v = node_vals(s);
                         let free = [free_r, free_r, free_s, free_s];
                         let scale = [lref, lref, 1.0, 1.0];
-                        LocalDofs::new(
-                            (0..4)
-                                .map(|c| num.coordinate(free[c], v[c], scale[c]))
-                                .collect(),
-                        )
+                        let dofs: Vec<Dof> = (0..4)
+                            .map(|c| num.coordinate(free[c], v[c], scale[c]))
+                            .collect();
+                        num.rigid(Rigid::Point, &dofs[..2]);
+                        num.rigid(Rigid::Direction, &dofs[2..]);
+                        LocalDofs::new(dofs)
                     };
                     // first node: shared with a previous ANCF segment, else new (held at the root)
                     let mut last = match prev.take() {
@@ -185,6 +188,7 @@ impl Model<Planar> {
             gravity: scene.gravity_vec(),
             tip_force: scene.tip_force_vec(),
             tip_moment: scene.tip_moment_vec::<1>()[0],
+            mounted: scene.root == Root::Mounted,
         }))
     }
 }

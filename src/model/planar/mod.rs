@@ -7,6 +7,7 @@ mod build;
 mod elements;
 mod ends;
 mod joint;
+mod mount;
 
 pub use elements::{AncfElement, ModalElement};
 pub use ends::{
@@ -14,7 +15,11 @@ pub use ends::{
 };
 pub use joint::RigidJoint;
 
+use super::dofs::Rigid;
+use super::mount::{Motion, MotionRates};
 use super::space::Space;
+
+pub(crate) use mount::poly;
 
 /// The x–y plane: vectors `[x, y]`, moments about z (counter-clockwise positive), orientations
 /// as the angle from global x [rad].
@@ -36,5 +41,45 @@ impl Space for Planar {
 
     fn moment_components_mut(m: &mut f64) -> &mut [f64] {
         std::slice::from_mut(m)
+    }
+
+    fn attitude_identity() -> f64 {
+        0.0
+    }
+
+    fn rigid_len(kind: Rigid) -> usize {
+        match kind {
+            Rigid::Point | Rigid::Direction => 2,
+            Rigid::Angle => 1,
+            Rigid::Euler => 4,
+        }
+    }
+
+    fn carry(kind: Rigid, m: &Motion<Self>, rel: [&[f64]; 3], out: [&mut [f64]; 3]) {
+        mount::carry(kind, m, rel, out)
+    }
+
+    fn uncarry(kind: Rigid, m: &Motion<Self>, abs: [&[f64]; 3], out: [&mut [f64]; 3]) {
+        mount::uncarry(kind, m, abs, out)
+    }
+
+    fn advance_motion(m: &Motion<Self>, rates: &MotionRates<Self>, tau: f64) -> Motion<Self> {
+        mount::advance(m, rates, tau)
+    }
+
+    fn attitude_angle(a: &f64, b: &f64) -> f64 {
+        (b - a).abs()
+    }
+
+    fn normalized_attitude(a: &f64) -> Option<f64> {
+        a.is_finite().then_some(*a)
+    }
+
+    fn to_frame(a: &f64, v: &[f64; 2]) -> [f64; 2] {
+        mount::to_frame(*a, v)
+    }
+
+    fn from_frame(a: &f64, v: &[f64; 2]) -> [f64; 2] {
+        mount::to_frame(-*a, v)
     }
 }

@@ -17,7 +17,7 @@ use super::{
 use crate::model::ancf3d::Ancf3Props;
 use crate::model::assembly::{Model, Parts};
 use crate::model::component::{Constraint, Element, Port, Support};
-use crate::model::dofs::{Dof, LocalDofs, Numbering};
+use crate::model::dofs::{Dof, LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
 use crate::scene::{Root, Scene, SceneError, SegmentKind, SpaceKind};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
@@ -111,7 +111,7 @@ impl Model<Spatial> {
         let e0 = scene.root_orientation();
         let [ax, ay, az] = frame_of(e0);
         let reference = Matrix3::from_columns(&[ax, ay, az]);
-        let clamped = scene.root == Root::Clamped;
+        let clamped = matches!(scene.root, Root::Clamped | Root::Mounted);
         let torsion = scene.torsion;
         let lref = scene.total_length();
         let mut num = Numbering::default();
@@ -137,6 +137,8 @@ impl Model<Spatial> {
                     for k in 0..4 {
                         c.push(&mut num, free_p, e0[k], 1.0);
                     }
+                    num.rigid(Rigid::Point, &c.dofs[..3]);
+                    num.rigid(Rigid::Euler, &c.dofs[3..7]);
                     let nb = body.modes();
                     for _ in 0..2 * nb {
                         c.push(&mut num, true, 0.0, lref);
@@ -191,6 +193,10 @@ impl Model<Spatial> {
                             for k in 0..3 {
                                 c.push(num, free_d, ay[k], 1.0);
                             }
+                        }
+                        num.rigid(Rigid::Point, &c.dofs[..3]);
+                        for d in c.dofs[3..].chunks(3) {
+                            num.rigid(Rigid::Direction, d);
                         }
                         c
                     };
@@ -251,6 +257,7 @@ impl Model<Spatial> {
             gravity: scene.gravity_vec(),
             tip_force: scene.tip_force_vec(),
             tip_moment: scene.tip_moment_vec(),
+            mounted: scene.root == Root::Mounted,
         }))
     }
 }

@@ -11,6 +11,7 @@ mod body;
 mod build;
 mod joint;
 mod kin;
+mod mount;
 mod node;
 
 pub use body::{EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3};
@@ -18,6 +19,8 @@ pub use joint::RigidJoint3;
 pub use kin::{EndKin3, Field3};
 pub use node::{AncfElement3, NodePort3, NodeSupport3};
 
+use super::dofs::Rigid;
+use super::mount::{Motion, MotionRates};
 use super::space::Space;
 
 /// Space: vectors `[x, y, z]` (global axes), moments and angular velocities `[x, y, z]`,
@@ -40,5 +43,45 @@ impl Space for Spatial {
 
     fn moment_components_mut(m: &mut [f64; 3]) -> &mut [f64] {
         m
+    }
+
+    fn attitude_identity() -> [f64; 4] {
+        [1.0, 0.0, 0.0, 0.0]
+    }
+
+    fn rigid_len(kind: Rigid) -> usize {
+        match kind {
+            Rigid::Point | Rigid::Direction => 3,
+            Rigid::Angle => 1,
+            Rigid::Euler => 4,
+        }
+    }
+
+    fn carry(kind: Rigid, m: &Motion<Self>, rel: [&[f64]; 3], out: [&mut [f64]; 3]) {
+        mount::carry(kind, m, rel, out)
+    }
+
+    fn uncarry(kind: Rigid, m: &Motion<Self>, abs: [&[f64]; 3], out: [&mut [f64]; 3]) {
+        mount::uncarry(kind, m, abs, out)
+    }
+
+    fn advance_motion(m: &Motion<Self>, rates: &MotionRates<Self>, tau: f64) -> Motion<Self> {
+        mount::advance(m, rates, tau)
+    }
+
+    fn attitude_angle(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+        mount::angle_between(a, b)
+    }
+
+    fn normalized_attitude(a: &[f64; 4]) -> Option<[f64; 4]> {
+        mount::normalize(*a)
+    }
+
+    fn to_frame(a: &[f64; 4], v: &[f64; 3]) -> [f64; 3] {
+        mount::rotate_back(a, *v)
+    }
+
+    fn from_frame(a: &[f64; 4], v: &[f64; 3]) -> [f64; 3] {
+        mount::rotate(a, *v)
     }
 }

@@ -1,0 +1,410 @@
+//! The mount: a moving frame the root of a `root = "mounted"` beam is clamped to. The held
+//! root coordinates are rigid functions of the mount's motion (values, rates and accelerations:
+//! the elements' residuals then carry the base's inertial loads, and the held rows' residual is
+//! the reaction including them); the free coordinates are carried rigidly to place the initial
+//! state and to re-anchor the beam when a host's pose differs from the predicted one.
+//! Dimension-free: a [`Space`] supplies the rigid motion of each kind of coordinate group.
+
+use super::assembly::Model;
+use super::component::{Env, LocalState};
+use super::dofs::{Dof, RigidGroup};
+use super::space::Space;
+use serde::{Deserialize, Serialize};
+
+/// The motion of a frame at one instant, world axes, SI.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(bound(
+    serialize = "S::Vec: Serialize, S::Moment: Serialize, S::Attitude: Serialize",
+    deserialize = "S::Vec: Deserialize<'de>, S::Moment: Deserialize<'de>, S::Attitude: Deserialize<'de>"
+))]
+pub struct Motion<S: Space> {
+    /// Position of the frame origin [m].
+    pub position: S::Vec,
+    /// Orientation, frame → world (plane: angle [rad]; space: unit Euler parameters).
+    pub attitude: S::Attitude,
+    /// Velocity of the origin [m/s].
+    pub velocity: S::Vec,
+    /// Angular velocity [rad/s], world axes.
+    pub angular_velocity: S::Moment,
+    /// Acceleration of the origin [m/s²].
+    pub acceleration: S::Vec,
+    /// Angular acceleration [rad/s²], world axes.
+    pub angular_acceleration: S::Moment,
+}
+
+impl<S: Space> Default for Motion<S> {
+    fn default() -> Self {
+        Self::at_rest(S::Vec::default(), S::attitude_identity())
+    }
+}
+
+impl<S: Space> Motion<S> {
+    /// A frame at rest at `position`, `attitude`.
+    pub fn at_rest(position: S::Vec, attitude: S::Attitude) -> Self {
+        Self {
+            position,
+            attitude,
+            velocity: S::Vec::default(),
+            angular_velocity: S::Moment::default(),
+            acceleration: S::Vec::default(),
+            angular_acceleration: S::Moment::default(),
+        }
+    }
+
+    /// The same pose and rates with the accelerations of `other`.
+    pub fn with_accelerations_of(&self, other: &Self) -> Self {
+        Self {
+            acceleration: other.acceleration,
+            angular_acceleration: other.angular_acceleration,
+            ..*self
+        }
+    }
+
+    /// Every component, for finiteness checks.
+    pub fn components(&self) -> Vec<f64> {
+        let mut out = Vec::new();
+        out.extend_from_slice(self.position.as_ref());
+        out.extend_from_slice(self.velocity.as_ref());
+        out.extend_from_slice(self.acceleration.as_ref());
+        for m in [&self.angular_velocity, &self.angular_acceleration] {
+            out.extend_from_slice(S::moment_components(m));
+        }
+        out
+    }
+
+    /// Whether the frame moves at all (a rate or an acceleration nonzero).
+    pub fn is_moving(&self) -> bool {
+        let nz = |v: &[f64]| v.iter().any(|x| *x != 0.0);
+        nz(self.velocity.as_ref())
+            || nz(self.acceleration.as_ref())
+            || nz(S::moment_components(&self.angular_velocity))
+            || nz(S::moment_components(&self.angular_acceleration))
+    }
+}
+
+/// Rates of change of the accelerations along a path: jerk and snap [m/s³, m/s⁴], angular
+/// jerk and snap [rad/s³, rad/s⁴] (a host's input derivatives; zero: constant acceleration).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(bound(
+    serialize = "S::Vec: Serialize, S::Moment: Serialize",
+    deserialize = "S::Vec: Deserialize<'de>, S::Moment: Deserialize<'de>"
+))]
+pub struct MotionRates<S: Space> {
+    /// d(acceleration)/dt.
+    pub jerk: S::Vec,
+    /// d²(acceleration)/dt².
+    pub snap: S::Vec,
+    /// d(angular acceleration)/dt.
+    pub angular_jerk: S::Moment,
+    /// d²(angular acceleration)/dt².
+    pub angular_snap: S::Moment,
+}
+
+/// The rigid inertia of the beam at the mount: what a host adds to its mount body.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MountInertia<S: Space> {
+    /// Mass [kg].
+    pub mass: f64,
+    /// Centre of mass relative to the mount point [m], mount frame axes.
+    pub center_of_mass: S::Vec,
+    /// Inertia tensor about the mount point [kg m²], mount frame axes, row-major DIM×DIM in
+    /// space (xx, xy, xz, yx, …); in the plane the single entry zz.
+    pub inertia: [f64; 9],
+}
+
+/// A fixed-size scratch of a group's coordinates.
+type G = [f64; 4];
+
+impl<S: Space> Model<S> {
+    /// Whether the root is clamped to a moving mount.
+    pub fn is_mounted(&self) -> bool {
+        self.mount.is_some()
+    }
+
+    /// The mount motion of the last Newton-matrix evaluation (`None` unless mounted).
+    pub fn mount_at_matrix(&self) -> Option<Motion<S>> {
+        self.mount_at_matrix.as_deref().copied()
+    }
+
+    /// The mount motion the held coordinates follow now (`None` unless mounted).
+    pub fn mount_motion(&self) -> Option<&Motion<S>> {
+        self.mount.as_deref()
+    }
+
+    /// Moves the held root coordinates with the mount: values, rates and accelerations of the
+    /// frame moving as `m` (a mounted model only; otherwise nothing happens).
+    pub fn set_mount(&mut self, m: &Motion<S>) {
+        match &mut self.mount {
+            Some(b) => **b = *m,
+            None => return,
+        }
+        let zero = [0.0; 4];
+        for g in self.groups.iter().filter(|g| is_held(g)) {
+            let k = S::rigid_len(g.kind);
+            let (mut q, mut v, mut a) = (zero, zero, zero);
+            let rel = gather_held(g, &self.held_ref);
+            S::carry(
+                g.kind,
+                m,
+                [&rel[..k], &zero[..k], &zero[..k]],
+                [&mut q[..k], &mut v[..k], &mut a[..k]],
+            );
+            for (c, d) in g.dofs.iter().enumerate() {
+                if let Dof::Held(j) = *d {
+                    let j = j as usize;
+                    (self.held[j], self.held_v[j], self.held_a[j]) = (q[c], v[c], a[c]);
+                }
+            }
+        }
+    }
+
+    /// Carries free coordinates given in the mount frame (`q`, e.g. the build's) to the frame
+    /// moving as `m`, at rest relative to it: `q` becomes world values, `v` the rigid velocity
+    /// field.
+    pub fn carry_state(&self, m: &Motion<S>, q: &mut [f64], v: &mut [f64]) {
+        let zero = [0.0; 4];
+        for g in self.groups.iter().filter(|g| !is_held(g)) {
+            let k = S::rigid_len(g.kind);
+            let rel = gather_free(g, q);
+            let (mut qo, mut vo, mut ao) = (zero, zero, zero);
+            S::carry(
+                g.kind,
+                m,
+                [&rel[..k], &zero[..k], &zero[..k]],
+                [&mut qo[..k], &mut vo[..k], &mut ao[..k]],
+            );
+            scatter_free(g, &qo, q);
+            scatter_free(g, &vo, v);
+        }
+    }
+
+    /// Re-anchors free coordinates, rates and accelerations (`acc` and any further
+    /// acceleration-like vectors in `more`) from the frame moving as `from` to the frame moving
+    /// as `to`: every group keeps its values, rates and accelerations relative to the frame, so
+    /// strains and joint rows are unchanged.
+    pub fn reanchor(
+        &self,
+        from: &Motion<S>,
+        to: &Motion<S>,
+        q: &mut [f64],
+        v: &mut [f64],
+        acc: &mut [&mut [f64]],
+    ) {
+        let zero = [0.0; 4];
+        for g in self.groups.iter().filter(|g| !is_held(g)) {
+            let k = S::rigid_len(g.kind);
+            let (qg, vg) = (gather_free(g, q), gather_free(g, v));
+            let (mut qr, mut vr, mut scratch) = (zero, zero, zero);
+            S::uncarry(
+                g.kind,
+                from,
+                [&qg[..k], &vg[..k], &zero[..k]],
+                [&mut qr[..k], &mut vr[..k], &mut scratch[..k]],
+            );
+            for a in acc.iter_mut() {
+                let ag = gather_free(g, a);
+                let (mut ar, mut an) = (zero, zero);
+                let (mut q2, mut v2) = (zero, zero);
+                S::uncarry(
+                    g.kind,
+                    from,
+                    [&qg[..k], &vg[..k], &ag[..k]],
+                    [&mut q2[..k], &mut v2[..k], &mut ar[..k]],
+                );
+                S::carry(
+                    g.kind,
+                    to,
+                    [&qr[..k], &vr[..k], &ar[..k]],
+                    [&mut q2[..k], &mut v2[..k], &mut an[..k]],
+                );
+                scatter_free(g, &an, a);
+            }
+            let (mut qn, mut vn) = (zero, zero);
+            S::carry(
+                g.kind,
+                to,
+                [&qr[..k], &vr[..k], &zero[..k]],
+                [&mut qn[..k], &mut vn[..k], &mut scratch[..k]],
+            );
+            scatter_free(g, &qn, q);
+            scatter_free(g, &vn, v);
+        }
+    }
+
+    /// The beam's rigid inertia at the mount at the coordinates `q`: mass, centre of mass and
+    /// inertia tensor about the mount point in the mount frame, exact for the elements' mass
+    /// distributions (the generalized mass matrix M, all coordinates held ones included, read
+    /// through the rigid translation and rotation fields u: uᵢᵀ M uⱼ). `None` unless mounted.
+    pub fn mount_inertia(&self, q: &[f64]) -> Option<MountInertia<S>> {
+        let m = self.mount.as_deref()?;
+        let (dim, rot) = (S::DIM, S::moment_components(&m.angular_velocity).len());
+        let nf = dim + rot;
+        // fields: translations along each axis, rotations about each axis through the mount point
+        let fields: Vec<(Vec<f64>, Vec<f64>)> = (0..nf)
+            .map(|f| {
+                let mut w = Motion::<S>::at_rest(m.position, m.attitude);
+                if f < dim {
+                    w.velocity[f] = 1.0;
+                } else {
+                    S::moment_components_mut(&mut w.angular_velocity)[f - dim] = 1.0;
+                }
+                self.rigid_field(&w, q)
+            })
+            .collect();
+        let n = q.len();
+        let nh = self.held.len();
+        let zeros = (vec![0.0; n], vec![0.0; nh]);
+        let env = Env {
+            gravity: S::Vec::default(),
+            load: 1.0,
+        };
+        let mut gram = vec![vec![0.0; nf]; nf];
+        let mut r0 = Vec::new();
+        let mut r1 = Vec::new();
+        let mut ul = Vec::new();
+        for e in &self.elements {
+            let dofs = &e.at.dofs;
+            let held = (&self.held[..], &zeros.1[..], &zeros.1[..]);
+            let x0 = LocalState::moving(dofs, held, (q, &zeros.0, &zeros.0));
+            r0.resize(dofs.len(), 0.0);
+            r1.resize(dofs.len(), 0.0);
+            ul.resize(dofs.len(), 0.0);
+            e.at.part.residual(&x0, &env, &mut r0);
+            for (i, (ui, hi)) in fields.iter().enumerate() {
+                let held = (&self.held[..], &zeros.1[..], &hi[..]);
+                let xi = LocalState::moving(dofs, held, (q, &zeros.0, ui));
+                e.at.part.residual(&xi, &env, &mut r1);
+                for (j, (uj, hj)) in fields.iter().enumerate() {
+                    for (k, d) in dofs.dofs().iter().enumerate() {
+                        ul[k] = match *d {
+                            Dof::Free(a) => uj[a as usize],
+                            Dof::Held(b) => hj[b as usize],
+                        };
+                    }
+                    gram[i][j] += (0..dofs.len())
+                        .map(|k| ul[k] * (r1[k] - r0[k]))
+                        .sum::<f64>();
+                }
+            }
+        }
+        let mass = (0..dim).map(|i| gram[i][i]).sum::<f64>() / dim as f64;
+        // Tᵢᵀ M Rⱼ = eᵢ·(eⱼ × S), S = m c: the static moment from the mixed entries
+        let mut s = S::Vec::default();
+        let mut inertia = [0.0; 9];
+        if dim == 2 {
+            s[0] = gram[1][2];
+            s[1] = -gram[0][2];
+            inertia[0] = gram[2][2];
+        } else {
+            s[0] = 0.5 * (gram[1][5] - gram[2][4]);
+            s[1] = 0.5 * (gram[2][3] - gram[0][5]);
+            s[2] = 0.5 * (gram[0][4] - gram[1][3]);
+            // I_frame = Aᵀ I_world A, column by column through to_frame
+            let mut iw = [[0.0; 3]; 3];
+            for (a, row) in iw.iter_mut().enumerate() {
+                for (b, x) in row.iter_mut().enumerate() {
+                    *x = gram[3 + a][3 + b];
+                }
+            }
+            let mut cols = [[0.0; 3]; 3];
+            for (b, col) in cols.iter_mut().enumerate() {
+                let mut v = S::Vec::default();
+                for a in 0..3 {
+                    v[a] = iw[a][b];
+                }
+                let f = S::to_frame(&m.attitude, &v);
+                *col = [f[0], f[1], f[2]];
+            }
+            // rows of Aᵀ I (as columns above), then (Aᵀ I) A = (Aᵀ (Aᵀ I)ᵀ)ᵀ
+            for a in 0..3 {
+                let mut v = S::Vec::default();
+                for b in 0..3 {
+                    v[b] = cols[b][a];
+                }
+                let f = S::to_frame(&m.attitude, &v);
+                for b in 0..3 {
+                    inertia[3 * a + b] = f[b];
+                }
+            }
+        }
+        let sf = S::to_frame(&m.attitude, &s);
+        let mut c = S::Vec::default();
+        for k in 0..dim {
+            c[k] = if mass > 0.0 { sf[k] / mass } else { 0.0 };
+        }
+        Some(MountInertia {
+            mass,
+            center_of_mass: c,
+            inertia,
+        })
+    }
+
+    /// The velocity field of the rigid motion `w` (rates only) over all coordinates at `q`:
+    /// (free, held).
+    fn rigid_field(&self, w: &Motion<S>, q: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let mut uf = vec![0.0; q.len()];
+        let mut uh = vec![0.0; self.held.len()];
+        let zero = [0.0; 4];
+        for g in &self.groups {
+            let k = S::rigid_len(g.kind);
+            let vals = if is_held(g) {
+                gather_held(g, &self.held)
+            } else {
+                gather_free(g, q)
+            };
+            let (mut rel, mut rv, mut ra) = (zero, zero, zero);
+            let (mut qo, mut vo, mut ao) = (zero, zero, zero);
+            S::uncarry(
+                g.kind,
+                w,
+                [&vals[..k], &zero[..k], &zero[..k]],
+                [&mut rel[..k], &mut rv[..k], &mut ra[..k]],
+            );
+            S::carry(
+                g.kind,
+                w,
+                [&rel[..k], &zero[..k], &zero[..k]],
+                [&mut qo[..k], &mut vo[..k], &mut ao[..k]],
+            );
+            for (c, d) in g.dofs.iter().enumerate() {
+                match *d {
+                    Dof::Free(i) => uf[i as usize] = vo[c],
+                    Dof::Held(j) => uh[j as usize] = vo[c],
+                }
+            }
+        }
+        (uf, uh)
+    }
+}
+
+fn is_held(g: &RigidGroup) -> bool {
+    matches!(g.dofs.first(), Some(Dof::Held(_)))
+}
+
+fn gather_held(g: &RigidGroup, held: &[f64]) -> G {
+    let mut out = [0.0; 4];
+    for (o, d) in out.iter_mut().zip(&g.dofs) {
+        if let Dof::Held(j) = *d {
+            *o = held[j as usize];
+        }
+    }
+    out
+}
+
+fn gather_free(g: &RigidGroup, x: &[f64]) -> G {
+    let mut out = [0.0; 4];
+    for (o, d) in out.iter_mut().zip(&g.dofs) {
+        if let Dof::Free(i) = *d {
+            *o = x[i as usize];
+        }
+    }
+    out
+}
+
+fn scatter_free(g: &RigidGroup, vals: &G, x: &mut [f64]) {
+    for (v, d) in vals.iter().zip(&g.dofs) {
+        if let Dof::Free(i) = *d {
+            x[i as usize] = *v;
+        }
+    }
+}
