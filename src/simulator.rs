@@ -594,6 +594,76 @@ impl<S: SpaceModel> Simulator<S> {
         }
     }
 
+    /// The beam's apparent mass at the mount: the exact partial derivatives of the reaction
+    /// (`root.force` then `root.moment` components, rows) with respect to the mount's
+    /// acceleration and angular acceleration (columns), at the current state — what the
+    /// reaction's direct feedthrough is ([`Outputs::root_force`] after an acceleration input
+    /// changes by Δa is the current one plus this matrix times Δa). Each column is the
+    /// acceleration jump of a unit input change (`[M Φ_qᵀ; Φ_q 0]` solve, linear in it) on a
+    /// scratch state; the held Newton matrix is then rebuilt where it was, so the run continues
+    /// bit for bit. `None` for a fixed root or when the solve fails.
+    pub fn apparent_mass(&mut self) -> Option<Vec<Vec<f64>>> {
+        let m0 = *self.model.mount_motion()?;
+        let mem = self.integ.memory();
+        let at_matrix = self.model.mount_at_matrix();
+        let base = self.outputs();
+        let rot = S::moment_components(&m0.angular_velocity).len();
+        let mut cols = Vec::new();
+        for k in 0..S::DIM + rot {
+            let mut m1 = m0;
+            if k < S::DIM {
+                m1.acceleration[k] += 1.0;
+            } else {
+                S::moment_components_mut(&mut m1.angular_acceleration)[k - S::DIM] += 1.0;
+            }
+            let mut s = self.state.clone();
+            let ok = self
+                .integ
+                .change_inputs(&mut self.model, &mut s, |m| m.set_mount(&m1))
+                .is_ok();
+            let o = self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda);
+            self.model.set_mount(&m0);
+            if !ok {
+                self.rebuild_matrix(&mem, at_matrix);
+                return None;
+            }
+            let mut col: Vec<f64> = (0..S::DIM)
+                .map(|c| o.root_force[c] - base.root_force[c])
+                .collect();
+            let (mo, mb) = (
+                S::moment_components(&o.root_moment),
+                S::moment_components(&base.root_moment),
+            );
+            col.extend(mo.iter().zip(mb).map(|(a, b)| a - b));
+            cols.push(col);
+        }
+        self.rebuild_matrix(&mem, at_matrix);
+        let n = cols.len();
+        Some(
+            (0..n)
+                .map(|r| (0..n).map(|c| cols[c][r]).collect())
+                .collect(),
+        )
+    }
+
+    /// Rebuilds the held Newton matrix of `mem` under the inputs and mount motion it was
+    /// evaluated with, then returns the model to the current ones.
+    fn rebuild_matrix(&mut self, mem: &IntegratorMemory, at_matrix: Option<Motion<S>>) {
+        let next = Inputs::of(&self.model);
+        let now = self.model.mount_motion().copied();
+        self.applied.apply(&mut self.model);
+        if let Some(m) = &at_matrix {
+            self.model.set_mount(m);
+        }
+        if self.integ.restore_memory(&mut self.model, mem).is_err() {
+            self.integ.invalidate();
+        }
+        next.apply(&mut self.model);
+        if let Some(m) = &now {
+            self.model.set_mount(m);
+        }
+    }
+
     /// The mount's motion now (`None` for a fixed root).
     pub fn mount(&self) -> Option<Motion<S>> {
         self.mount.as_ref().map(|m| m.at(self.state.t))

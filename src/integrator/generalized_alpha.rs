@@ -264,14 +264,18 @@ impl GeneralizedAlpha {
             lambda_hessian: false,
         };
         model.eval(x, req, &mut before);
-        let drift_before = if model.held_rate() > 0.0 {
-            constraint_drift(model, &s.q, &s.v)
+        // a driven support: the acceleration-level constraint before and after, with the same
+        // difference step so that the velocity terms cancel
+        let driven = model.is_driven();
+        let eps = drift_step(model, &s.v);
+        let drift_before = if driven {
+            constraint_drift_with(model, &s.q, &s.v, eps)
         } else {
             None
         };
         change(model);
-        let drift_after = if drift_before.is_some() || model.held_rate() > 0.0 {
-            constraint_drift(model, &s.q, &s.v)
+        let drift_after = if driven {
+            constraint_drift_with(model, &s.q, &s.v, eps)
         } else {
             None
         };
@@ -445,13 +449,30 @@ fn constraint_drift<M: Integrable + ?Sized>(
     q: &[f64],
     v: &[f64],
 ) -> Option<Vec<f64>> {
+    let eps = drift_step(model, v);
+    constraint_drift_with(model, q, v, eps)
+}
+
+/// The time step of [`constraint_drift`]'s second difference: 1e-4 over the largest scaled
+/// rate of the coordinates and the held motion (at most 1e-4 s with a driven support).
+fn drift_step<M: Integrable + ?Sized>(model: &M, v: &[f64]) -> f64 {
+    let vmax = scaled_norm(v, model.scales()).max(model.held_rate());
+    // a driven support may start moving in the change the step serves: at most 1e-4 s
+    let floor = if model.is_driven() { 1.0 } else { 1e-300 };
+    1e-4 / vmax.max(floor)
+}
+
+/// [`constraint_drift`] with the difference step `eps` [s].
+fn constraint_drift_with<M: Integrable + ?Sized>(
+    model: &mut M,
+    q: &[f64],
+    v: &[f64],
+    eps: f64,
+) -> Option<Vec<f64>> {
     let m = model.constraints();
-    let held = model.held_rate();
-    if m == 0 || (held == 0.0 && v.iter().all(|x| *x == 0.0)) {
+    if m == 0 || (model.held_rate() == 0.0 && v.iter().all(|x| *x == 0.0)) {
         return None;
     }
-    let vmax = scaled_norm(v, model.scales()).max(held).max(1e-300);
-    let eps = 1e-4 / vmax;
     let mut phi = |q: &[f64], dt: f64| {
         let mut r = vec![0.0; m];
         model.constraint_values(q, dt, &mut r);

@@ -80,6 +80,11 @@ pub trait Integrable {
         constraint_rows(self, q, out);
     }
 
+    /// Whether held coordinates follow a prescribed motion (a driven support; default: no).
+    fn is_driven(&self) -> bool {
+        false
+    }
+
     /// How fast the held coordinates move: max |ḣ| + √max |ḧ| (held values in m or unit
     /// directions) [1/s]; 0 when they are fixed (the default).
     fn held_rate(&self) -> f64 {

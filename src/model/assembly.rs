@@ -445,6 +445,10 @@ impl<S: Space> Integrable for Model<S> {
         }
     }
 
+    fn is_driven(&self) -> bool {
+        self.mount.is_some()
+    }
+
     fn held_rate(&self) -> f64 {
         let max = |x: &[f64]| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         max(&self.held_v) + max(&self.held_a).sqrt()
