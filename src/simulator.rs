@@ -664,6 +664,26 @@ impl<S: SpaceModel> Simulator<S> {
         }
     }
 
+    /// How the mount input set for the next step changes the accelerations now (the
+    /// acceleration then the angular acceleration components, as checked and estimated by the
+    /// next [`Simulator::advance`]): what the reaction's direct feedthrough multiplies. `None`
+    /// without a pending input or when it would be refused.
+    pub fn mount_acceleration_change(&self) -> Option<Vec<f64>> {
+        let ms = self.mount.as_ref()?;
+        let input = ms.checked(ms.pending?, self.state.t).ok()?;
+        let now = ms.at(self.state.t);
+        let (a, b) = (input.motion, now);
+        let mut d: Vec<f64> = (0..S::DIM)
+            .map(|k| a.acceleration[k] - b.acceleration[k])
+            .collect();
+        let (wa, wb) = (
+            S::moment_components(&a.angular_acceleration),
+            S::moment_components(&b.angular_acceleration),
+        );
+        d.extend(wa.iter().zip(wb).map(|(x, y)| x - y));
+        Some(d)
+    }
+
     /// The mount's motion now (`None` for a fixed root).
     pub fn mount(&self) -> Option<Motion<S>> {
         self.mount.as_ref().map(|m| m.at(self.state.t))

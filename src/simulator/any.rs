@@ -302,14 +302,50 @@ impl InputId {
     }
 
     /// Writes this input into the scene (not validated; the vector gets all the components of
-    /// the scene's space).
+    /// the scene's space; a mount input into the `[mount]` start motion).
     pub fn set_in_scene(self, scene: &mut Scene, x: f64) {
         let (space, k) = (scene.space, self.component);
+        if self.kind.is_mount() {
+            // the start motion of a mounted scene: where `initialize` puts the beam
+            if scene.root != crate::scene::Root::Mounted {
+                return;
+            }
+            // the raw table (renormalized when the simulator is built), every vector complete
+            let mut m = scene.mount.clone().unwrap_or_default();
+            for (v, n) in [
+                (&mut m.position, space.dim()),
+                (&mut m.velocity, space.dim()),
+                (&mut m.acceleration, space.dim()),
+                (&mut m.angular_velocity, space.moment_dim()),
+                (&mut m.angular_acceleration, space.moment_dim()),
+            ] {
+                v.resize(n, 0.0);
+            }
+            if space == SpaceKind::Spatial && m.orientation.is_none() {
+                m.orientation = Some([1.0, 0.0, 0.0, 0.0]);
+            }
+            let slot = match self.kind {
+                InputKind::MountPosition => m.position.get_mut(k),
+                InputKind::MountVelocity => m.velocity.get_mut(k),
+                InputKind::MountAcceleration => m.acceleration.get_mut(k),
+                InputKind::MountAngularVelocity => m.angular_velocity.get_mut(k),
+                InputKind::MountAngularAcceleration => m.angular_acceleration.get_mut(k),
+                InputKind::MountAttitude => match space {
+                    SpaceKind::Planar => Some(&mut m.angle),
+                    SpaceKind::Spatial => m.orientation.as_mut().and_then(|e| e.get_mut(k)),
+                },
+                _ => None,
+            };
+            if let Some(slot) = slot {
+                *slot = x;
+            }
+            scene.mount = Some(m);
+            return;
+        }
         let (v, n) = match self.kind {
             InputKind::TipForce => (&mut scene.tip.force, space.dim()),
             InputKind::TipMoment => (&mut scene.tip.moment, space.moment_dim()),
             InputKind::Gravity => (&mut scene.gravity, space.dim()),
-            // the mount's inputs are not scene values
             _ => return,
         };
         v.resize(n.max(v.len()).max(k + 1), 0.0);
@@ -523,6 +559,20 @@ impl AnySimulator {
                     return false;
                 };
                 let known = m.slot(id).map(|slot| *slot = x).is_some();
+                // an input set again forgets its derivatives (they held for one step)
+                let velocity_mode = s.mount_accelerations_given() == Some(false);
+                for order in [1, 2] {
+                    if let Some(d) = m.derivative_slot(id, order, velocity_mode) {
+                        if !(velocity_mode && order == 1) {
+                            *d = 0.0;
+                        }
+                    }
+                }
+                if velocity_mode
+                    && matches!(id.kind, InputKind::MountVelocity | InputKind::MountAngularVelocity)
+                {
+                    m.accelerations = false;
+                }
                 known && s.set_mount_unchecked(m)
             });
         }
@@ -565,6 +615,21 @@ impl AnySimulator {
             }
             s.set_mount_unchecked(m)
         })
+    }
+
+    /// [`Simulator::apparent_mass`].
+    pub fn apparent_mass(&mut self) -> Option<Vec<Vec<f64>>> {
+        each!(self, s => s.apparent_mass())
+    }
+
+    /// [`Simulator::mount_acceleration_change`].
+    pub fn mount_acceleration_change(&self) -> Option<Vec<f64>> {
+        each!(self, s => s.mount_acceleration_change())
+    }
+
+    /// Whether the mount's accelerations are inputs (`None` for a fixed root).
+    pub fn mount_accelerations_given(&self) -> Option<bool> {
+        each!(self, s => s.mount_accelerations_given())
     }
 
     /// Writes the inputs set for the next step (tip force, tip moment, gravity) into `scene`.

@@ -562,7 +562,7 @@ impl CoSimModel for Toy {
     }
 
     /// ∂a_i/∂F_i = 1/m (the only direct dependencies).
-    fn partial_derivative(&self, output: usize, input: usize) -> Result<f64, String> {
+    fn partial_derivative(&mut self, output: usize, input: usize) -> Result<f64, String> {
         let (o, i) = (self.vars[output].vr, self.vars[input].vr);
         match (o, i) {
             (vr::ACC_X, vr::FORCE_X) | (vr::ACC_Y, vr::FORCE_Y) => Ok(1.0 / self.p.mass),

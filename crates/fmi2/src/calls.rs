@@ -466,7 +466,7 @@ impl<M: CoSimModel> Instance<M> {
     /// an output lists in `depends_on`, zero for the others. Needs
     /// `providesDirectionalDerivative="true"`. Every reference and seed is checked first.
     pub fn get_directional_derivative(
-        &self,
+        &mut self,
         unknowns: &[fmi2ValueReference],
         knowns: &[fmi2ValueReference],
         dv_known: &[f64],
@@ -500,17 +500,18 @@ impl<M: CoSimModel> Instance<M> {
                 Err(e) => return self.error(f, format!("vUnknown_ref: {e}")),
             }
         }
-        let vars = self.model.variables();
         for (out, &u) in dv_unknown.iter_mut().zip(&unknown_index) {
             let mut sum = 0.0;
             for ((&k, &kr), &dv) in known_index.iter().zip(knowns).zip(dv_known) {
-                if !vars[u].depends_on.contains(&kr) {
+                if !self.model.variables()[u].depends_on.contains(&kr) {
                     continue;
                 }
                 match self.model.partial_derivative(u, k) {
                     Ok(d) => sum += d * dv,
                     Err(e) => {
-                        return self.error(f, format!("∂{}/∂{}: {e}", vars[u].name, vars[k].name))
+                        let vars = self.model.variables();
+                        let msg = format!("∂{}/∂{}: {e}", vars[u].name, vars[k].name);
+                        return self.error(f, msg);
                     }
                 }
             }

@@ -177,8 +177,9 @@ pub trait CoSimModel: Sized + Send + 'static {
 
     /// fmi2GetDirectionalDerivative: the partial derivative of the output `variables()[output]`
     /// with respect to the input `variables()[input]` at the current state (the input is one
-    /// the output lists in [`Variable::depends_on`]; others are zero and not asked).
-    fn partial_derivative(&self, output: usize, input: usize) -> Result<f64, String> {
+    /// the output lists in [`Variable::depends_on`]; others are zero and not asked). Mutable:
+    /// a model may compute and cache the partials on demand; it must not change its state.
+    fn partial_derivative(&mut self, output: usize, input: usize) -> Result<f64, String> {
         let _ = (output, input);
         Err("directional derivatives are not provided by this model".into())
     }

@@ -9,8 +9,8 @@ pub mod variables;
 use fmi2::{CoSimModel, ModelInfo, StepError, Variable};
 
 use hybeam::error::SimError;
-use hybeam::scene::Scene;
-use hybeam::simulator::{AnyOutputs, AnySimulator};
+use hybeam::scene::{Root, Scene};
+use hybeam::simulator::{AnyOutputs, AnySimulator, InputKind, Quantity};
 
 use variables::{Access, Table};
 
@@ -27,9 +27,14 @@ pub struct BeamFmu {
     /// The variables and how each is accessed.
     table: Table,
     sim: AnySimulator,
-    /// Outputs of the current state, computed once per state change (no direct feedthrough:
-    /// setting an input does not change them).
+    /// Outputs of the current state, computed once per state change (setting an input changes
+    /// only the reaction of a mounted beam, through `apparent`).
     outputs: AnyOutputs,
+    /// A mounted beam's apparent mass at the current state (the reaction's partials by the
+    /// mount accelerations), computed with the outputs.
+    apparent: Option<Vec<Vec<f64>>>,
+    /// The last communication step [s] (the velocity-input mode's partials divide by it).
+    last_step: f64,
 }
 
 impl BeamFmu {
@@ -48,6 +53,16 @@ impl BeamFmu {
 
     fn refresh_outputs(&mut self) {
         self.outputs = self.sim.outputs();
+        self.apparent = self.sim.apparent_mass();
+    }
+
+    /// The reaction component `row` (force then moment) with the direct feedthrough of the
+    /// mount accelerations set for the next step: exact, the reaction being linear in them.
+    fn reaction_now(&self, row: usize, cached: f64) -> f64 {
+        match (&self.apparent, self.sim.mount_acceleration_change()) {
+            (Some(j), Some(d)) => cached + j[row].iter().zip(&d).map(|(a, b)| a * b).sum::<f64>(),
+            _ => cached,
+        }
     }
 
     /// The parameter values, in table order.
@@ -85,8 +100,18 @@ fn model_info(scene: &Scene) -> ModelInfo {
         start_time: 0.0,
         stop_time: scene.simulation.t_end,
         step_size: scene.simulation.output_step,
-        // a fixed-root beam has no direct feedthrough and no input interpolation
-        capabilities: fmi2::Capabilities::default(),
+        // a fixed-root beam has no direct feedthrough and no input interpolation; a mounted
+        // one's reaction depends directly on the mount accelerations, which the host may
+        // interpolate with derivatives
+        capabilities: if scene.root == Root::Mounted {
+            fmi2::Capabilities {
+                input_derivative_order: 2,
+                output_derivative_order: 0,
+                directional_derivative: true,
+            }
+        } else {
+            fmi2::Capabilities::default()
+        },
     }
 }
 
@@ -103,14 +128,19 @@ impl CoSimModel for BeamFmu {
         let table = Table::of(&scene);
         let sim = AnySimulator::new(scene.clone()).map_err(|e| e.to_string())?;
         let outputs = sim.outputs();
-        Ok(Self {
+        let step = scene.simulation.output_step;
+        let mut fmu = Self {
             scene_text: scene_toml.to_string(),
             base: scene.clone(),
             scene,
             table,
             sim,
             outputs,
-        })
+            apparent: None,
+            last_step: step,
+        };
+        fmu.refresh_outputs();
+        Ok(fmu)
     }
 
     fn model_info(&self) -> ModelInfo {
@@ -125,7 +155,17 @@ impl CoSimModel for BeamFmu {
         let access = self.table.access(index);
         let value = match access {
             Access::Input(id) => self.sim.input(id),
-            Access::Output(id) => self.outputs.value(id),
+            Access::Output(id) => {
+                let value = self.outputs.value(id);
+                let dim = self.sim.scene().space.dim();
+                match (id.quantity, value) {
+                    (Quantity::RootForce, Some(x)) => Some(self.reaction_now(id.component, x)),
+                    (Quantity::RootMoment, Some(x)) => {
+                        Some(self.reaction_now(dim + id.component, x))
+                    }
+                    _ => value,
+                }
+            }
             Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
                 access.parameter(&self.scene)
             }
@@ -179,8 +219,58 @@ impl CoSimModel for BeamFmu {
         // one clock: the simulator starts at the start time and ends each step at the host's
         // t + h (the FMI layer checked t against its time, which is the simulator's)
         self.sim.advance(t + h).map_err(step_error)?;
+        self.last_step = h;
         self.refresh_outputs();
         Ok(())
+    }
+
+    /// Mount inputs only (a mounted scene): the accelerations' derivatives shape the base
+    /// motion over the step (or, with `motion_input = "pose_velocity"`, the velocities'); the
+    /// pose's derivatives are implied by the velocities and not used. The tip loads take none.
+    fn set_input_derivative(&mut self, index: usize, order: u32, value: f64) -> Result<(), String> {
+        let name = &self.table.variables()[index].name;
+        match self.table.access(index) {
+            Access::Input(id) if self.sim.set_input_derivative(id, order, value) => Ok(()),
+            _ => Err(format!(
+                "{name}: input derivatives are taken for the mount inputs only (the tip loads are held over a step)"
+            )),
+        }
+    }
+
+    /// The apparent mass: ∂root.force, ∂root.moment by the mount accelerations (or, with
+    /// velocity inputs, by the velocities through the backward-difference estimate: divided by
+    /// the last communication step).
+    fn partial_derivative(&mut self, output: usize, input: usize) -> Result<f64, String> {
+        let names = |t: &Table| {
+            let v = t.variables();
+            format!("∂{}/∂{}", v[output].name, v[input].name)
+        };
+        let (Access::Output(o), Access::Input(i)) =
+            (self.table.access(output), self.table.access(input))
+        else {
+            return Err(format!(
+                "{}: not an output and an input",
+                names(&self.table)
+            ));
+        };
+        let dim = self.sim.scene().space.dim();
+        let row = match o.quantity {
+            Quantity::RootForce => o.component,
+            Quantity::RootMoment => dim + o.component,
+            _ => return Ok(0.0),
+        };
+        let (col, scale) = match i.kind {
+            InputKind::MountAcceleration => (i.component, 1.0),
+            InputKind::MountAngularAcceleration => (dim + i.component, 1.0),
+            InputKind::MountVelocity => (i.component, 1.0 / self.last_step),
+            InputKind::MountAngularVelocity => (dim + i.component, 1.0 / self.last_step),
+            _ => return Ok(0.0),
+        };
+        let j = self
+            .apparent
+            .as_ref()
+            .ok_or_else(|| format!("{}: the apparent mass is not available", names(&self.table)))?;
+        Ok(j[row][col] * scale)
     }
 
     fn reset(&mut self) -> Result<(), String> {

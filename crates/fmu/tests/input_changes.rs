@@ -12,18 +12,7 @@ use host::*;
 
 /// A Case 1 instance of `scene`, set up at t = 0 and initialized.
 fn initialized(scene: &str, tag: &str) -> Inst {
-    let args = InstantiateArgs {
-        guid: guid_of(scene),
-        location: Some(file_uri(&resources_with(scene, tag))),
-        ..InstantiateArgs::valid(tag)
-    };
-    let (c, log) = instantiate_raw(&args);
-    assert!(!c.is_null(), "instantiate failed: {:?}", log.entries());
-    let i = Inst { c, log, api: api() };
-    assert_eq!(i.setup(0.0, None), OK);
-    assert_eq!(i.enter_init(), OK);
-    assert_eq!(i.exit_init(), OK);
-    i
+    initialized_with(scene, tag)
 }
 
 /// Case 1 with the `[tip]` table `tip` (a constant load) in the scene, internal step `h` [s] and

@@ -13,8 +13,8 @@
 //! checked against this table by `tests/variables_doc.rs`.
 
 use fmi2::{Causality, Variability, Variable};
-use hybeam::scene::{Scene, Section, Segment, SegmentKind};
-use hybeam::simulator::{InputId, OutputId};
+use hybeam::scene::{MotionInput, Root, Scene, Section, Segment, SegmentKind};
+use hybeam::simulator::{InputId, InputKind, OutputId, Quantity};
 
 /// How the model reads and writes one variable.
 #[derive(Debug, Clone, Copy)]
@@ -122,6 +122,97 @@ pub const OUTPUTS: [Row; 23] = [
     ("tip.angular_velocity.x", 28, Some("rad/s"), "angular velocity of the tip section, global x"),
     ("tip.angular_velocity.y", 29, Some("rad/s"), "angular velocity of the tip section, global y"),
     ("tip.angular_velocity.z", 21, Some("rad/s"), "angular velocity of the tip section, global z (counter-clockwise in the plane)"),
+];
+
+/// Mount inputs of a `root = "mounted"` scene (world axes, SI; the plane's angular ones
+/// without an axis suffix): 40–61.
+pub const MOUNT_INPUTS: [Row; 22] = [
+    ("root.position.x", 40, Some("m"), "mount point, world x"),
+    ("root.position.y", 41, Some("m"), "mount point, world y"),
+    ("root.position.z", 42, Some("m"), "mount point, world z"),
+    ("root.angle", 43, Some("rad"), "angle of the mount frame's x axis from world x, counter-clockwise"),
+    ("root.orientation.e0", 44, None, "Euler parameter e0 (scalar) of the mount frame to world rotation (renormalized; all zero is refused)"),
+    ("root.orientation.e1", 45, None, "Euler parameter e1 of the mount frame to world rotation"),
+    ("root.orientation.e2", 46, None, "Euler parameter e2 of the mount frame to world rotation"),
+    ("root.orientation.e3", 47, None, "Euler parameter e3 of the mount frame to world rotation"),
+    ("root.velocity.x", 48, Some("m/s"), "velocity of the mount point, world x"),
+    ("root.velocity.y", 49, Some("m/s"), "velocity of the mount point, world y"),
+    ("root.velocity.z", 50, Some("m/s"), "velocity of the mount point, world z"),
+    ("root.angular_velocity", 51, Some("rad/s"), "angular velocity of the mount frame, counter-clockwise"),
+    ("root.angular_velocity.x", 52, Some("rad/s"), "angular velocity of the mount frame, world x"),
+    ("root.angular_velocity.y", 53, Some("rad/s"), "angular velocity of the mount frame, world y"),
+    ("root.angular_velocity.z", 54, Some("rad/s"), "angular velocity of the mount frame, world z"),
+    ("root.acceleration.x", 55, Some("m/s2"), "acceleration of the mount point, world x"),
+    ("root.acceleration.y", 56, Some("m/s2"), "acceleration of the mount point, world y"),
+    ("root.acceleration.z", 57, Some("m/s2"), "acceleration of the mount point, world z"),
+    ("root.angular_acceleration", 58, Some("rad/s2"), "angular acceleration of the mount frame, counter-clockwise"),
+    ("root.angular_acceleration.x", 59, Some("rad/s2"), "angular acceleration of the mount frame, world x"),
+    ("root.angular_acceleration.y", 60, Some("rad/s2"), "angular acceleration of the mount frame, world y"),
+    ("root.angular_acceleration.z", 61, Some("rad/s2"), "angular acceleration of the mount frame, world z"),
+];
+
+/// The beam's rigid inertia at the mount, outputs of a mounted scene: 70–79.
+pub const MOUNT_OUTPUTS: [Row; 10] = [
+    (
+        "root.mass",
+        70,
+        Some("kg"),
+        "mass of the beam (for interface-mass coupling)",
+    ),
+    (
+        "root.center_of_mass.x",
+        71,
+        Some("m"),
+        "centre of mass of the beam relative to the mount point, mount frame x",
+    ),
+    (
+        "root.center_of_mass.y",
+        72,
+        Some("m"),
+        "centre of mass of the beam relative to the mount point, mount frame y",
+    ),
+    (
+        "root.center_of_mass.z",
+        73,
+        Some("m"),
+        "centre of mass of the beam relative to the mount point, mount frame z",
+    ),
+    (
+        "root.inertia.xx",
+        74,
+        Some("kg.m2"),
+        "inertia of the beam about the mount point, mount frame xx",
+    ),
+    (
+        "root.inertia.yy",
+        75,
+        Some("kg.m2"),
+        "inertia of the beam about the mount point, mount frame yy",
+    ),
+    (
+        "root.inertia.zz",
+        76,
+        Some("kg.m2"),
+        "inertia of the beam about the mount point, mount frame zz",
+    ),
+    (
+        "root.inertia.xy",
+        77,
+        Some("kg.m2"),
+        "inertia of the beam about the mount point, mount frame xy",
+    ),
+    (
+        "root.inertia.xz",
+        78,
+        Some("kg.m2"),
+        "inertia of the beam about the mount point, mount frame xz",
+    ),
+    (
+        "root.inertia.yz",
+        79,
+        Some("kg.m2"),
+        "inertia of the beam about the mount point, mount frame yz",
+    ),
 ];
 
 /// Gravity, tunable parameters of both spaces.
@@ -286,8 +377,9 @@ impl Table {
             variables: Vec::new(),
             access: Vec::new(),
         };
-        let inputs = InputId::named(scene.space);
-        let outputs = OutputId::named(scene.space);
+        let mounted = scene.root == Root::Mounted;
+        let inputs = InputId::named_with(scene.space, mounted);
+        let outputs = OutputId::named_with(scene.space, mounted);
         // the rows whose name the simulator has in this space, with its id
         fn present<'a, I: Copy>(
             rows: &'a [Row],
@@ -309,13 +401,45 @@ impl Table {
                 description: (*description).into(),
                 depends_on: Vec::new(),
             };
-        for (row, id) in present(&INPUTS, &inputs) {
+        // with motion_input = "pose_velocity" the accelerations are estimated, not inputs
+        let velocity_mode = scene
+            .mount_start()
+            .is_some_and(|m| m.motion_input == MotionInput::PoseVelocity);
+        let estimated = |id: &InputId| {
+            velocity_mode
+                && matches!(
+                    id.kind,
+                    InputKind::MountAcceleration | InputKind::MountAngularAcceleration
+                )
+        };
+        let rows = present(&INPUTS, &inputs).chain(present(&MOUNT_INPUTS, &inputs));
+        for (row, id) in rows.filter(|(_, id)| !estimated(id)) {
             let start = Some(id.scene_value(scene));
             let v = variable(row, Causality::Input, Variability::Continuous, start);
             t.push(v, Access::Input(id));
         }
-        for (row, id) in present(&OUTPUTS, &outputs) {
-            let v = variable(row, Causality::Output, Variability::Continuous, None);
+        // the reaction depends directly on the inputs that define the mount's accelerations
+        let drives: Vec<u32> = t
+            .access
+            .iter()
+            .zip(&t.variables)
+            .filter(|(a, _)| match a {
+                Access::Input(id) => match id.kind {
+                    InputKind::MountAcceleration | InputKind::MountAngularAcceleration => {
+                        !velocity_mode
+                    }
+                    InputKind::MountVelocity | InputKind::MountAngularVelocity => velocity_mode,
+                    _ => false,
+                },
+                _ => false,
+            })
+            .map(|(_, v)| v.vr)
+            .collect();
+        for (row, id) in present(&OUTPUTS, &outputs).chain(present(&MOUNT_OUTPUTS, &outputs)) {
+            let mut v = variable(row, Causality::Output, Variability::Continuous, None);
+            if matches!(id.quantity, Quantity::RootForce | Quantity::RootMoment) {
+                v.depends_on = drives.clone();
+            }
             t.push(v, Access::Output(id));
         }
         for (row, id) in present(&GRAVITY, &inputs) {
@@ -394,12 +518,23 @@ mod tests {
     /// rows share a value reference.
     #[test]
     fn every_named_scalar_has_one_row_and_vrs_are_unique() {
-        let rows: Vec<&Row> = INPUTS.iter().chain(&OUTPUTS).chain(&GRAVITY).collect();
+        let rows: Vec<&Row> = INPUTS
+            .iter()
+            .chain(&OUTPUTS)
+            .chain(&GRAVITY)
+            .chain(&MOUNT_INPUTS)
+            .chain(&MOUNT_OUTPUTS)
+            .collect();
         let mut names = Vec::new();
         for space in [SpaceKind::Planar, SpaceKind::Spatial] {
-            let inputs = InputId::named(space).into_iter().map(|(n, _)| n);
-            names.extend(inputs.chain(OutputId::named(space).into_iter().map(|(n, _)| n)));
+            let inputs = InputId::named_with(space, true).into_iter().map(|(n, _)| n);
+            let outputs = OutputId::named_with(space, true)
+                .into_iter()
+                .map(|(n, _)| n);
+            names.extend(inputs.chain(outputs));
         }
+        names.sort();
+        names.dedup();
         for name in &names {
             let n = rows.iter().filter(|r| r.0 == name).count();
             assert_eq!(n, 1, "{name}: {n} rows");

@@ -242,13 +242,34 @@ pub fn guid_of(scene: &str) -> String {
 
 /// Value reference of a variable of the scene's model, by name.
 pub fn vr(name: &str) -> u32 {
-    let model = hybeam_fmu::FmuModel::from_resource(SCENE).unwrap();
+    vr_in(SCENE, name)
+}
+
+/// Value reference of a variable of the model of `scene`, by name.
+pub fn vr_in(scene: &str, name: &str) -> u32 {
+    let model = hybeam_fmu::FmuModel::from_resource(scene).unwrap();
     model
         .variables()
         .iter()
         .find(|v| v.name == name)
         .unwrap_or_else(|| panic!("no variable {name}"))
         .vr
+}
+
+/// An instance of `scene` (resources under `tag`), set up at t = 0 and initialized.
+pub fn initialized_with(scene: &str, tag: &str) -> Inst {
+    let args = InstantiateArgs {
+        guid: guid_of(scene),
+        location: Some(file_uri(&resources_with(scene, tag))),
+        ..InstantiateArgs::valid(tag)
+    };
+    let (c, log) = instantiate_raw(&args);
+    assert!(!c.is_null(), "instantiate failed: {:?}", log.entries());
+    let i = Inst { c, log, api: api() };
+    assert_eq!(i.setup(0.0, None), OK);
+    assert_eq!(i.enter_init(), OK);
+    assert_eq!(i.exit_init(), OK);
+    i
 }
 
 /// The value references of the variables matching `pred`.
