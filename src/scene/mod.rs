@@ -763,11 +763,17 @@ impl Scene {
                 }
             }
         }
-        let spins = m
-            .angular_velocity
-            .iter()
-            .chain(&m.angular_acceleration)
-            .any(|x| *x != 0.0);
+        // a turning mount's centrifugal and Euler fields (|ω|²L, |α|L) against gravity minus the
+        // mount's acceleration: a host at rest reports rounding-level rates, which pass
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let turning = norm(&m.angular_velocity).powi(2) + norm(&m.angular_acceleration);
+        let field: Vec<f64> = (0..self.space.dim())
+            .map(|k| {
+                let g = self.gravity.get(k).copied().unwrap_or(0.0);
+                g - m.acceleration.get(k).copied().unwrap_or(0.0)
+            })
+            .collect();
+        let spins = turning * self.total_length() > 1e-9 * norm(&field).max(1.0);
         if self.initial.state == InitialState::Static && spins {
             return Err(SceneError(
                 "initial.state = \"static\" with a turning mount (mount.angular_velocity or angular_acceleration nonzero): a static state in the mount frame exists only for a mount that does not turn; use initial.state = \"straight\"".into(),

@@ -36,6 +36,30 @@ use fmi2::{Capabilities, Causality, CoSimModel, ModelInfo, StepError, Variabilit
 
 fmi2::export_fmi2!(Vehicle);
 
+/// Solves the 4×4 system `a x = b` by Gaussian elimination with partial pivoting.
+fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> [f64; 4] {
+    for c in 0..4 {
+        let p = (c..4)
+            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
+            .unwrap_or(c);
+        a.swap(c, p);
+        b.swap(c, p);
+        for r in c + 1..4 {
+            let f = a[r][c] / a[c][c];
+            for k in c..4 {
+                a[r][k] -= f * a[c][k];
+            }
+            b[r] -= f * b[c];
+        }
+    }
+    let mut x = [0.0; 4];
+    for r in (0..4).rev() {
+        let s: f64 = (r + 1..4).map(|k| a[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / a[r][r];
+    }
+    x
+}
+
 /// Work cap of one communication step (internal steps).
 const MAX_STEPS: f64 = 1e6;
 
@@ -139,6 +163,10 @@ pub struct Solver {
     pub gravity: f64,
     /// Fixed RK4 step [s].
     pub internal_step: f64,
+    /// Start in static equilibrium under gravity and the beam reaction set before
+    /// initialization (default: every spring at free length).
+    #[serde(default)]
+    pub static_start: bool,
 }
 
 /// The car's constant data.
@@ -251,6 +279,35 @@ impl Car {
             + 0.5 * p.rear_stiffness * dr * dr
             + 0.5 * w.tire_stiffness * ((hf - s[2]).powi(2) + (hr - s[3]).powi(2));
         kinetic + springs + g * (b.mass * s[0] + w.mass * (s[2] + s[3]))
+    }
+
+    /// The static equilibrium at `t` (velocities zero) under gravity and the beam reaction
+    /// `f`, `m`: Newton on the accelerations over the four positions (linear but for the
+    /// mount's rotation of the beam moment arm), Jacobian by unit differences.
+    pub fn static_state(&self, t: f64, f: [f64; 2], m: f64) -> [f64; N] {
+        let mut s = [0.0; N];
+        for _ in 0..8 {
+            let r = self.rate(t, &s, f, m);
+            let res = [r[4], r[5], r[6], r[7]];
+            if res.iter().all(|x| x.abs() < 1e-13) {
+                break;
+            }
+            let mut jac = [[0.0; 4]; 4];
+            for c in 0..4 {
+                let mut p = s;
+                let h = 1e-6;
+                p[c] += h;
+                let rp = self.rate(t, &p, f, m);
+                for (row, j) in jac.iter_mut().enumerate() {
+                    j[c] = (rp[4 + row] - res[row]) / h;
+                }
+            }
+            let dx = solve4(jac, res.map(|x| -x));
+            for k in 0..4 {
+                s[k] += dx[k];
+            }
+        }
+        s
     }
 
     /// One RK4 step of `dt` from `t` with the beam reaction polynomial `input(τ)`.
@@ -442,7 +499,7 @@ impl CoSimModel for Vehicle {
                 capabilities: Capabilities {
                     input_derivative_order: 2,
                     output_derivative_order: 0,
-                    directional_derivative: false,
+                    directional_derivative: true,
                 },
             },
             vars: variables(),
@@ -494,6 +551,10 @@ impl CoSimModel for Vehicle {
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         self.t = start_time;
         self.s = [0.0; N];
+        if self.car.solver.static_start {
+            let (f, m) = self.input_at(0.0);
+            self.s = self.car.static_state(start_time, f, m);
+        }
         Ok(())
     }
 
@@ -557,6 +618,25 @@ impl CoSimModel for Vehicle {
             row.copy_from_slice(&f[1 + N + 3 * k..4 + N + 3 * k]);
         }
         Ok(())
+    }
+
+    /// ∂(mount acceleration, angular acceleration)/∂(beam reaction inputs): the car is linear
+    /// in them, so a unit change of the input gives the partial exactly (up to rounding).
+    fn partial_derivative(&mut self, output: usize, input: usize) -> Result<f64, String> {
+        let (o, i) = (self.vars[output].vr, self.vars[input].vr);
+        if !(vr::MOUNT_AX..=vr::MOUNT_ALPHA).contains(&o)
+            || !(vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z).contains(&i)
+        {
+            return Ok(0.0);
+        }
+        let row = (o - vr::MOUNT_X) as usize;
+        let k = (i - vr::BEAM_FORCE_X) as usize;
+        let base = self.mount()[row];
+        let kept = self.force[0][k];
+        self.force[0][k] = kept + 1.0;
+        let bumped = self.mount()[row];
+        self.force[0][k] = kept;
+        Ok(bumped - base)
     }
 
     fn set_input_derivative(&mut self, index: usize, order: u32, value: f64) -> Result<(), String> {

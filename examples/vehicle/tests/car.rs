@@ -10,8 +10,9 @@ use nalgebra::{Matrix4, SymmetricEigen};
 
 const SCENE: &str = include_str!("../vehicle.toml");
 
+/// The shipped car released from free-length springs (not its static start), with `edit`.
 fn scene(edit: &[(&str, &str)]) -> String {
-    let mut s = SCENE.to_string();
+    let mut s = SCENE.replace("static_start = true", "static_start = false");
     for (from, to) in edit {
         assert!(s.contains(from), "{from}");
         s = s.replace(from, to);
@@ -59,6 +60,15 @@ fn settles_at_the_static_equilibrium() {
     let (h, p) = (get(&i, vr::HEAVE), get(&i, vr::PITCH));
     assert!((h - heave).abs() < 1e-9, "heave {h} vs {heave}");
     assert!((p - pitch).abs() < 1e-9, "pitch {p} vs {pitch}");
+    // static_start: the same equilibrium at once, and it stays (1e-9 m over 1 s)
+    let text = text.replace("static_start = false", "static_start = true");
+    let mut s = started(&text);
+    let (h0, p0) = (get(&s, vr::HEAVE), get(&s, vr::PITCH));
+    assert!((h0 - heave).abs() < 1e-9 && (p0 - pitch).abs() < 1e-9, "{h0} {p0}");
+    for k in 0..10 {
+        assert_eq!(s.do_step(0.1 * k as f64, 0.1), Status::Ok);
+    }
+    assert!((get(&s, vr::HEAVE) - heave).abs() < 1e-9);
 }
 
 /// The model's stiffness-over-mass block (central differences of its accelerations) equals
