@@ -50,6 +50,9 @@ for fmu in "${FMUS[@]}"; do
     .venv/bin/python -m pytest -q tests/python --fmu "$fmu"
 done
 
+echo "== vehicle example: car + mounted boom co-simulation in fmpy"
+bash examples/vehicle/run.sh --test
+
 if [ "$WIN64" = 0 ]; then
     echo "== win64 test skipped (HYBEAM_WIN64=0)"
 elif [ "$WIN64" = 1 ] || { [ -x /usr/bin/cargo ] && command -v x86_64-w64-mingw32-gcc >/dev/null &&

@@ -175,8 +175,8 @@ def plot(rows, path):
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
     t = rows[:, 0]
-    ax[0].plot(t, 1e3 * rows[:, 1], label="body heave [mm]")
-    ax[0].plot(t, 1e3 * rows[:, 2], label="body pitch [mrad]")
+    ax[0].plot(t, 1e3 * (rows[:, 1] - rows[0, 1]), label="body heave from the static start [mm]")
+    ax[0].plot(t, 1e3 * (rows[:, 2] - rows[0, 2]), label="body pitch from the static start [mrad]")
     ax[0].legend()
     ax[1].plot(t, 1e3 * rows[:, 10], label="boom tip deflection in the mount frame [mm]")
     ax[1].legend()
