@@ -40,6 +40,19 @@ fn spatial_twin(planar: &Scene, torsion: bool) -> Scene {
     if s.root == Root::Pinned {
         s.root = Root::Ball;
     }
+    if let Some(m) = planar.mount_start() {
+        // the mount in the x–y plane: turned about z, turning about z
+        let mut t = m.clone();
+        for v in [&mut t.position, &mut t.velocity, &mut t.acceleration] {
+            v.push(0.0);
+        }
+        t.angular_velocity = vec![0.0, 0.0, m.angular_velocity[0]];
+        t.angular_acceleration = vec![0.0, 0.0, m.angular_acceleration[0]];
+        let half = 0.5 * m.angle;
+        t.orientation = Some([half.cos(), 0.0, 0.0, half.sin()]);
+        t.angle = 0.0;
+        s.mount = Some(t);
+    }
     s.validate()
         .expect("the twin of a valid planar scene is valid");
     s

@@ -14,6 +14,18 @@ fn mounted(mount: &str) -> String {
     format!("{s}\n[mount]\n{mount}\n")
 }
 
+/// The planar mount's acceleration inputs.
+const ACCELERATIONS: [&str; 3] = [
+    "root.acceleration.x",
+    "root.acceleration.y",
+    "root.angular_acceleration",
+];
+
+/// Value references of `names` in the FMU of `scene`.
+fn vrs(scene: &str, names: &[&str]) -> Vec<u32> {
+    names.iter().map(|n| vr_in(scene, n)).collect()
+}
+
 fn directional(i: &Inst, unknowns: &[u32], knowns: &[u32], seeds: &[f64]) -> Vec<f64> {
     let mut out = vec![f64::NAN; unknowns.len()];
     let s = unsafe {
@@ -53,18 +65,8 @@ fn reaction_feeds_through_the_mount_acceleration_and_its_derivative_is_provided(
     for k in 0..20 {
         assert_eq!(i.do_step(k as f64 * 1e-3, 1e-3), OK);
     }
-    let outs: Vec<u32> = ["root.force.x", "root.force.y", "root.moment.z"]
-        .iter()
-        .map(|n| vr_in(&scene, n))
-        .collect();
-    let ins: Vec<u32> = [
-        "root.acceleration.x",
-        "root.acceleration.y",
-        "root.angular_acceleration",
-    ]
-    .iter()
-    .map(|n| vr_in(&scene, n))
-    .collect();
+    let outs = vrs(&scene, &["root.force.x", "root.force.y", "root.moment.z"]);
+    let ins = vrs(&scene, &ACCELERATIONS);
     let before = i.get_real(&outs).unwrap();
     let a0 = i.get_real(&ins).unwrap();
     for (c, &input) in ins.iter().enumerate() {
@@ -173,4 +175,29 @@ fn bad_mount_inputs_are_discarded_with_the_state_kept() {
     assert_eq!(s.set_real(&e, &[2.0, 0.0, 0.0, 0.0]), OK, "renormalized");
     assert_eq!(s.do_step(0.0, 1e-3), OK);
     assert_eq!(s.free_state(&mut saved), OK);
+}
+
+/// The description of a mounted beam declares what the FMU does: input interpolation, the
+/// directional derivative, and the reaction's dependencies on exactly the acceleration inputs.
+#[test]
+fn model_description_declares_the_feedthrough() {
+    let scene = mounted("");
+    let xml = hybeam_fmu::FmuModel::model_description(&scene, "m").unwrap();
+    assert!(xml.contains("canInterpolateInputs=\"true\""));
+    assert!(xml.contains("providesDirectionalDerivative=\"true\""));
+    let model = <hybeam_fmu::FmuModel as fmi2::CoSimModel>::from_resource(&scene).unwrap();
+    let vars = fmi2::CoSimModel::variables(&model);
+    let acc = vrs(&scene, &ACCELERATIONS);
+    for v in vars {
+        let want: &[u32] = if v.name.starts_with("root.force") || v.name.starts_with("root.moment")
+        {
+            &acc
+        } else {
+            &[]
+        };
+        assert_eq!(v.depends_on, want, "{}", v.name);
+    }
+    let fixed = hybeam_fmu::FmuModel::model_description(SCENE, "f").unwrap();
+    assert!(fixed.contains("canInterpolateInputs=\"false\""));
+    assert!(fixed.contains("providesDirectionalDerivative=\"false\""));
 }

@@ -64,7 +64,10 @@ fn settles_at_the_static_equilibrium() {
     let text = text.replace("static_start = false", "static_start = true");
     let mut s = started(&text);
     let (h0, p0) = (get(&s, vr::HEAVE), get(&s, vr::PITCH));
-    assert!((h0 - heave).abs() < 1e-9 && (p0 - pitch).abs() < 1e-9, "{h0} {p0}");
+    assert!(
+        (h0 - heave).abs() < 1e-9 && (p0 - pitch).abs() < 1e-9,
+        "{h0} {p0}"
+    );
     for k in 0..10 {
         assert_eq!(s.do_step(0.1 * k as f64, 0.1), Status::Ok);
     }
