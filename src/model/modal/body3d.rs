@@ -206,6 +206,15 @@ pub struct ModalBody3 {
     pub s_f: Vec<f64>,
     /// ρA L² ∫ξφ_k dξ [kg m].
     pub s_x: Vec<f64>,
+    /// G1 = ∫(1 − ξ)φ_i′φ_j′ dξ and G2 = ∫½(1 − ξ²)φ_i′φ_j′ dξ (row-major nb × nb): the
+    /// geometric stiffness of the axial inertia and centrifugal forces (spatial.md §2.5).
+    pub g1: Vec<f64>,
+    /// See [`ModalBody3::g1`].
+    pub g2: Vec<f64>,
+    /// Whether the bending rows carry the geometric stiffness K_G = ρAL(ω̄_y² + ω̄_z²)G2 −
+    /// ρA ā_x G1 (ā = Aᵀ(R̈ − g)): on for a frame held by a support (a clamped or mounted root
+    /// segment), where ω̄ and ā are the support's.
+    pub stiffening: bool,
     damped: bool,
 }
 
@@ -260,6 +269,7 @@ impl ModalBody3 {
         let c_t = [jt * 0.5, jt * 2.0 * SQRT_2 / PI];
         let s_f = basis.i1.iter().map(|v| mu * v).collect();
         let s_x = basis.ix.iter().map(|v| mu * l * v).collect();
+        let (g1, g2) = stiffening_grams(&basis);
         Self {
             basis,
             props,
@@ -274,8 +284,18 @@ impl ModalBody3 {
             chi_tip: torsion_shapes(1.0).0,
             s_f,
             s_x,
+            g1,
+            g2,
+            stiffening: false,
             damped,
         }
+    }
+
+    /// The same body with the geometric stiffness of a held frame (see
+    /// [`ModalBody3::stiffening`]).
+    pub fn with_stiffening(mut self) -> Self {
+        self.stiffening = true;
+        self
     }
 
     /// Number of bending shapes per plane nb.
@@ -426,6 +446,12 @@ impl ModalBody3 {
         }
         let w2 = dot(w, w);
         let ml = ra * l;
+        // geometric stiffness: axial force of the centrifugal and axial inertia fields
+        let (kg_w, kg_a) = if self.stiffening {
+            ((w[1] * w[1] + w[2] * w[2]) * ml, z[0] * ra)
+        } else {
+            (zero, zero)
+        };
         for n in 0..nb {
             let (sf, sx) = (self.s_f[n], self.s_x[n]);
             let mut fy = z[1] * sf
@@ -447,6 +473,13 @@ impl ModalBody3 {
             if self.damped {
                 fy += vy[n] * self.d_y[n];
                 fz += vz[n] * self.d_z[n];
+            }
+            if self.stiffening {
+                for m in 0..nb {
+                    let k = kg_w * self.g2[n * nb + m] - kg_a * self.g1[n * nb + m];
+                    fy += k * ay[m];
+                    fz += k * az[m];
+                }
             }
             out[7 + n] = fy;
             out[7 + nb + n] = fz;
@@ -634,4 +667,22 @@ impl ModalBody3 {
         let (d, s, th) = self.tip_elastic(q);
         (d.norm() / self.props.length).max(s.norm()).max(th.abs())
     }
+}
+
+/// G1 = ∫(1 − ξ)φ_i′φ_j′ dξ and G2 = ∫½(1 − ξ²)φ_i′φ_j′ dξ of a basis (row-major), by the
+/// basis's composite Gauss–Legendre rule.
+pub fn stiffening_grams(basis: &ModalBasis) -> (Vec<f64>, Vec<f64>) {
+    let n = basis.len();
+    let (mut g1, mut g2) = (vec![0.0; n * n], vec![0.0; n * n]);
+    for (xi, w) in super::basis::quadrature(64) {
+        let d: Vec<f64> = (0..n).map(|j| basis.eval_one(j, xi)[1]).collect();
+        for i in 0..n {
+            for j in 0..n {
+                let pp = w * d[i] * d[j];
+                g1[i * n + j] += (1.0 - xi) * pp;
+                g2[i * n + j] += 0.5 * (1.0 - xi * xi) * pp;
+            }
+        }
+    }
+    (g1, g2)
 }

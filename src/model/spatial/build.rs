@@ -128,7 +128,13 @@ impl Model<Spatial> {
             match seg.kind {
                 SegmentKind::Modal => {
                     let basis = ModalBasis::new(seg.modes.unwrap_or(1), seg.interface_modes);
-                    let body = Arc::new(ModalBody3::new(basis, ModalProps3::of_segment(seg)));
+                    let mut body = ModalBody3::new(basis, ModalProps3::of_segment(seg));
+                    if first && clamped {
+                        // a held frame: its motion is the support's, so the axial inertia and
+                        // centrifugal forces of the segment stiffen its bending (K_G)
+                        body = body.with_stiffening();
+                    }
+                    let body = Arc::new(body);
                     let free_p = !(first && clamped);
                     let mut c = Coords::default();
                     for k in 0..3 {

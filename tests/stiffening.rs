@@ -1,0 +1,129 @@
+//! Geometric (centrifugal) stiffening of a beam on a spinning mount, spatial.md B6 (Rayleigh–
+//! Ritz with 12 clamped–free modes; the flap column is Wright et al. 1982's): the Case 1 rod
+//! (d = 2 mm steel, 40 cm) clamped to a mount spinning at Ω about the world z axis, gravity off,
+//! a small constant tip force along z (the spin axis: constant in the rotating frame) sets it
+//! flapping; the flap frequency, from the period of the tip's z motion, against the table. A
+//! linear floating frame stays at ω₁* = 3.5160 at every Ω; the all-ANCF rod is geometrically
+//! nonlinear by itself; the modal segment of a held frame carries K_G = ρAL Ω²G2 (+ the axial
+//! inertia term), the hybrid's joint rows the outboard tension.
+
+use hybeam::model::Spatial;
+use hybeam::scene::Scene;
+use hybeam::simulator::Simulator;
+
+/// ω* = ω / √(EI/(ρAL⁴)) of the Case 1 rod: √(EI/(ρAL⁴)) [rad/s].
+fn omega_ref() -> f64 {
+    let (e, rho, d, l): (f64, f64, f64, f64) = (2.1e11, 7850.0, 0.002, 0.4);
+    let (a, i) = (
+        std::f64::consts::PI * d * d / 4.0,
+        std::f64::consts::PI * d.powi(4) / 64.0,
+    );
+    (e * i / (rho * a * l.powi(4))).sqrt()
+}
+
+fn spinning(name: &str, omega: f64) -> Scene {
+    spinning_under(name, omega, "[0.0, 0.0, 0.0]")
+}
+
+/// [`spinning`] under the gravity vector `gravity`.
+fn spinning_under(name: &str, omega: f64, gravity: &str) -> Scene {
+    let path = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("root = \"clamped\"", "root = \"mounted\"")
+        .replace(
+            "gravity = [0.0, 0.0, -9.81]",
+            &format!("gravity = {gravity}"),
+        );
+    let text = format!("{text}\n[mount]\nangular_velocity = [0.0, 0.0, {omega:e}]\n\n[tip]\nforce = [0.0, 0.0, 1e-4]\n");
+    Scene::from_toml(&text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Flap frequency [rad/s] from the mean period between upward crossings of the tip's z motion
+/// about its mean, over `t_end`.
+fn flap_frequency(scene: Scene, t_end: f64) -> f64 {
+    let mut sim = Simulator::<Spatial>::start_at(scene, 0.0).unwrap();
+    let dt = 2e-4;
+    let n = (t_end / dt) as usize;
+    let mut z = Vec::with_capacity(n);
+    for k in 1..=n {
+        sim.advance(k as f64 * dt).unwrap();
+        z.push(sim.outputs().tip_position[2]);
+    }
+    let mean = z.iter().sum::<f64>() / n as f64;
+    let mut ups = Vec::new();
+    for k in 1..n {
+        let (a, b) = (z[k - 1] - mean, z[k] - mean);
+        if a < 0.0 && b >= 0.0 {
+            ups.push((k as f64 + a / (a - b)) * dt);
+        }
+    }
+    let periods = (ups.len() - 1) as f64;
+    2.0 * std::f64::consts::PI * periods / (ups[ups.len() - 1] - ups[0])
+}
+
+#[test]
+fn b6_spinning_cantilever_flap_frequencies() {
+    let w0 = omega_ref();
+    for (omega_star, flap) in [(0.0, 3.5160), (2.0, 4.1373), (4.0, 5.5850)] {
+        for name in ["case1_3d_ancf", "case1_3d_modal", "case1_3d"] {
+            let w = flap_frequency(spinning(name, omega_star * w0), 1.0) / w0;
+            let err = w / flap - 1.0;
+            eprintln!("Ω* = {omega_star}: {name} flap ω₁* = {w:.4} vs {flap} ({err:+.2e})");
+            assert!(err.abs() < 5e-3, "{name} Ω* = {omega_star}: {w} vs {flap}");
+        }
+    }
+}
+
+/// Gravity along the rod's axis: hanging (tension) raises the flap frequency, standing
+/// (compression) lowers it, by the axial-inertia term −ρA ā_x G1 of the modal segment; the
+/// geometrically nonlinear all-ANCF rod is the reference.
+#[test]
+fn axial_gravity_stiffens_a_hanging_rod_and_softens_a_standing_one() {
+    let w0 = omega_ref();
+    for (label, g) in [
+        ("hanging", "[9.81, 0.0, 0.0]"),
+        ("standing", "[-9.81, 0.0, 0.0]"),
+    ] {
+        let reference = flap_frequency(spinning_under("case1_3d_ancf", 0.0, g), 1.0) / w0;
+        for name in ["case1_3d_modal", "case1_3d"] {
+            let w = flap_frequency(spinning_under(name, 0.0, g), 1.0) / w0;
+            let err = w / reference - 1.0;
+            eprintln!("{label}: {name} flap ω₁* = {w:.4} vs all-ANCF {reference:.4} ({err:+.2e})");
+            assert!(err.abs() < 1e-3, "{label} {name}: {w} vs {reference}");
+        }
+        let shift = reference / 3.5160 - 1.0;
+        assert!(
+            if label == "hanging" {
+                shift > 5e-3
+            } else {
+                shift < -5e-3
+            },
+            "{label} {shift}"
+        );
+    }
+}
+
+/// The stiffening integrals of the clamped–free modes against spatial.md §2.4 (SciPy): diagonals
+/// of G1 = ∫(1 − ξ)φ′φ′ and G2 = ∫½(1 − ξ²)φ′φ′; G2₁₁ is Southwell's coefficient 1.19334.
+#[test]
+fn stiffening_integrals_are_the_tabulated_ones() {
+    let basis = hybeam::model::modal::ModalBasis::new(4, false);
+    let (g1, g2) = hybeam::model::modal::body3d::stiffening_grams(&basis);
+    let want1 = [1.57088, 8.64714, 24.95211, 51.45911];
+    let want2 = [1.19334, 6.47822, 17.85952, 36.05539];
+    for k in 0..4 {
+        assert!(
+            (g1[5 * k] / want1[k] - 1.0).abs() < 5e-6,
+            "G1[{k}] {}",
+            g1[5 * k]
+        );
+        assert!(
+            (g2[5 * k] / want2[k] - 1.0).abs() < 5e-6,
+            "G2[{k}] {}",
+            g2[5 * k]
+        );
+    }
+    // G2 is full: the off-diagonal term of spatial.md (its sign is that of the shapes' signs)
+    assert!((g2[1].abs() - 0.68586).abs() < 5e-5, "G2[0][1] {}", g2[1]);
+}
