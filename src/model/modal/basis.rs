@@ -208,6 +208,25 @@ impl ModalBasis {
         self.raw.is_empty()
     }
 
+    /// G1 = ∫(1 − ξ)φ_i′φ_j′ dξ and G2 = ∫½(1 − ξ²)φ_i′φ_j′ dξ (row-major), by the composite
+    /// Gauss–Legendre rule: the geometric stiffness of an axial force that falls linearly (axial
+    /// inertia) or parabolically (centrifugal) to zero at the free end.
+    pub fn stiffening_grams(&self) -> (Vec<f64>, Vec<f64>) {
+        let n = self.len();
+        let (mut g1, mut g2) = (vec![0.0; n * n], vec![0.0; n * n]);
+        for (xi, w) in quadrature(64) {
+            let d: Vec<f64> = (0..n).map(|j| self.eval_one(j, xi)[1]).collect();
+            for i in 0..n {
+                for j in 0..n {
+                    let pp = w * d[i] * d[j];
+                    g1[i * n + j] += (1.0 - xi) * pp;
+                    g2[i * n + j] += 0.5 * (1.0 - xi * xi) * pp;
+                }
+            }
+        }
+        (g1, g2)
+    }
+
     /// (φ_j, φ_j′, φ_j″) at ξ.
     pub fn eval_one(&self, j: usize, xi: f64) -> [f64; 3] {
         let mut out = [0.0; 3];

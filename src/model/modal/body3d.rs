@@ -269,7 +269,7 @@ impl ModalBody3 {
         let c_t = [jt * 0.5, jt * 2.0 * SQRT_2 / PI];
         let s_f = basis.i1.iter().map(|v| mu * v).collect();
         let s_x = basis.ix.iter().map(|v| mu * l * v).collect();
-        let (g1, g2) = stiffening_grams(&basis);
+        let (g1, g2) = basis.stiffening_grams();
         Self {
             basis,
             props,
@@ -667,22 +667,4 @@ impl ModalBody3 {
         let (d, s, th) = self.tip_elastic(q);
         (d.norm() / self.props.length).max(s.norm()).max(th.abs())
     }
-}
-
-/// G1 = ∫(1 − ξ)φ_i′φ_j′ dξ and G2 = ∫½(1 − ξ²)φ_i′φ_j′ dξ of a basis (row-major), by the
-/// basis's composite Gauss–Legendre rule.
-pub fn stiffening_grams(basis: &ModalBasis) -> (Vec<f64>, Vec<f64>) {
-    let n = basis.len();
-    let (mut g1, mut g2) = (vec![0.0; n * n], vec![0.0; n * n]);
-    for (xi, w) in super::basis::quadrature(64) {
-        let d: Vec<f64> = (0..n).map(|j| basis.eval_one(j, xi)[1]).collect();
-        for i in 0..n {
-            for j in 0..n {
-                let pp = w * d[i] * d[j];
-                g1[i * n + j] += (1.0 - xi) * pp;
-                g2[i * n + j] += 0.5 * (1.0 - xi * xi) * pp;
-            }
-        }
-    }
-    (g1, g2)
 }

@@ -111,7 +111,13 @@ impl Model<Planar> {
                         port: Box::new(ModalTipPort(body.clone())),
                         node: false,
                     });
-                    bodies.push((dofs, Box::new(ModalElement::new(body)), si));
+                    // a held frame's segment is stiffened by its centrifugal and axial inertia
+                    let element = if first && clamped {
+                        ModalElement::stiffened(body)
+                    } else {
+                        ModalElement::new(body)
+                    };
+                    bodies.push((dofs, Box::new(element), si));
                 }
                 SegmentKind::Ancf => {
                     let ne = seg.elements.unwrap_or(1);
