@@ -25,4 +25,13 @@ if ! .venv/bin/python -c "import fmpy, pytest, numpy, matplotlib, sys; sys.exit(
     .venv/bin/python -m pip install --quiet "fmpy==$FMPY_VERSION" "pytest>=8,<9" "numpy>=1.26,<3" "matplotlib>=3.8,<4"
 fi
 
+# libcosim for the vehicle example's second host (examples/vehicle/cosim_libcosim.py); its
+# wheels are CPython 3.11 manylinux_2_28: where none fits, its test says so and skips
+LIBCOSIMPY_VERSION=0.0.6
+if ! .venv/bin/python -c "import libcosimpy" 2>/dev/null; then
+    echo "setup: installing libcosimpy==$LIBCOSIMPY_VERSION into .venv"
+    .venv/bin/python -m pip install --quiet "libcosimpy==$LIBCOSIMPY_VERSION" ||
+        echo "setup: libcosimpy==$LIBCOSIMPY_VERSION has no wheel for this Python; the libcosim run of examples/vehicle is skipped"
+fi
+
 cargo build --workspace

@@ -383,6 +383,9 @@ pub struct Vehicle {
     s: [f64; N],
     /// Beam reaction input and its first two time derivatives over the next step.
     force: [[f64; 3]; 3],
+    /// Not yet initialized, with `static_start`: the state follows the inputs' static
+    /// equilibrium.
+    settling: bool,
 }
 
 fn variables() -> Vec<Variable> {
@@ -505,8 +508,13 @@ impl CoSimModel for Vehicle {
             vars: variables(),
             car,
             t: 0.0,
-            s: [0.0; N],
+            s: if car.solver.static_start {
+                car.static_state(0.0, [0.0; 2], 0.0)
+            } else {
+                [0.0; N]
+            },
             force: [[0.0; 3]; 3],
+            settling: car.solver.static_start,
         })
     }
 
@@ -542,6 +550,12 @@ impl CoSimModel for Vehicle {
                 self.force[0][k] = value;
                 self.force[1][k] = 0.0;
                 self.force[2][k] = 0.0;
+                if self.settling {
+                    // before initialization the outputs are those of the static start under
+                    // the inputs set so far (a host may read them to place the beam)
+                    let (f, m) = self.input_at(0.0);
+                    self.s = self.car.static_state(self.t, f, m);
+                }
                 Ok(())
             }
             _ => Err(format!("value reference {r} cannot be set to {value}")),
@@ -555,6 +569,7 @@ impl CoSimModel for Vehicle {
             let (f, m) = self.input_at(0.0);
             self.s = self.car.static_state(start_time, f, m);
         }
+        self.settling = false;
         Ok(())
     }
 
@@ -583,8 +598,13 @@ impl CoSimModel for Vehicle {
 
     fn reset(&mut self) -> Result<(), String> {
         self.t = 0.0;
-        self.s = [0.0; N];
         self.force = [[0.0; 3]; 3];
+        self.settling = self.car.solver.static_start;
+        self.s = if self.settling {
+            self.car.static_state(0.0, [0.0; 2], 0.0)
+        } else {
+            [0.0; N]
+        };
         Ok(())
     }
 
@@ -617,6 +637,7 @@ impl CoSimModel for Vehicle {
         for (k, row) in self.force.iter_mut().enumerate() {
             row.copy_from_slice(&f[1 + N + 3 * k..4 + N + 3 * k]);
         }
+        self.settling = false;
         Ok(())
     }
 
