@@ -501,10 +501,17 @@ fn apparent_mass_is_the_derivative_of_the_reaction() {
                 assert!((j[r][c] - fd).abs() < tol * scale, "{name} {r} {c}");
             }
         }
-        // the apparent mass is symmetric (a mass matrix seen through the support)
+        // the apparent mass of a Lagrangian model is symmetric (a mass matrix seen through the
+        // support): the all-ANCF rod's; the modal root segment's geometric stiffness is a force
+        // term (K_G a with ā_x from the frame's acceleration, no reciprocal term in the frame
+        // rows), which leaves an asymmetry of the order of the deflection (0.6 % here)
+        let sym = if name == "case1_ancf" { 1e-9 } else { 1e-2 };
         for r in 0..3 {
             for c in 0..r {
-                assert!((j[r][c] - j[c][r]).abs() < 1e-9 * j[r][r].abs().max(j[c][c].abs()));
+                let scale = j[r][r].abs().max(j[c][c].abs());
+                let asym = (j[r][c] - j[c][r]).abs() / scale;
+                eprintln!("{name} asymmetry ({r}, {c}): {asym:.2e}");
+                assert!(asym < sym, "{name} ({r}, {c}) {asym:e}");
             }
         }
     }
@@ -526,4 +533,30 @@ fn apparent_mass_is_the_derivative_of_the_reaction() {
         }
     }
     assert!(a.state() == b.state(), "the query changed the run");
+}
+
+#[test]
+fn tip_velocity_includes_the_mount_motion() {
+    // uniform mount motion: the tip's velocity and angular velocity relative to the mount are
+    // those of the fixed-mount run; the outputs add the mount's velocity (the all-modal rod's
+    // tip port holds the mount-driven root frame)
+    for name in ["case1_modal", "case1", "case1_ancf"] {
+        let moving = mounted(name, "[0.0, -9.81]", "velocity = [3.0, -2.0]");
+        let mut a = Simulator::<Planar>::start_at(moving, 0.0).unwrap();
+        let mut b = Simulator::<Planar>::start_at(shipped(name), 0.0).unwrap();
+        a.advance(0.05).unwrap();
+        b.advance(0.05).unwrap();
+        let (oa, ob) = (a.outputs(), b.outputs());
+        let dv = [
+            oa.tip_velocity[0] - 3.0 - ob.tip_velocity[0],
+            oa.tip_velocity[1] + 2.0 - ob.tip_velocity[1],
+        ];
+        let dw = oa.tip_angular_velocity - ob.tip_angular_velocity;
+        eprintln!("{name}: tip velocity off by {dv:?} m/s, angular {dw:e} rad/s");
+        // (translation changes the rounding of the absolute coordinates: Newton-tolerance noise)
+        assert!(
+            dv.iter().all(|x| x.abs() < 1e-9) && dw.abs() < 1e-7,
+            "{name}"
+        );
+    }
 }

@@ -3,6 +3,7 @@
 
 use super::assembly::Model;
 use super::component::{ConstraintOut, Element, Env, LocalState};
+use super::dofs::Dof;
 use super::load::{moment_residual, point_force_residual};
 use super::planar::Planar;
 use super::space::{is_nonzero_moment, PortKin, Space};
@@ -59,11 +60,16 @@ impl<S: Space> Model<S> {
         let kin = self.tip.part.kinematics_first(x);
         let mut vel = S::Vec::default();
         let mut omega = S::Moment::default();
-        for k in 0..tip.len() {
-            if let Some(i) = tip.free(k) {
+        for (k, dof) in tip.dofs().iter().enumerate() {
+            // a held coordinate moves with a mount (a modal tip port holds its root frame)
+            let rate = match *dof {
+                Dof::Free(i) => Some(v[i as usize]),
+                Dof::Held(j) => self.held_v.get(j as usize).copied(),
+            };
+            if let Some(rate) = rate {
                 let dp = kin.jacobian(k);
                 for c in 0..S::DIM {
-                    vel[c] += dp[c] * v[i];
+                    vel[c] += dp[c] * rate;
                 }
                 let dth = kin.rotation_jacobian(k);
                 let (w, d) = (
@@ -71,7 +77,7 @@ impl<S: Space> Model<S> {
                     S::moment_components(&dth),
                 );
                 for c in 0..w.len() {
-                    w[c] += d[c] * v[i];
+                    w[c] += d[c] * rate;
                 }
             }
         }
