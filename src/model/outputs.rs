@@ -21,6 +21,12 @@ pub struct Outputs<S: Space = Planar> {
     /// Angular velocity of the tip section [rad/s], global axes (in the plane: about z,
     /// counter-clockwise positive).
     pub tip_angular_velocity: S::Moment,
+    /// Tip acceleration [m/s²], global: J q̈ + q̇ᵀ(∂²p/∂q²)q̇ at the state's accelerations
+    /// (which satisfy the equations of motion at the state's time).
+    pub tip_acceleration: S::Vec,
+    /// Angular acceleration of the tip section [rad/s²], global axes: the time derivative of
+    /// `tip_angular_velocity`.
+    pub tip_angular_acceleration: S::Moment,
     /// Kinetic energy [J].
     pub kinetic: f64,
     /// Strain energy [J].
@@ -81,11 +87,14 @@ impl<S: Space> Model<S> {
                 }
             }
         }
+        let (tip_acceleration, tip_angular_acceleration) = self.tip_accelerations(x, v, acc);
         let mut o = Outputs {
             tip_position: kin.position(),
             tip_velocity: vel,
             tip_angle: kin.attitude(),
             tip_angular_velocity: omega,
+            tip_acceleration,
+            tip_angular_acceleration,
             ..Default::default()
         };
         for e in &self.elements {
@@ -99,6 +108,57 @@ impl<S: Space> Model<S> {
         (o.root_force, o.root_moment) = self.support.reaction(&r, &self.held);
         o.mount = self.mount_inertia(q);
         o
+    }
+
+    /// Tip acceleration and angular acceleration at the tip port's local coordinates `x` with
+    /// the global rates `v` and accelerations `acc` (held coordinates move with the mount):
+    /// d/dt(J q̇) = J q̈ + Σᵢⱼ ∂Jᵢ/∂qⱼ q̇ᵢ q̇ⱼ, from the port's point Hessian and its moment
+    /// stiffness (the derivative of the rotation Jacobian).
+    fn tip_accelerations(&self, x: &[f64], v: &[f64], acc: &[f64]) -> (S::Vec, S::Moment) {
+        let tip = &self.tip.dofs;
+        let (rates, accs): (Vec<f64>, Vec<f64>) = tip
+            .dofs()
+            .iter()
+            .map(|dof| match *dof {
+                Dof::Free(i) => (v[i as usize], acc[i as usize]),
+                Dof::Held(j) => (
+                    self.held_v.get(j as usize).copied().unwrap_or(0.0),
+                    self.held_a.get(j as usize).copied().unwrap_or(0.0),
+                ),
+            })
+            .unzip();
+        let kin = self.tip.part.kinematics(x);
+        let mut lin = S::Vec::default();
+        let mut ang = S::Moment::default();
+        for (k, a) in accs.iter().enumerate() {
+            let dp = kin.jacobian(k);
+            for c in 0..S::DIM {
+                lin[c] += dp[c] * a;
+            }
+            let dth = kin.rotation_jacobian(k);
+            let d = S::moment_components(&dth);
+            for (w, d) in S::moment_components_mut(&mut ang).iter_mut().zip(d) {
+                *w += d * a;
+            }
+        }
+        for c in 0..S::DIM {
+            let mut mu = S::Vec::default();
+            mu[c] = 1.0;
+            let mut sum = 0.0;
+            kin.add_point_hessian(&mu, |i, j, h| sum += h * rates[i] * rates[j]);
+            lin[c] += sum;
+        }
+        for c in 0..S::moment_components(&ang).len() {
+            let mut m = S::Moment::default();
+            S::moment_components_mut(&mut m)[c] = 1.0;
+            // the stiffness adds −m·∂(∂θ/∂qᵢ)/∂qⱼ
+            let mut sum = 0.0;
+            self.tip
+                .part
+                .add_moment_stiffness(x, &m, &mut |i, j, h| sum -= h * rates[i] * rates[j]);
+            S::moment_components_mut(&mut ang)[c] += sum;
+        }
+        (lin, ang)
     }
 
     /// The held values, rates and accelerations.

@@ -176,6 +176,45 @@ impl<S: SpaceModel> Outputs<S> {
     }
 }
 
+impl<S: SpaceModel> Outputs<S> {
+    /// The exact time derivative of one tip kinematic output at this state: the velocity of
+    /// the position, the acceleration of the velocity, the angular velocity of the plane angle,
+    /// ė = ½ (0, ω) ⊗ e of the Euler parameters (ω in global axes), the angular acceleration
+    /// of the angular velocity. `None` for other outputs (reactions, energies, inertia).
+    pub fn rate(&self, id: OutputId) -> Option<f64> {
+        use Quantity::*;
+        let k = id.component;
+        match id.quantity {
+            TipPosition => self.tip_velocity.as_ref().get(k).copied(),
+            TipVelocity => self.tip_acceleration.as_ref().get(k).copied(),
+            TipAttitude => {
+                let w = S::moment_components(&self.tip_angular_velocity);
+                let e = S::attitude_components(&self.tip_angle);
+                match (e.len(), w.len()) {
+                    (1, 1) => (k == 0).then_some(w[0]),
+                    (4, 3) => {
+                        let ev = [e[1], e[2], e[3]];
+                        let rate = match k {
+                            0 => -0.5 * (w[0] * ev[0] + w[1] * ev[1] + w[2] * ev[2]),
+                            1..=3 => {
+                                let (i, j, l) = (k - 1, k % 3, (k + 1) % 3);
+                                0.5 * (e[0] * w[i] + w[j] * ev[l] - w[l] * ev[j])
+                            }
+                            _ => return None,
+                        };
+                        Some(rate)
+                    }
+                    _ => None,
+                }
+            }
+            TipAngularVelocity => S::moment_components(&self.tip_angular_acceleration)
+                .get(k)
+                .copied(),
+            _ => None,
+        }
+    }
+}
+
 /// An input of the equations a host may change between communication steps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum InputKind {
@@ -651,6 +690,14 @@ impl AnyOutputs {
         }
     }
 
+    /// The exact time derivative of a tip kinematic output ([`Outputs::rate`]).
+    pub fn rate(&self, id: OutputId) -> Option<f64> {
+        match self {
+            Self::Planar(o) => o.rate(id),
+            Self::Spatial(o) => o.rate(id),
+        }
+    }
+
     /// Tip position [m], global axes (2 or 3 components).
     pub fn tip_position(&self) -> &[f64] {
         match self {
@@ -710,6 +757,7 @@ mod tests {
             strain: 21.0,
             potential: 22.0,
             mount: None,
+            ..Default::default()
         };
         let read: Vec<f64> = OutputId::named(SpaceKind::Spatial)
             .iter()
@@ -727,6 +775,7 @@ mod tests {
             strain: 11.0,
             potential: 12.0,
             mount: None,
+            ..Default::default()
         };
         let read: Vec<f64> = OutputId::named(SpaceKind::Planar)
             .iter()

@@ -127,6 +127,23 @@ pub fn linearized_modes<S: Space>(model: &mut Model<S>) -> Vec<(f64, Vec<f64>)> 
     modes
 }
 
+/// A deterministic deformed, moving state of `model` (not a solution): q = the initial
+/// coordinates + `amp`·sin waves, q̇ and q̈ of order 0.5 and 3, λ of order 0.1.
+pub fn wavy_state<S: Space>(model: &Model<S>, amp: f64) -> [Vec<f64>; 4] {
+    let (n, m) = (model.coordinates(), model.constraints());
+    let wave = |i: usize, a: f64| (a * i as f64 + 0.3).sin();
+    let q: Vec<f64> = model
+        .initial_coordinates()
+        .iter()
+        .enumerate()
+        .map(|(i, x)| x + amp * wave(i, 1.7))
+        .collect();
+    let v: Vec<f64> = (0..n).map(|i| 0.5 * wave(i, 0.9)).collect();
+    let a: Vec<f64> = (0..n).map(|i| 3.0 * wave(i, 2.3)).collect();
+    let lam: Vec<f64> = (0..m).map(|i| 0.1 * wave(i, 1.1)).collect();
+    [q, v, a, lam]
+}
+
 /// The assembled Newton matrix (mass, damping, stiffness, joint rows and their λ-Hessian, tip
 /// loads) of `model` against central differences of the assembled residual at a perturbed
 /// state; panics on a mismatch, returns the worst error as a fraction of its tolerance
@@ -135,16 +152,7 @@ pub fn check_newton_matrix<S: Space>(model: &mut Model<S>) -> f64 {
     let n = model.coordinates();
     let m = model.constraints();
     let d = n + m;
-    let wave = |i: usize, a: f64| (a * i as f64 + 0.3).sin();
-    let q: Vec<f64> = model
-        .initial_coordinates()
-        .iter()
-        .enumerate()
-        .map(|(i, x)| x + 0.02 * wave(i, 1.7))
-        .collect();
-    let v: Vec<f64> = (0..n).map(|i| 0.5 * wave(i, 0.9)).collect();
-    let a: Vec<f64> = (0..n).map(|i| 3.0 * wave(i, 2.3)).collect();
-    let lam: Vec<f64> = (0..m).map(|i| 0.1 * wave(i, 1.1)).collect();
+    let [q, v, a, lam] = wavy_state(model, 0.02);
     let mut res = vec![0.0; d];
     let mut matrix = |model: &mut Model<S>, c: (f64, f64, f64)| {
         let req = EvalRequest {

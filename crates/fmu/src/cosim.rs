@@ -35,6 +35,10 @@ pub struct BeamFmu {
     apparent: Option<Vec<Vec<f64>>>,
     /// The last communication step [s] (the velocity-input mode's partials divide by it).
     last_step: f64,
+    /// Per variable (table order): the change of an output over the last communication step
+    /// divided by it, the first-order output derivative of the outputs without an exact one
+    /// (reactions, energies, inertia); 0 before the first step.
+    backward: Vec<f64>,
 }
 
 impl BeamFmu {
@@ -106,7 +110,7 @@ fn model_info(scene: &Scene) -> ModelInfo {
         capabilities: if scene.root == Root::Mounted {
             fmi2::Capabilities {
                 input_derivative_order: 2,
-                output_derivative_order: 0,
+                output_derivative_order: 1,
                 directional_derivative: true,
             }
         } else {
@@ -138,7 +142,9 @@ impl CoSimModel for BeamFmu {
             outputs,
             apparent: None,
             last_step: step,
+            backward: Vec::new(),
         };
+        fmu.backward = vec![0.0; fmu.table.variables().len()];
         fmu.refresh_outputs();
         Ok(fmu)
     }
@@ -210,6 +216,7 @@ impl CoSimModel for BeamFmu {
         let scene = self.scene.clone();
         self.sim = AnySimulator::start_at(scene, start_time).map_err(|e| e.to_string())?;
         self.refresh_outputs();
+        self.backward.fill(0.0);
         Ok(())
     }
 
@@ -218,10 +225,31 @@ impl CoSimModel for BeamFmu {
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), StepError> {
         // one clock: the simulator starts at the start time and ends each step at the host's
         // t + h (the FMI layer checked t against its time, which is the simulator's)
+        let before = self.outputs;
         self.sim.advance(t + h).map_err(step_error)?;
         self.last_step = h;
         self.refresh_outputs();
+        for (index, rate) in self.backward.iter_mut().enumerate() {
+            if let Access::Output(id) = self.table.access(index) {
+                if let (Some(a), Some(b)) = (before.value(id), self.outputs.value(id)) {
+                    *rate = (b - a) / h;
+                }
+            }
+        }
         Ok(())
+    }
+
+    /// First derivatives (`maxOutputDerivativeOrder = 1`, mounted scenes): exact for the tip
+    /// kinematics (velocity, acceleration, ė = ½ (0, ω) ⊗ e, angular acceleration, from the
+    /// state's accelerations); for the reactions, energies and inertia the change over the
+    /// last communication step divided by it (first order; 0 before the first step).
+    fn get_output_derivative(&self, index: usize, order: u32) -> Result<f64, String> {
+        let name = &self.table.variables()[index].name;
+        match (self.table.access(index), order) {
+            (Access::Output(id), 1) => Ok(self.outputs.rate(id).unwrap_or(self.backward[index])),
+            (Access::Output(_), _) => Err(format!("{name}: derivatives of order 1 only")),
+            _ => Err(format!("{name} is not an output")),
+        }
     }
 
     /// Mount inputs only (a mounted scene): the accelerations' derivatives shape the base
@@ -282,7 +310,11 @@ impl CoSimModel for BeamFmu {
     /// The FMU's part (the parameter values, in table order) around the simulator's snapshot
     /// (state, memory, inputs; versioned and bound to the scene), encoded with `postcard`.
     fn save_state(&self) -> Vec<u8> {
-        let snapshot: FmuSnapshot = (self.parameters(), self.sim.snapshot());
+        let snapshot: FmuSnapshot = (
+            self.parameters(),
+            self.sim.snapshot(),
+            self.backward.clone(),
+        );
         postcard::to_allocvec(&snapshot).unwrap_or_default()
     }
 
@@ -295,7 +327,10 @@ impl CoSimModel for BeamFmu {
                 rest.len()
             ));
         }
-        let (params, sim_bytes) = snapshot;
+        let (params, sim_bytes, backward) = snapshot;
+        if backward.len() != self.backward.len() {
+            return Err("snapshot output count does not match this model".into());
+        }
         let mut scene = self.build_scene_with_parameters(&params)?;
         let mut sim = AnySimulator::restorable(scene.clone()).map_err(|e| e.to_string())?;
         // a snapshot that does not fit is an error of the call (fmi2Error), not of a step
@@ -304,14 +339,15 @@ impl CoSimModel for BeamFmu {
         sim.inputs_into(&mut scene);
         self.scene = scene;
         self.sim = sim;
+        self.backward = backward;
         self.refresh_outputs();
         Ok(())
     }
 }
 
-/// A serialized FMU state: the parameter values in table order, then the bytes of
-/// [`AnySimulator::snapshot`].
-type FmuSnapshot = (Vec<f64>, Vec<u8>);
+/// A serialized FMU state: the parameter values in table order, the bytes of
+/// [`AnySimulator::snapshot`], and the outputs' backward differences (table order).
+type FmuSnapshot = (Vec<f64>, Vec<u8>, Vec<f64>);
 
 /// The FMI outcome of a failed `advance`: the simulator kept its state from before the call, so
 /// whatever a smaller step, other inputs or a restored state can overcome is

@@ -6,6 +6,7 @@ mod host;
 
 use fmi2::types::fmi2Status;
 use host::*;
+use std::f64::consts::FRAC_PI_2;
 
 /// Case 1 mounted (`[mount]` at `mount`, gravity along −y): the scene text.
 fn mounted(mount: &str) -> String {
@@ -200,4 +201,221 @@ fn model_description_declares_the_feedthrough() {
     let fixed = hybeam_fmu::FmuModel::model_description(SCENE, "f").unwrap();
     assert!(fixed.contains("canInterpolateInputs=\"false\""));
     assert!(fixed.contains("providesDirectionalDerivative=\"false\""));
+}
+
+/// fmi2GetRealOutputDerivatives of order 1 for `vrs`.
+fn output_derivatives(i: &Inst, vrs: &[u32]) -> Vec<f64> {
+    let orders = vec![1; vrs.len()];
+    let mut out = vec![f64::NAN; vrs.len()];
+    let s = unsafe {
+        i.api.get_real_output_derivatives.unwrap()(
+            i.c,
+            vrs.as_ptr(),
+            vrs.len(),
+            orders.as_ptr(),
+            out.as_mut_ptr(),
+        )
+    };
+    assert_eq!(s, OK, "{:?}", i.log.entries());
+    out
+}
+
+/// The inputs of a mount swinging in translation and turning (plane: about z; space: about
+/// n = (0, 0.6, 0.8)): x(t) = amp·sin wt, φ(t) = turn·(1 − cos wt). Per input: its name, its
+/// value at t and, for the accelerations, their first and second derivatives.
+#[allow(clippy::type_complexity)]
+fn swinging_mount(
+    spatial: bool,
+) -> Vec<(
+    String,
+    Box<dyn Fn(f64) -> f64>,
+    Option<[Box<dyn Fn(f64) -> f64>; 2]>,
+)> {
+    let (amp, turn, w): (f64, f64, f64) = (0.02, 0.2, 40.0); // m, rad, rad/s
+    let x = move |k: i32, t: f64| amp * w.powi(k) * (w * t + k as f64 * FRAC_PI_2).sin();
+    let phi = move |k: i32, t: f64| {
+        let c = turn * w.powi(k) * (w * t + k as f64 * FRAC_PI_2).cos();
+        if k == 0 {
+            turn - c
+        } else {
+            -c
+        }
+    };
+    type Path = Box<dyn Fn(f64) -> f64>;
+    let mut inputs: Vec<(String, Path, Option<[Path; 2]>)> = vec![
+        ("root.position.x".into(), Box::new(move |t| x(0, t)), None),
+        ("root.velocity.x".into(), Box::new(move |t| x(1, t)), None),
+        (
+            "root.acceleration.x".into(),
+            Box::new(move |t| x(2, t)),
+            Some([Box::new(move |t| x(3, t)), Box::new(move |t| x(4, t))]),
+        ),
+    ];
+    if spatial {
+        let n = [0.0, 0.6, 0.8];
+        inputs.push((
+            "root.orientation.e0".into(),
+            Box::new(move |t| (phi(0, t) / 2.0).cos()),
+            None,
+        ));
+        for (c, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            let e = format!("root.orientation.e{}", c + 1);
+            inputs.push((e, Box::new(move |t| n[c] * (phi(0, t) / 2.0).sin()), None));
+            let wn = format!("root.angular_velocity.{axis}");
+            inputs.push((wn, Box::new(move |t| n[c] * phi(1, t)), None));
+            inputs.push((
+                format!("root.angular_acceleration.{axis}"),
+                Box::new(move |t| n[c] * phi(2, t)),
+                Some([
+                    Box::new(move |t| n[c] * phi(3, t)),
+                    Box::new(move |t| n[c] * phi(4, t)),
+                ]),
+            ));
+        }
+    } else {
+        inputs.push(("root.angle".into(), Box::new(move |t| phi(0, t)), None));
+        inputs.push((
+            "root.angular_velocity".into(),
+            Box::new(move |t| phi(1, t)),
+            None,
+        ));
+        inputs.push((
+            "root.angular_acceleration".into(),
+            Box::new(move |t| phi(2, t)),
+            Some([Box::new(move |t| phi(3, t)), Box::new(move |t| phi(4, t))]),
+        ));
+    }
+    inputs
+}
+
+/// fmi2GetRealOutputDerivatives through the C ABI of a mounted beam on a swinging, turning
+/// mount: the tip position's derivative is the tip velocity output; the tip velocity's and
+/// orientation's are the rates of the outputs over the run (central differences of the
+/// outputs over 2e-5 s steps, within 2e-3 of the largest rate; seen ≤ 3.4e-4; the
+/// all-modal rod, whose modes the step resolves: a Case 1 ANCF chain's axial and highest
+/// bending modes are not, and the differences of its outputs miss a few per cent of its tip
+/// acceleration); the reactions' are their backward differences over the last step; a
+/// saved state restores them; order 2 is refused. (The exactness of the tip rates is checked
+/// against differences along the motion in the core's tests/mount.rs.)
+#[test]
+fn output_derivatives_are_the_rates_of_the_outputs() {
+    // the all-modal Case 1 rod (its modes resolved by the step, so the outputs' central
+    // differences converge), its mount moving as the host's at t = 0 (amp·w = 0.8 m/s,
+    // turn·w² = 320 rad/s²)
+    let shipped = |name: &str, mount: &str| {
+        let path = format!("{}/../../scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+        std::fs::read_to_string(path)
+            .unwrap()
+            .replace("root = \"clamped\"", "root = \"mounted\"")
+            .replace("max_step = 1e-4", "max_step = 1e-5")
+            + &format!("\n[mount]\n{mount}\n")
+    };
+    let planar = shipped(
+        "case1_modal",
+        "velocity = [0.8, 0.0]\nangular_acceleration = [320.0]",
+    );
+    let spatial = shipped(
+        "case1_3d_modal",
+        "velocity = [0.8, 0.0, 0.0]\nangular_acceleration = [0.0, 192.0, 256.0]",
+    );
+    for (scene, spatial, axes, attitude) in [
+        (&planar, false, &["x", "y"][..], &["tip.angle"][..]),
+        (
+            &spatial,
+            true,
+            &["x", "y", "z"][..],
+            &[
+                "tip.orientation.e0",
+                "tip.orientation.e1",
+                "tip.orientation.e2",
+                "tip.orientation.e3",
+            ][..],
+        ),
+    ] {
+        let names =
+            |stem: &str| -> Vec<String> { axes.iter().map(|a| format!("{stem}.{a}")).collect() };
+        let (pos, vel, force) = (
+            names("tip.position"),
+            names("tip.velocity"),
+            names("root.force"),
+        );
+        let att: Vec<String> = attitude.iter().map(|s| s.to_string()).collect();
+        let all: Vec<String> = [&pos[..], &vel, &att, &force].concat();
+        let all: Vec<&str> = all.iter().map(|s| s.as_str()).collect();
+        let ovr = vrs(scene, &all);
+        let d = axes.len();
+        let (pos_r, vel_r, att_r) = (0..d, d..2 * d, 2 * d..2 * d + att.len());
+        let force_r = 2 * d + att.len()..all.len();
+        let inputs = swinging_mount(spatial);
+        let ivr: Vec<u32> = inputs.iter().map(|(n, _, _)| vr_in(scene, n)).collect();
+        let i = initialized_with(scene, &format!("mount_rates_{spatial}"));
+        let (h, steps) = (2e-5, 250);
+        let (mut values, mut rates) = (Vec::new(), Vec::new());
+        for k in 0..=steps {
+            let t = k as f64 * h;
+            values.push(i.get_real(&ovr).unwrap());
+            rates.push(output_derivatives(&i, &ovr));
+            if k == steps {
+                break;
+            }
+            let now: Vec<f64> = inputs.iter().map(|(_, f, _)| f(t)).collect();
+            assert_eq!(i.set_real(&ivr, &now), OK);
+            for ((_, _, r), &vr) in inputs.iter().zip(&ivr) {
+                for (order, f) in [1, 2].into_iter().zip(r.iter().flatten()) {
+                    assert_eq!(set_derivatives(&i, &[vr], order, &[f(t)]), OK);
+                }
+            }
+            assert_eq!(i.do_step(t, h), OK, "{:?}", i.log.entries());
+        }
+        let central = |range: std::ops::Range<usize>| {
+            let scale = rates
+                .iter()
+                .flat_map(|r| r[range.clone()].iter())
+                .fold(0.0f64, |s, x| s.max(x.abs()));
+            let mut worst = 0.0f64;
+            for k in 1..steps {
+                for c in range.clone() {
+                    let fd = (values[k + 1][c] - values[k - 1][c]) / (2.0 * h);
+                    worst = worst.max((rates[k][c] - fd).abs());
+                }
+            }
+            worst / scale
+        };
+        let (e_vel, e_att) = (central(vel_r.clone()), central(att_r));
+        eprintln!("spatial {spatial}: tip acceleration {e_vel:.2e}, orientation rate {e_att:.2e} of the largest rate");
+        assert!(e_vel < 2e-3 && e_att < 2e-3, "{e_vel:e} {e_att:e}");
+        for k in 1..=steps {
+            for (p, v) in pos_r.clone().zip(vel_r.clone()) {
+                assert_eq!(rates[k][p], values[k][v], "position rate is the velocity");
+            }
+            for c in force_r.clone() {
+                assert_eq!(
+                    rates[k][c],
+                    (values[k][c] - values[k - 1][c]) / h,
+                    "backward difference"
+                );
+            }
+        }
+        assert!(
+            rates[0][force_r.start] == 0.0,
+            "no history before the first step"
+        );
+        // a saved state carries the backward differences; order 2 is refused
+        let mut saved = i.get_state();
+        let j = initialized_with(scene, &format!("mount_rates_restored_{spatial}"));
+        assert_eq!(j.set_state(saved), OK);
+        assert_eq!(output_derivatives(&j, &ovr), rates[steps]);
+        assert_eq!(i.free_state(&mut saved), OK);
+        let mut out = [0.0];
+        let s = unsafe {
+            i.api.get_real_output_derivatives.unwrap()(
+                i.c,
+                ovr.as_ptr(),
+                1,
+                [2].as_ptr(),
+                out.as_mut_ptr(),
+            )
+        };
+        assert_eq!(s, ERROR);
+    }
 }
