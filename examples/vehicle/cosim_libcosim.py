@@ -1,5 +1,7 @@
 """The car + boom co-simulation in libcosim (libcosimpy): the same FMUs and connections as
-cosim.py, described by an OSP system structure (examples/vehicle/OspSystemStructure.xml,
+cosim.py, described by an OSP system structure (examples/vehicle/OspSystemStructure.xml: one
+VariableGroupConnection per OSP-IS port group of the two FMUs, the *_OspModelDescription.xml
+files their packagers write beside them;
 libcosim's fixed-step algorithm: a Jacobi exchange at the base step), compared with the
 fmpy master's naive Jacobi loop at the same step.
 
@@ -35,6 +37,10 @@ def run_libcosim(car, boom, t_end):
         shutil.copy(HERE / "OspSystemStructure.xml", d)
         shutil.copy(car, pathlib.Path(d) / "car.fmu")
         shutil.copy(boom, pathlib.Path(d) / "boom.fmu")
+        # the port groups the connections name, written beside each FMU by its packager
+        for fmu in (car, boom):
+            for osp in pathlib.Path(fmu).parent.glob("*_OspModelDescription.xml"):
+                shutil.copy(osp, d)
         ex = CosimExecution.from_osp_config_file(osp_path=d)
         obs = CosimObserver.create_time_series()
         ex.add_observer(obs)

@@ -14,7 +14,9 @@
 //!    workspace (release code, stripped; win64 cross-built, see `platform.rs`) and takes the
 //!    cdylib that cargo reports (so `CARGO_TARGET_DIR` and cargo config are honoured);
 //! 4. zips `modelDescription.xml`, `binaries/linux64/<id>.so`, `binaries/win64/<id>.dll`,
-//!    `resources/scene.toml` into `DIR/<id>.fmu`.
+//!    `resources/scene.toml` into `DIR/<id>.fmu`;
+//! 5. for a mounted scene, writes its OSP-IS port groups beside it,
+//!    `DIR/<modelName>_OspModelDescription.xml` (`BeamFmu::osp_model_description`).
 //!
 //! Without `--platforms`, every platform whose toolchain is installed is built and each skipped
 //! one is reported with how to install it (win64: `bash scripts/setup-win64.sh`); a platform
@@ -122,6 +124,13 @@ fn run(args: &Args) -> Result<PathBuf, String> {
     }
     let path = args.out.join(format!("{id}.fmu"));
     package::write_fmu(&path, &description, &binaries, &id, &scene)?;
+    // a mounted beam's port groups, where libcosim looks for them (beside the FMU)
+    if let Some((name, osp)) = FmuModel::osp_model_description(text)? {
+        let osp_path = args.out.join(name);
+        std::fs::write(&osp_path, osp)
+            .map_err(|e| format!("cannot write {}: {e}", osp_path.display()))?;
+        eprintln!("fmu-build: wrote {}", osp_path.display());
+    }
     Ok(path)
 }
 

@@ -28,6 +28,7 @@ pub mod hash;
 pub mod instance;
 pub mod log;
 pub mod model;
+pub mod osp;
 pub mod resources;
 pub mod state;
 pub mod sys;

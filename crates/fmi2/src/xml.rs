@@ -280,7 +280,7 @@ fn write_document(
     Ok(())
 }
 
-fn write_units(w: &mut Writer<Vec<u8>>, vars: &[Variable]) -> io::Result<()> {
+pub(crate) fn write_units(w: &mut Writer<Vec<u8>>, vars: &[Variable]) -> io::Result<()> {
     let used: BTreeSet<&str> = vars.iter().filter_map(|v| v.unit).collect();
     if used.is_empty() {
         return Ok(());

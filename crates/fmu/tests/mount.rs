@@ -198,6 +198,19 @@ fn model_description_declares_the_feedthrough() {
         };
         assert_eq!(v.depends_on, want, "{}", v.name);
     }
+    // its OSP-IS port groups name the mount's variables; a fixed root has none
+    let (file, osp) = hybeam_fmu::FmuModel::osp_model_description(&scene)
+        .unwrap()
+        .unwrap();
+    assert_eq!(file, "case1_OspModelDescription.xml");
+    for part in [
+        "<LinearMechanicalPort name=\"mount.linear\">",
+        "<Variable ref=\"root.force.y\" unit=\"N\"/>",
+        "<Variable ref=\"root.angular_acceleration\" unit=\"rad/s2\"/>",
+    ] {
+        assert!(osp.contains(part), "{part}\n{osp}");
+    }
+    assert_eq!(hybeam_fmu::FmuModel::osp_model_description(SCENE), Ok(None));
     let fixed = hybeam_fmu::FmuModel::model_description(SCENE, "f").unwrap();
     assert!(fixed.contains("canInterpolateInputs=\"false\""));
     assert!(fixed.contains("providesDirectionalDerivative=\"false\""));

@@ -458,6 +458,73 @@ impl Vehicle {
     }
 }
 
+impl Vehicle {
+    /// The car's OSP-IS port groups (`<modelName>_OspModelDescription.xml`: file name and
+    /// text): the mirror of the beam FMU's mount groups (its outputs where the beam has
+    /// inputs), with the same names and order: position, angle, the linear port (the beam's
+    /// reaction `beam.root.force.*` as Force, the mount velocity), the angular port, the
+    /// accelerations. A `<VariableGroupConnection>` per group joins the two
+    /// (OspSystemStructure.xml).
+    pub fn osp_model_description(&self) -> Result<(String, String), String> {
+        let text = fmi2::osp::model_description(&Self::osp_groups(), &self.vars)?;
+        Ok((
+            format!("{}_OspModelDescription.xml", self.info.model_name),
+            text,
+        ))
+    }
+
+    /// The groups of [`Vehicle::osp_model_description`].
+    pub fn osp_groups() -> Vec<fmi2::osp::VariableGroup> {
+        use fmi2::osp::VariableGroup as G;
+        vec![
+            G::of(
+                "LinearDisplacement",
+                "mount.position",
+                &["mount.position.x", "mount.position.y"],
+            ),
+            G::of("AngularDisplacement", "mount.angle", &["mount.angle"]),
+            G::nest(
+                "LinearMechanicalPort",
+                "mount.linear",
+                vec![
+                    G::of(
+                        "Force",
+                        "mount.force",
+                        &["beam.root.force.x", "beam.root.force.y"],
+                    ),
+                    G::of(
+                        "LinearVelocity",
+                        "mount.velocity",
+                        &["mount.velocity.x", "mount.velocity.y"],
+                    ),
+                ],
+            ),
+            G::nest(
+                "AngularMechanicalPort",
+                "mount.angular",
+                vec![
+                    G::of("Torque", "mount.moment", &["beam.root.moment.z"]),
+                    G::of(
+                        "AngularVelocity",
+                        "mount.angular_velocity",
+                        &["mount.angular_velocity"],
+                    ),
+                ],
+            ),
+            G::of(
+                "Generic",
+                "mount.acceleration",
+                &["mount.acceleration.x", "mount.acceleration.y"],
+            ),
+            G::of(
+                "Generic",
+                "mount.angular_acceleration",
+                &["mount.angular_acceleration"],
+            ),
+        ]
+    }
+}
+
 impl CoSimModel for Vehicle {
     const RESOURCE: &'static str = "vehicle.toml";
     const GUID_NAMESPACE: &'static str = "hybeam-vehicle";

@@ -238,3 +238,55 @@ fn mount_kinematics_are_consistent() {
         "the body moves at t = 0.5 s (bump crossed)"
     );
 }
+
+/// The groups as (kind, name, variables) in document order.
+fn flat(groups: &[fmi2::osp::VariableGroup]) -> Vec<(&str, &str, &[String])> {
+    let mut out = Vec::new();
+    for g in groups {
+        out.push((g.kind, g.name.as_str(), g.variables.as_slice()));
+        out.extend(flat(&g.groups));
+    }
+    out
+}
+
+/// The car's OSP-IS mount groups mirror the boom beam FMU's, as libcosim's
+/// VariableGroupConnection pairs them: the same names, kinds and sizes in the same order, and
+/// each paired variable an output on one side and an input on the other, in the same unit.
+#[test]
+fn osp_groups_mirror_the_beam_fmus() {
+    let boom = include_str!("../../../scenes/boom.toml");
+    let scene = hybeam::scene::Scene::from_toml(boom).unwrap();
+    let beam_groups = hybeam_fmu::FmuModel::osp_groups(&scene).unwrap();
+    let beam = hybeam_fmu::FmuModel::from_resource(boom).unwrap();
+    let car = Vehicle::from_resource(SCENE).unwrap();
+    let car_groups = Vehicle::osp_groups();
+    let (a, b) = (flat(&car_groups), flat(&beam_groups));
+    assert_eq!(a.len(), b.len());
+    let find = |vars: &[fmi2::Variable], name: &str| {
+        vars.iter().find(|v| v.name == name).cloned().unwrap()
+    };
+    let mut pairs = 0;
+    for ((ka, na, va), (kb, nb, vb)) in a.iter().zip(&b) {
+        assert_eq!((ka, na, va.len()), (kb, nb, vb.len()));
+        for (x, y) in va.iter().zip(vb.iter()) {
+            let (x, y) = (find(car.variables(), x), find(beam.variables(), y));
+            use fmi2::Causality::{Input, Output};
+            assert!(
+                matches!(
+                    (x.causality, y.causality),
+                    (Output, Input) | (Input, Output)
+                ),
+                "{} / {}",
+                x.name,
+                y.name
+            );
+            assert_eq!(x.unit, y.unit, "{} / {}", x.name, y.name);
+            pairs += 1;
+        }
+    }
+    assert_eq!(
+        pairs, 12,
+        "every mount input and reaction output of the beam"
+    );
+    car.osp_model_description().unwrap();
+}

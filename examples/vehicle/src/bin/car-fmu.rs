@@ -8,7 +8,8 @@
 //! `cargo build --release -p hybeam-vehicle --lib`), `RESOURCE` the car's TOML (packaged as
 //! `resources/vehicle.toml`); the modelIdentifier is `OUT`'s file stem. modelDescription.xml
 //! comes from the model itself (the generic layer's generator), so it cannot disagree with
-//! the binary. Deterministic zip (fixed order, timestamps, permissions).
+//! the binary. Deterministic zip (fixed order, timestamps, permissions). Beside it, the car's
+//! OSP-IS port groups (`vehicle_OspModelDescription.xml`, [`Vehicle::osp_model_description`]).
 
 use std::io::Write;
 use std::path::Path;
@@ -67,5 +68,9 @@ fn package(library: &Path, resource: &Path, out: &Path) -> Result<(), String> {
         zip.write_all(&data).map_err(|e| e.to_string())?;
     }
     zip.finish().map_err(|e| e.to_string())?;
+    // the port groups, where libcosim looks for them (beside the FMU)
+    let (name, osp) = model.osp_model_description()?;
+    let osp_path = out.with_file_name(name);
+    std::fs::write(&osp_path, osp).map_err(|e| format!("{}: {e}", osp_path.display()))?;
     Ok(())
 }
