@@ -75,9 +75,8 @@ class Fmu:
         shutil.rmtree(self.dir, ignore_errors=True)
 
 
-def run(car_path, boom_path, h, t_end, scheme="newton", density_factor=1.0, derivatives=False,
-        out=None):
-    """Runs the coupled model; returns (rows, energy residual history, ok)."""
+def start(car_path, boom_path, density_factor=1.0):
+    """Both FMUs initialized in their coupled static start; returns (car, boom)."""
     car, boom = Fmu(car_path, "car"), Fmu(boom_path, "boom")
     car_mount = ["mount." + n for n in MOUNT]
     beam_mount = ["root." + n for n in MOUNT]
@@ -85,8 +84,8 @@ def run(car_path, boom_path, h, t_end, scheme="newton", density_factor=1.0, deri
     for f in (car, boom):
         f.slave.setupExperiment(startTime=0.0)
         f.slave.enterInitializationMode()
+    names = [n for n in boom.vr if n.endswith(".density")]
     if density_factor != 1.0:
-        names = [n for n in boom.vr if n.endswith(".density")]
         boom.set(names, [density_factor * x for x in boom.get(names)])
     # the beam starts in static equilibrium on the roof; the car in static equilibrium
     # under the beam's static reaction (the beam is re-anchored to the car's exact pose at
@@ -103,6 +102,32 @@ def run(car_path, boom_path, h, t_end, scheme="newton", density_factor=1.0, deri
         boom.set(names, [density_factor * x for x in boom.get(names)])
     boom.set(beam_mount, car.get(car_mount))
     boom.slave.exitInitializationMode()
+    return car, boom
+
+
+def coupling_ratio(car_path, boom_path, density_factor=1.0):
+    """The naive loop's amplification per exchange at the start: the spectral radius of
+    Jb Jc (the beam's apparent mass at the mount times the car's mobility, both from
+    fmi2GetDirectionalDerivative); the exchange of the reaction is unstable above 1. Also
+    returns the beam's mass (root.mass) and the diagonal of Jb (its apparent mass along x
+    and y [kg] and in rotation [kg m²])."""
+    car, boom = start(car_path, boom_path, density_factor)
+    jb = boom.jacobian(REACTION, ["root." + n for n in MOUNT[6:]])
+    jc = car.jacobian(["mount." + n for n in MOUNT[6:]], ["beam." + n for n in REACTION])
+    rho = float(np.max(np.abs(np.linalg.eigvals(jb @ jc))))
+    mass = float(boom.get(["root.mass"])[0])
+    car.close()
+    boom.close()
+    return rho, mass, np.diag(jb)
+
+
+def run(car_path, boom_path, h, t_end, scheme="newton", density_factor=1.0, derivatives=False,
+        out=None):
+    """Runs the coupled model; returns (rows, energy residual history, ok)."""
+    car, boom = start(car_path, boom_path, density_factor)
+    car_mount = ["mount." + n for n in MOUNT]
+    beam_mount = ["root." + n for n in MOUNT]
+    car_in = ["beam." + n for n in REACTION]
     with open(f"{car.dir}/resources/vehicle.toml", "rb") as fh:
         speed = tomllib.load(fh)["road"]["speed"]
     w_drive = 0.0  # work of the car's drive on the beam along x (the car's x is prescribed)

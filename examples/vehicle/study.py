@@ -13,7 +13,7 @@ import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 
-from cosim import run  # noqa: E402
+from cosim import coupling_ratio, run  # noqa: E402
 
 
 def main():
@@ -62,6 +62,19 @@ def main():
             except Exception:
                 cells.append("diverged")
         say(f"| {1e3 * h:g} | " + " | ".join(cells) + " |")
+    # (b') why the naive loop stays stable here: its amplification per exchange
+    say("")
+    say("(b') the naive loop's amplification of a reaction change per exchange, the spectral "
+        "radius of Jb Jc (beam apparent mass x car mobility, directional derivatives at the "
+        "start; unstable above 1)")
+    say("")
+    say("| boom density factor | boom mass [kg] | apparent mass x, y [kg], pitch [kg m2] "
+        "| spectral radius of Jb Jc |")
+    say("|---|---|---|---|")
+    for factor in [1.0, 10.0, 100.0]:
+        rho, mass, diag = coupling_ratio(a.car, a.boom, factor)
+        apparent = ", ".join(f"{x:.3g}" for x in diag)
+        say(f"| {factor:g} | {mass:.4g} | {apparent} | {rho:.3e} |")
     text = "\n".join(lines)
     print(text)
     with open(a.out, "w") as fh:
