@@ -58,3 +58,46 @@ def test_libcosim_runs_the_osp_structure_like_the_fmpy_jacobi_loop(fmus):
         diff = np.max(np.abs(lc[name] - ref))
         print(f"{name}: libcosim vs fmpy {diff:.3e} of range {np.ptp(rows[:, col]):.3e}")
         assert diff < tol * np.ptp(rows[:, col]) + 1e-12, (name, diff)
+
+
+def _osp_groups(fmu):
+    """The OSP-IS groups written beside `fmu` (<modelName>_OspModelDescription.xml) as
+    (kind, name, [variable refs]) in document order, and the FMU's variables by name."""
+    import pathlib
+    import xml.etree.ElementTree as ET
+
+    from fmpy import read_model_description
+
+    md = read_model_description(fmu)
+    path = pathlib.Path(fmu).parent / f"{md.modelName}_OspModelDescription.xml"
+    root = ET.parse(path).getroot()
+    ns = "{https://open-simulation-platform.com/OspModelDescription/1.0.0}"
+    out = []
+
+    def walk(element):
+        for g in element:
+            kind = g.tag.removeprefix(ns)
+            if kind == "Variable":
+                continue
+            out.append((kind, g.get("name"),
+                        [v.get("ref") for v in g if v.tag == ns + "Variable"]))
+            walk(g)
+
+    walk(root.find(ns + "VariableGroups"))
+    return out, {v.name: v for v in md.modelVariables}
+
+
+def test_osp_port_groups_of_the_car_mirror_the_beams(fmus):
+    """What libcosim's VariableGroupConnection needs of the two files the packagers write
+    beside the FMUs: the same group names, kinds and sizes in the same order, each paired
+    variable an output on one side and an input on the other, in the same unit."""
+    (car, cvars), (boom, bvars) = _osp_groups(fmus[0]), _osp_groups(fmus[1])
+    assert [(k, n, len(v)) for k, n, v in car] == [(k, n, len(v)) for k, n, v in boom]
+    pairs = 0
+    for (_, name, cv), (_, _, bv) in zip(car, boom):
+        for x, y in zip(cv, bv):
+            a, b = cvars[x], bvars[y]
+            assert {a.causality, b.causality} == {"input", "output"}, (name, x, y)
+            assert a.unit == b.unit, (name, x, y)
+            pairs += 1
+    assert pairs == 12  # every mount input and reaction output of the planar beam
