@@ -294,9 +294,12 @@ impl<S: SpaceModel> Simulator<S> {
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
         let mut integ = GeneralizedAlpha::new(&scene.solver, n, m);
         let mount = MountState::<S>::of_scene(&scene, 0.0);
-        if initialize && scene.initial.state == InitialState::Static {
+        let static_start = initialize && scene.initial.state == InitialState::Static;
+        // a spinning mount's static state is relative: solved after the carry, below
+        let spinning = scene.mount_turns().0;
+        if static_start && !spinning {
             // in the mount frame (built there, at rest): gravity minus the mount's acceleration
-            // (a mount with a static state does not turn)
+            // (this mount does not turn)
             let g = model.gravity();
             if let Some(ms) = &mount {
                 let mut ge = g;
@@ -315,6 +318,13 @@ impl<S: SpaceModel> Simulator<S> {
             // at rest relative to the mount: carried to its pose with its rigid velocity field
             model.carry_state(&ms.base, &mut state.q, &mut state.v);
             model.set_mount(&ms.base);
+            if static_start && spinning {
+                // at rest in the spinning frame: centrifugal field, gravity, the mount's
+                // acceleration, from the straight beam carried there
+                model
+                    .solve_relative_static(&ms.base, &mut state, scene.solver.static_tolerance())
+                    .map_err(SimError::InitialStatic)?;
+            }
         }
         if initialize {
             integ

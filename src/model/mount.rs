@@ -115,6 +115,9 @@ pub struct MountInertia<S: Space> {
 /// A fixed-size scratch of a group's coordinates.
 type G = [f64; 4];
 
+/// Largest n + m of [`Model::solve_relative_static`] (its dense Jacobian).
+pub const RELATIVE_STATIC_MAX: usize = 3000;
+
 impl<S: Space> Model<S> {
     /// Whether the root is clamped to a moving mount.
     pub fn is_mounted(&self) -> bool {
@@ -176,6 +179,126 @@ impl<S: Space> Model<S> {
             scatter_free(g, &qo, q);
             scatter_free(g, &vo, v);
         }
+    }
+
+    /// Rates `v` and accelerations `a` of the free coordinates `q` (world values) at rest
+    /// relative to the frame moving as `m`: each rigid group's values taken relative to the
+    /// frame and carried back with the frame's rates (affine in `q`); the other coordinates
+    /// (modal amplitudes, which are relative already) zero.
+    pub fn rest_rates(&self, m: &Motion<S>, q: &[f64], v: &mut [f64], a: &mut [f64]) {
+        v.fill(0.0);
+        a.fill(0.0);
+        for g in self.groups.iter().filter(|g| !is_held(g)) {
+            let (vo, ao) = rest_of_group::<S>(g, m, &gather_free(g, q));
+            scatter_free(g, &vo, v);
+            scatter_free(g, &ao, a);
+        }
+    }
+
+    /// ∂v/∂q and ∂a/∂q of [`Model::rest_rates`] as (row, column, value) entries: per rigid
+    /// group, by unit differences of its coordinates (exact, the map being affine).
+    fn rest_rate_jacobians(&self, m: &Motion<S>, q: &[f64]) -> [Vec<(usize, usize, f64)>; 2] {
+        let mut out = [Vec::new(), Vec::new()];
+        for g in self.groups.iter().filter(|g| !is_held(g)) {
+            let k = S::rigid_len(g.kind);
+            let field = |qg: &G| rest_of_group::<S>(g, m, qg);
+            let q0 = gather_free(g, q);
+            let (v0, a0) = field(&q0);
+            for (c, dc) in g.dofs.iter().enumerate().take(k) {
+                let Dof::Free(col) = *dc else { continue };
+                let mut qp = q0;
+                qp[c] += 1.0;
+                let (v1, a1) = field(&qp);
+                for (r, dr) in g.dofs.iter().enumerate().take(k) {
+                    let Dof::Free(row) = *dr else { continue };
+                    let (dv, da) = (v1[r] - v0[r], a1[r] - a0[r]);
+                    if dv != 0.0 {
+                        out[0].push((row as usize, col as usize, dv));
+                    }
+                    if da != 0.0 {
+                        out[1].push((row as usize, col as usize, da));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Static equilibrium relative to a mount turning at a constant rate (the motion `m`, in
+    /// world axes): the free coordinates `state.q` (world values, carried to the mount) and the
+    /// multipliers such that the equations of motion hold with the rigid field's rates and
+    /// accelerations ([`Model::rest_rates`]: centrifugal and Coriolis-free, the beam at rest in
+    /// the mount frame). Newton on q and λ with the exact Jacobian K + C ∂v/∂q + M ∂a/∂q,
+    /// assembled dense (O((n + m)²) memory; up to [`RELATIVE_STATIC_MAX`] unknowns). On
+    /// success `state` holds q, the rest rates, accelerations and λ.
+    pub fn solve_relative_static(
+        &mut self,
+        m: &Motion<S>,
+        state: &mut crate::integrator::State,
+        tol: f64,
+    ) -> Result<usize, crate::integrator::StaticFailure> {
+        use crate::integrator::{EvalRequest, Integrable, StateRef, StaticFailure};
+        let (n, mc) = (self.coordinates(), self.constraints());
+        let d = n + mc;
+        let fail = |reason: String| StaticFailure { load: 0.0, reason };
+        if d > RELATIVE_STATIC_MAX {
+            return Err(fail(format!(
+                "{d} unknowns: the static start on a turning mount is solved dense, up to {RELATIVE_STATIC_MAX}"
+            )));
+        }
+        let scale = self.scales().to_vec();
+        let (mut q, mut lam) = (state.q.clone(), state.lambda.clone());
+        let (mut v, mut a) = (vec![0.0; n], vec![0.0; n]);
+        let mut res = vec![0.0; d];
+        for iter in 1..=crate::integrator::STATIC_MAX_ITER {
+            self.rest_rates(m, &q, &mut v, &mut a);
+            let mut dense = |model: &mut Self, c: (f64, f64, f64), hessian: bool| {
+                let req = EvalRequest {
+                    sd: 1.0,
+                    matrix: Some(c),
+                    lambda_hessian: hessian,
+                };
+                model.eval(StateRef::new(&q, &v, &a, &lam), req, &mut res);
+                model.assembled_dense()
+            };
+            let mass = dense(self, (1.0, 0.0, 0.0), false);
+            let damping = dense(self, (0.0, 1.0, 0.0), false);
+            let stiffness = dense(self, (0.0, 0.0, 1.0), true);
+            let mut j = nalgebra::DMatrix::from_fn(d, d, |r, c| stiffness[r][c]);
+            let [dv, da] = self.rest_rate_jacobians(m, &q);
+            for (jac, mat) in [(&dv, &damping), (&da, &mass)] {
+                for &(k, col, x) in jac {
+                    for row in 0..n {
+                        j[(row, col)] += mat[row][k] * x;
+                    }
+                }
+            }
+            let rhs = nalgebra::DVector::from_iterator(d, res.iter().map(|r| -r));
+            let step = j
+                .lu()
+                .solve(&rhs)
+                .ok_or_else(|| fail("singular Jacobian".into()))?;
+            self.increment(&mut q, &step.as_slice()[..n]);
+            for (l, s) in lam.iter_mut().zip(&step.as_slice()[n..]) {
+                *l += s;
+            }
+            let norm = crate::integrator::scaled_norm(&step.as_slice()[..n], &scale);
+            if !norm.is_finite() {
+                break;
+            }
+            if norm <= tol {
+                self.rest_rates(m, &q, &mut v, &mut a);
+                state.q = q;
+                state.v = v;
+                state.acc = a;
+                state.aux.fill(0.0);
+                state.lambda = lam;
+                return Ok(iter);
+            }
+        }
+        Err(fail(
+            "Newton did not converge in the turning mount's frame".into(),
+        ))
     }
 
     /// Re-anchors free coordinates, rates and accelerations (`acc` and any further
@@ -375,6 +498,28 @@ impl<S: Space> Model<S> {
         }
         (uf, uh)
     }
+}
+
+/// Rates and accelerations of a group with world values `qg` at rest relative to the frame
+/// moving as `m`: taken relative to the frame, carried back with its rates.
+fn rest_of_group<S: Space>(g: &RigidGroup, m: &Motion<S>, qg: &G) -> (G, G) {
+    let k = S::rigid_len(g.kind);
+    let zero = [0.0; 4];
+    let (mut rel, mut s1, mut s2) = (zero, zero, zero);
+    S::uncarry(
+        g.kind,
+        m,
+        [&qg[..k], &zero[..k], &zero[..k]],
+        [&mut rel[..k], &mut s1[..k], &mut s2[..k]],
+    );
+    let (mut qo, mut vo, mut ao) = (zero, zero, zero);
+    S::carry(
+        g.kind,
+        m,
+        [&rel[..k], &zero[..k], &zero[..k]],
+        [&mut qo[..k], &mut vo[..k], &mut ao[..k]],
+    );
+    (vo, ao)
 }
 
 fn is_held(g: &RigidGroup) -> bool {

@@ -763,23 +763,35 @@ impl Scene {
                 }
             }
         }
-        // a turning mount's centrifugal and Euler fields (|ω|²L, |α|L) against gravity minus the
-        // mount's acceleration: a host at rest reports rounding-level rates, which pass
+        if self.initial.state == InitialState::Static && self.mount_turns().1 {
+            return Err(SceneError(
+                "initial.state = \"static\" with mount.angular_acceleration nonzero: a spin that changes has no static state in the mount frame; use initial.state = \"straight\", or start at a constant spin".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Whether the mount's spin matters at the start (`[mount]`): (its centrifugal field
+    /// |ω|²L, its Euler field |α|L) against gravity minus the mount's acceleration, above 1e-9
+    /// of it (a host at rest reports rounding-level rates, which do not count). `(false,
+    /// false)` unless mounted.
+    pub fn mount_turns(&self) -> (bool, bool) {
+        let Some(m) = self.mount_start() else {
+            return (false, false);
+        };
         let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let turning = norm(&m.angular_velocity).powi(2) + norm(&m.angular_acceleration);
         let field: Vec<f64> = (0..self.space.dim())
             .map(|k| {
                 let g = self.gravity.get(k).copied().unwrap_or(0.0);
                 g - m.acceleration.get(k).copied().unwrap_or(0.0)
             })
             .collect();
-        let spins = turning * self.total_length() > 1e-9 * norm(&field).max(1.0);
-        if self.initial.state == InitialState::Static && spins {
-            return Err(SceneError(
-                "initial.state = \"static\" with a turning mount (mount.angular_velocity or angular_acceleration nonzero): a static state in the mount frame exists only for a mount that does not turn; use initial.state = \"straight\"".into(),
-            ));
-        }
-        Ok(())
+        let floor = 1e-9 * norm(&field).max(1.0);
+        let l = self.total_length();
+        (
+            norm(&m.angular_velocity).powi(2) * l > floor,
+            norm(&m.angular_acceleration) * l > floor,
+        )
     }
 
     /// The mount's start motion (`[mount]`, or at rest at the origin), every vector with all its
