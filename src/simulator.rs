@@ -179,6 +179,51 @@ impl<S: SpaceModel> Inputs<S> {
     }
 }
 
+/// First and second time derivatives of the tip loads over the coming communication step (FMI
+/// input derivatives; zero: the loads are held): the step integrates
+/// F(t₀ + τ) = F + Ḟτ + ½F̈τ² (and the moment likewise) at every internal step.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(bound = "")]
+pub struct LoadRates<S: SpaceModel = Planar> {
+    /// Ḟ [N/s], F̈ [N/s²], global axes.
+    pub force: [S::Vec; 2],
+    /// Ṁ [N m/s], M̈ [N m/s²].
+    pub moment: [S::Moment; 2],
+}
+
+impl<S: SpaceModel> LoadRates<S> {
+    /// Whether any rate is nonzero.
+    fn any(&self) -> bool {
+        self.force
+            .iter()
+            .any(|f| f.as_ref().iter().any(|x| *x != 0.0))
+            || self
+                .moment
+                .iter()
+                .any(|m| S::moment_components(m).iter().any(|x| *x != 0.0))
+    }
+
+    /// The loads `tau` [s] after `at`, whose loads are the values at the start.
+    fn advanced(&self, at: &Inputs<S>, tau: f64) -> Inputs<S> {
+        let mut out = *at;
+        let (c1, c2) = (tau, 0.5 * tau * tau);
+        for k in 0..S::DIM {
+            out.tip_force[k] += c1 * self.force[0][k] + c2 * self.force[1][k];
+        }
+        let (d1, d2) = (
+            S::moment_components(&self.moment[0]).to_vec(),
+            S::moment_components(&self.moment[1]).to_vec(),
+        );
+        for (k, m) in S::moment_components_mut(&mut out.tip_moment)
+            .iter_mut()
+            .enumerate()
+        {
+            *m += c1 * d1[k] + c2 * d2[k];
+        }
+        out
+    }
+}
+
 /// Everything beyond the state that a snapshot must carry for a bit-identical restart.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
@@ -195,11 +240,13 @@ pub struct Memory<S: SpaceModel = Planar> {
     pub mount: Option<MountState<S>>,
     /// The mount motion the held Newton matrix was evaluated at (mounted scenes).
     pub mount_at_matrix: Option<Motion<S>>,
+    /// The tip loads' derivatives set for the next step.
+    pub load_rates: LoadRates<S>,
 }
 
 /// Format version of [`Simulator::snapshot`]; raise it when a field of [`Snapshot`] (or of the
 /// structs it holds) changes.
-pub const SNAPSHOT_VERSION: u32 = 3;
+pub const SNAPSHOT_VERSION: u32 = 4;
 
 /// The payload of [`Simulator::snapshot`], encoded with `postcard` (f64 as 8 little-endian
 /// bytes, so restored values are bit-identical).
@@ -248,6 +295,8 @@ pub struct Simulator<S: SpaceModel = Planar> {
     /// The mount's motion (`root = "mounted"`; boxed: a fixed root carries no more than a
     /// pointer).
     mount: Option<Box<MountState<S>>>,
+    /// The tip loads' derivatives over the next step (zero: held).
+    load_rates: LoadRates<S>,
     /// Smallest internal step used so far [s].
     pub min_step_used: f64,
 }
@@ -344,6 +393,7 @@ impl<S: SpaceModel> Simulator<S> {
             step,
             applied,
             mount: mount.map(Box::new),
+            load_rates: LoadRates::default(),
             min_step_used: f64::INFINITY,
         })
     }
@@ -376,6 +426,7 @@ impl<S: SpaceModel> Simulator<S> {
             applied: self.applied,
             mount: self.mount.as_deref().cloned(),
             mount_at_matrix: self.model.mount_at_matrix(),
+            load_rates: self.load_rates,
         }
     }
 
@@ -437,6 +488,7 @@ impl<S: SpaceModel> Simulator<S> {
         self.step = mem.step;
         self.applied = mem.applied;
         self.mount = mem.mount.clone().map(Box::new);
+        self.load_rates = mem.load_rates;
         Ok(())
     }
 
@@ -540,6 +592,17 @@ impl<S: SpaceModel> Simulator<S> {
         inputs.apply(&mut self.model);
     }
 
+    /// The tip loads' derivatives for the next step ([`LoadRates`]); they hold for that step
+    /// only (zero after it).
+    pub fn set_load_rates(&mut self, rates: LoadRates<S>) {
+        self.load_rates = rates;
+    }
+
+    /// The tip loads' derivatives set for the next step.
+    pub fn load_rates(&self) -> LoadRates<S> {
+        self.load_rates
+    }
+
     /// Outputs of the current state.
     pub fn outputs(&self) -> Outputs<S> {
         let s = &self.state;
@@ -554,7 +617,10 @@ impl<S: SpaceModel> Simulator<S> {
         saved: State,
         saved_step: StepControl,
         mount: Option<Box<MountState<S>>>,
+        inputs: &Inputs<S>,
     ) {
+        // the loads set for the step (an attempt may have left them at a time within it)
+        inputs.apply(&mut self.model);
         if let Some(ms) = &mount {
             self.model.set_mount(&ms.at(saved.t));
         }
@@ -808,7 +874,7 @@ impl<S: SpaceModel> Simulator<S> {
         let mount_jump = match self.take_mount_input() {
             Ok(j) => j,
             Err(e) => {
-                self.roll_back(saved, saved_step, saved_mount);
+                self.roll_back(saved, saved_step, saved_mount, &inputs);
                 return Err(e);
             }
         };
@@ -824,7 +890,7 @@ impl<S: SpaceModel> Simulator<S> {
                 })
                 .map_err(|source| SimError::InputJump { t: t0, source });
             if let Err(e) = changed {
-                self.roll_back(saved, saved_step, saved_mount);
+                self.roll_back(saved, saved_step, saved_mount, &inputs);
                 return Err(e);
             }
         }
@@ -833,16 +899,23 @@ impl<S: SpaceModel> Simulator<S> {
         let mut done = 0u64;
         let mut attempts = 0u64;
         let mut halvings = 0;
+        let varying = self.load_rates.any();
         while done < steps {
             let h = span / steps as f64;
             attempts += 1;
+            let t_next = if done + 1 == steps {
+                t_end
+            } else {
+                t0 + span * ((done + 1) as f64 / steps as f64)
+            };
             if let Some(ms) = &self.mount {
-                let t_next = if done + 1 == steps {
-                    t_end
-                } else {
-                    t0 + span * ((done + 1) as f64 / steps as f64)
-                };
                 self.model.set_mount(&ms.at(t_next));
+            }
+            if varying {
+                // the loads at the step's end, where its equations hold
+                self.load_rates
+                    .advanced(&inputs, t_next - t0)
+                    .apply(&mut self.model);
             }
             match self.integ.step(&mut self.model, &mut self.state, h) {
                 Ok(_) => {
@@ -867,7 +940,7 @@ impl<S: SpaceModel> Simulator<S> {
                         None
                     };
                     if let Some(limit) = limit {
-                        self.roll_back(saved, saved_step, saved_mount);
+                        self.roll_back(saved, saved_step, saved_mount, &inputs);
                         return Err(SimError::Step {
                             t: self.state.t,
                             halvings: halvings - 1,
@@ -893,7 +966,7 @@ impl<S: SpaceModel> Simulator<S> {
             .modal_deflection
             .filter(|&(_, d)| finite && d > MAX_MODAL_DEFLECTION);
         if let Some((si, d)) = modal {
-            self.roll_back(saved, saved_step, saved_mount);
+            self.roll_back(saved, saved_step, saved_mount, &inputs);
             return Err(SimError::Refused {
                 t: t_end,
                 refusal: Refusal::ModalDeflection {
@@ -903,11 +976,11 @@ impl<S: SpaceModel> Simulator<S> {
             });
         }
         if let Some(refusal) = self.section_refusal(&validity, true).filter(|_| finite) {
-            self.roll_back(saved, saved_step, saved_mount);
+            self.roll_back(saved, saved_step, saved_mount, &inputs);
             return Err(SimError::Refused { t: t_end, refusal });
         }
         if !finite || strain > MAX_AXIAL_STRAIN {
-            self.roll_back(saved, saved_step, saved_mount);
+            self.roll_back(saved, saved_step, saved_mount, &inputs);
             return Err(if finite {
                 SimError::Refused {
                     t: t_end,
@@ -917,7 +990,15 @@ impl<S: SpaceModel> Simulator<S> {
                 SimError::NonFinite { t: t_end }
             });
         }
-        self.applied = inputs;
+        self.applied = if self.load_rates.any() {
+            // the loads went on to their values at t_end, which stay set (the derivatives held
+            // for this step)
+            let end = self.load_rates.advanced(&inputs, span);
+            self.load_rates = LoadRates::default();
+            end
+        } else {
+            inputs
+        };
         if halvings > 0 {
             self.step = StepControl {
                 h_ok: span / steps as f64,

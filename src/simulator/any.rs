@@ -3,7 +3,7 @@
 //! [`Space::AXES`], [`Space::MOMENT_AXES`] and the orientation's components
 //! ([`SpaceModel::ATTITUDE`]).
 
-use super::{Inputs, MountInput, Simulator, SpaceModel};
+use super::{Inputs, LoadRates, MountInput, Simulator, SpaceModel};
 use crate::error::SimError;
 use crate::integrator::Counters;
 use crate::model::{Outputs, Planar, Space, Spatial};
@@ -212,6 +212,23 @@ impl<S: SpaceModel> Outputs<S> {
                 .copied(),
             _ => None,
         }
+    }
+}
+
+/// The slot of the `order`-th derivative (1 or 2) of a tip load component in `rates`; `None`
+/// for other inputs (gravity takes no derivatives) or components.
+fn load_rate_slot<S: SpaceModel>(
+    rates: &mut LoadRates<S>,
+    id: InputId,
+    order: u32,
+) -> Option<&mut f64> {
+    let o = (order as usize).checked_sub(1).filter(|o| *o < 2)?;
+    match id.kind {
+        InputKind::TipForce => rates.force[o].as_mut().get_mut(id.component),
+        InputKind::TipMoment => {
+            S::moment_components_mut(&mut rates.moment[o]).get_mut(id.component)
+        }
+        _ => None,
     }
 }
 
@@ -620,6 +637,14 @@ impl AnySimulator {
             let known = inputs.set(id, x);
             if known {
                 s.set_inputs(&inputs);
+                // a tip load set again forgets its derivatives
+                for order in [1, 2] {
+                    let mut rates = s.load_rates();
+                    if let Some(d) = load_rate_slot(&mut rates, id, order) {
+                        *d = 0.0;
+                        s.set_load_rates(rates);
+                    }
+                }
             }
             known
         })
@@ -629,10 +654,23 @@ impl AnySimulator {
     /// (FMI input derivatives; they hold for the next step only). Mount inputs: the
     /// accelerations' derivatives (or, with `motion_input = "pose_velocity"`, the velocities')
     /// shape the base motion; derivatives of the pose, implied by the velocities, are accepted
-    /// and not used. `false` for an input without derivatives here (tip loads, gravity).
+    /// and not used. Tip loads: [`LoadRates`]. `false` for gravity.
     pub fn set_input_derivative(&mut self, id: InputId, order: u32, x: f64) -> bool {
-        if !id.kind.is_mount() || !(1..=2).contains(&order) {
+        if !(1..=2).contains(&order) {
             return false;
+        }
+        if !id.kind.is_mount() {
+            return each!(self, s => {
+                let mut rates = s.load_rates();
+                match load_rate_slot(&mut rates, id, order) {
+                    Some(d) => {
+                        *d = x;
+                        s.set_load_rates(rates);
+                        true
+                    }
+                    None => false,
+                }
+            });
         }
         each!(self, s => {
             let (Some(mut m), Some(given)) = (s.mount_input(), s.mount_accelerations_given())

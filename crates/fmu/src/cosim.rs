@@ -331,15 +331,17 @@ impl CoSimModel for BeamFmu {
         }
     }
 
-    /// Mount inputs only (a mounted scene): the accelerations' derivatives shape the base
+    /// A mounted scene's continuous inputs: the mount accelerations' derivatives shape the base
     /// motion over the step (or, with `motion_input = "pose_velocity"`, the velocities'); the
-    /// pose's derivatives are implied by the velocities and not used. The tip loads take none.
+    /// pose's derivatives are implied by the velocities and not used; the tip loads' make them
+    /// F + Ḟτ + ½F̈τ² over the step (their values at its end then stay set). Gravity (a
+    /// parameter) takes none.
     fn set_input_derivative(&mut self, index: usize, order: u32, value: f64) -> Result<(), String> {
         let name = &self.table.variables()[index].name;
         match self.table.access(index) {
             Access::Input(id) if self.sim.set_input_derivative(id, order, value) => Ok(()),
             _ => Err(format!(
-                "{name}: input derivatives are taken for the mount inputs only (the tip loads are held over a step)"
+                "{name}: input derivatives are taken for the mount inputs and the tip loads"
             )),
         }
     }

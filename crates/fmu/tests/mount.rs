@@ -135,6 +135,41 @@ fn input_derivatives_shape_the_base_motion_over_a_step() {
     assert!((without - fine).abs() > 1e3 * (one - fine).abs().max(1e-15));
 }
 
+/// The tip loads take input derivatives too: a tip force F(t) = 0.01 + 2t + 25t² N over one
+/// 10 ms step with its first and second derivatives equals ten 1 ms steps that set its value
+/// and derivatives at each (Newton-tolerance agreement), differs from a step without them,
+/// and leaves the force at its value at the step's end.
+#[test]
+fn tip_load_derivatives_shape_the_load_over_a_step() {
+    let scene = mounted("");
+    let f = vr_in(&scene, "tip.force.y");
+    let tip = vr_in(&scene, "tip.position.y");
+    let (rate, curvature) = (2.0, 50.0); // N/s, N/s²
+    let load = |t: f64| 0.01 + rate * t + 0.5 * curvature * t * t;
+    let h = 1e-2;
+    let run = |tag: &str, sub: usize, with: bool| {
+        let i = initialized_with(&scene, tag);
+        let dt = h / sub as f64;
+        for k in 0..sub {
+            let t = k as f64 * dt;
+            assert_eq!(i.set_real(&[f], &[load(t)]), OK);
+            if with {
+                assert_eq!(set_derivatives(&i, &[f], 1, &[rate + curvature * t]), OK);
+                assert_eq!(set_derivatives(&i, &[f], 2, &[curvature]), OK);
+            }
+            assert_eq!(i.do_step(t, dt), OK, "{:?}", i.log.entries());
+        }
+        (i.get1(tip), i.get1(f))
+    };
+    let (one, f_end) = run("tip_der1", 1, true);
+    let (fine, _) = run("tip_der10", 10, true);
+    let (without, _) = run("tip_der0", 1, false);
+    eprintln!("tip y: one step with derivatives {one:.12e}, ten steps {fine:.12e}, without {without:.12e}");
+    assert!((one - fine).abs() < 1e-10, "{one} vs {fine}");
+    assert!((without - fine).abs() > 1e3 * (one - fine).abs().max(1e-15));
+    assert!((f_end - load(h)).abs() < 1e-15, "{f_end} vs {}", load(h));
+}
+
 /// A zero quaternion, a non-finite input or a pose that jumps by metres: the step is
 /// discarded with a message and the state kept.
 #[test]
