@@ -177,6 +177,10 @@ fn add_stiffening(
     let (s, c) = math::sin_cos(q[2]);
     let ax = c * (a[0] - g[0]) + s * (a[1] - g[1]);
     let (kw, ka) = (body.rho_a * body.length * v[2] * v[2], body.rho_a * ax);
+    if kw == 0.0 && ka == 0.0 {
+        // a frame at rest with no axial field (a clamped root across gravity): K_G = 0
+        return;
+    }
     let kg = |i: usize, j: usize| kw * g2[i * n + j] - ka * g1[i * n + j];
     for i in 0..n {
         res[3 + i] += (0..n).map(|j| kg(i, j) * q[3 + j]).sum::<f64>();
