@@ -211,14 +211,15 @@ impl<S: SpaceModel> LoadRates<S> {
             out.tip_force[k] += c1 * self.force[0][k] + c2 * self.force[1][k];
         }
         let (d1, d2) = (
-            S::moment_components(&self.moment[0]).to_vec(),
-            S::moment_components(&self.moment[1]).to_vec(),
+            S::moment_components(&self.moment[0]),
+            S::moment_components(&self.moment[1]),
         );
-        for (k, m) in S::moment_components_mut(&mut out.tip_moment)
+        for ((m, a), b) in S::moment_components_mut(&mut out.tip_moment)
             .iter_mut()
-            .enumerate()
+            .zip(d1)
+            .zip(d2)
         {
-            *m += c1 * d1[k] + c2 * d2[k];
+            *m += c1 * a + c2 * b;
         }
         out
     }
@@ -990,7 +991,7 @@ impl<S: SpaceModel> Simulator<S> {
                 SimError::NonFinite { t: t_end }
             });
         }
-        self.applied = if self.load_rates.any() {
+        self.applied = if varying {
             // the loads went on to their values at t_end, which stay set (the derivatives held
             // for this step)
             let end = self.load_rates.advanced(&inputs, span);

@@ -7,7 +7,7 @@
 //! nonlinear by itself; the modal segment of a held frame carries K_G = ρAL Ω²G2 (+ the axial
 //! inertia term), the hybrid's joint rows the outboard tension.
 
-use hybeam::model::{Planar, Space, Spatial};
+use hybeam::model::{Planar, Spatial};
 use hybeam::scene::Scene;
 use hybeam::simulator::{Simulator, SpaceModel};
 
@@ -165,6 +165,17 @@ fn lag_scene(text: &str, omega: &str, moment: &str, damping_time: f64) -> Scene 
     Scene::from_toml(&text).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The tip's position across the rod in the mount frame (its y component, relative to the
+/// mount point) [m].
+fn across<S: SpaceModel>(sim: &Simulator<S>) -> f64 {
+    let (o, m) = (sim.outputs(), sim.mount().unwrap());
+    let mut r = o.tip_position;
+    for c in 0..S::DIM {
+        r[c] -= m.position[c];
+    }
+    S::to_frame(&m.attitude, &r)[1]
+}
+
 /// The lag (in-plane) frequency on a mount spinning in its plane: ω_lag² = ω_flap² − Ω²
 /// (B6 lag column 3.5160, 3.6218, 3.8977 at Ω* = 0, 2, 4), from the tip's motion across the
 /// rod in the rotating frame, set off by a dead tip moment about the spin axis, for the
@@ -189,15 +200,7 @@ fn b6_lag_frequencies() {
         for name in ["case1_ancf", "case1", "case1_modal"] {
             let scene = lag_scene(&read(name), &format!("[{omega:e}]"), "[1e-4]", 1e-4);
             let mut sim = Simulator::<Planar>::start_at(scene, 0.0).unwrap();
-            let y = |sim: &Simulator<Planar>| {
-                let (o, m) = (sim.outputs(), sim.mount().unwrap());
-                let r = [
-                    o.tip_position[0] - m.position[0],
-                    o.tip_position[1] - m.position[1],
-                ];
-                Planar::to_frame(&m.attitude, &r)[1]
-            };
-            results.push((name, frequency_after(&mut sim, 0.5, 1.0, y) / w0));
+            results.push((name, frequency_after(&mut sim, 0.5, 1.0, across) / w0));
         }
         for name in ["case1_3d_ancf", "case1_3d"] {
             let scene = lag_scene(
@@ -207,16 +210,7 @@ fn b6_lag_frequencies() {
                 1e-4,
             );
             let mut sim = Simulator::<Spatial>::start_at(scene, 0.0).unwrap();
-            let y = |sim: &Simulator<Spatial>| {
-                let (o, m) = (sim.outputs(), sim.mount().unwrap());
-                let r = [
-                    o.tip_position[0] - m.position[0],
-                    o.tip_position[1] - m.position[1],
-                    o.tip_position[2] - m.position[2],
-                ];
-                Spatial::to_frame(&m.attitude, &r)[1]
-            };
-            results.push((name, frequency_after(&mut sim, 0.5, 1.0, y) / w0));
+            results.push((name, frequency_after(&mut sim, 0.5, 1.0, across) / w0));
         }
         for (name, w) in results {
             let err = w / lag - 1.0;

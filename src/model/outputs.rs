@@ -63,31 +63,39 @@ impl<S: Space> Model<S> {
         let tip = &self.tip.dofs;
         let x = &mut buf[..tip.len()];
         tip.gather(q, &self.held, x);
-        let kin = self.tip.part.kinematics_first(x);
-        let mut vel = S::Vec::default();
-        let mut omega = S::Moment::default();
-        for (k, dof) in tip.dofs().iter().enumerate() {
-            // a held coordinate moves with a mount (a modal tip port holds its root frame)
-            let rate = match *dof {
-                Dof::Free(i) => Some(v[i as usize]),
-                Dof::Held(j) => self.held_v.get(j as usize).copied(),
-            };
-            if let Some(rate) = rate {
-                let dp = kin.jacobian(k);
-                for c in 0..S::DIM {
-                    vel[c] += dp[c] * rate;
-                }
-                let dth = kin.rotation_jacobian(k);
-                let (w, d) = (
-                    S::moment_components_mut(&mut omega),
-                    S::moment_components(&dth),
-                );
-                for c in 0..w.len() {
-                    w[c] += d[c] * rate;
-                }
+        // the full kinematics: its first derivatives give the velocities, its second the
+        // accelerations' velocity terms
+        let kin = self.tip.part.kinematics(x);
+        let (rates, accs) = self.tip_rates(v, acc);
+        // J q̇ and J q̈ of the position and the rotation
+        let (mut vel, mut tip_acceleration) = (S::Vec::default(), S::Vec::default());
+        let (mut omega, mut tip_angular_acceleration) =
+            (S::Moment::default(), S::Moment::default());
+        for (k, (rate, a)) in rates.iter().zip(&accs).enumerate() {
+            let dp = kin.jacobian(k);
+            for c in 0..S::DIM {
+                vel[c] += dp[c] * rate;
+                tip_acceleration[c] += dp[c] * a;
+            }
+            let dth = kin.rotation_jacobian(k);
+            let d = S::moment_components(&dth);
+            for (w, d) in S::moment_components_mut(&mut omega).iter_mut().zip(d) {
+                *w += d * rate;
+            }
+            for (w, d) in S::moment_components_mut(&mut tip_angular_acceleration)
+                .iter_mut()
+                .zip(d)
+            {
+                *w += d * a;
             }
         }
-        let (tip_acceleration, tip_angular_acceleration) = self.tip_accelerations(x, v, acc);
+        self.add_tip_velocity_terms(
+            x,
+            &kin,
+            &rates,
+            &mut tip_acceleration,
+            &mut tip_angular_acceleration,
+        );
         let mut o = Outputs {
             tip_position: kin.position(),
             tip_velocity: vel,
@@ -110,13 +118,11 @@ impl<S: Space> Model<S> {
         o
     }
 
-    /// Tip acceleration and angular acceleration at the tip port's local coordinates `x` with
-    /// the global rates `v` and accelerations `acc` (held coordinates move with the mount):
-    /// d/dt(J q̇) = J q̈ + Σᵢⱼ ∂Jᵢ/∂qⱼ q̇ᵢ q̇ⱼ, from the port's point Hessian and its moment
-    /// stiffness (the derivative of the rotation Jacobian).
-    fn tip_accelerations(&self, x: &[f64], v: &[f64], acc: &[f64]) -> (S::Vec, S::Moment) {
-        let tip = &self.tip.dofs;
-        let (rates, accs): (Vec<f64>, Vec<f64>) = tip
+    /// Rates and accelerations of the tip port's local coordinates: the state's for free ones,
+    /// the mount's for held ones (a modal tip port holds its root frame; zero for a fixed root).
+    fn tip_rates(&self, v: &[f64], acc: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        self.tip
+            .dofs
             .dofs()
             .iter()
             .map(|dof| match *dof {
@@ -126,21 +132,21 @@ impl<S: Space> Model<S> {
                     self.held_a.get(j as usize).copied().unwrap_or(0.0),
                 ),
             })
-            .unzip();
-        let kin = self.tip.part.kinematics(x);
-        let mut lin = S::Vec::default();
-        let mut ang = S::Moment::default();
-        for (k, a) in accs.iter().enumerate() {
-            let dp = kin.jacobian(k);
-            for c in 0..S::DIM {
-                lin[c] += dp[c] * a;
-            }
-            let dth = kin.rotation_jacobian(k);
-            let d = S::moment_components(&dth);
-            for (w, d) in S::moment_components_mut(&mut ang).iter_mut().zip(d) {
-                *w += d * a;
-            }
-        }
+            .unzip()
+    }
+
+    /// Adds the velocity terms of the tip's acceleration and angular acceleration,
+    /// d/dt(J q̇) − J q̈ = Σᵢⱼ ∂Jᵢ/∂qⱼ q̇ᵢ q̇ⱼ, at the tip port's local coordinates `x` (kinematics
+    /// `kin`, with second derivatives) and local `rates` ([`Model::tip_rates`]): from the port's
+    /// point Hessian and its moment stiffness (the derivative of the rotation Jacobian).
+    fn add_tip_velocity_terms(
+        &self,
+        x: &[f64],
+        kin: &S::PortKin,
+        rates: &[f64],
+        lin: &mut S::Vec,
+        ang: &mut S::Moment,
+    ) {
         for c in 0..S::DIM {
             let mut mu = S::Vec::default();
             mu[c] = 1.0;
@@ -148,7 +154,7 @@ impl<S: Space> Model<S> {
             kin.add_point_hessian(&mu, |i, j, h| sum += h * rates[i] * rates[j]);
             lin[c] += sum;
         }
-        for c in 0..S::moment_components(&ang).len() {
+        for c in 0..S::moment_components(ang).len() {
             let mut m = S::Moment::default();
             S::moment_components_mut(&mut m)[c] = 1.0;
             // the stiffness adds −m·∂(∂θ/∂qᵢ)/∂qⱼ
@@ -156,9 +162,8 @@ impl<S: Space> Model<S> {
             self.tip
                 .part
                 .add_moment_stiffness(x, &m, &mut |i, j, h| sum -= h * rates[i] * rates[j]);
-            S::moment_components_mut(&mut ang)[c] += sum;
+            S::moment_components_mut(ang)[c] += sum;
         }
-        (lin, ang)
     }
 
     /// The held values, rates and accelerations.

@@ -638,13 +638,13 @@ impl AnySimulator {
             if known {
                 s.set_inputs(&inputs);
                 // a tip load set again forgets its derivatives
+                let mut rates = s.load_rates();
                 for order in [1, 2] {
-                    let mut rates = s.load_rates();
                     if let Some(d) = load_rate_slot(&mut rates, id, order) {
                         *d = 0.0;
-                        s.set_load_rates(rates);
                     }
                 }
+                s.set_load_rates(rates);
             }
             known
         })

@@ -212,6 +212,7 @@ impl CoSimModel for BeamFmu {
         let sim = AnySimulator::new(scene.clone()).map_err(|e| e.to_string())?;
         let outputs = sim.outputs();
         let step = scene.simulation.output_step;
+        let backward = vec![0.0; table.variables().len()];
         let mut fmu = Self {
             scene_text: scene_toml.to_string(),
             base: scene.clone(),
@@ -221,9 +222,8 @@ impl CoSimModel for BeamFmu {
             outputs,
             apparent: None,
             last_step: step,
-            backward: Vec::new(),
+            backward,
         };
-        fmu.backward = vec![0.0; fmu.table.variables().len()];
         fmu.refresh_outputs();
         Ok(fmu)
     }
