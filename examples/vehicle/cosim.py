@@ -11,6 +11,14 @@ Coupling schemes (--scheme), fixed communication step h:
             on the reaction) is closed exactly with both FMUs' fmi2GetDirectionalDerivative
             (the beam's apparent mass at the mount, the car's mobility): one linear solve, as
             both sides are linear in these inputs; then both step.
+  interface the interface-mass loop (spatial.md §5.3): the car carries the beam's current rigid
+            inertia (root.mass, root.center_of_mass.*, root.inertia.zz) as a payload at the
+            mount, and gets only the reaction beyond the payload's: the beam's reaction minus
+            the rigid reaction of that inertia at the mount motion the beam was given
+            (rigid_part); the exchange then lags the elastic part only.
+  interface-newton  both: the car carries the payload, and the loop of the remaining
+            feedthrough (the beam's apparent mass minus the payload's, rigid_jacobian) is
+            closed as in newton.
 With --derivatives the beam also gets the car's mount-acceleration rate and the car the
 reaction's rate (backward differences over the last step) as first input derivatives.
 
@@ -39,6 +47,32 @@ from fmpy.fmi2 import FMU2Slave
 MOUNT = ["position.x", "position.y", "angle", "velocity.x", "velocity.y",
          "angular_velocity", "acceleration.x", "acceleration.y", "angular_acceleration"]
 REACTION = ["root.force.x", "root.force.y", "root.moment.z"]
+INERTIA = ["root.mass", "root.center_of_mass.x", "root.center_of_mass.y", "root.inertia.zz"]
+
+
+def rigid_part(inertia, mount, gravity):
+    """The reaction (support on the beam: force x, y, moment z about the mount point) of a
+    rigid body with `inertia` (mass, centre of mass in the mount frame, inertia about the
+    mount point) moving with the mount (`mount`: position, angle, velocity, angular velocity,
+    acceleration, angular acceleration) under `gravity` (x, y)."""
+    mp, cx, cy, io = inertia
+    ang, w, ax, ay, al = mount[2], mount[5], mount[6], mount[7], mount[8]
+    c, s = math.cos(ang), math.sin(ang)
+    rx, ry = c * cx - s * cy, s * cx + c * cy
+    gx, gy = gravity
+    fx = mp * (ax - al * ry - w * w * rx - gx)
+    fy = mp * (ay + al * rx - w * w * ry - gy)
+    mz = io * al + mp * (rx * (ay - gy) - ry * (ax - gx))
+    return np.array([fx, fy, mz])
+
+
+def rigid_jacobian(inertia, mount):
+    """∂rigid_part/∂(acceleration x, y, angular acceleration): the rigid body's mass matrix at
+    the mount point (world axes)."""
+    mp, cx, cy, io = inertia
+    c, s = math.cos(mount[2]), math.sin(mount[2])
+    rx, ry = c * cx - s * cy, s * cx + c * cy
+    return np.array([[mp, 0.0, -mp * ry], [0.0, mp, mp * rx], [-mp * ry, mp * rx, io]])
 
 
 class Fmu:
@@ -75,7 +109,23 @@ class Fmu:
         shutil.rmtree(self.dir, ignore_errors=True)
 
 
-def start(car_path, boom_path, density_factor=1.0):
+def feed_car(car, boom, mount, scheme):
+    """Sets the car's beam inputs from the beam's outputs, `mount` being the mount values the
+    beam was given: its reaction, or with `interface` its rigid inertia as the car's payload
+    and the reaction beyond the payload's (the reaction minus the rigid part at the same
+    mount motion). Returns the reaction."""
+    f = boom.get(REACTION)
+    if scheme.startswith("interface"):
+        inertia = boom.get(INERTIA)
+        car.set(["beam." + n for n in INERTIA], inertia)
+        car.set(["beam." + n for n in REACTION],
+                f - rigid_part(inertia, mount, boom.get(["gravity.x", "gravity.y"])))
+    else:
+        car.set(["beam." + n for n in REACTION], f)
+    return f
+
+
+def start(car_path, boom_path, density_factor=1.0, scheme="jacobi"):
     """Both FMUs initialized in their coupled static start; returns (car, boom)."""
     car, boom = Fmu(car_path, "car"), Fmu(boom_path, "boom")
     car_mount = ["mount." + n for n in MOUNT]
@@ -92,7 +142,7 @@ def start(car_path, boom_path, density_factor=1.0):
     # the first exchange: a rigid move, no impulse)
     boom.set(beam_mount, car.get(car_mount))  # pose and velocity: the beam rides along
     boom.slave.exitInitializationMode()
-    car.set(car_in, boom.get(REACTION))
+    feed_car(car, boom, car.get(car_mount), scheme)
     car.slave.exitInitializationMode()
     # again on the car's settled pose (its static sag under the beam's weight)
     boom.slave.reset()
@@ -124,7 +174,7 @@ def coupling_ratio(car_path, boom_path, density_factor=1.0):
 def run(car_path, boom_path, h, t_end, scheme="newton", density_factor=1.0, derivatives=False,
         out=None):
     """Runs the coupled model; returns (rows, energy residual history, ok)."""
-    car, boom = start(car_path, boom_path, density_factor)
+    car, boom = start(car_path, boom_path, density_factor, scheme)
     car_mount = ["mount." + n for n in MOUNT]
     beam_mount = ["root." + n for n in MOUNT]
     car_in = ["beam." + n for n in REACTION]
@@ -141,17 +191,23 @@ def run(car_path, boom_path, h, t_end, scheme="newton", density_factor=1.0, deri
         t = k * h
         m = car.get(car_mount)
         boom.set(beam_mount, m)
-        if scheme == "newton":
-            # close the loop F = F0 + Jb (a − a_b), a = A0 + Jc (F − F_c) exactly
+        if scheme in ("newton", "interface-newton"):
+            # close the loop F = F0 + Jb (a − a_b), a = A0 + Jc (F − F_c) exactly (F: what
+            # the car is given; with interface mass the reaction beyond the payload's)
             jb = boom.jacobian(REACTION, beam_mount[6:])
+            f0 = boom.get(REACTION)
+            if scheme == "interface-newton":
+                inertia = boom.get(INERTIA)
+                car.set(["beam." + n for n in INERTIA], inertia)
+                jb = jb - rigid_jacobian(inertia, m)
+                f0 = f0 - rigid_part(inertia, m, boom.get(["gravity.x", "gravity.y"]))
             jc = car.jacobian(car_mount[6:], car_in)
-            f0, a0, fc = boom.get(REACTION), m[6:], car.get(car_in)
+            fc = car.get(car_in)
             f = np.linalg.solve(np.eye(3) - jb @ jc, f0 - jb @ (jc @ fc))
             car.set(car_in, f)
             m = car.get(car_mount)
             boom.set(beam_mount[6:], m[6:])
-        f = boom.get(REACTION)
-        car.set(car_in, f)
+        f = feed_car(car, boom, m, scheme)
         if derivatives and prev_acc is not None:
             rate = (m[6:] - prev_acc) / h
             boom.slave.setRealInputDerivatives([boom.vr[n] for n in beam_mount[6:]], [1, 1, 1],
@@ -220,7 +276,8 @@ def main():
     p.add_argument("boom")
     p.add_argument("--h", type=float, default=1e-3)
     p.add_argument("--t-end", type=float, default=1.5)
-    p.add_argument("--scheme", choices=["newton", "jacobi"], default="newton")
+    p.add_argument("--scheme", choices=["newton", "jacobi", "interface", "interface-newton"],
+                   default="newton")
     p.add_argument("--density-factor", type=float, default=1.0)
     p.add_argument("--derivatives", action="store_true")
     p.add_argument("--out", default="out/vehicle")

@@ -22,12 +22,17 @@
 //! mass) moves rigidly and exactly: r = R(θ) s̄, position (V t, h_cg + y) + r. The beam acts
 //! through its reaction (inputs `beam.root.force.{x,y}`, `beam.root.moment.z`: the force and
 //! moment of the support ON THE BEAM, as the beam FMU outputs them; the car takes their
-//! negative at the mount point): Q_y = −F_y, Q_θ = (r × (−F))_z − M. Integrated with RK4 at a
-//! fixed internal step; the inputs are held over a communication step or follow the host's
-//! input derivatives (orders 1, 2). The energy ledger (road work, beam work, damper
+//! negative at the mount point): Q_y = −F_y, Q_θ = (r × (−F))_z − M. Interface mass
+//! (spatial.md §5.3): with the inputs `beam.root.mass`, `beam.root.center_of_mass.{x,y}`,
+//! `beam.root.inertia.zz` (the beam FMU's rigid inertia at the mount) the body carries the beam
+//! as a rigid payload, accelerated with it in one 2×2 mass matrix, and the reaction inputs are
+//! then the part of the reaction the rigid payload does not account for (the host passes the
+//! reaction minus the payload's own at the mount motion the beam was given). Integrated with
+//! RK4 at a fixed internal step; the inputs are held over a communication step or follow the
+//! host's input derivatives (orders 1, 2). The energy ledger (road work, beam work, damper
 //! dissipation) is integrated with the state, so E − E₀ = W_road + W_beam − D closes to the
-//! integrator's accuracy. Not modelled: the beam's rigid inertia at the mount (interface mass,
-//! spatial.md §5.3), tire lift-off, longitudinal dynamics.
+//! integrator's accuracy (W_beam includes the payload's inertial and gravity forces). Not
+//! modelled: tire lift-off, longitudinal dynamics.
 
 use serde::Deserialize;
 
@@ -59,6 +64,9 @@ fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> [f64; 4] {
     }
     x
 }
+
+/// Number of inputs (value references 1..=INPUTS).
+const INPUTS: usize = 7;
 
 /// Work cap of one communication step (internal steps).
 const MAX_STEPS: f64 = 1e6;
@@ -186,6 +194,13 @@ pub struct Car {
     pub solver: Solver,
 }
 
+/// A rigid payload at the mount (interface mass): mass [kg], centre of mass from the mount
+/// point in the mount frame (x, y) [m], inertia about the mount point [kg m²]; the beam FMU's
+/// `root.mass`, `root.center_of_mass.{x,y}`, `root.inertia.zz`. The body carries it as its own
+/// (heave and pitch accelerate body and payload together); the beam reaction inputs then carry
+/// only what the rigid payload does not account for (the beam's elastic part).
+pub type Payload = [f64; 4];
+
 /// State indices: y, θ, y_f, y_r, their rates, then the energy ledger.
 const N: usize = 11;
 const W_ROAD: usize = 8;
@@ -231,8 +246,9 @@ impl Car {
         (-f[1], -(r[0] * f[1] - r[1] * f[0]) - m)
     }
 
-    /// ds/dt at time `t` with the beam reaction `f`, `m`.
-    pub fn rate(&self, t: f64, s: &[f64; N], f: [f64; 2], m: f64) -> [f64; N] {
+    /// ds/dt at time `t` with the beam reaction `f`, `m` and the rigid payload `p` at the
+    /// mount (see [`Payload`]; all zero: none).
+    pub fn rate(&self, t: f64, s: &[f64; N], f: [f64; 2], m: f64, p: &Payload) -> [f64; N] {
         let (b, w, g) = (&self.body, &self.wheels, self.solver.gravity);
         let (ff, fr) = self.suspension(s);
         let (qy, qt) = self.beam_forces(s[1], f, m);
@@ -243,18 +259,44 @@ impl Car {
             w.tire_stiffness * (hf - s[2]),
             w.tire_stiffness * (hr - s[3]),
         );
-        let p = &self.suspension;
+        let ps = &self.suspension;
         let dvf = s[6] - s[4] - b.front * s[5];
         let dvr = s[7] - s[4] + b.rear * s[5];
         let mut d = [0.0; N];
         d[..4].copy_from_slice(&s[4..8]);
-        d[4] = (ff + fr + qy) / b.mass - g;
-        d[5] = (b.front * ff - b.rear * fr + qt) / b.pitch_inertia;
+        // the beam's generalized force on the body (heave, pitch)
+        let (qby, qbt);
+        if *p == [0.0; 4] {
+            d[4] = (ff + fr + qy) / b.mass - g;
+            d[5] = (b.front * ff - b.rear * fr + qt) / b.pitch_inertia;
+            (qby, qbt) = (qy, qt);
+        } else {
+            // body and payload accelerated together: (M + M_p) q̈ = Q + Q_p + Q_res, with the
+            // payload's centre of mass at r_c = R(θ)(s̄ + c̄) from the body's, its Jacobian
+            // (0, 1; −r_c.y, r_c.x), its centripetal acceleration −θ̇² r_c
+            let [mp, cx, cy, io] = *p;
+            let [rx, ry] = self.offset(s[1]);
+            let (sn, cs) = s[1].sin_cos();
+            let rc = [rx + cs * cx - sn * cy, ry + sn * cx + cs * cy];
+            let ic = io - mp * (cx * cx + cy * cy);
+            let mp_yt = mp * rc[0];
+            let mp_tt = mp * (rc[0] * rc[0] + rc[1] * rc[1]) + ic;
+            let (qpy, qpt) = (-mp * g + mp * s[5] * s[5] * rc[1], -mp * g * rc[0]);
+            let a11 = b.mass + mp;
+            let a22 = b.pitch_inertia + mp_tt;
+            let r1 = ff + fr - b.mass * g + qpy + qy;
+            let r2 = b.front * ff - b.rear * fr + qpt + qt;
+            let det = a11 * a22 - mp_yt * mp_yt;
+            d[4] = (a22 * r1 - mp_yt * r2) / det;
+            d[5] = (a11 * r2 - mp_yt * r1) / det;
+            qby = qy + qpy - mp * d[4] - mp_yt * d[5];
+            qbt = qt + qpt - mp_yt * d[4] - mp_tt * d[5];
+        }
         d[6] = (-ff + tf) / w.mass - g;
         d[7] = (-fr + tr) / w.mass - g;
         d[W_ROAD] = tf * sf * v + tr * sr * v;
-        d[W_BEAM] = qy * s[4] + qt * s[5];
-        d[DISSIPATED] = p.front_damping * dvf * dvf + p.rear_damping * dvr * dvr;
+        d[W_BEAM] = qby * s[4] + qbt * s[5];
+        d[DISSIPATED] = ps.front_damping * dvf * dvf + ps.rear_damping * dvr * dvr;
         d
     }
 
@@ -281,23 +323,23 @@ impl Car {
         kinetic + springs + g * (b.mass * s[0] + w.mass * (s[2] + s[3]))
     }
 
-    /// The static equilibrium at `t` (velocities zero) under gravity and the beam reaction
-    /// `f`, `m`: Newton on the accelerations over the four positions (linear but for the
+    /// The static equilibrium at `t` (velocities zero) under gravity, the beam reaction
+    /// `f`, `m` and the payload `p`: Newton on the accelerations over the four positions (linear but for the
     /// mount's rotation of the beam moment arm), Jacobian by unit differences.
-    pub fn static_state(&self, t: f64, f: [f64; 2], m: f64) -> [f64; N] {
+    pub fn static_state(&self, t: f64, f: [f64; 2], m: f64, p: &Payload) -> [f64; N] {
         let mut s = [0.0; N];
         for _ in 0..8 {
-            let r = self.rate(t, &s, f, m);
+            let r = self.rate(t, &s, f, m, p);
             let res = [r[4], r[5], r[6], r[7]];
             if res.iter().all(|x| x.abs() < 1e-13) {
                 break;
             }
             let mut jac = [[0.0; 4]; 4];
             for c in 0..4 {
-                let mut p = s;
+                let mut sp = s;
                 let h = 1e-6;
-                p[c] += h;
-                let rp = self.rate(t, &p, f, m);
+                sp[c] += h;
+                let rp = self.rate(t, &sp, f, m, p);
                 for (row, j) in jac.iter_mut().enumerate() {
                     j[c] = (rp[4 + row] - res[row]) / h;
                 }
@@ -310,17 +352,18 @@ impl Car {
         s
     }
 
-    /// One RK4 step of `dt` from `t` with the beam reaction polynomial `input(τ)`.
+    /// One RK4 step of `dt` from `t` with the beam reaction and payload polynomials
+    /// `input(τ)`.
     fn rk4(
         &self,
         t: f64,
         dt: f64,
         s: &[f64; N],
-        input: impl Fn(f64) -> ([f64; 2], f64),
+        input: impl Fn(f64) -> ([f64; 2], f64, Payload),
     ) -> [f64; N] {
         let at = |tau: f64, s: &[f64; N]| {
-            let (f, m) = input(tau);
-            self.rate(t + tau, s, f, m)
+            let (f, m, p) = input(tau);
+            self.rate(t + tau, s, f, m, &p)
         };
         let add = |s: &[f64; N], d: &[f64; N], h: f64| std::array::from_fn(|i| s[i] + h * d[i]);
         let k1 = at(0.0, s);
@@ -339,6 +382,14 @@ pub mod vr {
     pub const BEAM_FORCE_Y: u32 = 2;
     /// .
     pub const BEAM_MOMENT_Z: u32 = 3;
+    /// Inputs: the beam's rigid inertia at the mount (the payload, interface mass).
+    pub const BEAM_MASS: u32 = 4;
+    /// .
+    pub const BEAM_COM_X: u32 = 5;
+    /// .
+    pub const BEAM_COM_Y: u32 = 6;
+    /// .
+    pub const BEAM_INERTIA: u32 = 7;
     /// Outputs: mount kinematics (world).
     pub const MOUNT_X: u32 = 10;
     /// .
@@ -381,8 +432,9 @@ pub struct Vehicle {
     pub car: Car,
     t: f64,
     s: [f64; N],
-    /// Beam reaction input and its first two time derivatives over the next step.
-    force: [[f64; 3]; 3],
+    /// Inputs (beam reaction x, y, z-moment, then the payload, [`Payload`]; indexed by
+    /// value reference − 1) and their first two time derivatives over the next step.
+    inputs: [[f64; INPUTS]; 3],
     /// Not yet initialized, with `static_start`: the state follows the inputs' static
     /// equilibrium.
     settling: bool,
@@ -400,16 +452,20 @@ fn variables() -> Vec<Variable> {
         description: description.into(),
         depends_on: Vec::new(),
     };
-    let beam = [vr::BEAM_FORCE_X, vr::BEAM_FORCE_Y, vr::BEAM_MOMENT_Z];
+    let beam: Vec<u32> = (vr::BEAM_FORCE_X..=vr::BEAM_INERTIA).collect();
     // accelerations depend at once on the forces applied now
     let acc = |name: &str, vr, unit, description: &str| Variable {
-        depends_on: beam.to_vec(),
+        depends_on: beam.clone(),
         ..v(name, vr, Output, unit, description)
     };
     vec![
         v("beam.root.force.x", vr::BEAM_FORCE_X, Input, "N", "Force of the mount on the beam, x (the beam FMU's root.force.x); the car feels its negative"),
         v("beam.root.force.y", vr::BEAM_FORCE_Y, Input, "N", "Force of the mount on the beam, y (root.force.y); the car feels its negative"),
         v("beam.root.moment.z", vr::BEAM_MOMENT_Z, Input, "N.m", "Moment of the mount on the beam about the mount point (root.moment.z); the car feels its negative"),
+        v("beam.root.mass", vr::BEAM_MASS, Input, "kg", "Interface mass: the beam's mass (root.mass), carried by the body as a rigid payload at the mount; then beam.root.force/moment must be the reaction beyond the payload's (root.force_elastic, root.moment_elastic). 0: no payload"),
+        v("beam.root.center_of_mass.x", vr::BEAM_COM_X, Input, "m", "Payload centre of mass from the mount point, mount frame x (root.center_of_mass.x)"),
+        v("beam.root.center_of_mass.y", vr::BEAM_COM_Y, Input, "m", "Payload centre of mass, mount frame y (root.center_of_mass.y)"),
+        v("beam.root.inertia.zz", vr::BEAM_INERTIA, Input, "kg.m2", "Payload inertia about the mount point (root.inertia.zz)"),
         v("mount.position.x", vr::MOUNT_X, Output, "m", "Roof mount point, x (world)"),
         v("mount.position.y", vr::MOUNT_Y, Output, "m", "Roof mount point, y (world)"),
         v("mount.angle", vr::MOUNT_ANGLE, Output, "rad", "Mount frame angle = body pitch (nose up positive)"),
@@ -429,19 +485,19 @@ fn variables() -> Vec<Variable> {
 }
 
 impl Vehicle {
-    /// Beam reaction at `tau` into the current step: (force, moment).
-    fn input_at(&self, tau: f64) -> ([f64; 2], f64) {
-        let [u, d1, d2] = self.force;
+    /// Inputs at `tau` into the current step: beam reaction (force, moment), payload.
+    fn input_at(&self, tau: f64) -> ([f64; 2], f64, Payload) {
+        let [u, d1, d2] = &self.inputs;
         let at = |k: usize| u[k] + d1[k] * tau + 0.5 * d2[k] * tau * tau;
-        ([at(0), at(1)], at(2))
+        ([at(0), at(1)], at(2), [at(3), at(4), at(5), at(6)])
     }
 
     /// Mount kinematics now: position, angle, velocity, angular velocity, acceleration,
     /// angular acceleration (world).
     pub fn mount(&self) -> [f64; 9] {
         let (c, s) = (&self.car, &self.s);
-        let (f, m) = self.input_at(0.0);
-        let d = c.rate(self.t, s, f, m);
+        let (f, m, p) = self.input_at(0.0);
+        let d = c.rate(self.t, s, f, m, &p);
         let r = c.offset(s[1]);
         let (w, al) = (s[5], d[5]);
         [
@@ -576,11 +632,11 @@ impl CoSimModel for Vehicle {
             car,
             t: 0.0,
             s: if car.solver.static_start {
-                car.static_state(0.0, [0.0; 2], 0.0)
+                car.static_state(0.0, [0.0; 2], 0.0, &[0.0; 4])
             } else {
                 [0.0; N]
             },
-            force: [[0.0; 3]; 3],
+            inputs: [[0.0; INPUTS]; 3],
             settling: car.solver.static_start,
         })
     }
@@ -597,7 +653,7 @@ impl CoSimModel for Vehicle {
         let r = self.vars[index].vr;
         let m = self.mount();
         Ok(match r {
-            vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z => self.force[0][(r - vr::BEAM_FORCE_X) as usize],
+            vr::BEAM_FORCE_X..=vr::BEAM_INERTIA => self.inputs[0][(r - vr::BEAM_FORCE_X) as usize],
             vr::MOUNT_X..=vr::MOUNT_ALPHA => m[(r - vr::MOUNT_X) as usize],
             vr::HEAVE => self.s[0],
             vr::PITCH => self.s[1],
@@ -612,16 +668,20 @@ impl CoSimModel for Vehicle {
     fn set_real(&mut self, index: usize, value: f64) -> Result<(), String> {
         let r = self.vars[index].vr;
         match r {
-            vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z if value.is_finite() => {
+            vr::BEAM_MASS | vr::BEAM_INERTIA if value < 0.0 => Err(format!(
+                "{} = {value}: a payload's mass and inertia must be >= 0",
+                self.vars[index].name
+            )),
+            vr::BEAM_FORCE_X..=vr::BEAM_INERTIA if value.is_finite() => {
                 let k = (r - vr::BEAM_FORCE_X) as usize;
-                self.force[0][k] = value;
-                self.force[1][k] = 0.0;
-                self.force[2][k] = 0.0;
+                self.inputs[0][k] = value;
+                self.inputs[1][k] = 0.0;
+                self.inputs[2][k] = 0.0;
                 if self.settling {
                     // before initialization the outputs are those of the static start under
                     // the inputs set so far (a host may read them to place the beam)
-                    let (f, m) = self.input_at(0.0);
-                    self.s = self.car.static_state(self.t, f, m);
+                    let (f, m, p) = self.input_at(0.0);
+                    self.s = self.car.static_state(self.t, f, m, &p);
                 }
                 Ok(())
             }
@@ -633,14 +693,21 @@ impl CoSimModel for Vehicle {
         self.t = start_time;
         self.s = [0.0; N];
         if self.car.solver.static_start {
-            let (f, m) = self.input_at(0.0);
-            self.s = self.car.static_state(start_time, f, m);
+            let (f, m, p) = self.input_at(0.0);
+            self.s = self.car.static_state(start_time, f, m, &p);
         }
         self.settling = false;
         Ok(())
     }
 
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), StepError> {
+        let [mp, cx, cy, io] = self.input_at(0.0).2;
+        if io < mp * (cx * cx + cy * cy) * (1.0 - 1e-12) {
+            return Err(StepError::Discard(format!(
+                "payload inertia about the mount {io} kg m2 < mass x distance^2 = {} kg m2: not a rigid body",
+                mp * (cx * cx + cy * cy)
+            )));
+        }
         let n = (h / self.car.solver.internal_step - 1e-9).ceil().max(1.0);
         if n > MAX_STEPS {
             return Err(StepError::Discard(format!(
@@ -658,17 +725,17 @@ impl CoSimModel for Vehicle {
         }
         self.s = s;
         self.t = t + h;
-        self.force[1] = [0.0; 3];
-        self.force[2] = [0.0; 3];
+        self.inputs[1] = [0.0; INPUTS];
+        self.inputs[2] = [0.0; INPUTS];
         Ok(())
     }
 
     fn reset(&mut self) -> Result<(), String> {
         self.t = 0.0;
-        self.force = [[0.0; 3]; 3];
+        self.inputs = [[0.0; INPUTS]; 3];
         self.settling = self.car.solver.static_start;
         self.s = if self.settling {
-            self.car.static_state(0.0, [0.0; 2], 0.0)
+            self.car.static_state(0.0, [0.0; 2], 0.0, &[0.0; 4])
         } else {
             [0.0; N]
         };
@@ -676,11 +743,11 @@ impl CoSimModel for Vehicle {
     }
 
     fn save_state(&self) -> Vec<u8> {
-        let mut b = Vec::with_capacity(8 * (2 + N + 9));
+        let mut b = Vec::with_capacity(8 * (2 + N + 3 * INPUTS));
         b.extend_from_slice(&self.scene_hash.to_le_bytes());
         let all = std::iter::once(self.t)
             .chain(self.s)
-            .chain(self.force.iter().flatten().copied());
+            .chain(self.inputs.iter().flatten().copied());
         for x in all {
             b.extend_from_slice(&x.to_le_bytes());
         }
@@ -688,50 +755,60 @@ impl CoSimModel for Vehicle {
     }
 
     fn load_state(&mut self, bytes: &[u8]) -> Result<(), String> {
-        if bytes.len() != 8 * (2 + N + 9) {
+        if bytes.len() != 8 * (2 + N + 3 * INPUTS) {
             return Err(format!("not a car state ({} bytes)", bytes.len()));
         }
         let word = |i: usize| u64::from_le_bytes(bytes[8 * i..8 * i + 8].try_into().unwrap());
         if word(0) != self.scene_hash {
             return Err("the state belongs to another vehicle.toml".into());
         }
-        let f: Vec<f64> = (1..2 + N + 9).map(|i| f64::from_bits(word(i))).collect();
+        let f: Vec<f64> = (1..2 + N + 3 * INPUTS)
+            .map(|i| f64::from_bits(word(i)))
+            .collect();
         if f.iter().any(|x| !x.is_finite()) {
             return Err("the state holds non-finite values".into());
         }
         self.t = f[0];
         self.s.copy_from_slice(&f[1..1 + N]);
-        for (k, row) in self.force.iter_mut().enumerate() {
-            row.copy_from_slice(&f[1 + N + 3 * k..4 + N + 3 * k]);
+        for (k, row) in self.inputs.iter_mut().enumerate() {
+            row.copy_from_slice(&f[1 + N + INPUTS * k..1 + N + INPUTS * (k + 1)]);
         }
         self.settling = false;
         Ok(())
     }
 
-    /// ∂(mount acceleration, angular acceleration)/∂(beam reaction inputs): the car is linear
-    /// in them, so a unit change of the input gives the partial exactly (up to rounding).
+    /// ∂(mount acceleration, angular acceleration)/∂(inputs): the car is linear in the beam
+    /// reaction, so a unit change of it gives the partial exactly (up to rounding); the payload
+    /// enters nonlinearly, its partials are central differences (relative step 1e-6).
     fn partial_derivative(&mut self, output: usize, input: usize) -> Result<f64, String> {
         let (o, i) = (self.vars[output].vr, self.vars[input].vr);
         if !(vr::MOUNT_AX..=vr::MOUNT_ALPHA).contains(&o)
-            || !(vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z).contains(&i)
+            || !(vr::BEAM_FORCE_X..=vr::BEAM_INERTIA).contains(&i)
         {
             return Ok(0.0);
         }
         let row = (o - vr::MOUNT_X) as usize;
         let k = (i - vr::BEAM_FORCE_X) as usize;
-        let base = self.mount()[row];
-        let kept = self.force[0][k];
-        self.force[0][k] = kept + 1.0;
-        let bumped = self.mount()[row];
-        self.force[0][k] = kept;
-        Ok(bumped - base)
+        let kept = self.inputs[0][k];
+        let mut at = |x: f64| {
+            self.inputs[0][k] = x;
+            let a = self.mount()[row];
+            self.inputs[0][k] = kept;
+            a
+        };
+        Ok(if i <= vr::BEAM_MOMENT_Z {
+            at(kept + 1.0) - at(kept)
+        } else {
+            let d = 1e-6 * kept.abs().max(1.0);
+            (at(kept + d) - at(kept - d)) / (2.0 * d)
+        })
     }
 
     fn set_input_derivative(&mut self, index: usize, order: u32, value: f64) -> Result<(), String> {
         let r = self.vars[index].vr;
         match (r, order) {
-            (vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z, 1 | 2) => {
-                self.force[order as usize][(r - vr::BEAM_FORCE_X) as usize] = value;
+            (vr::BEAM_FORCE_X..=vr::BEAM_INERTIA, 1 | 2) => {
+                self.inputs[order as usize][(r - vr::BEAM_FORCE_X) as usize] = value;
                 Ok(())
             }
             _ => Err(format!(

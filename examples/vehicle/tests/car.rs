@@ -118,8 +118,8 @@ fn stiffness_matrix_and_frequencies_are_the_textbook_ones() {
         sp[col] = h;
         sm[col] = -h;
         let (dp, dm) = (
-            c.rate(0.0, &sp, [0.0; 2], 0.0),
-            c.rate(0.0, &sm, [0.0; 2], 0.0),
+            c.rate(0.0, &sp, [0.0; 2], 0.0, &[0.0; 4]),
+            c.rate(0.0, &sm, [0.0; 2], 0.0, &[0.0; 4]),
         );
         for row in 0..4 {
             got[(row, col)] = -(dp[4 + row] - dm[4 + row]) / (2.0 * h);
@@ -237,4 +237,123 @@ fn mount_kinematics_are_consistent() {
         now[4].abs() > 1e-3,
         "the body moves at t = 0.5 s (bump crossed)"
     );
+}
+
+/// A payload `[mass, c.x, c.y, inertia about the mount]` (mount frame), set as inputs.
+fn set_payload(i: &mut Instance<Vehicle>, p: [f64; 4]) {
+    let r = [
+        vr::BEAM_MASS,
+        vr::BEAM_COM_X,
+        vr::BEAM_COM_Y,
+        vr::BEAM_INERTIA,
+    ];
+    assert_eq!(i.set_real(&r, &p), Status::Ok);
+}
+
+const PAYLOAD: [f64; 4] = [60.0, 1.1, 0.25, 60.0 * (1.1 * 1.1 + 0.25 * 0.25) + 25.0];
+
+/// At rest a rigid payload (interface mass) weighs on the mount like the force and moment of
+/// its weight given as the beam reaction: the static starts agree (support on the payload:
+/// force (0, m g), moment m g c_x about the mount, c the centre of mass in world axes).
+#[test]
+fn a_payload_at_rest_weighs_like_its_reaction() {
+    let text = SCENE.replace("bump_height = 0.05", "bump_height = 0.0");
+    let start = |payload: Option<[f64; 4]>, angle: f64| {
+        let model = Vehicle::from_resource(&text).unwrap();
+        let mut i = Instance::new("car", Logger::memory(), true, "{g}".into(), model).unwrap();
+        assert_eq!(i.setup_experiment(None, 0.0, None), Status::Ok);
+        assert_eq!(i.enter_initialization_mode(), Status::Ok);
+        let [m, cx, cy, _] = PAYLOAD;
+        match payload {
+            Some(p) => set_payload(&mut i, p),
+            None => {
+                let g = 9.81;
+                let (s, c) = angle.sin_cos();
+                let x = c * cx - s * cy;
+                let f = [0.0, m * g, m * g * x];
+                let r = [vr::BEAM_FORCE_X, vr::BEAM_FORCE_Y, vr::BEAM_MOMENT_Z];
+                assert_eq!(i.set_real(&r, &f), Status::Ok);
+            }
+        }
+        assert_eq!(i.exit_initialization_mode(), Status::Ok);
+        i
+    };
+    let with = start(Some(PAYLOAD), 0.0);
+    // the weight's arm depends on the settled pitch: iterate the reaction on it
+    let mut angle = 0.0;
+    let mut as_force = start(None, angle);
+    for _ in 0..4 {
+        angle = get(&as_force, vr::PITCH);
+        as_force = start(None, angle);
+    }
+    for r in [vr::HEAVE, vr::PITCH] {
+        let (a, b) = (get(&with, r), get(&as_force, r));
+        assert!(
+            (a - b).abs() < 1e-12,
+            "vr {r}: payload {a} vs its reaction {b}"
+        );
+    }
+    assert!(
+        (get(&with, vr::HEAVE) - get(&started(&scene(&[])), vr::HEAVE)).abs() > 1e-3,
+        "the payload sags the car"
+    );
+}
+
+/// Car and rigid payload conserve energy together over the bump: the car's energy change
+/// plus the payload's (kinetic ½ m |v_c|² + ½ I_c ω² in the frame moving with the car's
+/// constant speed, gravity m g y_c, from the mount outputs)
+/// equals the road's work minus the dampers' dissipation, to RK4's accuracy; the car's
+/// `energy.beam_work` is minus the payload's energy change.
+#[test]
+fn car_and_payload_conserve_energy() {
+    let residual = |step: &str| {
+        let text = scene(&[("internal_step = 5e-4", step)]);
+        let model = Vehicle::from_resource(&text).unwrap();
+        let mut i = Instance::new("car", Logger::memory(), true, "{g}".into(), model).unwrap();
+        assert_eq!(i.setup_experiment(None, 0.0, None), Status::Ok);
+        assert_eq!(i.enter_initialization_mode(), Status::Ok);
+        set_payload(&mut i, PAYLOAD);
+        assert_eq!(i.exit_initialization_mode(), Status::Ok);
+        let [m, cx, cy, io] = PAYLOAD;
+        let ic = io - m * (cx * cx + cy * cy);
+        let speed = Vehicle::from_resource(&text).unwrap().car.road.speed;
+        let payload_energy = |i: &Instance<Vehicle>| {
+            let [y, th, vx, vy, w] = [
+                vr::MOUNT_Y,
+                vr::MOUNT_ANGLE,
+                vr::MOUNT_VX,
+                vr::MOUNT_VY,
+                vr::MOUNT_OMEGA,
+            ]
+            .map(|r| get(i, r));
+            let (s, c) = th.sin_cos();
+            let (rx, ry) = (c * cx - s * cy, s * cx + c * cy);
+            // velocities in the frame moving with the car's constant forward speed (inertial:
+            // the drive, which holds x, does no work there)
+            let (ux, uy) = (vx - speed - w * ry, vy + w * rx);
+            0.5 * m * (ux * ux + uy * uy) + 0.5 * ic * w * w + m * 9.81 * (y + ry)
+        };
+        let (e0, p0) = (get(&i, vr::ENERGY), payload_energy(&i));
+        for k in 0..100 {
+            assert_eq!(i.do_step(0.01 * k as f64, 0.01), Status::Ok);
+        }
+        let de = get(&i, vr::ENERGY) - e0;
+        let dp = payload_energy(&i) - p0;
+        let (road, diss, beam) = (
+            get(&i, vr::W_ROAD),
+            get(&i, vr::DISSIPATED),
+            get(&i, vr::W_BEAM),
+        );
+        assert!(road.abs() > 1.0, "the bump is crossed in the first second");
+        let scale = road.abs().max(diss.abs());
+        (
+            ((de + dp - road + diss) / scale).abs(),
+            ((beam + dp) / scale).abs(),
+        )
+    };
+    let (r1, b1) = residual("internal_step = 2e-3");
+    let (r2, b2) = residual("internal_step = 1e-3");
+    println!("car + payload energy residual / scale: 2 ms {r1:.2e}, 1 ms {r2:.2e}; beam work + ΔE_payload: {b1:.2e}, {b2:.2e}");
+    assert!(r2 < 1e-6 && b2 < 1e-6, "{r2} {b2}");
+    assert!(r1 / r2 > 8.0, "fourth order: {r1:e} → {r2:e}");
 }
