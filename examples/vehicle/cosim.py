@@ -13,12 +13,12 @@ Coupling schemes (--scheme), fixed communication step h:
             both sides are linear in these inputs; then both step.
   interface the interface-mass loop (spatial.md §5.3): the car carries the beam's current rigid
             inertia (root.mass, root.center_of_mass.*, root.inertia.zz) as a payload at the
-            mount, and gets only the reaction beyond the payload's: the beam's reaction minus
-            the rigid reaction of that inertia at the mount motion the beam was given
-            (rigid_part); the exchange then lags the elastic part only.
+            mount, and gets only the reaction beyond the payload's (the beam's
+            root.force_elastic, root.moment_elastic: its reaction minus the rigid reaction of
+            that inertia at its mount motion); the exchange then lags the elastic part only.
   interface-newton  both: the car carries the payload, and the loop of the remaining
-            feedthrough (the beam's apparent mass minus the payload's, rigid_jacobian) is
-            closed as in newton.
+            feedthrough (the elastic outputs' directional derivatives: the beam's apparent
+            mass minus the payload's) is closed as in newton.
 With --derivatives the beam also gets the car's mount-acceleration rate and the car the
 reaction's rate (backward differences over the last step) as first input derivatives.
 
@@ -48,31 +48,8 @@ MOUNT = ["position.x", "position.y", "angle", "velocity.x", "velocity.y",
          "angular_velocity", "acceleration.x", "acceleration.y", "angular_acceleration"]
 REACTION = ["root.force.x", "root.force.y", "root.moment.z"]
 INERTIA = ["root.mass", "root.center_of_mass.x", "root.center_of_mass.y", "root.inertia.zz"]
-
-
-def rigid_part(inertia, mount, gravity):
-    """The reaction (support on the beam: force x, y, moment z about the mount point) of a
-    rigid body with `inertia` (mass, centre of mass in the mount frame, inertia about the
-    mount point) moving with the mount (`mount`: position, angle, velocity, angular velocity,
-    acceleration, angular acceleration) under `gravity` (x, y)."""
-    mp, cx, cy, io = inertia
-    ang, w, ax, ay, al = mount[2], mount[5], mount[6], mount[7], mount[8]
-    c, s = math.cos(ang), math.sin(ang)
-    rx, ry = c * cx - s * cy, s * cx + c * cy
-    gx, gy = gravity
-    fx = mp * (ax - al * ry - w * w * rx - gx)
-    fy = mp * (ay + al * rx - w * w * ry - gy)
-    mz = io * al + mp * (rx * (ay - gy) - ry * (ax - gx))
-    return np.array([fx, fy, mz])
-
-
-def rigid_jacobian(inertia, mount):
-    """∂rigid_part/∂(acceleration x, y, angular acceleration): the rigid body's mass matrix at
-    the mount point (world axes)."""
-    mp, cx, cy, io = inertia
-    c, s = math.cos(mount[2]), math.sin(mount[2])
-    rx, ry = c * cx - s * cy, s * cx + c * cy
-    return np.array([[mp, 0.0, -mp * ry], [0.0, mp, mp * rx], [-mp * ry, mp * rx, io]])
+# the reaction beyond the rigid inertia's own (the beam FMU computes it at its mount motion)
+ELASTIC = ["root.force_elastic.x", "root.force_elastic.y", "root.moment_elastic.z"]
 
 
 class Fmu:
@@ -109,17 +86,14 @@ class Fmu:
         shutil.rmtree(self.dir, ignore_errors=True)
 
 
-def feed_car(car, boom, mount, scheme):
-    """Sets the car's beam inputs from the beam's outputs, `mount` being the mount values the
-    beam was given: its reaction, or with `interface` its rigid inertia as the car's payload
-    and the reaction beyond the payload's (the reaction minus the rigid part at the same
-    mount motion). Returns the reaction."""
+def feed_car(car, boom, scheme):
+    """Sets the car's beam inputs from the beam's outputs: its reaction, or with `interface`
+    its rigid inertia as the car's payload and the reaction beyond the payload's
+    (root.force_elastic, root.moment_elastic). Returns the beam's reaction."""
     f = boom.get(REACTION)
     if scheme.startswith("interface"):
-        inertia = boom.get(INERTIA)
-        car.set(["beam." + n for n in INERTIA], inertia)
-        car.set(["beam." + n for n in REACTION],
-                f - rigid_part(inertia, mount, boom.get(["gravity.x", "gravity.y"])))
+        car.set(["beam." + n for n in INERTIA], boom.get(INERTIA))
+        car.set(["beam." + n for n in REACTION], boom.get(ELASTIC))
     else:
         car.set(["beam." + n for n in REACTION], f)
     return f
@@ -142,7 +116,7 @@ def start(car_path, boom_path, density_factor=1.0, scheme="jacobi"):
     # the first exchange: a rigid move, no impulse)
     boom.set(beam_mount, car.get(car_mount))  # pose and velocity: the beam rides along
     boom.slave.exitInitializationMode()
-    feed_car(car, boom, car.get(car_mount), scheme)
+    feed_car(car, boom, scheme)
     car.slave.exitInitializationMode()
     # again on the car's settled pose (its static sag under the beam's weight)
     boom.slave.reset()
@@ -194,27 +168,27 @@ def run(car_path, boom_path, h, t_end, scheme="newton", density_factor=1.0, deri
         if scheme in ("newton", "interface-newton"):
             # close the loop F = F0 + Jb (a − a_b), a = A0 + Jc (F − F_c) exactly (F: what
             # the car is given; with interface mass the reaction beyond the payload's)
-            jb = boom.jacobian(REACTION, beam_mount[6:])
-            f0 = boom.get(REACTION)
+            given = REACTION
             if scheme == "interface-newton":
-                inertia = boom.get(INERTIA)
-                car.set(["beam." + n for n in INERTIA], inertia)
-                jb = jb - rigid_jacobian(inertia, m)
-                f0 = f0 - rigid_part(inertia, m, boom.get(["gravity.x", "gravity.y"]))
+                car.set(["beam." + n for n in INERTIA], boom.get(INERTIA))
+                given = ELASTIC
+            jb = boom.jacobian(given, beam_mount[6:])
+            f0 = boom.get(given)
             jc = car.jacobian(car_mount[6:], car_in)
             fc = car.get(car_in)
             f = np.linalg.solve(np.eye(3) - jb @ jc, f0 - jb @ (jc @ fc))
             car.set(car_in, f)
             m = car.get(car_mount)
             boom.set(beam_mount[6:], m[6:])
-        f = feed_car(car, boom, m, scheme)
+        f = feed_car(car, boom, scheme)
+        given = car.get(car_in)  # the reaction, or with interface mass its elastic part
         if derivatives and prev_acc is not None:
             rate = (m[6:] - prev_acc) / h
             boom.slave.setRealInputDerivatives([boom.vr[n] for n in beam_mount[6:]], [1, 1, 1],
                                                list(rate))
             car.slave.setRealInputDerivatives([car.vr[n] for n in car_in], [1, 1, 1],
-                                              list((f - prev_f) / h))
-        prev_acc, prev_f = m[6:].copy(), f.copy()
+                                              list((given - prev_given) / h))
+        prev_acc, prev_given = m[6:].copy(), given
         ec = car.get(["energy.total", "energy.road_work", "energy.dissipated"])
         eb = boom.get(e_beam).sum()
         if e0 is None:

@@ -82,6 +82,26 @@ def test_libcosim_runs_the_osp_structure_like_the_fmpy_jacobi_loop(fmus):
         assert diff < tol * np.ptp(rows[:, col]) + 1e-12, (name, diff)
 
 
+def test_libcosim_with_interface_mass_runs_a_heavy_boom_the_naive_exchange_cannot(fmus):
+    """The second host with interface mass, connected through libcosim's API (the beam's
+    root.force_elastic, root.moment_elastic and rigid inertia straight to the car's inputs):
+    the 20x boom at 1.5 ms runs to the end and follows the fmpy interface-mass loop, where
+    libcosim's naive exchange stops at a refused step."""
+    pytest.importorskip("libcosimpy", reason="libcosimpy has no wheel for this Python")
+    from cosim_libcosim import run_libcosim_connected
+
+    car, boom = fmus
+    ok_naive, t_naive, _ = run_libcosim_connected(car, boom, 1.5, 1.5e-3, "jacobi", 20.0)
+    ok, t, lc = run_libcosim_connected(car, boom, 1.5, 1.5e-3, "interface", 20.0)
+    rows, _, ok_fmpy = run(car, boom, 1.5e-3, 1.5, "interface", 20.0)
+    ref = np.interp(t, rows[:, 0], rows[:, 2])
+    diff = np.max(np.abs(lc["body.pitch"] - ref))
+    print(f"naive stopped at {t_naive[-1]:.4f} s; interface ran to {t[-1]:.4f} s, "
+          f"pitch vs fmpy {diff:.3e} of {np.ptp(rows[:, 2]):.3e}")
+    assert not ok_naive and ok and ok_fmpy
+    assert diff < 5e-2 * np.ptp(rows[:, 2]), diff
+
+
 def _osp_groups(fmu):
     """The OSP-IS groups written beside `fmu` (<modelName>_OspModelDescription.xml) as
     (kind, name, [variable refs]) in document order, and the FMU's variables by name."""

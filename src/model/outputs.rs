@@ -40,6 +40,14 @@ pub struct Outputs<S: Space = Planar> {
     pub root_moment: S::Moment,
     /// The beam's rigid inertia at the mount (`root = "mounted"` only).
     pub mount: Option<super::mount::MountInertia<S>>,
+    /// The reaction beyond the rigid inertia's own at the current mount motion and gravity
+    /// ([`MountInertia::rigid_reaction`](super::mount::MountInertia::rigid_reaction)): force
+    /// [N] (`root = "mounted"` only, else zero), what a host that carries `mount` as interface
+    /// mass applies.
+    pub elastic_force: S::Vec,
+    /// The moment [N m] beyond the rigid inertia's, about the mount point (as
+    /// `elastic_force`).
+    pub elastic_moment: S::Moment,
 }
 
 /// Validity measures of a model at one configuration.
@@ -115,6 +123,20 @@ impl<S: Space> Model<S> {
         let r = self.held_residual((q, v, acc), lam, &mut buf);
         (o.root_force, o.root_moment) = self.support.reaction(&r, &self.held);
         o.mount = self.mount_inertia(q);
+        if let (Some(mi), Some(m)) = (&o.mount, self.mount.as_deref()) {
+            let (f, mo) = mi.rigid_reaction(m, &self.gravity);
+            for k in 0..S::DIM {
+                o.elastic_force[k] = o.root_force[k] - f[k];
+            }
+            let rm = S::moment_components(&o.root_moment);
+            for ((e, r), f) in S::moment_components_mut(&mut o.elastic_moment)
+                .iter_mut()
+                .zip(rm)
+                .zip(S::moment_components(&mo))
+            {
+                *e = r - f;
+            }
+        }
         o
     }
 

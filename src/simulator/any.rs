@@ -40,6 +40,12 @@ pub enum Quantity {
     /// `root.inertia.<pair>` [kg m²]: the beam's inertia tensor about the mount point, mount
     /// frame axes (`zz` in the plane; `xx yy zz xy xz yz` in space) (mounted root).
     MountInertia,
+    /// `root.force_elastic.<axis>` [N]: `root.force` minus the rigid reaction of the rigid
+    /// inertia at the current mount motion and gravity, global axes (mounted root).
+    ElasticForce,
+    /// `root.moment_elastic.<moment axis>` [N m]: `root.moment` minus the rigid one, about
+    /// the mount point (mounted root).
+    ElasticMoment,
 }
 
 /// Components of the inertia tensor as outputs: names and row-major 3×3 indices (the plane
@@ -98,7 +104,8 @@ impl OutputId {
     }
 
     /// [`OutputId::named`] and, for a mounted root, the rigid inertia at the mount after them:
-    /// `root.mass`, `root.center_of_mass.<axis>`, `root.inertia.<pair>`.
+    /// `root.mass`, `root.center_of_mass.<axis>`, `root.inertia.<pair>`, then the reaction
+    /// beyond it: `root.force_elastic.<axis>`, `root.moment_elastic.<moment axis>`.
     pub fn named_with(space: SpaceKind, mounted: bool) -> Vec<(String, OutputId)> {
         let mut out = Self::named(space);
         if mounted {
@@ -110,10 +117,16 @@ impl OutputId {
                 SpaceKind::Planar => Planar::AXES,
                 SpaceKind::Spatial => Spatial::AXES,
             };
-            let groups: [(Quantity, &str, &[&str]); 3] = [
+            let moment_axes: &[&str] = match space {
+                SpaceKind::Planar => Planar::MOMENT_AXES,
+                SpaceKind::Spatial => Spatial::MOMENT_AXES,
+            };
+            let groups: [(Quantity, &str, &[&str]); 5] = [
                 (Quantity::MountMass, "root.mass", &[""]),
                 (Quantity::MountCenterOfMass, "root.center_of_mass", axes),
                 (Quantity::MountInertia, "root.inertia", inertia),
+                (Quantity::ElasticForce, "root.force_elastic", axes),
+                (Quantity::ElasticMoment, "root.moment_elastic", moment_axes),
             ];
             out.extend(named_components(&groups, |quantity, component| OutputId {
                 quantity,
@@ -165,6 +178,12 @@ impl<S: SpaceModel> Outputs<S> {
             MountCenterOfMass => self
                 .mount
                 .and_then(|m| m.center_of_mass.as_ref().get(k).copied()),
+            ElasticForce => self
+                .mount
+                .and_then(|_| self.elastic_force.as_ref().get(k).copied()),
+            ElasticMoment => self
+                .mount
+                .and_then(|_| S::moment_components(&self.elastic_moment).get(k).copied()),
             MountInertia => self.mount.and_then(|m| {
                 if S::DIM == 2 {
                     one(m.inertia[0])
@@ -697,6 +716,11 @@ impl AnySimulator {
     /// [`Simulator::apparent_mass`].
     pub fn apparent_mass(&mut self) -> Option<Vec<Vec<f64>>> {
         each!(self, s => s.apparent_mass())
+    }
+
+    /// [`Simulator::rigid_mass_matrix`].
+    pub fn rigid_mass_matrix(&self) -> Option<Vec<Vec<f64>>> {
+        each!(self, s => s.rigid_mass_matrix())
     }
 
     /// [`Simulator::mount_acceleration_change`].

@@ -33,8 +33,17 @@ pub struct BeamFmu {
     /// A mounted beam's apparent mass at the current state (the reaction's partials by the
     /// mount accelerations), computed with the outputs.
     apparent: Option<Vec<Vec<f64>>>,
+    /// The mass matrix of its rigid inertia at the mount (the rigid reaction's partials), for
+    /// the elastic outputs' feedthrough: apparent minus this.
+    rigid: Option<Vec<Vec<f64>>>,
     /// The last communication step [s] (the velocity-input mode's partials divide by it).
     last_step: f64,
+    /// Initialized (fmi2ExitInitializationMode passed, or a state restored).
+    started: bool,
+    /// Before initialization, after a parameter or input changed: the outputs of the start
+    /// the scene now describes, built at the first read (so a host reading outputs in
+    /// initialization mode, as libcosim does to settle its connections, sees the values set).
+    pre_start: Option<std::cell::RefCell<Option<Result<AnyOutputs, String>>>>,
     /// Per variable (table order): the change of an output over the last communication step
     /// divided by it, the first-order output derivative of the outputs without an exact one
     /// (reactions, energies, inertia); 0 before the first step.
@@ -137,13 +146,30 @@ impl BeamFmu {
     fn refresh_outputs(&mut self) {
         self.outputs = self.sim.outputs();
         self.apparent = self.sim.apparent_mass();
+        self.rigid = self.sim.rigid_mass_matrix();
     }
 
-    /// The reaction component `row` (force then moment) with the direct feedthrough of the
-    /// mount accelerations set for the next step: exact, the reaction being linear in them.
-    fn reaction_now(&self, row: usize, cached: f64) -> f64 {
-        match (&self.apparent, self.sim.mount_acceleration_change()) {
-            (Some(j), Some(d)) => cached + j[row].iter().zip(&d).map(|(a, b)| a * b).sum::<f64>(),
+    /// The partials of reaction component `row` (force then moment) by the mount accelerations
+    /// (columns): the apparent mass, minus the rigid inertia's mass matrix for the elastic
+    /// part. `None` when not available.
+    fn feedthrough(&self, row: usize, elastic: bool) -> Option<Vec<f64>> {
+        let j = self.apparent.as_ref()?;
+        if !elastic {
+            return Some(j[row].clone());
+        }
+        let r = self.rigid.as_ref()?;
+        Some(j[row].iter().zip(&r[row]).map(|(a, b)| a - b).collect())
+    }
+
+    /// The reaction component `row` (force then moment; `elastic`: its part beyond the rigid
+    /// inertia's) with the direct feedthrough of the mount accelerations set for the next step:
+    /// exact, both being linear in them.
+    fn reaction_now(&self, row: usize, elastic: bool, cached: f64) -> f64 {
+        match (
+            self.feedthrough(row, elastic),
+            self.sim.mount_acceleration_change(),
+        ) {
+            (Some(j), Some(d)) => cached + j.iter().zip(&d).map(|(a, b)| a * b).sum::<f64>(),
             _ => cached,
         }
     }
@@ -221,6 +247,9 @@ impl CoSimModel for BeamFmu {
             sim,
             outputs,
             apparent: None,
+            rigid: None,
+            started: false,
+            pre_start: None,
             last_step: step,
             backward,
         };
@@ -240,13 +269,39 @@ impl CoSimModel for BeamFmu {
         let access = self.table.access(index);
         let value = match access {
             Access::Input(id) => self.sim.input(id),
+            Access::Output(id) if !self.started && self.pre_start.is_some() => {
+                let cell = self.pre_start.as_ref().expect("checked");
+                let mut cached = cell.borrow_mut();
+                let outputs = cached.get_or_insert_with(|| {
+                    AnySimulator::start_at(self.scene.clone(), 0.0)
+                        .map(|sim| sim.outputs())
+                        .map_err(|e| e.to_string())
+                });
+                match outputs {
+                    Ok(o) => o.value(id),
+                    Err(e) => {
+                        return Err(format!(
+                            "{}: no start with the values set so far: {e}",
+                            self.table.variables()[index].name
+                        ))
+                    }
+                }
+            }
             Access::Output(id) => {
                 let value = self.outputs.value(id);
                 let dim = self.sim.scene().space.dim();
                 match (id.quantity, value) {
-                    (Quantity::RootForce, Some(x)) => Some(self.reaction_now(id.component, x)),
+                    (Quantity::RootForce, Some(x)) => {
+                        Some(self.reaction_now(id.component, false, x))
+                    }
                     (Quantity::RootMoment, Some(x)) => {
-                        Some(self.reaction_now(dim + id.component, x))
+                        Some(self.reaction_now(dim + id.component, false, x))
+                    }
+                    (Quantity::ElasticForce, Some(x)) => {
+                        Some(self.reaction_now(id.component, true, x))
+                    }
+                    (Quantity::ElasticMoment, Some(x)) => {
+                        Some(self.reaction_now(dim + id.component, true, x))
                     }
                     _ => value,
                 }
@@ -288,6 +343,9 @@ impl CoSimModel for BeamFmu {
                 self.scene = scene;
             }
         }
+        if !self.started {
+            self.pre_start = Some(std::cell::RefCell::new(None));
+        }
         Ok(())
     }
 
@@ -296,6 +354,8 @@ impl CoSimModel for BeamFmu {
         self.sim = AnySimulator::start_at(scene, start_time).map_err(|e| e.to_string())?;
         self.refresh_outputs();
         self.backward.fill(0.0);
+        self.started = true;
+        self.pre_start = None;
         Ok(())
     }
 
@@ -363,9 +423,11 @@ impl CoSimModel for BeamFmu {
             ));
         };
         let dim = self.sim.scene().space.dim();
-        let row = match o.quantity {
-            Quantity::RootForce => o.component,
-            Quantity::RootMoment => dim + o.component,
+        let (row, elastic) = match o.quantity {
+            Quantity::RootForce => (o.component, false),
+            Quantity::RootMoment => (dim + o.component, false),
+            Quantity::ElasticForce => (o.component, true),
+            Quantity::ElasticMoment => (dim + o.component, true),
             _ => return Ok(0.0),
         };
         let (col, scale) = match i.kind {
@@ -376,10 +438,9 @@ impl CoSimModel for BeamFmu {
             _ => return Ok(0.0),
         };
         let j = self
-            .apparent
-            .as_ref()
+            .feedthrough(row, elastic)
             .ok_or_else(|| format!("{}: the apparent mass is not available", names(&self.table)))?;
-        Ok(j[row][col] * scale)
+        Ok(j[col] * scale)
     }
 
     fn reset(&mut self) -> Result<(), String> {
@@ -422,6 +483,8 @@ impl CoSimModel for BeamFmu {
         self.sim = sim;
         self.backward = backward;
         self.refresh_outputs();
+        self.started = true;
+        self.pre_start = None;
         Ok(())
     }
 }

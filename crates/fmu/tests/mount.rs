@@ -96,6 +96,78 @@ fn reaction_feeds_through_the_mount_acceleration_and_its_derivative_is_provided(
         before,
         "inputs restored, outputs restored"
     );
+    // the elastic part: the reaction minus the rigid reaction of the exported inertia (closed
+    // form here: F = m (a + α k × c − ω² c − g), M = I α + m c × (a − g), c = R(angle) c̄),
+    // before and after an acceleration change, and its partials = apparent mass − rigid mass
+    let el = vrs(
+        &scene,
+        &[
+            "root.force_elastic.x",
+            "root.force_elastic.y",
+            "root.moment_elastic.z",
+        ],
+    );
+    let inertia = vrs(
+        &scene,
+        &[
+            "root.mass",
+            "root.center_of_mass.x",
+            "root.center_of_mass.y",
+            "root.inertia.zz",
+        ],
+    );
+    let pose = vrs(&scene, &["root.angle", "root.angular_velocity"]);
+    let rigid = |a: &[f64]| {
+        let [m, cx, cy, io]: [f64; 4] = i.get_real(&inertia).unwrap().try_into().unwrap();
+        let [th, w]: [f64; 2] = i.get_real(&pose).unwrap().try_into().unwrap();
+        let (sn, cs) = th.sin_cos();
+        let (x, y) = (cs * cx - sn * cy, sn * cx + cs * cy);
+        let g = -9.81;
+        let f = [
+            m * (a[0] - a[2] * y - w * w * x),
+            m * (a[1] + a[2] * x - w * w * y - g),
+            io * a[2] + m * (x * (a[1] - g) - y * a[0]),
+        ];
+        let jac = [[m, 0.0, -m * y], [0.0, m, m * x], [-m * y, m * x, io]];
+        (f, jac)
+    };
+    for shift in [0.0, 0.7] {
+        let a: Vec<f64> = a0.iter().map(|x| x + shift).collect();
+        assert_eq!(i.set_real(&ins, &a), OK);
+        let (f, e) = (i.get_real(&outs).unwrap(), i.get_real(&el).unwrap());
+        let (fr, jac) = rigid(&a);
+        for r in 0..3 {
+            eprintln!(
+                "elastic {r} (a + {shift}): {:.9e} vs {:.9e}",
+                e[r],
+                f[r] - fr[r]
+            );
+            assert!(
+                (e[r] - (f[r] - fr[r])).abs() < 1e-9 * f[r].abs().max(1e-3),
+                "{r}"
+            );
+        }
+        for c in 0..3 {
+            let mut seed = vec![0.0; 3];
+            seed[c] = 1.0;
+            let (d, de) = (
+                directional(&i, &outs, &ins, &seed),
+                directional(&i, &el, &ins, &seed),
+            );
+            for r in 0..3 {
+                assert!(
+                    (de[r] - (d[r] - jac[r][c])).abs() < 1e-9 * jac[r][c].abs().max(1e-6),
+                    "∂elastic{r}/∂in{c}: {} vs {}",
+                    de[r],
+                    d[r] - jac[r][c]
+                );
+            }
+        }
+    }
+    assert!(
+        i.get_real(&el).unwrap().iter().any(|x| x.abs() > 1e-4),
+        "a swinging beam has an elastic reaction"
+    );
 }
 
 /// Over one communication step, a mount acceleration that varies linearly (its derivative
@@ -466,4 +538,56 @@ fn output_derivatives_are_the_rates_of_the_outputs() {
         };
         assert_eq!(s, ERROR);
     }
+}
+
+/// In initialization mode the outputs follow the parameters and inputs set so far (what a
+/// host such as libcosim reads to settle its connections before the start): the reaction of
+/// the static start is the weight, m g along y (a rod at rest relative to a fixed mount),
+/// with the densities tripled three times the weight, and the same after initialization;
+/// on a mount turned by 0.5 rad the elastic part stays zero (the rod at rest).
+#[test]
+fn outputs_in_initialization_mode_follow_what_was_set() {
+    let scene = mounted("angle = 0.0").replace("state = \"straight\"", "state = \"static\"");
+    assert!(scene.contains("state = \"static\""));
+    let args = InstantiateArgs {
+        guid: guid_of(&scene),
+        location: Some(file_uri(&resources_with(&scene, "mount_init"))),
+        ..InstantiateArgs::valid("mount_init")
+    };
+    let (c, log) = instantiate_raw(&args);
+    assert!(!c.is_null(), "{:?}", log.entries());
+    let i = Inst { c, log, api: api() };
+    assert_eq!(i.setup(0.0, None), OK);
+    assert_eq!(i.enter_init(), OK);
+    let force = vrs(&scene, &["root.force.x", "root.force.y"]);
+    let densities: Vec<u32> = vrs_where(|v| v.name.ends_with(".density"))
+        .into_iter()
+        .filter(|&r| scene_has(&scene, r))
+        .collect();
+    let weight = i.get_real(&force).unwrap()[1];
+    let rho = i.get_real(&densities).unwrap();
+    let l = 0.4;
+    let closed = rho[0] * std::f64::consts::PI * 1e-6 * l * 9.81;
+    assert!((weight / closed - 1.0).abs() < 1e-9, "{weight} vs {closed}");
+    let tripled: Vec<f64> = rho.iter().map(|x| 3.0 * x).collect();
+    assert_eq!(i.set_real(&densities, &tripled), OK);
+    let heavy = i.get_real(&force).unwrap()[1];
+    let angle = vrs(&scene, &["root.angle"]);
+    assert_eq!(i.set_real(&angle, &[0.5]), OK);
+    let elastic = vrs(&scene, &["root.force_elastic.x", "root.force_elastic.y"]);
+    let (turned, el) = (i.get_real(&force).unwrap(), i.get_real(&elastic).unwrap());
+    assert_eq!(i.exit_init(), OK);
+    let after = i.get_real(&force).unwrap();
+    eprintln!("weight {weight:.9e} N, densities x3 {heavy:.9e} N; turned {turned:?} elastic {el:?}, after init {after:?}");
+    assert!((heavy / (3.0 * weight) - 1.0).abs() < 1e-9);
+    assert!((turned[1] / heavy - 1.0).abs() < 1e-9 && turned[0].abs() < 1e-9 * heavy);
+    assert!(el.iter().all(|x| x.abs() < 1e-9 * heavy));
+    assert_eq!(after, turned);
+}
+
+/// Whether the FMU of `scene` has the variable `r`.
+fn scene_has(scene: &str, r: u32) -> bool {
+    let model = hybeam_fmu::FmuModel::from_resource(scene).unwrap();
+    use fmi2::CoSimModel;
+    model.variables().iter().any(|v| v.vr == r)
 }

@@ -151,8 +151,9 @@ pub const MOUNT_INPUTS: [Row; 22] = [
     ("root.angular_acceleration.z", 61, Some("rad/s2"), "angular acceleration of the mount frame, world z"),
 ];
 
-/// The beam's rigid inertia at the mount, outputs of a mounted scene: 70–79.
-pub const MOUNT_OUTPUTS: [Row; 10] = [
+/// The beam's rigid inertia at the mount and the reaction beyond it, outputs of a mounted
+/// scene: 70–85.
+pub const MOUNT_OUTPUTS: [Row; 16] = [
     (
         "root.mass",
         70,
@@ -213,6 +214,12 @@ pub const MOUNT_OUTPUTS: [Row; 10] = [
         Some("kg.m2"),
         "inertia of the beam about the mount point, mount frame yz",
     ),
+    ("root.force_elastic.x", 80, Some("N"), "root.force minus the rigid reaction of root.mass etc. at the mount motion and gravity (what a host carrying the rigid inertia applies), global x"),
+    ("root.force_elastic.y", 81, Some("N"), "root.force minus the rigid reaction, global y"),
+    ("root.force_elastic.z", 82, Some("N"), "root.force minus the rigid reaction, global z"),
+    ("root.moment_elastic.x", 83, Some("N.m"), "root.moment minus the rigid reaction's moment about the mount point, global x"),
+    ("root.moment_elastic.y", 84, Some("N.m"), "root.moment minus the rigid reaction's moment, global y"),
+    ("root.moment_elastic.z", 85, Some("N.m"), "root.moment minus the rigid reaction's moment, global z (counter-clockwise in the plane)"),
 ];
 
 /// Gravity, tunable parameters of both spaces.
@@ -437,7 +444,13 @@ impl Table {
             .collect();
         for (row, id) in present(&OUTPUTS, &outputs).chain(present(&MOUNT_OUTPUTS, &outputs)) {
             let mut v = variable(row, Causality::Output, Variability::Continuous, None);
-            if matches!(id.quantity, Quantity::RootForce | Quantity::RootMoment) {
+            if matches!(
+                id.quantity,
+                Quantity::RootForce
+                    | Quantity::RootMoment
+                    | Quantity::ElasticForce
+                    | Quantity::ElasticMoment
+            ) {
                 v.depends_on = drives.clone();
             }
             t.push(v, Access::Output(id));
