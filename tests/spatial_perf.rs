@@ -60,3 +60,11 @@ fn case1_steps_spatial() {
     let sc = scene("case1_3d.toml");
     case1(&mut Model::<Spatial>::from_scene(&sc).unwrap(), &sc);
 }
+
+#[test]
+#[ignore = "measurement: run under callgrind"]
+fn case1_steps_spatial_cable() {
+    let mut sc = scene("case1_3d.toml");
+    sc.torsion = false;
+    case1(&mut Model::<Spatial>::from_scene(&sc).unwrap(), &sc);
+}
