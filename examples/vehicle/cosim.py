@@ -129,20 +129,25 @@ def start(car_path, boom_path, density_factor=1.0, scheme="jacobi"):
     return car, boom
 
 
-def coupling_ratio(car_path, boom_path, density_factor=1.0):
-    """The naive loop's amplification per exchange at the start: the spectral radius of
-    Jb Jc (the beam's apparent mass at the mount times the car's mobility, both from
-    fmi2GetDirectionalDerivative); the exchange of the reaction is unstable above 1. Also
-    returns the beam's mass (root.mass) and the diagonal of Jb (its apparent mass along x
-    and y [kg] and in rotation [kg m²])."""
-    car, boom = start(car_path, boom_path, density_factor)
-    jb = boom.jacobian(REACTION, ["root." + n for n in MOUNT[6:]])
+def coupling_ratio(car_path, boom_path, density_factor=1.0, scheme="jacobi"):
+    """The exchange's amplification per step at the start: the spectral radius of Jb Jc (the
+    partials of what the car is given by the mount accelerations times the car's mobility,
+    both from fmi2GetDirectionalDerivative): the beam's apparent mass for the naive exchange,
+    apparent minus rigid mass with interface mass (`interface`, the car then carrying the
+    rigid inertia); the exchange is unstable above 1. Also returns the beam's mass
+    (root.mass) and the diagonal of the reaction's partials (its apparent mass along x and y
+    [kg] and in rotation [kg m²])."""
+    car, boom = start(car_path, boom_path, density_factor, scheme)
+    accelerations = ["root." + n for n in MOUNT[6:]]
+    given = ELASTIC if scheme.startswith("interface") else REACTION
+    jb = boom.jacobian(given, accelerations)
     jc = car.jacobian(["mount." + n for n in MOUNT[6:]], ["beam." + n for n in REACTION])
     rho = float(np.max(np.abs(np.linalg.eigvals(jb @ jc))))
     mass = float(boom.get(["root.mass"])[0])
+    apparent = np.diag(boom.jacobian(REACTION, accelerations))
     car.close()
     boom.close()
-    return rho, mass, np.diag(jb)
+    return rho, mass, apparent
 
 
 def run(car_path, boom_path, h, t_end, scheme="newton", density_factor=1.0, derivatives=False,
