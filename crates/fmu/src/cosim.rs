@@ -40,10 +40,12 @@ pub struct BeamFmu {
     last_step: f64,
     /// Initialized (fmi2ExitInitializationMode passed, or a state restored).
     started: bool,
-    /// Before initialization, after a parameter or input changed: the outputs of the start
-    /// the scene now describes, built at the first read (so a host reading outputs in
-    /// initialization mode, as libcosim does to settle its connections, sees the values set).
-    pre_start: Option<std::cell::RefCell<Option<Result<AnyOutputs, String>>>>,
+    /// Before initialization: a parameter or input was set since the instance was built.
+    changed_before_start: bool,
+    /// Then the outputs of the start the scene now describes, built at the first read after a
+    /// change (a host reading outputs in initialization mode, as libcosim does to settle its
+    /// connections, sees the values set).
+    pre_start: std::cell::RefCell<Option<Result<AnyOutputs, String>>>,
     /// Per variable (table order): the change of an output over the last communication step
     /// divided by it, the first-order output derivative of the outputs without an exact one
     /// (reactions, energies, inertia); 0 before the first step.
@@ -249,7 +251,8 @@ impl CoSimModel for BeamFmu {
             apparent: None,
             rigid: None,
             started: false,
-            pre_start: None,
+            changed_before_start: false,
+            pre_start: std::cell::RefCell::new(None),
             last_step: step,
             backward,
         };
@@ -269,9 +272,8 @@ impl CoSimModel for BeamFmu {
         let access = self.table.access(index);
         let value = match access {
             Access::Input(id) => self.sim.input(id),
-            Access::Output(id) if !self.started && self.pre_start.is_some() => {
-                let cell = self.pre_start.as_ref().expect("checked");
-                let mut cached = cell.borrow_mut();
+            Access::Output(id) if !self.started && self.changed_before_start => {
+                let mut cached = self.pre_start.borrow_mut();
                 let outputs = cached.get_or_insert_with(|| {
                     AnySimulator::start_at(self.scene.clone(), 0.0)
                         .map(|sim| sim.outputs())
@@ -344,7 +346,8 @@ impl CoSimModel for BeamFmu {
             }
         }
         if !self.started {
-            self.pre_start = Some(std::cell::RefCell::new(None));
+            self.changed_before_start = true;
+            self.pre_start.replace(None);
         }
         Ok(())
     }
@@ -355,7 +358,7 @@ impl CoSimModel for BeamFmu {
         self.refresh_outputs();
         self.backward.fill(0.0);
         self.started = true;
-        self.pre_start = None;
+        self.pre_start.replace(None);
         Ok(())
     }
 
@@ -484,7 +487,7 @@ impl CoSimModel for BeamFmu {
         self.backward = backward;
         self.refresh_outputs();
         self.started = true;
-        self.pre_start = None;
+        self.pre_start.replace(None);
         Ok(())
     }
 }
