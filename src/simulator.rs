@@ -723,15 +723,14 @@ impl<S: SpaceModel> Simulator<S> {
         )
     }
 
-    /// The mass matrix at the mount of the beam's current rigid inertia
-    /// ([`MountInertia::mass_matrix`](crate::model::MountInertia::mass_matrix), ordered as
-    /// [`Simulator::apparent_mass`]): the rigid reaction's partials by the mount
+    /// The mass matrix at the mount of the rigid inertia in `outputs` (this state's,
+    /// [`Simulator::outputs`]; [`MountInertia::mass_matrix`](crate::model::MountInertia::mass_matrix),
+    /// ordered as [`Simulator::apparent_mass`]): the rigid reaction's partials by the mount
     /// accelerations, so the elastic part's are the apparent mass minus these. `None` for a
     /// fixed root.
-    pub fn rigid_mass_matrix(&self) -> Option<Vec<Vec<f64>>> {
+    pub fn rigid_mass_matrix(&self, outputs: &Outputs<S>) -> Option<Vec<Vec<f64>>> {
         let m = self.model.mount_motion()?;
-        let inertia = self.model.mount_inertia(&self.state.q)?;
-        Some(inertia.mass_matrix(&m.attitude))
+        Some(outputs.mount?.mass_matrix(&m.attitude))
     }
 
     /// Rebuilds the held Newton matrix of `mem` under the inputs and mount motion it was

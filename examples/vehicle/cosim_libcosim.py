@@ -27,12 +27,37 @@ from cosim import ELASTIC, INERTIA, MOUNT, REACTION, run  # noqa: E402
 PROBES = {"car": ["body.heave", "body.pitch"], "boom": ["tip.position.y", "root.force.y"]}
 
 
+def simulate_observed(ex, h, t_end):
+    """Runs the execution `ex` (slaves "car" and "boom", base step `h`) to `t_end`, recording
+    PROBES; returns (ok, times, {name: samples}): ok is false when libcosim stops early (a step
+    refused) or a sample is not finite."""
+    from libcosimpy.CosimEnums import CosimVariableType
+    from libcosimpy.CosimObserver import CosimObserver
+
+    obs = CosimObserver.create_time_series()
+    ex.add_observer(obs)
+    refs = {}
+    for name, probes in PROBES.items():
+        i = ex.slave_index_from_instance_name(name)
+        vr = {v.name.decode(): v.reference for v in ex.slave_variables(i)}
+        for p in probes:
+            refs[p] = (i, vr[p])
+            obs.start_time_series(i, value_reference=vr[p], variable_type=CosimVariableType.REAL)
+    ok = bool(ex.simulate_until(target_time=int(round(t_end * 1e9))))
+    n = int(round(t_end / h)) + 1
+    out, times = {}, None
+    for p, (i, r) in refs.items():
+        t, _, values = obs.time_series_real_samples(i, r, from_step=0, sample_count=n)
+        out[p] = np.array(values)
+        times = np.array(t) * 1e-9
+    ok = ok and times[-1] > t_end - 1.5 * h and all(np.all(np.isfinite(v)) for v in out.values())
+    return ok, times, out
+
+
 def run_libcosim(car, boom, t_end):
     """Runs the OSP system structure with the two FMUs; returns (times, {name: samples})."""
-    from libcosimpy.CosimEnums import CosimVariableType
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
 
     log_output_level(CosimLogLevel.WARNING)
     with tempfile.TemporaryDirectory() as d:
@@ -44,23 +69,8 @@ def run_libcosim(car, boom, t_end):
             for osp in pathlib.Path(fmu).parent.glob("*_OspModelDescription.xml"):
                 shutil.copy(osp, d)
         ex = CosimExecution.from_osp_config_file(osp_path=d)
-        obs = CosimObserver.create_time_series()
-        ex.add_observer(obs)
-        refs = {}
-        for name, probes in PROBES.items():
-            i = ex.slave_index_from_instance_name(name)
-            vr = {v.name.decode(): v.reference for v in ex.slave_variables(i)}
-            for p in probes:
-                refs[p] = (i, vr[p])
-                obs.start_time_series(i, value_reference=vr[p],
-                                      variable_type=CosimVariableType.REAL)
-        assert ex.simulate_until(target_time=int(round(t_end * 1e9))), "libcosim failed"
-        n = int(round(t_end / 1e-3)) + 1
-        out, times = {}, None
-        for p, (i, r) in refs.items():
-            t, _, values = obs.time_series_real_samples(i, r, from_step=0, sample_count=n)
-            out[p] = np.array(values)
-            times = np.array(t) * 1e-9
+        ok, times, out = simulate_observed(ex, 1e-3, t_end)
+        assert ok, "libcosim failed"
     return times, out
 
 
@@ -74,10 +84,8 @@ def run_libcosim_connected(car, boom, t_end, h, scheme="jacobi", density_factor=
     values). Returns (ok, times, {name: samples}): ok is false when libcosim stops early (a
     step refused)."""
     from fmpy import read_model_description
-    from libcosimpy.CosimEnums import CosimVariableType
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
     from libcosimpy.CosimSlave import CosimLocalSlave
 
     log_output_level(CosimLogLevel.ERROR)
@@ -97,24 +105,7 @@ def run_libcosim_connected(car, boom, t_end, h, scheme="jacobi", density_factor=
         for v in read_model_description(boom).modelVariables:
             if v.name.endswith(".density"):
                 ex.real_initial_value(bi, vr[bi][v.name], density_factor * float(v.start))
-    obs = CosimObserver.create_time_series()
-    ex.add_observer(obs)
-    refs = {}
-    for name, probes in PROBES.items():
-        i = ci if name == "car" else bi
-        for p in probes:
-            refs[p] = (i, vr[i][p])
-            obs.start_time_series(i, value_reference=vr[i][p],
-                                  variable_type=CosimVariableType.REAL)
-    ok = bool(ex.simulate_until(target_time=int(round(t_end * 1e9))))
-    n = int(round(t_end / h)) + 1
-    out, times = {}, None
-    for p, (i, r) in refs.items():
-        t, _, values = obs.time_series_real_samples(i, r, from_step=0, sample_count=n)
-        out[p] = np.array(values)
-        times = np.array(t) * 1e-9
-    ok = ok and times[-1] > t_end - 1.5 * h and all(np.all(np.isfinite(v)) for v in out.values())
-    return ok, times, out
+    return simulate_observed(ex, h, t_end)
 
 
 def main():

@@ -138,13 +138,7 @@ fn moment_axes<S: Space>() -> &'static [usize] {
     }
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
+use super::modal::body3d::cross;
 
 impl<S: Space> MountInertia<S> {
     /// Centre of mass c [m] and inertia about the mount point I [kg m²] in world axes, for a

@@ -718,9 +718,14 @@ impl AnySimulator {
         each!(self, s => s.apparent_mass())
     }
 
-    /// [`Simulator::rigid_mass_matrix`].
-    pub fn rigid_mass_matrix(&self) -> Option<Vec<Vec<f64>>> {
-        each!(self, s => s.rigid_mass_matrix())
+    /// [`Simulator::rigid_mass_matrix`] of `outputs` (this state's, [`AnySimulator::outputs`];
+    /// `None` for outputs of the other space).
+    pub fn rigid_mass_matrix(&self, outputs: &AnyOutputs) -> Option<Vec<Vec<f64>>> {
+        match (self, outputs) {
+            (Self::Planar(s), AnyOutputs::Planar(o)) => s.rigid_mass_matrix(o),
+            (Self::Spatial(s), AnyOutputs::Spatial(o)) => s.rigid_mass_matrix(o),
+            _ => None,
+        }
     }
 
     /// [`Simulator::mount_acceleration_change`].

@@ -148,7 +148,7 @@ impl BeamFmu {
     fn refresh_outputs(&mut self) {
         self.outputs = self.sim.outputs();
         self.apparent = self.sim.apparent_mass();
-        self.rigid = self.sim.rigid_mass_matrix();
+        self.rigid = self.sim.rigid_mass_matrix(&self.outputs);
     }
 
     /// The partials of reaction component `row` (force then moment) by the mount accelerations

@@ -6,19 +6,12 @@
 use super::Spatial;
 use crate::math;
 use crate::model::dofs::Rigid;
+use crate::model::modal::body3d::cross;
 use crate::model::mount::{Motion, MotionRates};
 use crate::model::planar::poly;
 
 type V = [f64; 3];
 type Q = [f64; 4];
-
-fn cross(a: V, b: V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
 
 fn add(a: V, b: V) -> V {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
