@@ -224,9 +224,34 @@ pub enum SnapshotError {
         /// `solver.max_step` [s].
         h_max: f64,
     },
-    /// The state or the inputs hold NaN or infinity.
-    #[error("snapshot state or inputs hold non-finite values")]
-    NonFinite,
+    /// A value of the snapshot (state, inputs, integrator memory, mount path, load rates) is
+    /// NaN or infinite.
+    #[error("snapshot field {field} = {value} is not finite: the state cannot be continued from")]
+    NonFiniteField {
+        /// Path of the value in the snapshot (e.g. `memory.mount.base.acceleration[0]`).
+        field: String,
+        /// The value.
+        value: f64,
+    },
+    /// A value of the snapshot is finite but outside what it can be.
+    #[error("snapshot field {field} = {value} is not {expected}")]
+    Field {
+        /// Path of the value in the snapshot.
+        field: &'static str,
+        /// The value.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
+    },
+    /// An orientation of the mount's path is not unit Euler parameters (or not normalizable,
+    /// for the pending input).
+    #[error("snapshot field {field}.attitude = {components:?} is not a usable orientation (unit Euler parameters; nonzero ones for a pending input)")]
+    Attitude {
+        /// Path of the motion in the snapshot.
+        field: &'static str,
+        /// Its orientation components.
+        components: Vec<f64>,
+    },
     /// The snapshot's state is one the model cannot continue from.
     #[error("snapshot state refused: {0}")]
     Refused(Refusal),

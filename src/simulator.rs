@@ -5,6 +5,7 @@
 //! `tip.orientation.e0`, `tip.force.z`, …).
 
 mod any;
+mod finite;
 mod mount;
 
 pub use any::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
@@ -167,16 +168,6 @@ impl<S: SpaceModel> Inputs<S> {
             model.set_gravity(self.gravity);
         }
     }
-
-    /// Whether every component is finite.
-    fn is_finite(&self) -> bool {
-        let (f, g) = (self.tip_force, self.gravity);
-        f.as_ref()
-            .iter()
-            .chain(S::moment_components(&self.tip_moment))
-            .chain(g.as_ref())
-            .all(|x| x.is_finite())
-    }
 }
 
 /// First and second time derivatives of the tip loads over the coming communication step (FMI
@@ -244,6 +235,10 @@ pub struct Memory<S: SpaceModel = Planar> {
     /// The tip loads' derivatives set for the next step.
     pub load_rates: LoadRates<S>,
 }
+
+/// How far a restored orientation of the mount's path may be from unit Euler parameters (per
+/// component): the path keeps them normalized to rounding, so more means a crafted state.
+const ATTITUDE_TOLERANCE: f64 = 1e-9;
 
 /// Format version of [`Simulator::snapshot`]; raise it when a field of [`Snapshot`] (or of the
 /// structs it holds) changes.
@@ -432,7 +427,9 @@ impl<S: SpaceModel> Simulator<S> {
     }
 
     /// Restores a state and memory taken from a simulator of the same scene (checked:
-    /// dimensions, step sizes, finiteness); the run then continues bit for bit as the original.
+    /// dimensions, step sizes, the convergence estimate, the mount path's orientations; the
+    /// caller checked every value for finiteness); the run then continues bit for bit as the
+    /// original.
     fn restore(&mut self, s: State, mem: &Memory<S>) -> Result<(), SimError> {
         if s.q.len() != self.state.q.len()
             || s.lambda.len() != self.state.lambda.len()
@@ -450,15 +447,59 @@ impl<S: SpaceModel> Simulator<S> {
             if !(j.h > 0.0 && j.h <= h_max * (1.0 + 2.0 * STEP_ROUNDING)) {
                 return Err(SnapshotError::JacobianStep { h: j.h, h_max }.into());
             }
+            if [&j.q, &j.v, &j.acc].iter().any(|x| x.len() != s.q.len())
+                || j.lam.len() != s.lambda.len()
+            {
+                return Err(SnapshotError::Dimensions.into());
+            }
         }
-        let finite = |x: &[f64]| x.iter().all(|x| x.is_finite());
-        if !(s.t.is_finite()
-            && mem.applied.is_finite()
-            && [&s.q, &s.v, &s.acc, &s.aux, &s.lambda]
-                .iter()
-                .all(|x| finite(x)))
-        {
-            return Err(SnapshotError::NonFinite.into());
+        if mem.integrator.eta < 0.0 {
+            return Err(SnapshotError::Field {
+                field: "memory.integrator.eta",
+                value: mem.integrator.eta,
+                expected: "a convergence-rate estimate >= 0",
+            }
+            .into());
+        }
+        let unit = |a: &S::Attitude| {
+            S::normalized_attitude(a).is_some_and(|n| {
+                S::attitude_components(&n)
+                    .iter()
+                    .zip(S::attitude_components(a))
+                    .all(|(x, y)| (x - y).abs() <= ATTITUDE_TOLERANCE)
+            })
+        };
+        let attitudes = mem
+            .mount
+            .iter()
+            .flat_map(|m| {
+                [("memory.mount.base", Some(&m.base.attitude))]
+                    .into_iter()
+                    .chain([("memory.mount.last", m.last.as_ref().map(|l| &l.1.attitude))])
+            })
+            .chain([(
+                "memory.mount_at_matrix",
+                mem.mount_at_matrix.as_ref().map(|m| &m.attitude),
+            )]);
+        for (field, a) in attitudes {
+            if let Some(a) = a.filter(|a| !unit(a)) {
+                return Err(SnapshotError::Attitude {
+                    field,
+                    components: S::attitude_components(a).to_vec(),
+                }
+                .into());
+            }
+        }
+        // a pending input is checked (and normalized) when the next step takes it: it only
+        // needs a defined orientation
+        if let Some(input) = mem.mount.as_ref().and_then(|m| m.pending.as_ref()) {
+            if S::normalized_attitude(&input.motion.attitude).is_none() {
+                return Err(SnapshotError::Attitude {
+                    field: "memory.mount.pending",
+                    components: S::attitude_components(&input.motion.attitude).to_vec(),
+                }
+                .into());
+            }
         }
         if let Some(r) = self.section_refusal(&self.model.validity(&s.q), false) {
             return Err(SnapshotError::Refused(r).into());
@@ -537,8 +578,10 @@ impl<S: SpaceModel> Simulator<S> {
         {
             return Err(SnapshotError::Dimensions.into());
         }
-        if !snap.inputs.is_finite() {
-            return Err(SnapshotError::NonFinite.into());
+        // every f64 of it: state, inputs, integrator memory and its Newton-matrix point, the
+        // mount's path and pending input, the load rates
+        if let Some((field, value)) = finite::first_non_finite(&snap) {
+            return Err(SnapshotError::NonFiniteField { field, value }.into());
         }
         self.restore(snap.state, &snap.memory)?;
         snap.inputs.apply(&mut self.model);
@@ -1138,7 +1181,13 @@ mod tests {
         );
         let mut nan = bytes.clone();
         assert_eq!(replace_f64(&mut nan, -9.5, f64::NAN), 1);
-        assert_eq!(err(&mut b, &nan), SnapshotError::NonFinite);
+        match err(&mut b, &nan) {
+            SnapshotError::NonFiniteField { field, value } => {
+                assert_eq!(field, "inputs.gravity[1]");
+                assert!(value.is_nan());
+            }
+            other => panic!("{other:?}"),
+        }
         let mut scene = case1();
         scene.solver.tolerance *= 2.0;
         let mut c = Simulator::for_restore(scene).unwrap();

@@ -167,7 +167,10 @@ impl GeneralizedAlpha {
         self.invalidate();
         self.eta = mem.eta;
         if let Some(jp) = &mem.jacobian {
-            if jp.q.len() != self.trial.q.len() || jp.lam.len() != self.trial.lambda.len() {
+            let n = self.trial.q.len();
+            if [&jp.q, &jp.v, &jp.acc].iter().any(|x| x.len() != n)
+                || jp.lam.len() != self.trial.lambda.len()
+            {
                 return Err(StepFailure::Singular { h: jp.h });
             }
             let h = jp.h;

@@ -8,6 +8,8 @@
 //! call-sequence errors return fmi2Error and leave the state unchanged, as in Reference-FMUs; a
 //! failure of the model itself (initialize, reset) moves the instance to state `error`.
 
+use smallvec::SmallVec;
+
 use crate::fmu_state::FmuState;
 use crate::guid;
 use crate::instance::Instance;
@@ -251,11 +253,28 @@ impl<M: CoSimModel> Instance<M> {
                 );
             };
             match self.model.get_real(index) {
-                Ok(v) => *slot = v,
+                Ok(v) => *slot = tri!(self.finite(f, index, "", v)),
                 Err(e) => return self.error(f, format!("value reference {r}: {e}")),
             }
         }
         Status::Ok
+    }
+
+    /// `v` if finite, else a logged fmi2Error naming the variable of `index` (a getter never
+    /// answers a non-finite number with fmi2OK); `what` qualifies the value (a derivative).
+    fn finite(&self, f: F, index: usize, what: &str, v: f64) -> Result<f64, Status> {
+        if v.is_finite() {
+            return Ok(v);
+        }
+        let var = &self.model.variables()[index];
+        Err(self.error(
+            f,
+            format!(
+                "{what}{} (value reference {}) = {v} is not finite: the model's state cannot \
+                 give it (restore an earlier FMU state or reset)",
+                var.name, var.vr
+            ),
+        ))
     }
 
     /// fmi2SetReal: all values are checked (variable exists, settable in this state, finite)
@@ -264,17 +283,17 @@ impl<M: CoSimModel> Instance<M> {
     pub fn set_real(&mut self, vrs: &[fmi2ValueReference], values: &[f64]) -> Status {
         let f = F::SetReal;
         tri!(self.check_state(f));
-        // Indices of the value references (resolved once), checked before any is set.
-        let (mut small_index, mut large_index) = ([0usize; 8], Vec::new());
-        let index = scratch(&mut small_index, &mut large_index, vrs.len());
-        for ((&r, &v), i) in vrs.iter().zip(values).zip(index.iter_mut()) {
+        // Indices of the value references (resolved once), checked before any is set; the
+        // scratch grows per element checked (on the stack up to 8), never to `nvr` up front,
+        // so a host's wrong count ends at its first invalid reference.
+        let mut index = SmallVec::<[usize; 8]>::new();
+        for (&r, &v) in vrs.iter().zip(values) {
             let Some(found) = self.index_of(r) else {
                 return self.error(
                     f,
                     format!("value reference {r} is not a variable of this model"),
                 );
             };
-            *i = found;
             let var = &self.model.variables()[found];
             if let Err(e) = check_settable(var, self.layer.state) {
                 return self.error(f, e);
@@ -288,13 +307,13 @@ impl<M: CoSimModel> Instance<M> {
                     ),
                 );
             }
+            index.push(found);
         }
         // Previous values, to undo if the model refuses one.
-        let (mut small, mut large) = ([0.0; 8], Vec::new());
-        let old = scratch(&mut small, &mut large, vrs.len());
-        for ((&r, &i), slot) in vrs.iter().zip(index.iter()).zip(old.iter_mut()) {
+        let mut old = SmallVec::<[f64; 8]>::new();
+        for (&r, &i) in vrs.iter().zip(index.iter()) {
             match self.model.get_real(i) {
-                Ok(v) => *slot = v,
+                Ok(v) => old.push(v),
                 Err(e) => return self.error(f, format!("value reference {r}: {e}")),
             }
         }
@@ -480,7 +499,8 @@ impl<M: CoSimModel> Instance<M> {
                 "not provided by this FMU (providesDirectionalDerivative=\"false\")",
             );
         }
-        let mut known_index = Vec::with_capacity(knowns.len());
+        // grown per reference checked, never sized by a count up front
+        let mut known_index = SmallVec::<[usize; 8]>::new();
         for (&r, &dv) in knowns.iter().zip(dv_known) {
             match self.continuous(r, Causality::Input) {
                 Ok(i) => known_index.push(i),
@@ -493,7 +513,7 @@ impl<M: CoSimModel> Instance<M> {
                 );
             }
         }
-        let mut unknown_index = Vec::with_capacity(unknowns.len());
+        let mut unknown_index = SmallVec::<[usize; 8]>::new();
         for &r in unknowns {
             match self.continuous(r, Causality::Output) {
                 Ok(i) => unknown_index.push(i),
@@ -515,7 +535,7 @@ impl<M: CoSimModel> Instance<M> {
                     }
                 }
             }
-            *out = sum;
+            *out = tri!(self.finite(f, u, "the directional derivative of ", sum));
         }
         Status::Ok
     }
@@ -541,7 +561,7 @@ impl<M: CoSimModel> Instance<M> {
                 "not supported by this FMU (canInterpolateInputs=\"false\")",
             );
         }
-        let mut checked = Vec::with_capacity(vrs.len());
+        let mut checked = SmallVec::<[(usize, u32, f64); 8]>::new();
         for ((&r, &o), &v) in vrs.iter().zip(orders).zip(values) {
             let index = tri!(self
                 .continuous(r, Causality::Input)
@@ -590,7 +610,7 @@ impl<M: CoSimModel> Instance<M> {
             let order = tri!(Self::check_order(o, max, "maxOutputDerivativeOrder")
                 .map_err(|e| self.error(f, format!("value reference {r}: {e}"))));
             match self.model.get_output_derivative(index, order) {
-                Ok(v) => *slot = v,
+                Ok(v) => *slot = tri!(self.finite(f, index, "the derivative of ", v)),
                 Err(e) => return self.error(f, format!("value reference {r}: {e}")),
             }
         }
@@ -755,20 +775,6 @@ impl<M: CoSimModel> Instance<M> {
         let f = F::GetStringStatus;
         tri!(self.check_state(f));
         self.unavailable_status(f, s, "this FMU never has a pending step")
-    }
-}
-
-/// `n` scratch elements: in `stack` for n <= 8 (no allocation), else in `heap`.
-fn scratch<'a, T: Copy + Default>(
-    stack: &'a mut [T; 8],
-    heap: &'a mut Vec<T>,
-    n: usize,
-) -> &'a mut [T] {
-    if n <= stack.len() {
-        &mut stack[..n]
-    } else {
-        heap.resize(n, T::default());
-        heap
     }
 }
 

@@ -107,38 +107,52 @@ impl FmuState {
 
     /// Parses and validates bytes from [`FmuState::serialize`] for an FMU with this magic and
     /// GUID. The model bytes are checked later by `load_state` (at fmi2SetFMUstate).
+    ///
+    /// The header is read forward and the length it declares is compared with `bytes.len()`
+    /// before the checksum or the model bytes are touched: a host's wrong size is refused
+    /// having read no more than a valid state of this FMU would occupy.
     pub fn deserialize(bytes: &[u8], magic: &[u8; 8], guid: &str) -> Result<Self, String> {
         if bytes.len() < 8 + 4 || &bytes[..8] != magic {
             return Err(
                 "the bytes are not a serialized FMU state of this model (bad magic)".into(),
             );
         }
-        let (body, sum) = bytes.split_at(bytes.len().saturating_sub(8).max(12));
-        if sum.len() != 8 {
-            return Err(format!(
-                "serialized state truncated ({} bytes)",
-                bytes.len()
-            ));
-        }
-        let mut r = Reader { b: body, at: 8 };
+        let mut r = Reader { b: bytes, at: 8 };
         let version = r.u32()?;
         if version != FORMAT_VERSION {
             return Err(format!(
                 "serialized state format version {version} is not supported (this FMU reads version {FORMAT_VERSION})"
             ));
         }
+        let n = r.u32()? as usize;
+        let g = r.take(n.min(guid.len()))?;
+        if n != guid.len() || g != guid.as_bytes() {
+            return Err(format!(
+                "serialized state belongs to another FMU (GUID {}…), this FMU has GUID {guid}",
+                String::from_utf8_lossy(g)
+            ));
+        }
+        // the fixed-size layer fields, then the model byte count
+        let mut h = Reader {
+            b: bytes,
+            at: r.at + 4 + 24 + 9 + 9 + 1,
+        };
+        let m = usize::try_from(h.u64()?).map_err(|_| "model length overflows")?;
+        let total = h.at.checked_add(m).and_then(|x| x.checked_add(8));
+        if total != Some(bytes.len()) {
+            return Err(format!(
+                "serialized state is {} bytes, but its header declares {} (size does not match \
+                 the state's own length: truncated, padded or a wrong size argument)",
+                bytes.len(),
+                total.map_or("more than fit in memory".to_owned(), |t| t.to_string())
+            ));
+        }
+        let (body, sum) = bytes.split_at(bytes.len() - 8);
         let stored = u64::from_le_bytes(sum.try_into().map_err(|_| "truncated")?);
         if fnv1a64(body) != stored {
             return Err("serialized state is corrupted (checksum mismatch)".into());
         }
-        let n = r.u32()? as usize;
-        let g = r.take(n)?;
-        if g != guid.as_bytes() {
-            return Err(format!(
-                "serialized state belongs to the FMU with GUID {}, this FMU has GUID {guid}",
-                String::from_utf8_lossy(g)
-            ));
-        }
+        let mut r = Reader { b: body, at: r.at };
         let bits = r.u32()?;
         let state = ModelState::from_bits(bits)
             .filter(|s| s.is_in(Function::SetFMUstate.allowed()))

@@ -181,9 +181,32 @@ unsafe fn slice_in<'a, T, M: CoSimModel>(
     } else if p.is_null() {
         Err(inst.error(f, format!("{name} is NULL but {count} = {n}")))
     } else {
-        // SAFETY: the caller's contract.
+        check_len::<T, M>(inst, f, (name, count), n)?;
+        // SAFETY: the caller's contract; `n` elements fit in isize::MAX bytes (checked).
         Ok(unsafe { slice::from_raw_parts(p, n) })
     }
+}
+
+/// Refuses a count whose array would exceed `isize::MAX` bytes (no Rust slice, and no array
+/// in memory, can be that long): a logged fmi2Error naming the count.
+fn check_len<T, M: CoSimModel>(
+    inst: &Instance<M>,
+    f: F,
+    (name, count): (&str, &str),
+    n: usize,
+) -> Result<(), Status> {
+    let size = std::mem::size_of::<T>().max(1);
+    if n > isize::MAX as usize / size {
+        return Err(inst.error(
+            f,
+            format!(
+                "{count} = {n} cannot be the length of {name}: {n} elements of {size} bytes \
+                 exceed the largest array of this platform ({} bytes)",
+                isize::MAX
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// `p[..n]` for writing, or a logged fmi2Error if `p` is NULL while `n > 0`.
@@ -202,7 +225,8 @@ unsafe fn slice_out<'a, T, M: CoSimModel>(
     } else if p.is_null() {
         Err(inst.error(f, format!("{name} is NULL but {count} = {n}")))
     } else {
-        // SAFETY: the caller's contract.
+        check_len::<T, M>(inst, f, (name, count), n)?;
+        // SAFETY: the caller's contract; `n` elements fit in isize::MAX bytes (checked).
         Ok(unsafe { slice::from_raw_parts_mut(p, n) })
     }
 }
@@ -393,7 +417,7 @@ guarded! {
     (logging_on: fmi2Boolean, n_categories: usize, categories: *const fmi2String) |i, f| {
         let names = ("categories[]", "nCategories");
         let ptrs = tri!(slice_in(i, f, names, categories, n_categories));
-        let mut names = Vec::with_capacity(ptrs.len());
+        let mut names = Vec::new();
         for (k, &p) in ptrs.iter().enumerate() {
             names.push(tri!(c_str(p, &format!("categories[{k}]")).map_err(|e| i.error(f, e))));
         }

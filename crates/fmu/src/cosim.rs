@@ -146,9 +146,7 @@ impl BeamFmu {
     }
 
     fn refresh_outputs(&mut self) {
-        self.outputs = self.sim.outputs();
-        self.apparent = self.sim.apparent_mass();
-        self.rigid = self.sim.rigid_mass_matrix(&self.outputs);
+        (self.outputs, self.apparent, self.rigid) = evaluated(&mut self.sim);
     }
 
     /// The partials of reaction component `row` (force then moment) by the mount accelerations
@@ -195,6 +193,17 @@ impl BeamFmu {
         scene.validate().map_err(|e| e.0)?;
         Ok(scene)
     }
+}
+
+/// The outputs of `sim`'s current state, its apparent mass and its rigid inertia's mass matrix
+/// at the mount (see [`BeamFmu::outputs`](BeamFmu)).
+type Evaluated = (AnyOutputs, Option<Vec<Vec<f64>>>, Option<Vec<Vec<f64>>>);
+
+fn evaluated(sim: &mut AnySimulator) -> Evaluated {
+    let outputs = sim.outputs();
+    let apparent = sim.apparent_mass();
+    let rigid = sim.rigid_mass_matrix(&outputs);
+    (outputs, apparent, rigid)
 }
 
 /// The error for a variable the simulator's space does not have (a table of another space:
@@ -476,16 +485,49 @@ impl CoSimModel for BeamFmu {
         if backward.len() != self.backward.len() {
             return Err("snapshot output count does not match this model".into());
         }
+        let variables = self.table.variables();
+        if let Some((k, x)) = backward.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(format!(
+                "snapshot backward difference of {} = {x} is not finite",
+                variables[k].name
+            ));
+        }
         let mut scene = self.build_scene_with_parameters(&params)?;
         let mut sim = AnySimulator::restorable(scene.clone()).map_err(|e| e.to_string())?;
         // a snapshot that does not fit is an error of the call (fmi2Error), not of a step
         sim.restore_snapshot(&sim_bytes)
             .map_err(|e| e.to_string())?;
+        // a state whose values are finite but whose outputs overflow (coordinates of 1e300:
+        // infinite energies) is refused too
+        let (outputs, apparent, rigid) = evaluated(&mut sim);
+        for (index, var) in variables.iter().enumerate() {
+            if let Access::Output(id) = self.table.access(index) {
+                match outputs.value(id) {
+                    Some(x) if !x.is_finite() => {
+                        return Err(format!(
+                            "the snapshot's state gives {} = {x}: its values are beyond what \
+                             the model can evaluate",
+                            var.name
+                        ))
+                    }
+                    _ => {}
+                }
+            }
+        }
+        if apparent.iter().flatten().flatten().any(|x| !x.is_finite()) {
+            return Err(
+                "the snapshot's state gives a non-finite apparent mass at the mount: its values \
+                 are beyond what the model can evaluate"
+                    .into(),
+            );
+        }
         sim.inputs_into(&mut scene);
         self.scene = scene;
         self.sim = sim;
         self.backward = backward;
-        self.refresh_outputs();
+        self.outputs = outputs;
+        self.apparent = apparent;
+        self.rigid = rigid;
         self.started = true;
         self.pre_start.replace(None);
         Ok(())

@@ -1049,8 +1049,9 @@ fn steps_within_cap(log: &mut Vec<Timed>, label: &str, inst: &Inst, mut t: f64, 
 }
 
 /// Issue 8 acceptance: extreme parameter values and crafted snapshots (tiny, huge, subnormal,
-/// NaN step sizes and tolerances, and extreme physical parameters). Every call returns a
-/// refusal (fmi2Error), an fmi2Discard, or completes within the work cap. Each call's wall time
+/// NaN step sizes and tolerances, and extreme physical parameters), and (issue 18) huge array
+/// counts. Every call returns a refusal (fmi2Error), an fmi2Discard, or completes within the
+/// work cap. Each call's wall time
 /// is printed (`--nocapture`), never asserted (speed is not asserted in tests).
 #[test]
 fn extreme_values_and_crafted_snapshots_return_promptly() {
@@ -1142,6 +1143,43 @@ fn extreme_values_and_crafted_snapshots_return_promptly() {
             assert_eq!(inst.free_state(&mut p), OK);
         }
     }
+    // huge counts (issue 18): arrays of two elements, the second reference invalid, passed
+    // with counts up to usize::MAX; each call is an fmi2Error and the instance keeps working
+    let inst = Inst::initialized("huge-counts", None);
+    let api = inst.api;
+    let (f0, x0) = (forces()[0], vr("tip.position.x"));
+    let (refs, orders, values) = ([f0, 99_999], [1, 1], [0.0, 0.0]);
+    let mut out = [0.0; 2];
+    let out_p = out.as_mut_ptr();
+    for n in [1usize << 27, 1 << 31, 1 << 62, usize::MAX] {
+        let label = format!("count = {n}");
+        let l = &mut calls;
+        let statuses = [
+            timed(l, &label, "fmi2SetReal", || unsafe {
+                api.set_real.unwrap()(inst.c, refs.as_ptr(), n, values.as_ptr())
+            }),
+            timed(l, &label, "fmi2GetReal", || unsafe {
+                api.get_real.unwrap()(inst.c, [x0, 99_999].as_ptr(), n, out_p)
+            }),
+            timed(l, &label, "fmi2SetRealInputDerivatives", || unsafe {
+                let (r, o, v) = (refs.as_ptr(), orders.as_ptr(), values.as_ptr());
+                api.set_real_input_derivatives.unwrap()(inst.c, r, n, o, v)
+            }),
+            timed(l, &label, "fmi2GetRealOutputDerivatives", || unsafe {
+                let (r, o) = ([x0, 99_999].as_ptr(), orders.as_ptr());
+                api.get_real_output_derivatives.unwrap()(inst.c, r, n, o, out_p)
+            }),
+            timed(l, &label, "fmi2GetDirectionalDerivative", || unsafe {
+                let (u, k, v) = ([x0, 99_999].as_ptr(), refs.as_ptr(), values.as_ptr());
+                api.get_directional_derivative.unwrap()(inst.c, u, n, k, n, v, out_p)
+            }),
+        ];
+        assert!(
+            statuses.iter().all(|&s| s == ERROR),
+            "{label}: {statuses:?}"
+        );
+    }
+    assert_eq!(inst.do_step(0.0, H), OK, "{:?}", inst.log.entries());
     let name = |s| match s {
         OK => "OK",
         DISCARD => "Discard",

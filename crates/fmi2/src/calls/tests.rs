@@ -315,3 +315,22 @@ fn fmu_states_serialize_and_free() {
     assert!(owned.is_none());
     assert_eq!(other.reset(), Status::Ok);
 }
+
+#[test]
+fn getters_never_answer_a_non_finite_number_with_ok() {
+    // a model whose state holds infinity (Ramp's load_state takes any bits): the layer refuses
+    // to report it, whatever the model says
+    let mut i = initialized();
+    let mut s = i.get_fmu_state().unwrap();
+    s.model[..8].copy_from_slice(&f64::INFINITY.to_le_bytes());
+    assert_eq!(i.set_fmu_state(&s), Status::Ok);
+    let mut out = [0.0, 0.0];
+    assert_eq!(i.get_real(&[1, 2], &mut out), Status::Error);
+    let m = last(&i);
+    assert!(
+        m.text.contains("x (value reference 2) = inf is not finite"),
+        "{m:?}"
+    );
+    // the finite ones still read
+    assert_eq!(i.get_real(&[1], &mut out[..1]), Status::Ok);
+}
