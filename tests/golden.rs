@@ -6,8 +6,13 @@
 //! change in assembly order, coordinate update or step control shows up here. Histories must
 //! agree within 1e-12 (m, N, N m, J, rad); the test prints how many rows are bit-identical.
 //!
-//! Re-record (only when a physics change is intended and explained):
-//! `HYBEAM_RECORD_GOLDEN=1 cargo test --test golden`.
+//! The spatial, mounted and driven recordings (`spatial_*`, `driven_*`) were made before the
+//! restructure of issue 19 (commit 9fefcd9's engine) and must stay bit-identical: every
+//! spatial scene to its `simulation.t_end`, all FMU outputs, and four scenes (planar and spatial, fixed and mounted)
+//! under inputs, input derivatives, a mount path and a snapshot restored halfway.
+//!
+//! Re-record (only when a physics change is intended and explained), e.g. the spatial ones:
+//! `HYBEAM_RECORD_GOLDEN=1 cargo test --test golden spatial`.
 
 mod common;
 use common::*;
@@ -195,4 +200,228 @@ fn shipped_scene_histories_match_the_recordings() {
 fn static_results_match_the_recordings() {
     let (rows, same, worst) = compare("statics", &statics());
     eprintln!("statics: {same}/{rows} rows bit-identical, largest difference {worst:.1e}");
+}
+
+// ---- Spatial, mounted and driven recordings (issue 19: made before the restructure) ----
+
+use hybeam::simulator::{AnySimulator, InputId, OutputId};
+
+/// Every output of `sim`'s space (and mount), in [`OutputId::named_with`] order, as a row.
+fn any_row(out: &mut String, t: f64, sim: &AnySimulator, ids: &[(String, OutputId)]) {
+    let o = sim.outputs();
+    let mut line = vec![format!("{t:e}")];
+    line.extend(
+        ids.iter()
+            .map(|(_, id)| format!("{:e}", o.value(*id).unwrap())),
+    );
+    writeln!(out, "{}", line.join(",")).unwrap();
+}
+
+/// The output names of a scene's FMU-level outputs (header of [`any_row`]).
+fn any_ids(scene: &Scene) -> Vec<(String, OutputId)> {
+    OutputId::named_with(scene.space, scene.mount_start().is_some())
+}
+
+/// A history through [`AnySimulator`]: outputs every `dt` to `t_end`; before each step
+/// `drive(t, sim)` may set inputs (it returns a replacement simulator to continue with, e.g.
+/// one restored from a snapshot). A refused step ends it with `refused,<time>`.
+fn any_history(
+    scene: Scene,
+    t_end: f64,
+    dt: f64,
+    mut drive: impl FnMut(f64, &mut AnySimulator) -> Option<AnySimulator>,
+) -> String {
+    let ids = any_ids(&scene);
+    let names: Vec<&str> = ids.iter().map(|(n, _)| n.as_str()).collect();
+    let mut out = format!("time,{}\n", names.join(","));
+    let mut sim = AnySimulator::new(scene).expect("shipped scene builds");
+    any_row(&mut out, 0.0, &sim, &ids);
+    let n = (t_end / dt).round() as usize;
+    for k in 1..=n {
+        let t0 = (k - 1) as f64 * dt;
+        if let Some(replaced) = drive(t0, &mut sim) {
+            sim = replaced;
+        }
+        let t = k as f64 * dt;
+        if sim.advance(t).is_err() {
+            writeln!(out, "refused,{t:e}").unwrap();
+            break;
+        }
+        any_row(&mut out, t, &sim, &ids);
+    }
+    out
+}
+
+/// Every shipped spatial scene (mounted ones continue their `[mount]` start motion).
+fn spatial_scenes() -> Vec<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.extension().is_some_and(|e| e == "toml") && {
+                let text = std::fs::read_to_string(p).unwrap();
+                Scene::from_toml(&text).unwrap().space == hybeam::scene::SpaceKind::Spatial
+            }
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn spatial_scene_histories_match_the_recordings() {
+    for path in spatial_scenes() {
+        let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        let scene = Scene::from_toml(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let start = std::time::Instant::now();
+        let t_end = scene.simulation.t_end;
+        let got = any_history(scene, t_end, DT, |_, _| None);
+        let (rows, same, worst) = compare(&name, &got);
+        eprintln!(
+            "{name}: {same}/{rows} rows bit-identical, largest difference {worst:.1e} ({:.1} s)",
+            start.elapsed().as_secs_f64()
+        );
+        assert_eq!(same, rows, "{name}: recorded bit for bit, kept bit for bit");
+    }
+}
+
+/// The input of `sim` named `name`.
+fn input_id(sim: &AnySimulator, name: &str) -> InputId {
+    let mounted = sim.scene().mount_start().is_some();
+    InputId::named_with(sim.space(), mounted)
+        .into_iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("no input {name}"))
+        .1
+}
+
+/// Sets the inputs `values` by name (each must exist).
+fn set_inputs(sim: &mut AnySimulator, values: &[(String, f64)]) {
+    for (name, x) in values {
+        let id = input_id(sim, name);
+        assert!(sim.set_input(id, *x), "{name}");
+    }
+}
+
+/// A mount motion: pose, velocities and accelerations at time t [s], by input name.
+type Drive = fn(f64) -> Vec<(String, f64)>;
+
+/// Planar boom on the car's roof: heave 1 cm and pitch 0.01 rad at 2 Hz from rest.
+fn boom_mount(t: f64) -> Vec<(String, f64)> {
+    let w = 2.0 * std::f64::consts::PI * 2.0;
+    let (a, b) = (0.01, 0.01);
+    let (s, c) = (w * t).sin_cos();
+    [
+        ("root.position.x", 0.3),
+        ("root.position.y", 1.4 + a * (1.0 - c)),
+        ("root.angle", b * (1.0 - c)),
+        ("root.velocity.x", 0.0),
+        ("root.velocity.y", a * w * s),
+        ("root.angular_velocity", b * w * s),
+        ("root.acceleration.x", 0.0),
+        ("root.acceleration.y", a * w * w * c),
+        ("root.angular_acceleration", b * w * w * c),
+    ]
+    .iter()
+    .map(|(n, x)| (n.to_string(), *x))
+    .collect()
+}
+
+/// The spatial mounted rod's start motion (1 m up, spinning at 2 rad/s about z, accelerating
+/// up at 3 m/s²) continued, with a 1 cm heave at 2 Hz from rest on top.
+fn rod_3d_mount(t: f64) -> Vec<(String, f64)> {
+    let w = 2.0 * std::f64::consts::PI * 2.0;
+    let a = 0.01;
+    let (s, c) = (w * t).sin_cos();
+    let (sh, ch) = t.sin_cos(); // half of the spin angle 2t
+    [
+        ("root.position.x", 0.0),
+        ("root.position.y", 0.0),
+        ("root.position.z", 1.0 + 1.5 * t * t + a * (1.0 - c)),
+        ("root.orientation.e0", ch),
+        ("root.orientation.e1", 0.0),
+        ("root.orientation.e2", 0.0),
+        ("root.orientation.e3", sh),
+        ("root.velocity.x", 0.0),
+        ("root.velocity.y", 0.0),
+        ("root.velocity.z", 3.0 * t + a * w * s),
+        ("root.angular_velocity.x", 0.0),
+        ("root.angular_velocity.y", 0.0),
+        ("root.angular_velocity.z", 2.0),
+        ("root.acceleration.x", 0.0),
+        ("root.acceleration.y", 0.0),
+        ("root.acceleration.z", 3.0 + a * w * w * c),
+        ("root.angular_acceleration.x", 0.0),
+        ("root.angular_acceleration.y", 0.0),
+        ("root.angular_acceleration.z", 0.0),
+    ]
+    .iter()
+    .map(|(n, x)| (n.to_string(), *x))
+    .collect()
+}
+
+/// Histories under inputs set between communication steps (2 ms, 0.2 s): a sinusoidal tip
+/// force with its first derivative (the FMU's input derivatives), a tip moment, a gravity
+/// change at 0.1 s, the mount driven along a smooth path (mounted scenes), and at 0.1 s the
+/// run continued in a fresh simulator restored from a snapshot: what the restructure of the
+/// inputs and of the snapshot must keep bit for bit.
+#[test]
+fn driven_histories_match_the_recordings() {
+    let setups: [(&str, f64, Option<Drive>); 4] = [
+        ("case1", 0.02, None),
+        ("case1_3d", 0.02, None),
+        ("boom", 20.0, Some(boom_mount)),
+        ("case1_3d_mounted", 0.02, Some(rod_3d_mount)),
+    ];
+    for (name, amplitude, mount) in setups {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.toml"));
+        let scene = Scene::from_toml(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let spatial = scene.space == hybeam::scene::SpaceKind::Spatial;
+        let base = scene.clone();
+        let g0 = *scene.gravity.last().unwrap_or(&0.0);
+        let w = 2.0 * std::f64::consts::PI * 5.0;
+        let got = any_history(scene, 0.2, 2e-3, |t, sim| {
+            let (s, c) = (w * t).sin_cos();
+            let (f, df) = (amplitude * s, amplitude * w * c);
+            let lateral = if spatial {
+                "tip.force.z"
+            } else {
+                "tip.force.y"
+            };
+            let moment = if spatial {
+                "tip.moment.x"
+            } else {
+                "tip.moment.z"
+            };
+            let mut values = vec![
+                (lateral.to_string(), f),
+                ("tip.force.x".to_string(), 0.1 * f),
+                (moment.to_string(), 0.01 * amplitude * c),
+            ];
+            if (t - 0.1).abs() < 1e-9 {
+                let gravity = if spatial { "gravity.z" } else { "gravity.y" };
+                values.push((gravity.to_string(), 1.1 * g0));
+            }
+            if let Some(m) = mount {
+                values.extend(m(t));
+            }
+            set_inputs(sim, &values);
+            let id = input_id(sim, lateral);
+            assert!(sim.set_input_derivative(id, 1, df));
+            // continue in a restored copy halfway (after the inputs were set: they travel in
+            // the snapshot)
+            ((t - 0.1).abs() < 1e-9).then(|| {
+                let mut fresh = AnySimulator::restorable(base.clone()).unwrap();
+                fresh.restore_snapshot(&sim.snapshot()).unwrap();
+                fresh
+            })
+        });
+        let (rows, same, worst) = compare(&format!("driven_{name}"), &got);
+        assert!(!got.contains("refused"), "{name}: a refused step\n{got}");
+        eprintln!(
+            "driven {name}: {same}/{rows} rows bit-identical, largest difference {worst:.1e}"
+        );
+        assert_eq!(same, rows, "{name}: recorded bit for bit, kept bit for bit");
+    }
 }
