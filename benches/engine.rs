@@ -80,7 +80,7 @@ fn newton(c: &mut Criterion) {
 }
 
 fn step(c: &mut Criterion) {
-    let mut sim = Simulator::new(case1()).unwrap();
+    let mut sim = Simulator::<Planar>::new(case1()).unwrap();
     let h = sim.scene().solver.max_step;
     c.bench_function("case 1 full step (h = max_step)", |b| {
         b.iter(|| {

@@ -1,8 +1,9 @@
 //! # hybeam
 //!
-//! A planar flexible beam made of segments, each either a floating-frame body with modal
-//! coordinates or a chain of ANCF cable elements, joined rigidly (Sohn & Yoo), integrated by
-//! an index-3 generalized-α solver, and shipped as an FMI 2.0 co-simulation FMU.
+//! A flexible beam, planar or spatial, made of segments, each either a floating-frame body
+//! with modal coordinates or a chain of ANCF elements, joined rigidly (Sohn & Yoo), its root
+//! clamped, pinned/ball or mounted on a moving body, integrated by an index-3 generalized-α
+//! solver, and shipped as an FMI 2.0 co-simulation FMU.
 //!
 //! Data flow: [`scene`] (TOML, validated) → [`model`] (assembly: elements, modal bodies,
 //! joints) → [`integrator`] (generalized-α, statics) → [`simulator`] (run to a time, outputs,

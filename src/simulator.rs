@@ -79,6 +79,11 @@ pub trait SpaceModel:
     const ATTITUDE: &'static str;
     /// ... and the suffixes of its components (`[""]`: a scalar without suffix; `e0`–`e3`).
     const ATTITUDE_COMPONENTS: &'static [&'static str];
+    /// Input name of the mount's orientation (`root.angle` in the plane, `root.orientation`).
+    const MOUNT_ATTITUDE: &'static str;
+    /// Suffixes of the mount's angular velocity and acceleration inputs (`[""]` in the plane:
+    /// `root.angular_velocity`; the moment axes in space).
+    const ANGULAR_SUFFIXES: &'static [&'static str];
 
     /// The model of a scene of this space (an error naming the space otherwise).
     fn model(scene: &Scene) -> Result<Model<Self>, SceneError>;
@@ -94,6 +99,8 @@ impl SpaceModel for Planar {
     const KIND: SpaceKind = SpaceKind::Planar;
     const ATTITUDE: &'static str = "tip.angle";
     const ATTITUDE_COMPONENTS: &'static [&'static str] = &[""];
+    const MOUNT_ATTITUDE: &'static str = "root.angle";
+    const ANGULAR_SUFFIXES: &'static [&'static str] = &[""];
 
     fn model(scene: &Scene) -> Result<Model<Self>, SceneError> {
         Model::<Planar>::from_scene(scene)
@@ -116,6 +123,8 @@ impl SpaceModel for Spatial {
     const KIND: SpaceKind = SpaceKind::Spatial;
     const ATTITUDE: &'static str = "tip.orientation";
     const ATTITUDE_COMPONENTS: &'static [&'static str] = &["e0", "e1", "e2", "e3"];
+    const MOUNT_ATTITUDE: &'static str = "root.orientation";
+    const ANGULAR_SUFFIXES: &'static [&'static str] = Spatial::MOMENT_AXES;
 
     fn model(scene: &Scene) -> Result<Model<Self>, SceneError> {
         if scene.space != SpaceKind::Spatial {
@@ -143,7 +152,7 @@ impl SpaceModel for Spatial {
 /// The inputs of the equations a host may change between communication steps.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
-pub struct Inputs<S: SpaceModel = Planar> {
+pub struct Inputs<S: SpaceModel> {
     /// Total tip force [N], global axes.
     pub tip_force: S::Vec,
     /// Total dead tip moment [N m], global axes (in the plane: about z, counter-clockwise).
@@ -175,7 +184,7 @@ impl<S: SpaceModel> Inputs<S> {
 /// F(t₀ + τ) = F + Ḟτ + ½F̈τ² (and the moment likewise) at every internal step.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
-pub struct LoadRates<S: SpaceModel = Planar> {
+pub struct LoadRates<S: SpaceModel> {
     /// Ḟ [N/s], F̈ [N/s²], global axes.
     pub force: [S::Vec; 2],
     /// Ṁ [N m/s], M̈ [N m/s²].
@@ -219,7 +228,7 @@ impl<S: SpaceModel> LoadRates<S> {
 /// Everything beyond the state that a snapshot must carry for a bit-identical restart.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
-pub struct Memory<S: SpaceModel = Planar> {
+pub struct Memory<S: SpaceModel> {
     /// Integrator memory.
     pub integrator: IntegratorMemory,
     /// Step control.
@@ -280,7 +289,7 @@ fn scene_key(scene: &Scene) -> u64 {
 
 /// A running simulation in the space `S`.
 #[derive(Debug)]
-pub struct Simulator<S: SpaceModel = Planar> {
+pub struct Simulator<S: SpaceModel> {
     scene: Scene,
     model: Model<S>,
     integ: GeneralizedAlpha,
@@ -297,25 +306,12 @@ pub struct Simulator<S: SpaceModel = Planar> {
     pub min_step_used: f64,
 }
 
-impl Simulator<Planar> {
-    /// A planar simulator: [`Simulator::start_at`] at t = 0 (the constructors named without
-    /// the space are the planar ones, so that `Simulator::new(scene)` needs no annotation).
+impl<S: SpaceModel> Simulator<S> {
+    /// [`Simulator::start_at`] t = 0.
     pub fn new(scene: Scene) -> Result<Self, SimError> {
         Self::start_at(scene, 0.0)
     }
 
-    /// A planar simulator: [`Simulator::start_at`].
-    pub fn new_at(scene: Scene, t0: f64) -> Result<Self, SimError> {
-        Self::start_at(scene, t0)
-    }
-
-    /// A planar simulator: [`Simulator::restorable`].
-    pub fn for_restore(scene: Scene) -> Result<Self, SimError> {
-        Self::restorable(scene)
-    }
-}
-
-impl<S: SpaceModel> Simulator<S> {
     /// Builds the model and its initial state (straight, or static equilibrium), with
     /// consistent accelerations, the clock starting at `t0` [s] (e.g. an FMU's start time).
     pub fn start_at(scene: Scene, t0: f64) -> Result<Self, SimError> {
@@ -1114,13 +1110,13 @@ mod tests {
 
     #[test]
     fn snapshot_restores_bit_for_bit_with_its_inputs() {
-        let mut a = Simulator::new(case1()).unwrap();
+        let mut a = Simulator::<Planar>::new(case1()).unwrap();
         a.advance(2e-3).unwrap();
         a.set_tip_force([0.3, -0.7]);
         a.set_gravity([0.5, -9.0]);
         a.set_tip_moment(0.01);
         let bytes = a.snapshot();
-        let mut b = Simulator::for_restore(case1()).unwrap();
+        let mut b = Simulator::<Planar>::restorable(case1()).unwrap();
         b.restore_snapshot(&bytes).unwrap();
         assert_eq!(
             (b.tip_force(), b.tip_moment(), b.gravity()),
@@ -1142,11 +1138,11 @@ mod tests {
     /// matrix) restores bit for bit: the matrix is rebuilt under the inputs it was built with.
     #[test]
     fn snapshot_under_a_tip_moment_restores_bit_for_bit() {
-        let mut a = Simulator::new(case1()).unwrap();
+        let mut a = Simulator::<Planar>::new(case1()).unwrap();
         a.set_tip_moment(0.01);
         a.advance(3e-3).unwrap();
         let bytes = a.snapshot();
-        let mut b = Simulator::for_restore(case1()).unwrap();
+        let mut b = Simulator::<Planar>::restorable(case1()).unwrap();
         b.restore_snapshot(&bytes).unwrap();
         for k in 4..=8 {
             a.advance(k as f64 * 1e-3).unwrap();
@@ -1157,12 +1153,12 @@ mod tests {
 
     #[test]
     fn snapshot_of_another_version_scene_or_shape_is_refused() {
-        let mut a = Simulator::new(case1()).unwrap();
+        let mut a = Simulator::<Planar>::new(case1()).unwrap();
         a.advance(1e-3).unwrap();
         a.set_gravity([0.25, -9.5]);
         let bytes = a.snapshot();
-        let mut b = Simulator::for_restore(case1()).unwrap();
-        let err = |b: &mut Simulator, bytes: &[u8]| match b.restore_snapshot(bytes) {
+        let mut b = Simulator::<Planar>::restorable(case1()).unwrap();
+        let err = |b: &mut Simulator<Planar>, bytes: &[u8]| match b.restore_snapshot(bytes) {
             Err(SimError::Snapshot(e)) => e,
             other => panic!("{other:?}"),
         };
@@ -1190,12 +1186,12 @@ mod tests {
         }
         let mut scene = case1();
         scene.solver.tolerance *= 2.0;
-        let mut c = Simulator::for_restore(scene).unwrap();
+        let mut c = Simulator::<Planar>::restorable(scene).unwrap();
         assert_eq!(err(&mut c, &bytes), SnapshotError::OtherModel);
         // gravity and tip force are carried, not bound: another gravity restores
         let mut scene = case1();
         scene.gravity = vec![1.0, 2.0];
-        let mut d = Simulator::for_restore(scene).unwrap();
+        let mut d = Simulator::<Planar>::restorable(scene).unwrap();
         d.restore_snapshot(&bytes).unwrap();
         assert_eq!(d.gravity(), [0.25, -9.5]);
         // b is untouched by the refusals and restores the intact bytes

@@ -3,6 +3,7 @@
 
 mod common;
 use common::*;
+use hybeam::model::Planar;
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
 
@@ -64,8 +65,8 @@ fn undamped_energy_drift_below_0_1_percent_of_peak_strain_energy() {
             ancf("a", 0.2, &round(D), 8, ""),
         ],
     );
-    let mut sim = Simulator::new(s).unwrap();
-    let energy = |sim: &Simulator| {
+    let mut sim = Simulator::<Planar>::new(s).unwrap();
+    let energy = |sim: &Simulator<Planar>| {
         let o = sim.outputs();
         (o.kinetic + o.strain + o.potential, o.strain)
     };
@@ -91,7 +92,7 @@ fn integrator_is_second_order_on_a_single_mode() {
     // Euler–Bernoulli frequency and y_st = φ(1)·ρAL·I1·g/K₁
     let run = |h: f64| {
         let s = scene(&header(h, 0.9), &[modal("m", 0.4, &round(D), 1, false, "")]);
-        let sim = Simulator::new(s.clone()).unwrap();
+        let sim = Simulator::<Planar>::new(s.clone()).unwrap();
         let b = sim.model().modal_body(0);
         let (w, yst) = (b.omegas()[0], b.basis.tip[0] * b.s_f[0] * -9.81 / b.k[0]);
         let hist = tip_history(s, 0.5, 1e-3);
@@ -150,8 +151,8 @@ fn shipped_case1_conserves_energy_over_10_s() {
     // axial residue must not pump energy in (at tolerance 1e-9 the drift reached 2e-3 by 10 s)
     let text =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/case1.toml")).unwrap();
-    let mut sim = Simulator::new(Scene::from_toml(&text).unwrap()).unwrap();
-    let e = |s: &Simulator| {
+    let mut sim = Simulator::<Planar>::new(Scene::from_toml(&text).unwrap()).unwrap();
+    let e = |s: &Simulator<Planar>| {
         let o = s.outputs();
         (o.kinetic + o.strain + o.potential, o.strain)
     };
@@ -182,7 +183,7 @@ fn modal_overload_is_refused_by_kind() {
     ))
     .unwrap()
     .replace("[initial]", "[tip]\nforce = [0.0, -2.0]\n\n[initial]");
-    let mut sim = Simulator::new(Scene::from_toml(&text).unwrap()).unwrap();
+    let mut sim = Simulator::<Planar>::new(Scene::from_toml(&text).unwrap()).unwrap();
     let mut t = 0.0;
     let err = loop {
         let before = sim.state().clone();

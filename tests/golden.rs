@@ -16,6 +16,7 @@
 
 mod common;
 use common::*;
+use hybeam::model::Planar;
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
 use std::fmt::Write as _;
@@ -50,7 +51,7 @@ fn shipped_scenes() -> Vec<PathBuf> {
     v
 }
 
-fn row(out: &mut String, t: f64, sim: &Simulator) {
+fn row(out: &mut String, t: f64, sim: &Simulator<Planar>) {
     let o = sim.outputs();
     let vals = [
         t,
@@ -78,7 +79,7 @@ const HEADER: &str =
 fn history(scene: Scene) -> String {
     let t_end = scene.simulation.t_end;
     let mut out = format!("{HEADER}\n");
-    let mut sim = Simulator::new(scene).expect("shipped scene builds");
+    let mut sim = Simulator::<Planar>::new(scene).expect("shipped scene builds");
     row(&mut out, 0.0, &sim);
     let n = (t_end / DT).round() as usize;
     for k in 1..=n {
@@ -136,7 +137,7 @@ fn statics() -> String {
     }
     let mut out = String::from("case,tip.x,tip.y,tip.angle,root.fx,root.fy,root.mz\n");
     for (name, s) in cases {
-        let mut sim = Simulator::new(s).unwrap();
+        let mut sim = Simulator::<Planar>::new(s).unwrap();
         sim.solve_static().unwrap();
         let o = sim.outputs();
         let vals = [

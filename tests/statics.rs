@@ -3,6 +3,7 @@
 
 mod common;
 use common::*;
+use hybeam::model::Planar;
 use hybeam::simulator::Simulator;
 use hybeam_references::{Deflection, CASE1_BEAM, ELASTICA, SELF_WEIGHT};
 
@@ -16,7 +17,7 @@ fn ei() -> f64 {
 
 fn static_tip(header: &str, elements: usize) -> [f64; 2] {
     let s = scene(header, &[ancf("rod", L, &square(B), elements, "")]);
-    let mut sim = Simulator::new(s).unwrap();
+    let mut sim = Simulator::<Planar>::new(s).unwrap();
     sim.solve_static().unwrap();
     sim.outputs().tip_position
 }
@@ -69,7 +70,7 @@ fn hybrid_case1_sags_as_the_linear_self_weight_cantilever() {
     let d = 0.002;
     let header = "gravity = [0.0, -9.81]";
     for segs in case1_formulations(d) {
-        let mut sim = Simulator::new(scene(header, &segs)).unwrap();
+        let mut sim = Simulator::<Planar>::new(scene(header, &segs)).unwrap();
         sim.solve_static().unwrap();
         let area = std::f64::consts::PI * d * d / 4.0;
         let q = RHO_STEEL * area * 9.81;
@@ -98,7 +99,7 @@ fn root_reaction_balances_weight_and_tip_load() {
     let p = -0.05;
     let header = format!("gravity = [0.0, -9.81]\n[tip]\nforce = [0.0, {p:e}]");
     for segs in case1_formulations(d) {
-        let mut sim = Simulator::new(scene(&header, &segs)).unwrap();
+        let mut sim = Simulator::<Planar>::new(scene(&header, &segs)).unwrap();
         sim.solve_static().unwrap();
         let o = sim.outputs();
         let area = std::f64::consts::PI * d * d / 4.0;

@@ -4,6 +4,7 @@
 
 use super::common::{self, e3, md_table, Progress};
 use super::plot::{self, Axes, Extras, Series};
+use hybeam::model::Planar;
 use hybeam::scene::Scene;
 use hybeam::simulator::Simulator;
 use hybeam_references::{Deflection, ELASTICA, SELF_WEIGHT};
@@ -154,7 +155,7 @@ pub fn run(quick: bool) -> Result<String, String> {
             for &n in ns {
                 prog.item(&format!("{kind} {sym}={p} {n} el."));
                 let s = beam_scene(&header, n)?;
-                let mut sim = Simulator::new(s).map_err(|e| e.to_string())?;
+                let mut sim = Simulator::<Planar>::new(s).map_err(|e| e.to_string())?;
                 let (it, tip, status) = match sim.solve_static() {
                     Ok(it) => (it, sim.outputs().tip_position, "ok".to_string()),
                     Err(e) => (0, [f64::NAN; 2], format!("refused: {e}")),

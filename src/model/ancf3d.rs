@@ -1,6 +1,6 @@
 //! Spatial ANCF element: the 3D cable with a twist director ("cable + twist director", 18
 //! coordinates) and, without torsion, the plain 3D cable (12 coordinates). Pure functions of the
-//! element coordinates; `docs/spatial.md` §1.3.
+//! element coordinates; `docs/spatial.md` (element) and `docs/references.md` §7.1.
 //!
 //! Coordinates (global axes), node 0 then node 1: `[r, r_x, r_y]` per node with torsion, `[r,
 //! r_x]` without. x is the arc length of the straight reference configuration, ξ = x/l.
@@ -1213,7 +1213,7 @@ pub(crate) mod tests {
     fn uniformly_twisted_element_matches_the_chord_closed_form() {
         // r_y turns by Δ about the axis between the nodes; linear (chord) interpolation gives
         // φ(ξ) = atan2(ξ sin Δ, 1 − ξ + ξ cos Δ), τ = φ′ = sin Δ/(l((1 − ξ + ξ cos Δ)² + ξ² sin² Δ)).
-        // Energy factor over ½GJΔ²/l with 3-point Gauss (spatial.md §1.3 table): 30° 1.0005,
+        // Energy factor over ½GJΔ²/l with 3-point Gauss (docs/references.md §7.1): 30° 1.0005,
         // 90° 1.072.
         let p = props(true, 0.0, 1.0);
         let l = p.length;

@@ -16,7 +16,6 @@ use super::component::{
 };
 use super::dofs::{LocalDofs, Numbering};
 use super::load::{moment_residual, point_force_residual, point_force_stiffness};
-use super::planar::Planar;
 use super::space::{is_nonzero, is_nonzero_moment, scaled, Space};
 use crate::integrator::{EvalRequest, Integrable, StateRef};
 use crate::linalg::{SingularMatrix, SparseLu, SparsePattern};
@@ -80,7 +79,7 @@ struct Work {
 }
 
 /// The assembled beam model in space `S`.
-pub struct Model<S: Space = Planar> {
+pub struct Model<S: Space> {
     n: usize,
     m: usize,
     pub(crate) elements: Vec<PlacedElement<S>>,
@@ -473,6 +472,7 @@ mod tests {
     use crate::integrator::{GeneralizedAlpha, IntegrationParameters};
     use crate::model::component::Energies;
     use crate::model::dofs::Dof;
+    use crate::model::planar::Planar;
     use crate::model::planar::{EndKin, Orientation};
     use nalgebra::Vector2;
     use std::any::Any;
@@ -556,7 +556,7 @@ mod tests {
     const L: f64 = 0.5;
     const G: f64 = 9.81;
 
-    fn pendulum(theta0: f64) -> Model {
+    fn pendulum(theta0: f64) -> Model<Planar> {
         let mut num = Numbering::default();
         let dofs: Vec<Dof> = vec![
             num.free(L * theta0.sin(), L),

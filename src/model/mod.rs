@@ -8,11 +8,17 @@
 //! * [`component`]: what an [`Element`], a [`Constraint`], a [`Port`] and a [`Support`] answer;
 //! * [`assembly`]: [`Model`], the sparse pattern and `eval` as loops over components;
 //! * [`outputs`]: [`Outputs`], energies, the support reaction, validity checks;
-//! * [`load`]: the dead point force at a port (tip force).
+//! * [`load`]: the dead point force at a port (tip force);
+//! * [`mount`]: the mounted root, dimension-free: [`Motion`] of the mount frame, its rigid
+//!   inertia ([`MountInertia`]), the held coordinates as rigid functions of the motion, the
+//!   relative static solve on a spinning mount.
 //!
 //! Planar ([`planar`]): [`Planar`], the components wrapping the kernels, the rigid joint, the
-//! root support and the build from a scene. Kernels (pure functions of local coordinates):
-//! [`ancf`] (planar ANCF cable), [`modal`] (shape basis, planar floating-frame body).
+//! root support, the mount's rigid motion of planar coordinate groups (`planar/mount.rs`) and
+//! the build from a scene. Spatial ([`spatial`]): [`Spatial`], the same parts in 3D (Euler
+//! parameters, spherical + DOT1 joint rows). Kernels (pure functions of local coordinates):
+//! [`ancf`] (planar ANCF cable), [`ancf3d`] (3D cable with a twist director), [`modal`] (shape
+//! basis, planar and spatial floating-frame bodies).
 
 pub mod ancf;
 pub mod ancf3d;

@@ -129,15 +129,6 @@ fn moment3<S: Space>(m: &S::Moment) -> [f64; 3] {
     }
 }
 
-/// Indices of a space's moment components among x, y, z.
-fn moment_axes<S: Space>() -> &'static [usize] {
-    if S::DIM == 2 {
-        &[2]
-    } else {
-        &[0, 1, 2]
-    }
-}
-
 use super::modal::body3d::cross;
 
 impl<S: Space> MountInertia<S> {
@@ -145,25 +136,7 @@ impl<S: Space> MountInertia<S> {
     /// mount frame at orientation `attitude` (3 components; the plane: z = 0, only I_zz).
     fn world(&self, attitude: &S::Attitude) -> ([f64; 3], [[f64; 3]; 3]) {
         let c = vec3::<S>(&S::from_frame(attitude, &self.center_of_mass));
-        let mut iw = [[0.0; 3]; 3];
-        if S::DIM == 2 {
-            iw[2][2] = self.inertia[0];
-        } else {
-            // column b of A I Aᵀ is A (I (Aᵀ e_b))
-            for b in 0..3 {
-                let mut e = S::Vec::default();
-                e[b] = 1.0;
-                let f = S::to_frame(attitude, &e);
-                let mut v = S::Vec::default();
-                for a in 0..3 {
-                    v[a] = (0..3).map(|k| self.inertia[3 * a + k] * f[k]).sum();
-                }
-                let w = S::from_frame(attitude, &v);
-                for (a, row) in iw.iter_mut().enumerate() {
-                    row[b] = w[a];
-                }
-            }
-        }
+        let iw = S::inertia_to_world(attitude, &self.inertia);
         (c, iw)
     }
 
@@ -192,7 +165,7 @@ impl<S: Space> MountInertia<S> {
         let mut mo = S::Moment::default();
         for (x, &k) in S::moment_components_mut(&mut mo)
             .iter_mut()
-            .zip(moment_axes::<S>())
+            .zip(S::MOMENT_INDICES)
         {
             *x = ia[k] + gyro[k] + self.mass * cm[k];
         }
@@ -221,7 +194,7 @@ impl<S: Space> MountInertia<S> {
             (false, false) => iw[r - 3][k - 3],
         };
         let idx: Vec<usize> = (0..S::DIM)
-            .chain(moment_axes::<S>().iter().map(|k| k + 3))
+            .chain(S::MOMENT_INDICES.iter().map(|k| k + 3))
             .collect();
         idx.iter()
             .map(|&r| idx.iter().map(|&k| full(r, k)).collect())

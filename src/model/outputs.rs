@@ -5,12 +5,11 @@ use super::assembly::Model;
 use super::component::{ConstraintOut, Element, Env, LocalState};
 use super::dofs::Dof;
 use super::load::{moment_residual, point_force_residual};
-use super::planar::Planar;
 use super::space::{is_nonzero_moment, PortKin, Space};
 
 /// Scalar results of one state.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Outputs<S: Space = Planar> {
+pub struct Outputs<S: Space> {
     /// Tip position [m], global.
     pub tip_position: S::Vec,
     /// Tip velocity [m/s], global.

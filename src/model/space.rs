@@ -16,6 +16,11 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
     const AXES: &'static [&'static str];
     /// Names of the components of a moment (`["z"]` in the plane).
     const MOMENT_AXES: &'static [&'static str];
+    /// Indices of the moment's components among x, y, z (`[2]` in the plane).
+    const MOMENT_INDICES: &'static [usize];
+    /// The components of a rigid inertia tensor a host reads (`root.inertia.<name>`), each with
+    /// its index in [`super::MountInertia::inertia`] (`[("zz", 0)]` in the plane).
+    const INERTIA_COMPONENTS: &'static [(&'static str, usize)];
     /// A global vector (position [m], velocity [m/s], force [N], gravity [m/s²]): `[f64; DIM]`.
     type Vec: Copy
         + Default
@@ -43,6 +48,11 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
 
     /// The identity orientation (a frame aligned with the global axes).
     fn attitude_identity() -> Self::Attitude;
+
+    /// An inertia tensor about a point, stored as in [`super::MountInertia::inertia`] in the
+    /// axes of a frame at orientation `a`, as a 3×3 tensor in world axes [kg m²] (the plane:
+    /// I_zz only, which a turn about z leaves unchanged).
+    fn inertia_to_world(a: &Self::Attitude, inertia: &[f64; 9]) -> [[f64; 3]; 3];
 
     /// Number of coordinates of a [`Rigid`] group.
     fn rigid_len(kind: Rigid) -> usize;

@@ -48,17 +48,6 @@ pub enum Quantity {
     ElasticMoment,
 }
 
-/// Components of the inertia tensor as outputs: names and row-major 3×3 indices (the plane
-/// keeps only `zz`, stored at index 0).
-const INERTIA_SPATIAL: [(&str, usize); 6] = [
-    ("xx", 0),
-    ("yy", 4),
-    ("zz", 8),
-    ("xy", 1),
-    ("xz", 2),
-    ("yz", 5),
-];
-
 /// One scalar output: a quantity and the index of its component (in [`Space::AXES`],
 /// [`Space::MOMENT_AXES`] or [`SpaceModel::ATTITUDE_COMPONENTS`]; 0 for an energy).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -97,36 +86,33 @@ impl OutputId {
     /// The scalar outputs of a space with their names, in this order: tip position, velocity,
     /// orientation, angular velocity, root force, root moment, energies.
     pub fn named(space: SpaceKind) -> Vec<(String, OutputId)> {
-        match space {
-            SpaceKind::Planar => Self::named_in::<Planar>(),
-            SpaceKind::Spatial => Self::named_in::<Spatial>(),
-        }
+        Self::named_with(space, false)
     }
 
     /// [`OutputId::named`] and, for a mounted root, the rigid inertia at the mount after them:
     /// `root.mass`, `root.center_of_mass.<axis>`, `root.inertia.<pair>`, then the reaction
     /// beyond it: `root.force_elastic.<axis>`, `root.moment_elastic.<moment axis>`.
     pub fn named_with(space: SpaceKind, mounted: bool) -> Vec<(String, OutputId)> {
-        let mut out = Self::named(space);
+        match space {
+            SpaceKind::Planar => Self::named_with_in::<Planar>(mounted),
+            SpaceKind::Spatial => Self::named_with_in::<Spatial>(mounted),
+        }
+    }
+
+    fn named_with_in<S: SpaceModel>(mounted: bool) -> Vec<(String, OutputId)> {
+        let mut out = Self::named_in::<S>();
         if mounted {
-            let inertia: &[&str] = match space {
-                SpaceKind::Planar => &["zz"],
-                SpaceKind::Spatial => &["xx", "yy", "zz", "xy", "xz", "yz"],
-            };
-            let axes: &[&str] = match space {
-                SpaceKind::Planar => Planar::AXES,
-                SpaceKind::Spatial => Spatial::AXES,
-            };
-            let moment_axes: &[&str] = match space {
-                SpaceKind::Planar => Planar::MOMENT_AXES,
-                SpaceKind::Spatial => Spatial::MOMENT_AXES,
-            };
+            let inertia: Vec<&str> = S::INERTIA_COMPONENTS.iter().map(|(n, _)| *n).collect();
             let groups: [(Quantity, &str, &[&str]); 5] = [
                 (Quantity::MountMass, "root.mass", &[""]),
-                (Quantity::MountCenterOfMass, "root.center_of_mass", axes),
-                (Quantity::MountInertia, "root.inertia", inertia),
-                (Quantity::ElasticForce, "root.force_elastic", axes),
-                (Quantity::ElasticMoment, "root.moment_elastic", moment_axes),
+                (Quantity::MountCenterOfMass, "root.center_of_mass", S::AXES),
+                (Quantity::MountInertia, "root.inertia", &inertia),
+                (Quantity::ElasticForce, "root.force_elastic", S::AXES),
+                (
+                    Quantity::ElasticMoment,
+                    "root.moment_elastic",
+                    S::MOMENT_AXES,
+                ),
             ];
             out.extend(named_components(&groups, |quantity, component| OutputId {
                 quantity,
@@ -184,13 +170,9 @@ impl<S: SpaceModel> Outputs<S> {
             ElasticMoment => self
                 .mount
                 .and_then(|_| S::moment_components(&self.elastic_moment).get(k).copied()),
-            MountInertia => self.mount.and_then(|m| {
-                if S::DIM == 2 {
-                    one(m.inertia[0])
-                } else {
-                    INERTIA_SPATIAL.get(k).map(|&(_, i)| m.inertia[i])
-                }
-            }),
+            MountInertia => self
+                .mount
+                .and_then(|m| S::INERTIA_COMPONENTS.get(k).map(|&(_, i)| m.inertia[i])),
         }
     }
 }
@@ -331,22 +313,20 @@ impl InputId {
 
     fn mount_in<S: SpaceModel>() -> Vec<(String, InputId)> {
         use InputKind::*;
-        let angular: &[&str] = if S::DIM == 2 { &[""] } else { S::MOMENT_AXES };
-        let attitude = if S::DIM == 2 {
-            "root.angle"
-        } else {
-            "root.orientation"
-        };
         let groups: [(InputKind, &str, &[&str]); 6] = [
             (MountPosition, "root.position", S::AXES),
-            (MountAttitude, attitude, S::ATTITUDE_COMPONENTS),
+            (MountAttitude, S::MOUNT_ATTITUDE, S::ATTITUDE_COMPONENTS),
             (MountVelocity, "root.velocity", S::AXES),
-            (MountAngularVelocity, "root.angular_velocity", angular),
+            (
+                MountAngularVelocity,
+                "root.angular_velocity",
+                S::ANGULAR_SUFFIXES,
+            ),
             (MountAcceleration, "root.acceleration", S::AXES),
             (
                 MountAngularAcceleration,
                 "root.angular_acceleration",
-                angular,
+                S::ANGULAR_SUFFIXES,
             ),
         ];
         named_components(&groups, |kind, component| InputId { kind, component })

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
-use hybeam::model::{Model, Space};
+use hybeam::model::{Model, Planar, Space};
 use hybeam::scene::Scene;
 use nalgebra::DMatrix;
 
@@ -55,7 +55,7 @@ pub fn square(b: f64) -> String {
 
 /// Reads the tip y column of a run, sampled every `dt` up to `t_end`.
 pub fn tip_history(scene: Scene, t_end: f64, dt: f64) -> Vec<[f64; 2]> {
-    let mut sim = hybeam::simulator::Simulator::new(scene).expect("scene builds");
+    let mut sim = hybeam::simulator::Simulator::<Planar>::new(scene).expect("scene builds");
     let mut out = vec![sim.outputs().tip_position];
     let n = (t_end / dt).round() as usize;
     for k in 1..=n {

@@ -1,5 +1,5 @@
 //! Spatial floating-frame body with bending modes in both planes and two torsion shapes
-//! (docs: shared spatial brief §2): the kernel of [`crate::model::spatial::ModalElement3`].
+//! (docs/references.md §7.3): the kernel of [`crate::model::spatial::ModalElement3`].
 //!
 //! Local coordinates `q = [R(3), p(4), a_y(nb), a_z(nb), a_t(2)]`: frame origin R [m] (the
 //! segment root, world axes), Euler parameters p = (e0, e1, e2, e3) of the body frame → world
@@ -207,7 +207,7 @@ pub struct ModalBody3 {
     /// ρA L² ∫ξφ_k dξ [kg m].
     pub s_x: Vec<f64>,
     /// G1 = ∫(1 − ξ)φ_i′φ_j′ dξ and G2 = ∫½(1 − ξ²)φ_i′φ_j′ dξ (row-major nb × nb): the
-    /// geometric stiffness of the axial inertia and centrifugal forces (spatial.md §2.5).
+    /// geometric stiffness of the axial inertia and centrifugal forces (docs/references.md §7.4).
     pub g1: Vec<f64>,
     /// See [`ModalBody3::g1`].
     pub g2: Vec<f64>,

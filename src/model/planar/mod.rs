@@ -30,6 +30,8 @@ impl Space for Planar {
     const DIM: usize = 2;
     const AXES: &'static [&'static str] = &["x", "y"];
     const MOMENT_AXES: &'static [&'static str] = &["z"];
+    const MOMENT_INDICES: &'static [usize] = &[2];
+    const INERTIA_COMPONENTS: &'static [(&'static str, usize)] = &[("zz", 0)];
     type Vec = [f64; 2];
     type Moment = f64;
     type Attitude = f64;
@@ -45,6 +47,12 @@ impl Space for Planar {
 
     fn attitude_identity() -> f64 {
         0.0
+    }
+
+    fn inertia_to_world(_: &f64, inertia: &[f64; 9]) -> [[f64; 3]; 3] {
+        let mut iw = [[0.0; 3]; 3];
+        iw[2][2] = inertia[0];
+        iw
     }
 
     fn rigid_len(kind: Rigid) -> usize {

@@ -6,7 +6,7 @@
 //!
 //! Port fields are A(p)·v̄(a) (+ R) with v̄ at most quadratic in a, so their first and second
 //! derivatives are closed-form: ∂(Av̄)/∂p = 2[e0v̄ + e×v̄, (eᵀv̄)I + ev̄ᵀ − v̄eᵀ − e0ṽ̄] and the
-//! constant ∂²(Av̄)/∂p² (shared spatial brief §2.1), valid for any p.
+//! constant ∂²(Av̄)/∂p² (docs/references.md §7.2), valid for any p.
 
 use super::{EndKin3, Field3, Spatial};
 use crate::math;

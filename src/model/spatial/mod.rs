@@ -32,6 +32,15 @@ impl Space for Spatial {
     const DIM: usize = 3;
     const AXES: &'static [&'static str] = &["x", "y", "z"];
     const MOMENT_AXES: &'static [&'static str] = &["x", "y", "z"];
+    const MOMENT_INDICES: &'static [usize] = &[0, 1, 2];
+    const INERTIA_COMPONENTS: &'static [(&'static str, usize)] = &[
+        ("xx", 0),
+        ("yy", 4),
+        ("zz", 8),
+        ("xy", 1),
+        ("xz", 2),
+        ("yz", 5),
+    ];
     type Vec = [f64; 3];
     type Moment = [f64; 3];
     type Attitude = [f64; 4];
@@ -47,6 +56,25 @@ impl Space for Spatial {
 
     fn attitude_identity() -> [f64; 4] {
         [1.0, 0.0, 0.0, 0.0]
+    }
+
+    fn inertia_to_world(a: &[f64; 4], inertia: &[f64; 9]) -> [[f64; 3]; 3] {
+        let mut iw = [[0.0; 3]; 3];
+        // column b of A I Aᵀ is A (I (Aᵀ e_b))
+        for b in 0..3 {
+            let mut e = [0.0; 3];
+            e[b] = 1.0;
+            let f = Self::to_frame(a, &e);
+            let mut v = [0.0; 3];
+            for (r, vr) in v.iter_mut().enumerate() {
+                *vr = (0..3).map(|k| inertia[3 * r + k] * f[k]).sum();
+            }
+            let w = Self::from_frame(a, &v);
+            for (r, row) in iw.iter_mut().enumerate() {
+                row[b] = w[r];
+            }
+        }
+        iw
     }
 
     fn rigid_len(kind: Rigid) -> usize {
