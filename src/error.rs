@@ -4,7 +4,7 @@
 
 use crate::integrator::{StaticFailure, StepFailure};
 use crate::scene::{SceneError, MIN_STEP};
-use crate::simulator::{
+use crate::simulator::limits::{
     MAX_AXIAL_STRAIN, MAX_MODAL_DEFLECTION, MAX_TWIST_PER_ELEMENT, MIN_SECTION_SINE,
 };
 use thiserror::Error;
@@ -172,8 +172,8 @@ pub enum Refusal {
     #[error(
         "mount pose jumps by {distance:.3e} m and {:.1}° from the predicted pose in one communication step, beyond the bound of {:.0} % of the beam length and {:.0}°; move the mount continuously (a pose with consistent velocity and acceleration inputs), or shorten the communication step",
         .angle.to_degrees(),
-        100.0 * crate::simulator::MAX_MOUNT_JUMP_LENGTH,
-        crate::simulator::MAX_MOUNT_JUMP_ANGLE.to_degrees()
+        100.0 * crate::simulator::limits::MAX_MOUNT_JUMP_LENGTH,
+        crate::simulator::limits::MAX_MOUNT_JUMP_ANGLE.to_degrees()
     )]
     MountJump {
         /// Distance of the host's mount point from the predicted one [m].

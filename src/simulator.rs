@@ -6,9 +6,11 @@
 
 mod any;
 mod finite;
+pub mod limits;
 mod mount;
 
 pub use any::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
+pub use limits::*;
 pub use mount::{MountInput, MountState};
 
 use crate::error::{Refusal, SimError, SnapshotError, StepLimit};
@@ -21,33 +23,6 @@ use crate::scene::{InitialState, Mount, Scene, SceneError, SpaceKind};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::hash::Hasher;
-
-/// Largest elastic deflection of a modal segment accepted, as tip deflection over length or tip
-/// slope [rad]: a linear floating frame is a small-deformation model.
-pub const MAX_MODAL_DEFLECTION: f64 = 0.3;
-
-/// Largest axial strain accepted: beyond it the linear elastic law of the model has no meaning
-/// for a metal rod, and the step is refused rather than returning a number.
-pub const MAX_AXIAL_STRAIN: f64 = 0.05;
-
-/// Largest twist within one ANCF element accepted [rad] (45°): the section director r_y is
-/// interpolated linearly, so at a twist φ per element the twist rate at the element's middle
-/// is sin φ/((1 + cos φ)/2) instead of φ (+5.5 % at 45°, +27 % at 90°), and the interpolated
-/// director vanishes at 180°.
-pub const MAX_TWIST_PER_ELEMENT: f64 = std::f64::consts::FRAC_PI_4;
-
-/// Smallest sine of the angle between an ANCF node's r_x and r_y accepted [-] (the nodal
-/// penalty keeps them perpendicular, sine 1; at 0 the section frame is undefined).
-pub const MIN_SECTION_SINE: f64 = 0.5;
-
-/// Largest jump of the mount point from its predicted position in one communication step, as a
-/// fraction of the beam's length: beyond it the host's pose is refused (a teleport or a unit
-/// mistake), not re-anchored.
-pub const MAX_MOUNT_JUMP_LENGTH: f64 = 0.1;
-
-/// Largest rotation of the mount frame from its predicted orientation in one communication step
-/// [rad] (30°).
-pub const MAX_MOUNT_JUMP_ANGLE: f64 = std::f64::consts::FRAC_PI_6;
 
 /// Internal step control carried from one communication step to the next.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -28,8 +28,10 @@
 
 use super::ancf::{GAUSS3, GAUSS5};
 use crate::math;
+use crate::model::vector::Real;
+use crate::model::vector::{cross, dot};
 use crate::scene::{Segment, StrainModel};
-use num_dual::{DualNum, DualSVec64};
+use num_dual::DualSVec64;
 
 /// Coordinates of an element with torsion (2 nodes × [r, r_x, r_y]).
 pub const TORSION_DOFS: usize = 18;
@@ -94,25 +96,7 @@ fn hermite(xi: f64, l: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
     (s.s, s.ds, s.dds)
 }
 
-/// The scalar of the generic code: f64 on the residual path, dual numbers for the tangents.
-pub trait Real: DualNum<Primitive = f64> + Copy {}
-impl<T: DualNum<Primitive = f64> + Copy> Real for T {}
-
 type V<T> = [T; 3];
-
-#[inline(always)]
-fn dot<T: Real>(a: &V<T>, b: &V<T>) -> T {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline(always)]
-fn cross<T: Real>(a: &V<T>, b: &V<T>) -> V<T> {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
 
 /// α a + β b.
 #[inline(always)]
@@ -276,9 +260,9 @@ fn bend_twist<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>, d: &V<T>) -> ([T; 3], [Grad
     let cv = cross(a, c);
     let w2 = n2 * cc - g * g;
     let inv_w = w2.sqrt().recip();
-    let p = dot(&cv, b);
+    let p = dot(cv, b);
     let q = n2 * bc - ab * g;
-    let s = dot(&cv, d);
+    let s = dot(cv, d);
     let (inv_n2, inv_w2) = (inv_n * inv_n, inv_w * inv_w);
     // ½∂(w²)/w² and ½∂(n²)/n²
     let hw_a = lin2(cc * inv_w2, a, -g * inv_w2, c);
@@ -329,7 +313,7 @@ fn bend_twist<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>, d: &V<T>) -> ([T; 3], [Grad
 /// Strain measures (ε, κ2, κ3, τ) at a point from r_x, r_xx, r_y, r_yx (see the module doc).
 pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3], ryx: [f64; 3]) -> [f64; 4] {
     let ([k2, k3, tau], _) = bend_twist(&rx, &rxx, &ry, &ryx);
-    [dot(&rx, &rx).sqrt() - 1.0, k2, k3, tau]
+    [dot(rx, rx).sqrt() - 1.0, k2, k3, tau]
 }
 
 impl Ancf3Props {
@@ -652,7 +636,7 @@ impl Ancf3Props {
         let g = [a[0] * inv, a[1] * inv, a[2] * inv];
         let mut stress = n - 1.0;
         if let Some(ud) = ud {
-            stress += dot(&g, &ud[0]) * self.damping_time;
+            stress += dot(g, ud[0]) * self.damping_time;
         }
         let s = stress * w;
         [[g[0] * s, g[1] * s, g[2] * s]]
@@ -668,7 +652,7 @@ impl Ancf3Props {
         if let Some([ad, bd, cd, dd]) = ud {
             for i in 0..3 {
                 let gi = &g[i];
-                let rate = dot(&gi.a, ad) + dot(&gi.b, bd) + dot(&gi.c, cd) + dot(&gi.d, dd);
+                let rate = dot(gi.a, ad) + dot(gi.b, bd) + dot(gi.c, cd) + dot(gi.d, dd);
                 s[i] += rate * self.damping_time;
             }
         }
@@ -694,7 +678,7 @@ impl Ancf3Props {
             // (ȧ × b + a × ḃ)/|a|² − 2κ (a·ȧ)/|a|² − (a × ȧ) × κ/|a|²
             let r1 = cross(ad, b);
             let r2 = cross(a, bd);
-            let r3 = cross(&cross(a, ad), &kap);
+            let r3 = cross(cross(a, ad), kap);
             let ada = dot(a, ad) * 2.0;
             for c in 0..3 {
                 mv[c] += (r1[c] + r2[c] - r3[c] - kap[c] * ada) * (inv * self.damping_time);
@@ -704,10 +688,10 @@ impl Ancf3Props {
         let mv = [mv[0] * s, mv[1] * s, mv[2] * s];
         // Jᵀμ of κ̇_rel = J ė (J = ∂κ/∂e on the elastic part, κ·a = 0):
         // a-part [b × μ − 2(κ·μ) a + (a·μ) κ]/|a|², b-part (μ × a)/|a|²
-        let bm = cross(b, &mv);
-        let ma = cross(&mv, a);
-        let km = dot(&kap, &mv) * (-2.0);
-        let am = dot(a, &mv);
+        let bm = cross(b, mv);
+        let ma = cross(mv, a);
+        let km = dot(kap, mv) * (-2.0);
+        let am = dot(a, mv);
         [
             lin3(inv, &bm, km * inv, a, am * inv, &kap),
             [ma[0] * inv, ma[1] * inv, ma[2] * inv],
@@ -744,7 +728,7 @@ impl Ancf3Props {
         let mut u = 0.0;
         for (w, ds) in &tab.axial {
             let a = v(ds, &rs);
-            let eps = dot(&a, &a).sqrt() - 1.0;
+            let eps = dot(a, a).sqrt() - 1.0;
             u += 0.5 * w * eps * eps;
         }
         for p in &tab.bending {
@@ -756,9 +740,9 @@ impl Ancf3Props {
                 let [_, k2, k3, tau] = strains(a, b, c, d);
                 u += 0.5 * p.w * (self.ei_y * k2 * k2 + self.ei_z * k3 * k3 + self.gj * tau * tau);
             } else {
-                let bv = cross(&a, &b);
-                let n2 = dot(&a, &a);
-                u += 0.5 * p.w * self.cable_ei() * dot(&bv, &bv) / (n2 * n2);
+                let bv = cross(a, b);
+                let n2 = dot(a, a);
+                u += 0.5 * p.w * self.cable_ei() * dot(bv, bv) / (n2 * n2);
             }
         }
         if self.torsion {
@@ -766,8 +750,8 @@ impl Ancf3Props {
             for node in 0..2 {
                 let x = [e[9 * node + 3], e[9 * node + 4], e[9 * node + 5]];
                 let y = [e[9 * node + 6], e[9 * node + 7], e[9 * node + 8]];
-                let gam = dot(&x, &y) / dot(&x, &x).sqrt();
-                let ystr = 0.5 * (dot(&y, &y) - 1.0);
+                let gam = dot(x, y) / dot(x, x).sqrt();
+                let ystr = 0.5 * (dot(y, y) - 1.0);
                 u += 0.5 * kp * (ystr * ystr + gam * gam);
             }
         }
@@ -785,7 +769,7 @@ impl Ancf3Props {
                     a[c] += ds[j] * e[rs[j] + c];
                 }
             }
-            worst = worst.max((dot(&a, &a).sqrt() - 1.0).abs());
+            worst = worst.max((dot(a, a).sqrt() - 1.0).abs());
         }
         worst
     }
@@ -798,7 +782,7 @@ impl Ancf3Props {
     pub fn section_measures(&self, e: &[f64]) -> (f64, f64) {
         let v = |i: usize| [e[i], e[i + 1], e[i + 2]];
         let unit = |a: [f64; 3]| {
-            let n = dot(&a, &a).sqrt();
+            let n = dot(a, a).sqrt();
             a.map(|x| x / n)
         };
         let mut frames = [[[0.0; 3]; 2]; 2];
@@ -806,23 +790,23 @@ impl Ancf3Props {
         for (node, f) in frames.iter_mut().enumerate() {
             let t = unit(v(9 * node + 3));
             let y = v(9 * node + 6);
-            let u = cross(&t, &y);
-            let s = (dot(&u, &u) / dot(&y, &y)).sqrt();
+            let u = cross(t, y);
+            let s = (dot(u, u) / dot(y, y)).sqrt();
             sine = sine.min(if s.is_finite() { s } else { 0.0 });
             // d2 = normalized r_y ⟂ t = (t × r_y) × t / |t × r_y|
-            *f = [t, unit(cross(&u, &t))];
+            *f = [t, unit(cross(u, t))];
         }
         let [[t0, a], [t1, b]] = frames;
-        let w = cross(&t0, &t1);
-        let c = dot(&t0, &t1);
+        let w = cross(t0, t1);
+        let c = dot(t0, t1);
         if c.is_nan() || 1.0 + c <= 1e-12 || sine == 0.0 {
             return (std::f64::consts::PI, sine);
         }
         // a carried by R = c I + [w]× + w wᵀ/(1 + c)
-        let wa = cross(&w, &a);
-        let f = dot(&w, &a) / (1.0 + c);
+        let wa = cross(w, a);
+        let f = dot(w, a) / (1.0 + c);
         let a1 = [0, 1, 2].map(|i| c * a[i] + wa[i] + f * w[i]);
-        let twist = math::atan2(dot(&t1, &cross(&a1, &b)), dot(&a1, &b)).abs();
+        let twist = math::atan2(dot(t1, cross(a1, b)), dot(a1, b)).abs();
         let worst = std::f64::consts::PI;
         (if twist.is_nan() { worst } else { twist }, sine)
     }
@@ -940,8 +924,8 @@ pub(crate) mod tests {
     fn frame(axis: [f64; 3], angle: f64) -> [[f64; 3]; 3] {
         let rot = |v: [f64; 3]| {
             let (s, c) = angle.sin_cos();
-            let kv = cross(&axis, &v);
-            let kd = dot(&axis, &v);
+            let kv = cross(axis, v);
+            let kd = dot(axis, v);
             [0, 1, 2].map(|i| c * v[i] + s * kv[i] + (1.0 - c) * kd * axis[i])
         };
         [
@@ -1093,13 +1077,13 @@ pub(crate) mod tests {
             for node in 0..2 {
                 let b = st * node;
                 let r = [e[b] - e[0], e[b + 1] - e[1], e[b + 2] - e[2]];
-                let wr = cross(&w, &r);
+                let wr = cross(w, r);
                 for c in 0..3 {
                     ed[b + c] = v0[c] + wr[c];
                 }
                 for blk in (3..st).step_by(3) {
                     let d = [e[b + blk], e[b + blk + 1], e[b + blk + 2]];
-                    let wd = cross(&w, &d);
+                    let wd = cross(w, d);
                     ed[b + blk..b + blk + 3].copy_from_slice(&wd);
                 }
             }
@@ -1143,7 +1127,7 @@ pub(crate) mod tests {
                 }
                 for (k, v) in vecs.iter().enumerate() {
                     e[b + 3 * k..b + 3 * k + 3].copy_from_slice(v);
-                    ed[b + 3 * k..b + 3 * k + 3].copy_from_slice(&cross(&w, v));
+                    ed[b + 3 * k..b + 3 * k + 3].copy_from_slice(&cross(w, v));
                 }
             }
             let tab = p.tables();
@@ -1173,7 +1157,8 @@ pub(crate) mod tests {
         // φ = φ0 + φ1 s; the reference arc length x = s/(1 + ε). Then, per reference length,
         // κ2 = (1+ε) k sin φ, κ3 = (1+ε) k cos φ, τ = (1+ε)(τ_g + φ1). r_y = α d2 + β t (stretched
         // and sheared director: the measures must not see α, β).
-        let (rho, h, eps, phi0, phi1, al, be) = (0.3, 0.12, 0.02, 0.4, 2.0, 1.3, 0.2);
+        let (rho, h, eps, phi0, phi1, al, be): (f64, f64, f64, f64, f64, f64, f64) =
+            (0.3, 0.12, 0.02, 0.4, 2.0, 1.3, 0.2);
         let lam = (rho * rho + h * h).sqrt();
         let (k, tg) = (rho / (lam * lam), h / (lam * lam));
         let st = 1.0 + eps;
@@ -1182,7 +1167,7 @@ pub(crate) mod tests {
             let (sn, cs) = th.sin_cos();
             let t = [-rho * sn / lam, rho * cs / lam, h / lam];
             let n = [-cs, -sn, 0.0];
-            let b = cross(&t, &n);
+            let b = cross(t, n);
             // Frenet: t′ = k n, n′ = −k t + τ_g b, b′ = −τ_g n (per s)
             let phi = phi0 + phi1 * s;
             let (sp, cp) = phi.sin_cos();

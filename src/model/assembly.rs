@@ -95,9 +95,9 @@ pub struct Model<S: Space> {
     /// How coordinate groups move rigidly (mount, re-anchoring, rigid inertia).
     pub(crate) groups: Vec<crate::model::dofs::RigidGroup>,
     /// The mount motion the held coordinates follow (`None`: the root is fixed).
-    pub(crate) mount: Option<Box<crate::model::mount::Motion<S>>>,
+    pub(crate) mount: Option<Box<crate::model::space::Motion<S>>>,
     /// The mount motion of the last matrix evaluation (what a snapshot needs to rebuild it).
-    pub(crate) mount_at_matrix: Option<Box<crate::model::mount::Motion<S>>>,
+    pub(crate) mount_at_matrix: Option<Box<crate::model::space::Motion<S>>>,
     pub(crate) gravity: S::Vec,
     /// The one total tip force [N], global axes: the scene's at build, then whatever
     /// [`Model::set_tip_force`] sets (no split into scene part and input part).

@@ -32,6 +32,7 @@ pub mod outputs;
 pub mod planar;
 pub mod space;
 pub mod spatial;
+pub mod vector;
 
 pub use assembly::{Model, Parts};
 pub use component::{
@@ -39,8 +40,8 @@ pub use component::{
     Validity,
 };
 pub use dofs::{Dof, LocalDofs, Numbering, Rigid, RigidGroup};
-pub use mount::{Motion, MotionRates, MountInertia};
+pub use mount::MountInertia;
 pub use outputs::{ModelValidity, Outputs};
 pub use planar::Planar;
-pub use space::{PortKin, Space};
+pub use space::{Motion, MotionRates, PortKin, Space};
 pub use spatial::Spatial;

@@ -8,97 +8,7 @@
 use super::assembly::Model;
 use super::component::{Env, LocalState};
 use super::dofs::{Dof, RigidGroup};
-use super::space::Space;
-use serde::{Deserialize, Serialize};
-
-/// The motion of a frame at one instant, world axes, SI.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(bound(
-    serialize = "S::Vec: Serialize, S::Moment: Serialize, S::Attitude: Serialize",
-    deserialize = "S::Vec: Deserialize<'de>, S::Moment: Deserialize<'de>, S::Attitude: Deserialize<'de>"
-))]
-pub struct Motion<S: Space> {
-    /// Position of the frame origin [m].
-    pub position: S::Vec,
-    /// Orientation, frame → world (plane: angle [rad]; space: unit Euler parameters).
-    pub attitude: S::Attitude,
-    /// Velocity of the origin [m/s].
-    pub velocity: S::Vec,
-    /// Angular velocity [rad/s], world axes.
-    pub angular_velocity: S::Moment,
-    /// Acceleration of the origin [m/s²].
-    pub acceleration: S::Vec,
-    /// Angular acceleration [rad/s²], world axes.
-    pub angular_acceleration: S::Moment,
-}
-
-impl<S: Space> Default for Motion<S> {
-    fn default() -> Self {
-        Self::at_rest(S::Vec::default(), S::attitude_identity())
-    }
-}
-
-impl<S: Space> Motion<S> {
-    /// A frame at rest at `position`, `attitude`.
-    pub fn at_rest(position: S::Vec, attitude: S::Attitude) -> Self {
-        Self {
-            position,
-            attitude,
-            velocity: S::Vec::default(),
-            angular_velocity: S::Moment::default(),
-            acceleration: S::Vec::default(),
-            angular_acceleration: S::Moment::default(),
-        }
-    }
-
-    /// The same pose and rates with the accelerations of `other`.
-    pub fn with_accelerations_of(&self, other: &Self) -> Self {
-        Self {
-            acceleration: other.acceleration,
-            angular_acceleration: other.angular_acceleration,
-            ..*self
-        }
-    }
-
-    /// Every component, for finiteness checks.
-    pub fn components(&self) -> Vec<f64> {
-        let mut out = Vec::new();
-        out.extend_from_slice(self.position.as_ref());
-        out.extend_from_slice(self.velocity.as_ref());
-        out.extend_from_slice(self.acceleration.as_ref());
-        for m in [&self.angular_velocity, &self.angular_acceleration] {
-            out.extend_from_slice(S::moment_components(m));
-        }
-        out
-    }
-
-    /// Whether the frame moves at all (a rate or an acceleration nonzero).
-    pub fn is_moving(&self) -> bool {
-        let nz = |v: &[f64]| v.iter().any(|x| *x != 0.0);
-        nz(self.velocity.as_ref())
-            || nz(self.acceleration.as_ref())
-            || nz(S::moment_components(&self.angular_velocity))
-            || nz(S::moment_components(&self.angular_acceleration))
-    }
-}
-
-/// Rates of change of the accelerations along a path: jerk and snap [m/s³, m/s⁴], angular
-/// jerk and snap [rad/s³, rad/s⁴] (a host's input derivatives; zero: constant acceleration).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(bound(
-    serialize = "S::Vec: Serialize, S::Moment: Serialize",
-    deserialize = "S::Vec: Deserialize<'de>, S::Moment: Deserialize<'de>"
-))]
-pub struct MotionRates<S: Space> {
-    /// d(acceleration)/dt.
-    pub jerk: S::Vec,
-    /// d²(acceleration)/dt².
-    pub snap: S::Vec,
-    /// d(angular acceleration)/dt.
-    pub angular_jerk: S::Moment,
-    /// d²(angular acceleration)/dt².
-    pub angular_snap: S::Moment,
-}
+use super::space::{Motion, Space};
 
 /// The rigid inertia of the beam at the mount: what a host adds to its mount body.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -129,7 +39,7 @@ fn moment3<S: Space>(m: &S::Moment) -> [f64; 3] {
     }
 }
 
-use super::modal::body3d::cross;
+use super::vector::cross;
 
 impl<S: Space> MountInertia<S> {
     /// Centre of mass c [m] and inertia about the mount point I [kg m²] in world axes, for a

@@ -20,45 +20,11 @@
 
 use super::basis::ModalBasis;
 use crate::math;
+use crate::model::vector::{add, cross, dot, scale, Real, V3};
 use crate::scene::Segment;
 use nalgebra::{Matrix2, Vector2};
-use num_dual::{Dual64, DualNum};
+use num_dual::Dual64;
 use std::f64::consts::{PI, SQRT_2};
-
-/// A scalar the kernel runs on: f64 or a dual number over f64.
-pub trait Real: DualNum<Primitive = f64> + Copy {}
-impl<T: DualNum<Primitive = f64> + Copy> Real for T {}
-
-/// A 3-vector of scalars.
-pub type V3<T> = [T; 3];
-
-/// a × b.
-#[inline]
-pub fn cross<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// a·b.
-#[inline]
-pub fn dot<T: Real>(a: V3<T>, b: V3<T>) -> T {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// s·a.
-#[inline]
-pub fn scale<T: Real>(a: V3<T>, s: T) -> V3<T> {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-
-/// a + b.
-#[inline]
-pub fn add<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
 
 /// A(p) = (e0² − eᵀe)I + 2eeᵀ + 2e0ẽ, rows (body → world; a rotation for |p| = 1).
 #[inline]

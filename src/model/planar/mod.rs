@@ -16,8 +16,8 @@ pub use ends::{
 pub use joint::RigidJoint;
 
 use super::dofs::Rigid;
-use super::mount::{Motion, MotionRates};
 use super::space::Space;
+use super::space::{Motion, MotionRates};
 
 pub(crate) use mount::poly;
 

@@ -4,25 +4,13 @@
 use super::Planar;
 use crate::math;
 use crate::model::dofs::Rigid;
-use crate::model::mount::{Motion, MotionRates};
+use crate::model::space::{Motion, MotionRates};
+use crate::model::vector::{add2, cross_z, sub2};
 
 /// R(θ) v.
 fn rot(th: f64, v: [f64; 2]) -> [f64; 2] {
     let (s, c) = math::sin_cos(th);
     [c * v[0] - s * v[1], s * v[0] + c * v[1]]
-}
-
-/// ω × v for ω about z.
-fn cross(w: f64, v: [f64; 2]) -> [f64; 2] {
-    [-w * v[1], w * v[0]]
-}
-
-fn add(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] + b[0], a[1] + b[1]]
-}
-
-fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] - b[0], a[1] - b[1]]
 }
 
 fn two(x: &[f64]) -> [f64; 2] {
@@ -44,15 +32,15 @@ pub(super) fn carry(kind: Rigid, m: &Motion<Planar>, rel: [&[f64]; 3], out: [&mu
             let rdd = rot(m.attitude, two(rel[2]));
             // v = v_b + ω×ρ + ρ̇, a = a_b + α×ρ + ω×(ω×ρ) + 2ω×ρ̇ + ρ̈
             let mut qo = rho;
-            let mut vo = add(cross(w, rho), rd);
-            let mut ao = add(
-                add(cross(al, rho), [-w * w * rho[0], -w * w * rho[1]]),
-                add(cross(2.0 * w, rd), rdd),
+            let mut vo = add2(cross_z(w, rho), rd);
+            let mut ao = add2(
+                add2(cross_z(al, rho), [-w * w * rho[0], -w * w * rho[1]]),
+                add2(cross_z(2.0 * w, rd), rdd),
             );
             if kind == Rigid::Point {
-                qo = add(m.position, qo);
-                vo = add(m.velocity, vo);
-                ao = add(m.acceleration, ao);
+                qo = add2(m.position, qo);
+                vo = add2(m.velocity, vo);
+                ao = add2(m.acceleration, ao);
             }
             q[..2].copy_from_slice(&qo);
             v[..2].copy_from_slice(&vo);
@@ -74,14 +62,14 @@ pub(super) fn uncarry(kind: Rigid, m: &Motion<Planar>, abs: [&[f64]; 3], out: [&
         Rigid::Point | Rigid::Direction => {
             let (mut rho, mut vv, mut aa) = (two(abs[0]), two(abs[1]), two(abs[2]));
             if kind == Rigid::Point {
-                rho = sub(rho, m.position);
-                vv = sub(vv, m.velocity);
-                aa = sub(aa, m.acceleration);
+                rho = sub2(rho, m.position);
+                vv = sub2(vv, m.velocity);
+                aa = sub2(aa, m.acceleration);
             }
-            let rd = sub(vv, cross(w, rho));
-            let rdd = sub(
-                sub(aa, cross(al, rho)),
-                add([-w * w * rho[0], -w * w * rho[1]], cross(2.0 * w, rd)),
+            let rd = sub2(vv, cross_z(w, rho));
+            let rdd = sub2(
+                sub2(aa, cross_z(al, rho)),
+                add2([-w * w * rho[0], -w * w * rho[1]], cross_z(2.0 * w, rd)),
             );
             q[..2].copy_from_slice(&rot(-m.attitude, rho));
             v[..2].copy_from_slice(&rot(-m.attitude, rd));

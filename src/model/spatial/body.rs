@@ -15,8 +15,9 @@ use crate::model::component::{
     Constraint, ConstraintOut, Element, ElementOut, Energies, Env, LocalState, Port, Support,
     Validity,
 };
-use crate::model::modal::body3d::{self, cross, euler_rotation, Real, V3};
+use crate::model::modal::body3d::{self, euler_rotation};
 use crate::model::modal::ModalBody3;
+use crate::model::vector::{self, cross, Real, V3};
 use nalgebra::{Matrix3, Vector3};
 use num_dual::HyperDual64;
 use std::any::Any;
@@ -141,9 +142,9 @@ fn frame_field(
 /// Orthonormal frame [t, d2, d3] of a tangent and a section director: t = T/|T|, d2 the
 /// normalized part of S ⟂ t, d3 = t × d2.
 fn frame_of<T: Real>(t: V3<T>, s: V3<T>) -> [V3<T>; 3] {
-    let t = body3d::scale(t, body3d::dot(t, t).sqrt().recip());
-    let u = body3d::add(s, body3d::scale(t, -body3d::dot(t, s)));
-    let d2 = body3d::scale(u, body3d::dot(u, u).sqrt().recip());
+    let t = vector::scale(t, vector::dot(t, t).sqrt().recip());
+    let u = vector::add(s, vector::scale(t, -vector::dot(t, s)));
+    let d2 = vector::scale(u, vector::dot(u, u).sqrt().recip());
     let d3 = cross(t, d2);
     [t, d2, d3]
 }
@@ -315,8 +316,8 @@ fn tip_directors<T: Real>(vs: T, ws: T, th: T) -> [V3<T>; 5] {
     let n1 = [-(a * vs), one - b * vs * vs, -(b * vs * ws)];
     let n2 = [-(a * ws), -(b * vs * ws), one - b * ws * ws];
     let (st, ct) = math::sin_cos_dual(th);
-    let s = body3d::add(body3d::scale(n1, ct), body3d::scale(n2, st));
-    let n3 = body3d::add(body3d::scale(n2, ct), body3d::scale(n1, -st));
+    let s = vector::add(vector::scale(n1, ct), vector::scale(n2, st));
+    let n3 = vector::add(vector::scale(n2, ct), vector::scale(n1, -st));
     [t, s, n1, n2, n3]
 }
 

@@ -20,8 +20,8 @@ pub use kin::{EndKin3, Field3};
 pub use node::{AncfElement3, NodePort3, NodeSupport3};
 
 use super::dofs::Rigid;
-use super::mount::{Motion, MotionRates};
 use super::space::Space;
+use super::space::{Motion, MotionRates};
 
 /// Space: vectors `[x, y, z]` (global axes), moments and angular velocities `[x, y, z]`,
 /// orientations as Euler parameters `[e0, e1, e2, e3]` (scalar first, section frame → world).

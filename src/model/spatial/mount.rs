@@ -6,28 +6,12 @@
 use super::Spatial;
 use crate::math;
 use crate::model::dofs::Rigid;
-use crate::model::modal::body3d::cross;
-use crate::model::mount::{Motion, MotionRates};
 use crate::model::planar::poly;
+use crate::model::space::{Motion, MotionRates};
+use crate::model::vector::{add, cross, dot, scale, sub};
 
 type V = [f64; 3];
 type Q = [f64; 4];
-
-fn add(a: V, b: V) -> V {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn scale(s: f64, a: V) -> V {
-    [s * a[0], s * a[1], s * a[2]]
-}
-
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
 
 fn three(x: &[f64]) -> V {
     [x[0], x[1], x[2]]
@@ -40,7 +24,7 @@ fn four(x: &[f64]) -> Q {
 /// Hamilton product a ⊗ b.
 fn qmul(a: Q, b: Q) -> Q {
     let (a0, av, b0, bv) = (a[0], [a[1], a[2], a[3]], b[0], [b[1], b[2], b[3]]);
-    let v = add(add(scale(a0, bv), scale(b0, av)), cross(av, bv));
+    let v = add(add(scale(bv, a0), scale(av, b0)), cross(av, bv));
     [a0 * b0 - dot(av, bv), v[0], v[1], v[2]]
 }
 
@@ -66,8 +50,8 @@ fn pure(v: V) -> Q {
 pub(crate) fn rotate(p: &Q, v: V) -> V {
     let e = [p[1], p[2], p[3]];
     add(
-        add(scale(p[0] * p[0] - dot(e, e), v), scale(2.0 * dot(e, v), e)),
-        scale(2.0 * p[0], cross(e, v)),
+        add(scale(v, p[0] * p[0] - dot(e, e)), scale(e, 2.0 * dot(e, v))),
+        scale(cross(e, v), 2.0 * p[0]),
     )
 }
 
@@ -79,8 +63,8 @@ pub(crate) fn rotate_back(p: &Q, v: V) -> V {
 /// ṗ_b and p̈_b of the frame.
 fn frame_rates(m: &Motion<Spatial>) -> (Q, Q) {
     let (w, al, p) = (m.angular_velocity, m.angular_acceleration, m.attitude);
-    let pd = qmul(pure(scale(0.5, w)), p);
-    let pdd = qadd(qmul(pure(scale(0.5, al)), p), p, -0.25 * dot(w, w));
+    let pd = qmul(pure(scale(w, 0.5)), p);
+    let pdd = qadd(qmul(pure(scale(al, 0.5)), p), p, -0.25 * dot(w, w));
     (pd, pdd)
 }
 
@@ -106,7 +90,7 @@ pub(super) fn carry(kind: Rigid, m: &Motion<Spatial>, rel: [&[f64]; 3], out: [&m
             let mut vo = add(cross(w, rho), rd);
             let mut ao = add(
                 add(cross(al, rho), cross(w, cross(w, rho))),
-                add(cross(scale(2.0, w), rd), rdd),
+                add(cross(scale(w, 2.0), rd), rdd),
             );
             if kind == Rigid::Point {
                 qo = add(m.position, qo);
@@ -146,7 +130,7 @@ pub(super) fn uncarry(kind: Rigid, m: &Motion<Spatial>, abs: [&[f64]; 3], out: [
             let rd = sub(vv, cross(w, rho));
             let rdd = sub(
                 sub(aa, cross(al, rho)),
-                add(cross(w, cross(w, rho)), cross(scale(2.0, w), rd)),
+                add(cross(w, cross(w, rho)), cross(scale(w, 2.0), rd)),
             );
             q[..3].copy_from_slice(&rotate_back(&m.attitude, rho));
             v[..3].copy_from_slice(&rotate_back(&m.attitude, rd));
@@ -194,8 +178,8 @@ pub(super) fn advance(m: &Motion<Spatial>, r: &MotionRates<Spatial>, tau: f64) -
         );
     }
     let comm = scale(
-        tau * tau * tau / 12.0,
         cross(m.angular_acceleration, m.angular_velocity),
+        tau * tau * tau / 12.0,
     );
     let rot = exp(add(phi, comm));
     out.attitude = normalize(qmul(rot, m.attitude)).unwrap_or(m.attitude);

@@ -4,10 +4,11 @@
 
 use super::kin::{EndKin3, Field3};
 use super::Spatial;
-use crate::model::ancf3d::{Ancf3Props, MassPatterns, Real, Tables3, TORSION_DOFS};
+use crate::model::ancf3d::{Ancf3Props, MassPatterns, Tables3, TORSION_DOFS};
 use crate::model::component::{
     Element, ElementOut, Energies, Env, LocalState, Port, Support, Validity,
 };
+use crate::model::vector::Real;
 use nalgebra::{Matrix3, Vector3};
 use num_dual::{Dual2Vec, DualSVec64};
 use std::any::Any;
