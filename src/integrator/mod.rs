@@ -12,7 +12,7 @@ pub use generalized_alpha::{
 };
 pub use parameters::*;
 pub use seam::{constraint_rows, EvalRequest, Integrable, StateRef};
-pub use statics::{solve_static, StaticFailure};
+pub use statics::{solve_relative_static, solve_static, StaticFailure};
 
 /// Dynamic state of the model.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]

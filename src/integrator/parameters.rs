@@ -85,6 +85,9 @@ pub const STATIC_TOLERANCE_FACTOR: f64 = 1e-2;
 /// Newton iteration limit per load step of the statics.
 pub const STATIC_MAX_ITER: usize = 40;
 
+/// Largest n + m of [`super::solve_relative_static`] (its dense Jacobian).
+pub const RELATIVE_STATIC_MAX: usize = 3000;
+
 /// Smallest load increment of the statics' load stepping before giving up.
 pub const STATIC_MIN_INCREMENT: f64 = 1e-6;
 

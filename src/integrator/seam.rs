@@ -91,6 +91,12 @@ pub trait Integrable {
         0.0
     }
 
+    /// The matrix assembled by the last [`Integrable::eval`] with a matrix request, as dense
+    /// rows, where the model can give it (dense analyses of small models); `None` by default.
+    fn dense_matrix(&self) -> Option<Vec<Vec<f64>>> {
+        None
+    }
+
     /// Applies a Newton increment `dq` (n) to the coordinates `q` (Chrono's
     /// `StateIncrementX`). Additive by default; a model whose coordinates live on a manifold
     /// (Euler parameters) may override it. Rates and accelerations stay additive.

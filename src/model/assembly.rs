@@ -315,6 +315,10 @@ impl<S: Space> Integrable for Model<S> {
         self.n
     }
 
+    fn dense_matrix(&self) -> Option<Vec<Vec<f64>>> {
+        Some(self.assembled_dense())
+    }
+
     fn constraints(&self) -> usize {
         self.m
     }

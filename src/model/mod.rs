@@ -25,9 +25,10 @@ pub mod ancf3d;
 pub mod assembly;
 pub mod component;
 pub mod dofs;
+pub mod held;
+pub mod inertia;
 pub mod load;
 pub mod modal;
-pub mod mount;
 pub mod outputs;
 pub mod planar;
 pub mod space;
@@ -40,7 +41,7 @@ pub use component::{
     Validity,
 };
 pub use dofs::{Dof, LocalDofs, Numbering, Rigid, RigidGroup};
-pub use mount::MountInertia;
+pub use inertia::MountInertia;
 pub use outputs::{ModelValidity, Outputs};
 pub use planar::Planar;
 pub use space::{Motion, MotionRates, PortKin, Space};

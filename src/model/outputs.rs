@@ -38,7 +38,7 @@ pub struct Outputs<S: Space> {
     /// counter-clockwise positive; zero for a pinned root).
     pub root_moment: S::Moment,
     /// The beam's rigid inertia at the mount (`root = "mounted"` only).
-    pub mount: Option<super::mount::MountInertia<S>>,
+    pub mount: Option<super::inertia::MountInertia<S>>,
     /// The reaction beyond the rigid inertia's own at the current mount motion and gravity
     /// ([`MountInertia::rigid_reaction`](super::mount::MountInertia::rigid_reaction)): force
     /// [N] (`root = "mounted"` only, else zero), what a host that carries `mount` as interface

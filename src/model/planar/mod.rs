@@ -6,8 +6,8 @@
 mod build;
 mod elements;
 mod ends;
+mod frame;
 mod joint;
-mod mount;
 
 pub use elements::{AncfElement, ModalElement};
 pub use ends::{
@@ -19,7 +19,7 @@ use super::dofs::Rigid;
 use super::space::Space;
 use super::space::{Motion, MotionRates};
 
-pub(crate) use mount::poly;
+pub(crate) use frame::poly;
 
 /// The x–y plane: vectors `[x, y]`, moments about z (counter-clockwise positive), orientations
 /// as the angle from global x [rad].
@@ -64,15 +64,15 @@ impl Space for Planar {
     }
 
     fn carry(kind: Rigid, m: &Motion<Self>, rel: [&[f64]; 3], out: [&mut [f64]; 3]) {
-        mount::carry(kind, m, rel, out)
+        frame::carry(kind, m, rel, out)
     }
 
     fn uncarry(kind: Rigid, m: &Motion<Self>, abs: [&[f64]; 3], out: [&mut [f64]; 3]) {
-        mount::uncarry(kind, m, abs, out)
+        frame::uncarry(kind, m, abs, out)
     }
 
     fn advance_motion(m: &Motion<Self>, rates: &MotionRates<Self>, tau: f64) -> Motion<Self> {
-        mount::advance(m, rates, tau)
+        frame::advance(m, rates, tau)
     }
 
     fn attitude_angle(a: &f64, b: &f64) -> f64 {
@@ -84,10 +84,10 @@ impl Space for Planar {
     }
 
     fn to_frame(a: &f64, v: &[f64; 2]) -> [f64; 2] {
-        mount::to_frame(*a, v)
+        frame::to_frame(*a, v)
     }
 
     fn from_frame(a: &f64, v: &[f64; 2]) -> [f64; 2] {
-        mount::to_frame(-*a, v)
+        frame::to_frame(-*a, v)
     }
 }

@@ -9,9 +9,9 @@
 
 mod body;
 mod build;
+mod frame;
 mod joint;
 mod kin;
-mod mount;
 mod node;
 
 pub use body::{EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3};
@@ -86,30 +86,30 @@ impl Space for Spatial {
     }
 
     fn carry(kind: Rigid, m: &Motion<Self>, rel: [&[f64]; 3], out: [&mut [f64]; 3]) {
-        mount::carry(kind, m, rel, out)
+        frame::carry(kind, m, rel, out)
     }
 
     fn uncarry(kind: Rigid, m: &Motion<Self>, abs: [&[f64]; 3], out: [&mut [f64]; 3]) {
-        mount::uncarry(kind, m, abs, out)
+        frame::uncarry(kind, m, abs, out)
     }
 
     fn advance_motion(m: &Motion<Self>, rates: &MotionRates<Self>, tau: f64) -> Motion<Self> {
-        mount::advance(m, rates, tau)
+        frame::advance(m, rates, tau)
     }
 
     fn attitude_angle(a: &[f64; 4], b: &[f64; 4]) -> f64 {
-        mount::angle_between(a, b)
+        frame::angle_between(a, b)
     }
 
     fn normalized_attitude(a: &[f64; 4]) -> Option<[f64; 4]> {
-        mount::normalize(*a)
+        frame::normalize(*a)
     }
 
     fn to_frame(a: &[f64; 4], v: &[f64; 3]) -> [f64; 3] {
-        mount::rotate_back(a, *v)
+        frame::rotate_back(a, *v)
     }
 
     fn from_frame(a: &[f64; 4], v: &[f64; 3]) -> [f64; 3] {
-        mount::rotate(a, *v)
+        frame::rotate(a, *v)
     }
 }

@@ -1,122 +1,19 @@
-//! The mount: a moving frame the root of a `root = "mounted"` beam is clamped to. The held
-//! root coordinates are rigid functions of the mount's motion (values, rates and accelerations:
-//! the elements' residuals then carry the base's inertial loads, and the held rows' residual is
-//! the reaction including them); the free coordinates are carried rigidly to place the initial
-//! state and to re-anchor the beam when a host's pose differs from the predicted one.
+//! The held coordinates of a mounted root: a moving frame the root of a `root = "mounted"` beam
+//! is clamped to. The held root coordinates are rigid functions of the mount's motion (values,
+//! rates and accelerations: the elements' residuals then carry the base's inertial loads, and
+//! the held rows' residual is the reaction including them); the free coordinates are carried
+//! rigidly to place the initial state and to re-anchor the beam when a host's pose differs
+//! from the predicted one; the rigid field of a turning mount gives the relative static start.
 //! Dimension-free: a [`Space`] supplies the rigid motion of each kind of coordinate group.
 
 use super::assembly::Model;
 use super::component::{Env, LocalState};
 use super::dofs::{Dof, RigidGroup};
+use super::inertia::MountInertia;
 use super::space::{Motion, Space};
-
-/// The rigid inertia of the beam at the mount: what a host adds to its mount body.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct MountInertia<S: Space> {
-    /// Mass [kg].
-    pub mass: f64,
-    /// Centre of mass relative to the mount point [m], mount frame axes.
-    pub center_of_mass: S::Vec,
-    /// Inertia tensor about the mount point [kg m²], mount frame axes, row-major DIM×DIM in
-    /// space (xx, xy, xz, yx, …); in the plane the single entry zz.
-    pub inertia: [f64; 9],
-}
-
-/// A vector of a space as three components (the plane's z = 0).
-fn vec3<S: Space>(v: &S::Vec) -> [f64; 3] {
-    let mut out = [0.0; 3];
-    out[..S::DIM].copy_from_slice(&v.as_ref()[..S::DIM]);
-    out
-}
-
-/// A moment of a space as three components (the plane's about z).
-fn moment3<S: Space>(m: &S::Moment) -> [f64; 3] {
-    let c = S::moment_components(m);
-    if c.len() == 1 {
-        [0.0, 0.0, c[0]]
-    } else {
-        [c[0], c[1], c[2]]
-    }
-}
-
-use super::vector::cross;
-
-impl<S: Space> MountInertia<S> {
-    /// Centre of mass c [m] and inertia about the mount point I [kg m²] in world axes, for a
-    /// mount frame at orientation `attitude` (3 components; the plane: z = 0, only I_zz).
-    fn world(&self, attitude: &S::Attitude) -> ([f64; 3], [[f64; 3]; 3]) {
-        let c = vec3::<S>(&S::from_frame(attitude, &self.center_of_mass));
-        let iw = S::inertia_to_world(attitude, &self.inertia);
-        (c, iw)
-    }
-
-    /// The reaction of a rigid body with this inertia moving with the mount `m` under
-    /// `gravity` (support on the body, world axes; moment about the mount point):
-    /// F = m (a + α × c + ω × (ω × c) − g), M = I α + ω × I ω + m c × (a − g), with c and I in
-    /// world axes. A beam's reaction minus this is its elastic part.
-    pub fn rigid_reaction(&self, m: &Motion<S>, gravity: &S::Vec) -> (S::Vec, S::Moment) {
-        let (c, iw) = self.world(&m.attitude);
-        let (w, al) = (
-            moment3::<S>(&m.angular_velocity),
-            moment3::<S>(&m.angular_acceleration),
-        );
-        let (a, g) = (vec3::<S>(&m.acceleration), vec3::<S>(gravity));
-        let (ac, wwc) = (cross(al, c), cross(w, cross(w, c)));
-        let mut f = S::Vec::default();
-        for k in 0..S::DIM {
-            f[k] = self.mass * (a[k] + ac[k] + wwc[k] - g[k]);
-        }
-        let iv = |v: [f64; 3]| {
-            std::array::from_fn::<f64, 3, _>(|r| (0..3).map(|k| iw[r][k] * v[k]).sum())
-        };
-        let (ia, gyro) = (iv(al), cross(w, iv(w)));
-        let ag = std::array::from_fn(|k| a[k] - g[k]);
-        let cm = cross(c, ag);
-        let mut mo = S::Moment::default();
-        for (x, &k) in S::moment_components_mut(&mut mo)
-            .iter_mut()
-            .zip(S::MOMENT_INDICES)
-        {
-            *x = ia[k] + gyro[k] + self.mass * cm[k];
-        }
-        (f, mo)
-    }
-
-    /// ∂[`MountInertia::rigid_reaction`]/∂(a, α) for a mount frame at orientation `attitude`:
-    /// the rigid body's mass matrix at the mount point, rows force then moment components,
-    /// columns acceleration then angular acceleration components (world axes):
-    /// [m 1, −m [c]×; m [c]×, I].
-    pub fn mass_matrix(&self, attitude: &S::Attitude) -> Vec<Vec<f64>> {
-        let (c, iw) = self.world(attitude);
-        let skew = [[0.0, -c[2], c[1]], [c[2], 0.0, -c[0]], [-c[1], c[0], 0.0]];
-        let m = self.mass;
-        // the 6×6 matrix, then the space's rows and columns
-        let full = |r: usize, k: usize| match (r < 3, k < 3) {
-            (true, true) => {
-                if r == k {
-                    m
-                } else {
-                    0.0
-                }
-            }
-            (true, false) => -m * skew[r][k - 3],
-            (false, true) => m * skew[r - 3][k],
-            (false, false) => iw[r - 3][k - 3],
-        };
-        let idx: Vec<usize> = (0..S::DIM)
-            .chain(S::MOMENT_INDICES.iter().map(|k| k + 3))
-            .collect();
-        idx.iter()
-            .map(|&r| idx.iter().map(|&k| full(r, k)).collect())
-            .collect()
-    }
-}
 
 /// A fixed-size scratch of a group's coordinates.
 type G = [f64; 4];
-
-/// Largest n + m of [`Model::solve_relative_static`] (its dense Jacobian).
-pub const RELATIVE_STATIC_MAX: usize = 3000;
 
 impl<S: Space> Model<S> {
     /// Whether the root is clamped to a moving mount.
@@ -225,11 +122,8 @@ impl<S: Space> Model<S> {
     }
 
     /// Static equilibrium relative to a mount turning at a constant rate (the motion `m`, in
-    /// world axes): the free coordinates `state.q` (world values, carried to the mount) and the
-    /// multipliers such that the equations of motion hold with the rigid field's rates and
-    /// accelerations ([`Model::rest_rates`]: centrifugal and Coriolis-free, the beam at rest in
-    /// the mount frame). Newton on q and λ with the exact Jacobian K + C ∂v/∂q + M ∂a/∂q,
-    /// assembled dense (O((n + m)²) memory; up to [`RELATIVE_STATIC_MAX`] unknowns). On
+    /// world axes): [`crate::integrator::solve_relative_static`] with this model's rigid field
+    /// ([`Model::rest_rates`]: the beam at rest in the mount frame) and its Jacobians. On
     /// success `state` holds q, the rest rates, accelerations and λ.
     pub fn solve_relative_static(
         &mut self,
@@ -237,68 +131,13 @@ impl<S: Space> Model<S> {
         state: &mut crate::integrator::State,
         tol: f64,
     ) -> Result<usize, crate::integrator::StaticFailure> {
-        use crate::integrator::{EvalRequest, Integrable, StateRef, StaticFailure};
-        let (n, mc) = (self.coordinates(), self.constraints());
-        let d = n + mc;
-        let fail = |reason: String| StaticFailure { load: 0.0, reason };
-        if d > RELATIVE_STATIC_MAX {
-            return Err(fail(format!(
-                "{d} unknowns: the static start on a turning mount is solved dense, up to {RELATIVE_STATIC_MAX}"
-            )));
-        }
-        let scale = self.scales().to_vec();
-        let (mut q, mut lam) = (state.q.clone(), state.lambda.clone());
-        let (mut v, mut a) = (vec![0.0; n], vec![0.0; n]);
-        let mut res = vec![0.0; d];
-        for iter in 1..=crate::integrator::STATIC_MAX_ITER {
-            self.rest_rates(m, &q, &mut v, &mut a);
-            let mut dense = |model: &mut Self, c: (f64, f64, f64), hessian: bool| {
-                let req = EvalRequest {
-                    sd: 1.0,
-                    matrix: Some(c),
-                    lambda_hessian: hessian,
-                };
-                model.eval(StateRef::new(&q, &v, &a, &lam), req, &mut res);
-                model.assembled_dense()
-            };
-            let mass = dense(self, (1.0, 0.0, 0.0), false);
-            let damping = dense(self, (0.0, 1.0, 0.0), false);
-            let stiffness = dense(self, (0.0, 0.0, 1.0), true);
-            let mut j = nalgebra::DMatrix::from_fn(d, d, |r, c| stiffness[r][c]);
-            let [dv, da] = self.rest_rate_jacobians(m, &q);
-            for (jac, mat) in [(&dv, &damping), (&da, &mass)] {
-                for &(k, col, x) in jac {
-                    for row in 0..n {
-                        j[(row, col)] += mat[row][k] * x;
-                    }
-                }
-            }
-            let rhs = nalgebra::DVector::from_iterator(d, res.iter().map(|r| -r));
-            let step = j
-                .lu()
-                .solve(&rhs)
-                .ok_or_else(|| fail("singular Jacobian".into()))?;
-            self.increment(&mut q, &step.as_slice()[..n]);
-            for (l, s) in lam.iter_mut().zip(&step.as_slice()[n..]) {
-                *l += s;
-            }
-            let norm = crate::integrator::scaled_norm(&step.as_slice()[..n], &scale);
-            if !norm.is_finite() {
-                break;
-            }
-            if norm <= tol {
-                self.rest_rates(m, &q, &mut v, &mut a);
-                state.q = q;
-                state.v = v;
-                state.acc = a;
-                state.aux.fill(0.0);
-                state.lambda = lam;
-                return Ok(iter);
-            }
-        }
-        Err(fail(
-            "Newton did not converge in the turning mount's frame".into(),
-        ))
+        crate::integrator::solve_relative_static(
+            self,
+            |model: &Self, q: &[f64], v: &mut [f64], a: &mut [f64]| model.rest_rates(m, q, v, a),
+            |model: &Self, q: &[f64]| model.rest_rate_jacobians(m, q),
+            state,
+            tol,
+        )
     }
 
     /// Re-anchors free coordinates, rates and accelerations (`acc` and any further
