@@ -3,7 +3,7 @@
 //! change if the host gives input derivatives), the input set for the next step, and the
 //! estimate of the accelerations from velocity inputs (`motion_input = "pose_velocity"`).
 
-use super::SpaceModel;
+use super::*;
 use crate::error::Refusal;
 use crate::model::{Motion, MotionRates};
 use crate::scene::{MotionInput, Mount, Scene};
@@ -144,4 +144,216 @@ fn motion_of<S: SpaceModel>(m: &Mount) -> Motion<S> {
     out.angular_acceleration = mom(&m.angular_acceleration);
     out.attitude = S::attitude_from(m);
     out
+}
+
+impl<S: SpaceModel> Simulator<S> {
+    /// Sets the mount's motion at the current time for the next step (`root = "mounted"`):
+    /// checked (finite, a defined orientation, which is normalized), with accelerations
+    /// estimated from the velocities when `input.accelerations` is false. It takes effect at
+    /// the next [`Simulator::advance`]: a pose or velocity that differs from the path's
+    /// prediction re-anchors the beam rigidly, an acceleration that differs is a jump of the
+    /// inputs; a pose further than [`MAX_MOUNT_JUMP_LENGTH`] · length or
+    /// [`MAX_MOUNT_JUMP_ANGLE`] from the prediction is refused there.
+    pub fn set_mount(&mut self, input: MountInput<S>) -> Result<(), SimError> {
+        let t = self.state.t;
+        let Some(ms) = &mut self.mount else {
+            return Err(SimError::Refused {
+                t,
+                refusal: Refusal::MountInput(
+                    "this scene's root is not mounted (set root = \"mounted\" to drive it)".into(),
+                ),
+            });
+        };
+        ms.checked(input, t)
+            .map_err(|refusal| SimError::Refused { t, refusal })?;
+        ms.pending = Some(input);
+        Ok(())
+    }
+
+    /// The mount input set for the next step, else the motion now (`None` for a fixed root).
+    pub fn mount_input(&self) -> Option<MountInput<S>> {
+        self.mount.as_ref().map(|m| m.input_or_now(self.state.t))
+    }
+
+    /// Sets the mount input for the next step without checking it (a host writing one scalar
+    /// at a time; [`Simulator::advance`] checks it): `false` for a fixed root.
+    pub fn set_mount_unchecked(&mut self, input: MountInput<S>) -> bool {
+        match &mut self.mount {
+            Some(m) => {
+                m.pending = Some(input);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The beam's apparent mass at the mount: the exact partial derivatives of the reaction
+    /// (`root.force` then `root.moment` components, rows) with respect to the mount's
+    /// acceleration and angular acceleration (columns), at the current state — what the
+    /// reaction's direct feedthrough is ([`Outputs::root_force`] after an acceleration input
+    /// changes by Δa is the current one plus this matrix times Δa). Each column is the
+    /// acceleration jump of a unit input change (`[M Φ_qᵀ; Φ_q 0]` solve, linear in it) on a
+    /// scratch state; the held Newton matrix is then rebuilt where it was, so the run continues
+    /// bit for bit. `None` for a fixed root or when the solve fails.
+    pub fn apparent_mass(&mut self) -> Option<Vec<Vec<f64>>> {
+        let m0 = *self.model.mount_motion()?;
+        let mem = self.integ.memory();
+        let at_matrix = self.model.mount_at_matrix();
+        let base = self.outputs();
+        let rot = S::moment_components(&m0.angular_velocity).len();
+        let mut cols = Vec::new();
+        for k in 0..S::DIM + rot {
+            let mut m1 = m0;
+            if k < S::DIM {
+                m1.acceleration[k] += 1.0;
+            } else {
+                S::moment_components_mut(&mut m1.angular_acceleration)[k - S::DIM] += 1.0;
+            }
+            let mut s = self.state.clone();
+            let ok = self
+                .integ
+                .change_inputs(&mut self.model, &mut s, |m| m.set_mount(&m1))
+                .is_ok();
+            let o = self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda);
+            self.model.set_mount(&m0);
+            if !ok {
+                self.rebuild_matrix(&mem, at_matrix);
+                return None;
+            }
+            let mut col: Vec<f64> = (0..S::DIM)
+                .map(|c| o.root_force[c] - base.root_force[c])
+                .collect();
+            let (mo, mb) = (
+                S::moment_components(&o.root_moment),
+                S::moment_components(&base.root_moment),
+            );
+            col.extend(mo.iter().zip(mb).map(|(a, b)| a - b));
+            cols.push(col);
+        }
+        self.rebuild_matrix(&mem, at_matrix);
+        let n = cols.len();
+        Some(
+            (0..n)
+                .map(|r| (0..n).map(|c| cols[c][r]).collect())
+                .collect(),
+        )
+    }
+
+    /// The mass matrix at the mount of the rigid inertia in `outputs` (this state's,
+    /// [`Simulator::outputs`]; [`MountInertia::mass_matrix`](crate::model::MountInertia::mass_matrix),
+    /// ordered as [`Simulator::apparent_mass`]): the rigid reaction's partials by the mount
+    /// accelerations, so the elastic part's are the apparent mass minus these. `None` for a
+    /// fixed root.
+    pub fn rigid_mass_matrix(&self, outputs: &Outputs<S>) -> Option<Vec<Vec<f64>>> {
+        let m = self.model.mount_motion()?;
+        Some(outputs.mount?.mass_matrix(&m.attitude))
+    }
+
+    /// Rebuilds the held Newton matrix of `mem` under the inputs and mount motion it was
+    /// evaluated with, then returns the model to the current ones.
+    pub(super) fn rebuild_matrix(&mut self, mem: &IntegratorMemory, at_matrix: Option<Motion<S>>) {
+        let next = Inputs::of(&self.model);
+        let now = self.model.mount_motion().copied();
+        self.applied.apply(&mut self.model);
+        if let Some(m) = &at_matrix {
+            self.model.set_mount(m);
+        }
+        if self.integ.restore_memory(&mut self.model, mem).is_err() {
+            self.integ.invalidate();
+        }
+        next.apply(&mut self.model);
+        if let Some(m) = &now {
+            self.model.set_mount(m);
+        }
+    }
+
+    /// How the mount input set for the next step changes the accelerations now (the
+    /// acceleration then the angular acceleration components, as checked and estimated by the
+    /// next [`Simulator::advance`]): what the reaction's direct feedthrough multiplies. `None`
+    /// without a pending input or when it would be refused.
+    pub fn mount_acceleration_change(&self) -> Option<Vec<f64>> {
+        let ms = self.mount.as_ref()?;
+        let input = ms.checked(ms.pending?, self.state.t).ok()?;
+        let now = ms.at(self.state.t);
+        let (a, b) = (input.motion, now);
+        let mut d: Vec<f64> = (0..S::DIM)
+            .map(|k| a.acceleration[k] - b.acceleration[k])
+            .collect();
+        let (wa, wb) = (
+            S::moment_components(&a.angular_acceleration),
+            S::moment_components(&b.angular_acceleration),
+        );
+        d.extend(wa.iter().zip(wb).map(|(x, y)| x - y));
+        Some(d)
+    }
+
+    /// The mount's motion now (`None` for a fixed root).
+    pub fn mount(&self) -> Option<Motion<S>> {
+        self.mount.as_ref().map(|m| m.at(self.state.t))
+    }
+
+    /// Whether mount accelerations are inputs (else estimated from velocities).
+    pub fn mount_accelerations_given(&self) -> Option<bool> {
+        self.mount.as_ref().map(|m| m.accelerations_given)
+    }
+
+    /// Takes the pending mount input at the start of a communication step: refuses a jump,
+    /// re-anchors a pose or velocity that differs from the prediction, and returns the motion
+    /// whose accelerations differ from the prediction (a jump of the inputs), if any.
+    pub(super) fn take_mount_input(&mut self) -> Result<Option<Motion<S>>, SimError> {
+        let t0 = self.state.t;
+        let length = self.scene.total_length();
+        let Some(ms) = &mut self.mount else {
+            return Ok(None);
+        };
+        let Some(raw) = ms.pending.take() else {
+            // input derivatives hold for one step: continue the path without them
+            if ms.rates != MotionRates::default() {
+                ms.base = ms.at(t0);
+                ms.t0 = t0;
+                ms.rates = MotionRates::default();
+            }
+            return Ok(None);
+        };
+        let input = match ms.checked(raw, t0) {
+            Ok(i) => i,
+            Err(refusal) => {
+                ms.pending = Some(raw);
+                return Err(SimError::Refused { t: t0, refusal });
+            }
+        };
+        let pred = ms.at(t0);
+        let target = input.motion;
+        let d2: f64 = (0..S::DIM)
+            .map(|k| (target.position[k] - pred.position[k]).powi(2))
+            .sum();
+        let (distance, angle) = (
+            d2.sqrt(),
+            S::attitude_angle(&pred.attitude, &target.attitude),
+        );
+        if !(distance <= MAX_MOUNT_JUMP_LENGTH * length && angle <= MAX_MOUNT_JUMP_ANGLE) {
+            ms.pending = Some(raw);
+            return Err(SimError::Refused {
+                t: t0,
+                refusal: Refusal::MountJump { distance, angle },
+            });
+        }
+        let mid = target.with_accelerations_of(&pred);
+        if mid != pred {
+            let s = &mut self.state;
+            self.model.reanchor(
+                &pred,
+                &mid,
+                &mut s.q,
+                &mut s.v,
+                &mut [&mut s.acc, &mut s.aux],
+            );
+            self.model.set_mount(&mid);
+        }
+        ms.t0 = t0;
+        ms.base = target;
+        ms.rates = input.rates;
+        ms.last = Some((t0, target));
+        Ok((target != mid).then_some(target))
+    }
 }

@@ -1,0 +1,142 @@
+//! The inputs a host changes between communication steps: the tip loads and gravity
+//! ([`Inputs`]), their derivatives over the next step ([`LoadRates`]), and the simulator's
+//! setters and getters of them.
+
+use super::*;
+
+/// The inputs of the equations a host may change between communication steps.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(bound = "")]
+pub struct Inputs<S: SpaceModel> {
+    /// Total tip force [N], global axes.
+    pub tip_force: S::Vec,
+    /// Total dead tip moment [N m], global axes (in the plane: about z, counter-clockwise).
+    pub tip_moment: S::Moment,
+    /// Gravity [m/s²], global axes.
+    pub gravity: S::Vec,
+}
+
+impl<S: SpaceModel> Inputs<S> {
+    pub(super) fn of(model: &Model<S>) -> Self {
+        Self {
+            tip_force: model.tip_force(),
+            tip_moment: model.tip_moment(),
+            gravity: model.gravity(),
+        }
+    }
+
+    pub(super) fn apply(&self, model: &mut Model<S>) {
+        model.set_tip_force(self.tip_force);
+        model.set_tip_moment(self.tip_moment);
+        if model.gravity() != self.gravity {
+            model.set_gravity(self.gravity);
+        }
+    }
+}
+
+/// First and second time derivatives of the tip loads over the coming communication step (FMI
+/// input derivatives; zero: the loads are held): the step integrates
+/// F(t₀ + τ) = F + Ḟτ + ½F̈τ² (and the moment likewise) at every internal step.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(bound = "")]
+pub struct LoadRates<S: SpaceModel> {
+    /// Ḟ [N/s], F̈ [N/s²], global axes.
+    pub force: [S::Vec; 2],
+    /// Ṁ [N m/s], M̈ [N m/s²].
+    pub moment: [S::Moment; 2],
+}
+
+impl<S: SpaceModel> LoadRates<S> {
+    /// Whether any rate is nonzero.
+    pub(super) fn any(&self) -> bool {
+        self.force
+            .iter()
+            .any(|f| f.as_ref().iter().any(|x| *x != 0.0))
+            || self
+                .moment
+                .iter()
+                .any(|m| S::moment_components(m).iter().any(|x| *x != 0.0))
+    }
+
+    /// The loads `tau` [s] after `at`, whose loads are the values at the start.
+    pub(super) fn advanced(&self, at: &Inputs<S>, tau: f64) -> Inputs<S> {
+        let mut out = *at;
+        let (c1, c2) = (tau, 0.5 * tau * tau);
+        for k in 0..S::DIM {
+            out.tip_force[k] += c1 * self.force[0][k] + c2 * self.force[1][k];
+        }
+        let (d1, d2) = (
+            S::moment_components(&self.moment[0]),
+            S::moment_components(&self.moment[1]),
+        );
+        for ((m, a), b) in S::moment_components_mut(&mut out.tip_moment)
+            .iter_mut()
+            .zip(d1)
+            .zip(d2)
+        {
+            *m += c1 * a + c2 * b;
+        }
+        out
+    }
+}
+
+impl<S: SpaceModel> Simulator<S> {
+    /// Sets gravity [m/s²] (takes effect at the next step, as a jump of the inputs).
+    pub fn set_gravity(&mut self, g: S::Vec) {
+        self.model.set_gravity(g);
+    }
+
+    /// Work counters.
+    pub fn counters(&self) -> Counters {
+        self.integ.counters
+    }
+
+    /// Sets the total tip force [N], global axes (replaces the scene's; takes effect at the
+    /// next step, as a jump of the inputs at the current time: see [`Simulator::advance`]).
+    pub fn set_tip_force(&mut self, f: S::Vec) {
+        self.model.set_tip_force(f);
+    }
+
+    /// The total tip force the model applies [N], global axes.
+    pub fn tip_force(&self) -> S::Vec {
+        self.model.tip_force()
+    }
+
+    /// Sets the total dead tip moment [N m], global axes (in the plane: about z,
+    /// counter-clockwise; replaces the scene's; takes effect at the next step, as a jump of the
+    /// inputs like the tip force).
+    pub fn set_tip_moment(&mut self, m: S::Moment) {
+        self.model.set_tip_moment(m);
+    }
+
+    /// The total tip moment the model applies [N m], global axes.
+    pub fn tip_moment(&self) -> S::Moment {
+        self.model.tip_moment()
+    }
+
+    /// Gravity [m/s²], global axes.
+    pub fn gravity(&self) -> S::Vec {
+        self.model.gravity()
+    }
+
+    /// The inputs set for the next step (tip force, tip moment, gravity).
+    pub fn inputs(&self) -> Inputs<S> {
+        Inputs::of(&self.model)
+    }
+
+    /// Sets all inputs (each takes effect at the next step, as a jump of the inputs).
+    pub fn set_inputs(&mut self, inputs: &Inputs<S>) {
+        inputs.apply(&mut self.model);
+    }
+
+    /// The tip loads' derivatives for the next step ([`LoadRates`]); they hold for that step
+    /// only (zero after it).
+    pub fn set_load_rates(&mut self, rates: LoadRates<S>) {
+        self.load_rates = rates;
+    }
+
+    /// The tip loads' derivatives set for the next step.
+    pub fn load_rates(&self) -> LoadRates<S> {
+        self.load_rates
+    }
+}
