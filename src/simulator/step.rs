@@ -18,25 +18,27 @@ pub struct StepControl {
 /// this fraction.
 pub(super) const STEP_ROUNDING: f64 = 1e-9;
 
+/// What a communication step returns to when it fails: the state, step control, mount path
+/// and inputs at its start.
+struct Saved<S: SpaceModel> {
+    state: State,
+    step: StepControl,
+    mount: Option<Box<MountState<S>>>,
+    inputs: Inputs<S>,
+}
+
 impl<S: SpaceModel> Simulator<S> {
-    /// Returns to the state, step control and mount path of the start of an `advance` call
-    /// after a failed or refused communication step (the held Newton matrix belongs to the
-    /// abandoned attempt).
-    pub(super) fn roll_back(
-        &mut self,
-        saved: State,
-        saved_step: StepControl,
-        mount: Option<Box<MountState<S>>>,
-        inputs: &Inputs<S>,
-    ) {
+    /// Returns to what `saved` holds after a failed or refused communication step (the held
+    /// Newton matrix belongs to the abandoned attempt).
+    fn roll_back(&mut self, saved: Saved<S>) {
         // the loads set for the step (an attempt may have left them at a time within it)
-        inputs.apply(&mut self.model);
-        if let Some(ms) = &mount {
-            self.model.set_mount(&ms.at(saved.t));
+        saved.inputs.apply(&mut self.model);
+        if let Some(ms) = &saved.mount {
+            self.model.set_mount(&ms.at(saved.state.t));
         }
-        self.mount = mount;
-        self.state = saved;
-        self.step = saved_step;
+        self.mount = saved.mount;
+        self.state = saved.state;
+        self.step = saved.step;
         self.integ.invalidate();
     }
 
@@ -76,34 +78,66 @@ impl<S: SpaceModel> Simulator<S> {
                 calm: 0,
             };
         }
-        let h_start = self.step.h_ok;
-        let saved = self.state.clone();
-        let saved_step = self.step;
-        let saved_mount = self.mount.clone();
-        let inputs = Inputs::of(&self.model);
-        let mount_jump = match self.take_mount_input() {
-            Ok(j) => j,
-            Err(e) => {
-                self.roll_back(saved, saved_step, saved_mount, &inputs);
-                return Err(e);
-            }
+        let saved = Saved {
+            state: self.state.clone(),
+            step: self.step,
+            mount: self.mount.clone(),
+            inputs: Inputs::of(&self.model),
         };
-        if inputs != self.applied || mount_jump.is_some() {
-            self.applied.apply(&mut self.model);
-            let changed = self
-                .integ
-                .change_inputs(&mut self.model, &mut self.state, |m| {
-                    inputs.apply(m);
-                    if let Some(j) = &mount_jump {
-                        m.set_mount(j);
-                    }
-                })
-                .map_err(|source| SimError::InputJump { t: t0, source });
-            if let Err(e) = changed {
-                self.roll_back(saved, saved_step, saved_mount, &inputs);
-                return Err(e);
+        let inputs = saved.inputs;
+        let done = self.take_mount_input().and_then(|jump| {
+            self.jump_inputs(t0, &inputs, jump)?;
+            let (steps, halvings) = self.internal_steps(t0, t_end, &inputs)?;
+            self.state.t = t_end;
+            self.refusal(t_end)?;
+            Ok((steps, halvings))
+        });
+        match done {
+            Ok((steps, halvings)) => {
+                self.commit(&inputs, span, steps, halvings);
+                Ok(())
+            }
+            Err(e) => {
+                // the one roll-back: every failure returns to the start of the call
+                self.roll_back(saved);
+                Err(e)
             }
         }
+    }
+
+    /// Makes the state consistent with inputs that changed since the last step (or a mount
+    /// acceleration `jump`): a jump of the inputs at the current time.
+    fn jump_inputs(
+        &mut self,
+        t0: f64,
+        inputs: &Inputs<S>,
+        jump: Option<Motion<S>>,
+    ) -> Result<(), SimError> {
+        if *inputs == self.applied && jump.is_none() {
+            return Ok(());
+        }
+        self.applied.apply(&mut self.model);
+        self.integ
+            .change_inputs(&mut self.model, &mut self.state, |m| {
+                inputs.apply(m);
+                if let Some(j) = &jump {
+                    m.set_mount(j);
+                }
+            })
+            .map_err(|source| SimError::InputJump { t: t0, source })
+    }
+
+    /// The internal steps from `t0` to `t_end`, halving a failing one; returns the number of
+    /// steps the span ended in and the halvings.
+    fn internal_steps(
+        &mut self,
+        t0: f64,
+        t_end: f64,
+        inputs: &Inputs<S>,
+    ) -> Result<(u64, u32), SimError> {
+        let span = t_end - t0;
+        let cap = self.scene.solver.max_internal_steps;
+        let h_start = self.step.h_ok;
         // more steps of a reduced h_ok than the cap allows: start from span / cap (≤ h_max)
         let mut steps = ((span / h_start * (1.0 - STEP_ROUNDING)).ceil().max(1.0) as u64).min(cap);
         let mut done = 0u64;
@@ -124,7 +158,7 @@ impl<S: SpaceModel> Simulator<S> {
             if varying {
                 // the loads at the step's end, where its equations hold
                 self.load_rates
-                    .advanced(&inputs, t_next - t0)
+                    .advanced(inputs, t_next - t0)
                     .apply(&mut self.model);
             }
             match self.integ.step(&mut self.model, &mut self.state, h) {
@@ -150,9 +184,9 @@ impl<S: SpaceModel> Simulator<S> {
                         None
                     };
                     if let Some(limit) = limit {
-                        self.roll_back(saved, saved_step, saved_mount, &inputs);
+                        // reported at the time the state returns to
                         return Err(SimError::Step {
-                            t: self.state.t,
+                            t: t0,
                             halvings: halvings - 1,
                             limit,
                             source: e,
@@ -163,7 +197,13 @@ impl<S: SpaceModel> Simulator<S> {
                 }
             }
         }
-        self.state.t = t_end;
+        Ok((steps, halvings))
+    }
+
+    /// The refusal of the state reached at `t_end`, if the model cannot accept it: non-finite,
+    /// a modal segment beyond its deflection limit, an unrepresentable section, too much axial
+    /// strain.
+    fn refusal(&self, t_end: f64) -> Result<(), SimError> {
         let validity = self.model.validity(&self.state.q);
         let strain = validity.max_axial_strain;
         let finite = self
@@ -176,7 +216,6 @@ impl<S: SpaceModel> Simulator<S> {
             .modal_deflection
             .filter(|&(_, d)| finite && d > MAX_MODAL_DEFLECTION);
         if let Some((si, d)) = modal {
-            self.roll_back(saved, saved_step, saved_mount, &inputs);
             return Err(SimError::Refused {
                 t: t_end,
                 refusal: Refusal::ModalDeflection {
@@ -186,11 +225,9 @@ impl<S: SpaceModel> Simulator<S> {
             });
         }
         if let Some(refusal) = self.section_refusal(&validity, true).filter(|_| finite) {
-            self.roll_back(saved, saved_step, saved_mount, &inputs);
             return Err(SimError::Refused { t: t_end, refusal });
         }
         if !finite || strain > MAX_AXIAL_STRAIN {
-            self.roll_back(saved, saved_step, saved_mount, &inputs);
             return Err(if finite {
                 SimError::Refused {
                     t: t_end,
@@ -200,14 +237,21 @@ impl<S: SpaceModel> Simulator<S> {
                 SimError::NonFinite { t: t_end }
             });
         }
-        self.applied = if varying {
+        Ok(())
+    }
+
+    /// Completes a communication step of `span` that ended in `steps` internal steps after
+    /// `halvings`: the applied inputs (their values at its end when they had derivatives) and
+    /// the step control for the next call.
+    fn commit(&mut self, inputs: &Inputs<S>, span: f64, steps: u64, halvings: u32) {
+        self.applied = if self.load_rates.any() {
             // the loads went on to their values at t_end, which stay set (the derivatives held
             // for this step)
-            let end = self.load_rates.advanced(&inputs, span);
+            let end = self.load_rates.advanced(inputs, span);
             self.load_rates = LoadRates::default();
             end
         } else {
-            inputs
+            *inputs
         };
         if halvings > 0 {
             self.step = StepControl {
@@ -217,7 +261,6 @@ impl<S: SpaceModel> Simulator<S> {
         } else {
             self.step.calm = self.step.calm.saturating_add(1);
         }
-        Ok(())
     }
 
     /// The refusal of a configuration whose ANCF section directors the elements cannot
