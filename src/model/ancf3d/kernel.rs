@@ -1,0 +1,239 @@
+//! The element's generic per-point code: Hermite shape values, gathers and scatters of the
+//! 3-vector slots, the bending and twist measures with their gradients. Generic over the scalar
+//! ([`Real`]), so the residual (f64) and the exact tangent (dual numbers) share it.
+
+use super::*;
+
+/// Hermite shape functions and their derivatives at ξ, as the planar element.
+pub(super) fn hermite(xi: f64, l: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
+    let s = crate::model::ancf::Shape::at(xi, l);
+    (s.s, s.ds, s.dds)
+}
+
+pub(super) type V<T> = [T; 3];
+
+/// α a + β b.
+#[inline(always)]
+pub(super) fn lin2<T: Real>(al: T, a: &V<T>, be: T, b: &V<T>) -> V<T> {
+    [
+        al * a[0] + be * b[0],
+        al * a[1] + be * b[1],
+        al * a[2] + be * b[2],
+    ]
+}
+
+/// α a + β b + γ c.
+#[inline(always)]
+pub(super) fn lin3<T: Real>(al: T, a: &V<T>, be: T, b: &V<T>, ga: T, c: &V<T>) -> V<T> {
+    [
+        al * a[0] + be * b[0] + ga * c[0],
+        al * a[1] + be * b[1] + ga * c[1],
+        al * a[2] + be * b[2] + ga * c[2],
+    ]
+}
+
+/// Σ_j w_j e[slot_j..slot_j + 3].
+#[inline(always)]
+pub(super) fn comb<T: Real, const N: usize, const D: usize>(
+    w: &[f64; N],
+    slots: &[usize; N],
+    e: &[T; D],
+) -> V<T> {
+    let mut r = [T::from(0.0); 3];
+    for j in 0..N {
+        let s = slots[j];
+        for c in 0..3 {
+            r[c] += e[s + c] * w[j];
+        }
+    }
+    r
+}
+
+/// `f[slot_j + c] += w_j v_c`.
+#[inline(always)]
+pub(super) fn scatter<T: Real, const N: usize, const D: usize>(
+    f: &mut [T; D],
+    w: &[f64; N],
+    slots: &[usize; N],
+    v: &V<T>,
+) {
+    for j in 0..N {
+        let s = slots[j];
+        for c in 0..3 {
+            f[s + c] += v[c] * w[j];
+        }
+    }
+}
+
+/// How a local vector of a quadrature point is made of element coordinates: Σ_j w_j
+/// e[slot_j..slot_j + 3].
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Map<'a> {
+    pub(super) w: &'a [f64],
+    pub(super) slots: &'a [usize],
+}
+
+impl<'a> Map<'a> {
+    #[inline(always)]
+    pub(super) fn new(w: &'a [f64], slots: &'a [usize]) -> Self {
+        Self { w, slots }
+    }
+}
+
+/// The local vectors of a point.
+#[inline(always)]
+pub(super) fn gather<T: Real, const K: usize, const D: usize>(
+    maps: &[Map<'_>; K],
+    e: &[T; D],
+) -> [V<T>; K] {
+    maps.map(|m| {
+        let mut r = [T::from(0.0); 3];
+        for (w, s) in m.w.iter().zip(m.slots) {
+            for c in 0..3 {
+                r[c] += e[s + c] * *w;
+            }
+        }
+        r
+    })
+}
+
+/// Adds the Jacobians of one point's local forces `g(u, u̇)` (K local vectors) to the element
+/// stiffness `k` and, with `c`, damping matrix: AD with N = 3K (positions) or 6K (positions
+/// and rates) seeds, then `mapsᵀ J maps`.
+pub(super) fn point_tangent<const K: usize, const N: usize, const D: usize>(
+    maps: &[Map<'_>; K],
+    e: &[f64; D],
+    ed: &[f64; D],
+    k: &mut [[f64; D]; D],
+    c: Option<&mut [[f64; D]; D]>,
+    g: impl FnOnce(&[V<DualSVec64<N>>; K], &[V<DualSVec64<N>>; K]) -> [V<DualSVec64<N>>; K],
+) {
+    debug_assert!(N == 3 * K || (N == 6 * K && c.is_some()));
+    let (u0, ud0) = (gather(maps, e), gather(maps, ed));
+    let seed = |x: &[V<f64>; K], off: usize, on: bool| {
+        let mut out = [[DualSVec64::<N>::from_re(0.0); 3]; K];
+        for al in 0..K {
+            for ci in 0..3 {
+                let v = DualSVec64::<N>::from_re(x[al][ci]);
+                out[al][ci] = if on {
+                    v.derivative(off + 3 * al + ci)
+                } else {
+                    v
+                };
+            }
+        }
+        out
+    };
+    let rates = N == 6 * K;
+    let out = g(&seed(&u0, 0, true), &seed(&ud0, 3 * K, rates));
+    let add = |mat: &mut [[f64; D]; D], off: usize| {
+        for (ma, ga) in maps.iter().zip(&out) {
+            for ci in 0..3 {
+                let Some(eps) = &ga[ci].eps.0 else { continue };
+                for (mb, bet) in maps.iter().zip(0..K) {
+                    for cj in 0..3 {
+                        let j = eps[off + 3 * bet + cj];
+                        if j == 0.0 {
+                            continue;
+                        }
+                        for (wa, sa) in ma.w.iter().zip(ma.slots) {
+                            for (wb, sb) in mb.w.iter().zip(mb.slots) {
+                                mat[sa + ci][sb + cj] += wa * wb * j;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    };
+    add(k, 0);
+    if let (Some(c), true) = (c, rates) {
+        add(c, 3 * K);
+    }
+}
+
+/// Gradient of a scalar measure with respect to (r_x, r_xx, r_y, r_yx) at a point.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Grad<T> {
+    pub(super) a: V<T>,
+    pub(super) b: V<T>,
+    pub(super) c: V<T>,
+    pub(super) d: V<T>,
+}
+
+/// (κ2, κ3, τ) and their gradients with respect to a = r_x, b = r_xx, c = r_y, d = r_yx.
+///
+/// With C = a × c (so d3 = C/|C|, d2 = ((a·a) c − (a·c) a)/(|C| |a|)), w = |C|, n = |a|:
+/// κ2 = −(C·b)/(w n), κ3 = (C·(a × b))/(w n²), τ = (n² C·d − (a·c)(C·b))/(n w²).
+#[inline(always)]
+pub(super) fn bend_twist<T: Real>(
+    a: &V<T>,
+    b: &V<T>,
+    c: &V<T>,
+    d: &V<T>,
+) -> ([T; 3], [Grad<T>; 3]) {
+    let n2 = dot(a, a);
+    let n = n2.sqrt();
+    let inv_n = n.recip();
+    let cc = dot(c, c);
+    let g = dot(a, c);
+    let ab = dot(a, b);
+    let bc = dot(b, c);
+    let cv = cross(a, c);
+    let w2 = n2 * cc - g * g;
+    let inv_w = w2.sqrt().recip();
+    let p = dot(cv, b);
+    let q = n2 * bc - ab * g;
+    let s = dot(cv, d);
+    let (inv_n2, inv_w2) = (inv_n * inv_n, inv_w * inv_w);
+    // ½∂(w²)/w² and ½∂(n²)/n²
+    let hw_a = lin2(cc * inv_w2, a, -g * inv_w2, c);
+    let hw_c = lin2(n2 * inv_w2, c, -g * inv_w2, a);
+    let hn_a = [a[0] * inv_n2, a[1] * inv_n2, a[2] * inv_n2];
+    let cxb = cross(c, b);
+    let bxa = cross(b, a);
+    let cxd = cross(c, d);
+    let dxa = cross(d, a);
+    let zero = [T::from(0.0); 3];
+    // κ2
+    let h2 = inv_w * inv_n;
+    let k2 = -p * h2;
+    let g2 = Grad {
+        a: lin3(-h2, &cxb, -k2, &hw_a, -k2, &hn_a),
+        b: [-h2 * cv[0], -h2 * cv[1], -h2 * cv[2]],
+        c: lin2(-h2, &bxa, -k2, &hw_c),
+        d: zero,
+    };
+    // κ3
+    let h3 = inv_w * inv_n2;
+    let k3 = q * h3;
+    let dq_a = lin3(bc * 2.0, a, -g, b, -ab, c);
+    let g3 = Grad {
+        a: lin3(h3, &dq_a, -k3, &hw_a, k3 * (-2.0), &hn_a),
+        b: lin2(h3 * n2, c, -h3 * g, a),
+        c: lin3(h3 * n2, b, -h3 * ab, a, -k3, &hw_c),
+        d: zero,
+    };
+    // τ = T/(n w²), T = n² s − g p
+    let ht = inv_n * inv_w2;
+    let tau = (n2 * s - g * p) * ht;
+    let dt_a = [
+        a[0] * (s * 2.0) + n2 * cxd[0] - p * c[0] - g * cxb[0],
+        a[1] * (s * 2.0) + n2 * cxd[1] - p * c[1] - g * cxb[1],
+        a[2] * (s * 2.0) + n2 * cxd[2] - p * c[2] - g * cxb[2],
+    ];
+    let dt_c = lin3(n2, &dxa, -p, a, -g, &bxa);
+    let gt = Grad {
+        a: lin3(ht, &dt_a, -tau, &hn_a, tau * (-2.0), &hw_a),
+        b: [-ht * g * cv[0], -ht * g * cv[1], -ht * g * cv[2]],
+        c: lin2(ht, &dt_c, tau * (-2.0), &hw_c),
+        d: [ht * n2 * cv[0], ht * n2 * cv[1], ht * n2 * cv[2]],
+    };
+    ([k2, k3, tau], [g2, g3, gt])
+}
+
+/// Strain measures (ε, κ2, κ3, τ) at a point from r_x, r_xx, r_y, r_yx (see the module doc).
+pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3], ryx: [f64; 3]) -> [f64; 4] {
+    let ([k2, k3, tau], _) = bend_twist(&rx, &rxx, &ry, &ryx);
+    [dot(rx, rx).sqrt() - 1.0, k2, k3, tau]
+}

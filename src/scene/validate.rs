@@ -1,0 +1,337 @@
+//! [`Scene::validate`]: every value of a scene checked; an error names the field, its value and
+//! what is allowed (or what to change).
+
+use super::*;
+
+fn check_positive(field: &str, v: f64, what: &str) -> Result<(), SceneError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError(format!(
+            "{field} = {v}: must be a finite number > 0 ({what})"
+        )))
+    }
+}
+
+fn check_nonnegative(field: &str, v: f64, what: &str) -> Result<(), SceneError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError(format!(
+            "{field} = {v}: must be a finite number >= 0 ({what})"
+        )))
+    }
+}
+
+fn check_finite(field: &str, v: f64) -> Result<(), SceneError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(SceneError(format!(
+            "{field} = {v}: must be a finite number"
+        )))
+    }
+}
+
+/// Largest number of modes and elements accepted per segment.
+pub const MAX_MODES: usize = 12;
+/// Largest number of ANCF elements accepted per segment.
+pub const MAX_ELEMENTS: usize = 4096;
+
+impl Scene {
+    /// Checks every value; the error names the field, its value and what is allowed.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        if self.name.trim().is_empty() {
+            return Err(SceneError("name = \"\": give the scene a name".into()));
+        }
+        let sp = self.space;
+        let (axes, moment_axes) = match sp {
+            SpaceKind::Planar => ("[x, y]", "[z] (the z component)"),
+            SpaceKind::Spatial => ("[x, y, z]", "[x, y, z]"),
+        };
+        for (field, v, n, how) in [
+            ("gravity", &self.gravity, sp.dim(), axes),
+            ("tip.force", &self.tip.force, sp.dim(), axes),
+            ("tip.moment", &self.tip.moment, sp.moment_dim(), moment_axes),
+        ] {
+            if !v.is_empty() && v.len() != n {
+                return Err(SceneError(format!(
+                    "{field} = {v:?}: a {sp:?} scene takes {n} components {how} (or leave it out for zero)"
+                ).replace("Planar", "planar").replace("Spatial", "spatial")));
+            }
+            for (i, x) in v.iter().enumerate() {
+                check_finite(&format!("{field}[{i}]"), *x)?;
+            }
+        }
+        check_finite("initial.angle", self.initial.angle)?;
+        match sp {
+            SpaceKind::Planar => {
+                if self.root == Root::Ball {
+                    return Err(SceneError(
+                        "root = \"ball\": a planar scene has clamped or pinned roots (a ball root needs space = \"spatial\")".into(),
+                    ));
+                }
+                if self.initial.orientation.is_some() {
+                    return Err(SceneError(
+                        "initial.orientation: a planar scene gives the root direction as initial.angle [rad]; remove orientation or set space = \"spatial\"".into(),
+                    ));
+                }
+                if !self.torsion {
+                    return Err(SceneError(
+                        "torsion = false: torsion is a switch of spatial scenes; remove it or set space = \"spatial\"".into(),
+                    ));
+                }
+            }
+            SpaceKind::Spatial => {
+                if self.root == Root::Pinned {
+                    return Err(SceneError(
+                        "root = \"pinned\": a spatial scene has clamped or ball roots (a ball root holds the position and leaves the orientation free)".into(),
+                    ));
+                }
+                if self.initial.angle != 0.0 {
+                    return Err(SceneError(format!(
+                        "initial.angle = {}: a spatial scene gives the root frame as initial.orientation = [e0, e1, e2, e3]",
+                        self.initial.angle
+                    )));
+                }
+                if let Some(e) = self.initial.orientation {
+                    let n = e.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    if !(n.is_finite() && n > 1e-6) {
+                        return Err(SceneError(format!(
+                            "initial.orientation = {e:?}: Euler parameters must be finite and not all zero (identity: [1, 0, 0, 0])"
+                        )));
+                    }
+                }
+            }
+        }
+        self.validate_mount()?;
+        let s = &self.solver;
+        if !(s.rho_inf.is_finite() && (0.0..1.0).contains(&s.rho_inf)) {
+            return Err(SceneError(format!(
+                "solver.rho_inf = {}: must be in [0, 1) (index-3 constraints need numerical damping; 0.9 is the default)",
+                s.rho_inf
+            )));
+        }
+        if !(s.max_step.is_finite() && s.max_step >= MIN_STEP) {
+            return Err(SceneError(format!(
+                "solver.max_step = {}: must be a finite number of seconds >= {MIN_STEP:e} (the smallest internal step: a shorter one resolves nothing of a beam and only multiplies the work)",
+                s.max_step
+            )));
+        }
+        if !(s.tolerance.is_finite() && s.tolerance >= MIN_TOLERANCE && s.tolerance < 1e-2) {
+            return Err(SceneError(format!(
+                "solver.tolerance = {}: must be in [{MIN_TOLERANCE:e}, 0.01) (relative Newton tolerance; 1e-11 is the default)",
+                s.tolerance
+            )));
+        }
+        if s.max_internal_steps == 0 {
+            return Err(SceneError(
+                "solver.max_internal_steps = 0: must be >= 1 (internal steps allowed in one communication step; 20000 is the default)".into(),
+            ));
+        }
+        if s.max_iterations == 0 || s.max_iterations > 100 {
+            return Err(SceneError(format!(
+                "solver.max_iterations = {}: must be in 1..=100",
+                s.max_iterations
+            )));
+        }
+        check_positive("simulation.t_end", self.simulation.t_end, "seconds")?;
+        check_positive(
+            "simulation.output_step",
+            self.simulation.output_step,
+            "seconds",
+        )?;
+        if self.segments.is_empty() {
+            return Err(SceneError(
+                "segments: the list is empty: add at least one [[segments]] table with kind = \"modal\" or \"ancf\"".into(),
+            ));
+        }
+        for (i, seg) in self.segments.iter().enumerate() {
+            let p = format!("segments[{i}]");
+            if seg.name.trim().is_empty()
+                || !seg
+                    .name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_')
+            {
+                return Err(SceneError(format!(
+                    "{p}.name = {:?}: must be non-empty and use only letters, digits and '_' (it prefixes FMU variable names)",
+                    seg.name
+                )));
+            }
+            if self.segments[..i].iter().any(|o| o.name == seg.name) {
+                return Err(SceneError(format!(
+                    "{p}.name = {:?}: segment names must be unique",
+                    seg.name
+                )));
+            }
+            check_positive(&format!("{p}.length"), seg.length, "metres")?;
+            check_positive(&format!("{p}.youngs_modulus"), seg.youngs_modulus, "Pa")?;
+            check_positive(&format!("{p}.density"), seg.density, "kg/m3")?;
+            check_nonnegative(&format!("{p}.damping_time"), seg.damping_time, "seconds")?;
+            if !(seg.poisson_ratio.is_finite()
+                && seg.poisson_ratio > -1.0
+                && seg.poisson_ratio <= 0.5)
+            {
+                return Err(SceneError(format!(
+                    "{p}.poisson_ratio = {}: must be in (-1, 0.5] (steel: 0.3, the default)",
+                    seg.poisson_ratio
+                )));
+            }
+            if seg.section != Section::Tube && seg.inner_diameter.is_some() {
+                return Err(SceneError(format!(
+                    "{p}.inner_diameter: only a section = \"tube\" has an inner diameter"
+                )));
+            }
+            match seg.section {
+                Section::Round | Section::Tube => {
+                    let d = seg.diameter.ok_or_else(|| {
+                        SceneError(format!(
+                            "{p}.diameter is missing: a round section or a tube needs diameter = <metres> (outer)"
+                        ))
+                    })?;
+                    check_positive(&format!("{p}.diameter"), d, "metres")?;
+                    if seg.section == Section::Tube {
+                        let di = seg.inner_diameter.ok_or_else(|| {
+                            SceneError(format!(
+                                "{p}.inner_diameter is missing: a tube needs inner_diameter = <metres>, below diameter"
+                            ))
+                        })?;
+                        if !(di.is_finite() && di >= 0.0 && di < d) {
+                            return Err(SceneError(format!(
+                                "{p}.inner_diameter = {di}: must be in [0, diameter = {d}) metres"
+                            )));
+                        }
+                    }
+                }
+                Section::Rectangle => {
+                    for (f, v) in [("width", seg.width), ("height", seg.height)] {
+                        let v = v.ok_or_else(|| {
+                            SceneError(format!(
+                                "{p}.{f} is missing: a rectangle section needs width and height in metres"
+                            ))
+                        })?;
+                        check_positive(&format!("{p}.{f}"), v, "metres")?;
+                    }
+                }
+            }
+            match seg.kind {
+                SegmentKind::Modal => {
+                    let n = seg.modes.ok_or_else(|| {
+                        SceneError(format!(
+                            "{p}.modes is missing: a modal segment needs modes = 1..={MAX_MODES}"
+                        ))
+                    })?;
+                    if n == 0 || n > MAX_MODES {
+                        return Err(SceneError(format!(
+                            "{p}.modes = {n}: must be in 1..={MAX_MODES}"
+                        )));
+                    }
+                    if seg.elements.is_some() {
+                        return Err(SceneError(format!(
+                            "{p}.elements: a modal segment has no elements; use modes, or kind = \"ancf\""
+                        )));
+                    }
+                    if !(seg.damping_ratio.is_finite() && (0.0..=1.0).contains(&seg.damping_ratio))
+                    {
+                        return Err(SceneError(format!(
+                            "{p}.damping_ratio = {}: must be in [0, 1]",
+                            seg.damping_ratio
+                        )));
+                    }
+                }
+                SegmentKind::Ancf => {
+                    let n = seg.elements.ok_or_else(|| {
+                        SceneError(format!(
+                            "{p}.elements is missing: an ancf segment needs elements = 1..={MAX_ELEMENTS}"
+                        ))
+                    })?;
+                    if n == 0 || n > MAX_ELEMENTS {
+                        return Err(SceneError(format!(
+                            "{p}.elements = {n}: must be in 1..={MAX_ELEMENTS}"
+                        )));
+                    }
+                    if seg.modes.is_some() || seg.interface_modes {
+                        return Err(SceneError(format!(
+                            "{p}.modes: an ancf segment has no modes; use elements, or kind = \"modal\""
+                        )));
+                    }
+                    if seg.damping_ratio != 0.0 {
+                        return Err(SceneError(format!(
+                            "{p}.damping_ratio = {}: only modal segments take a damping ratio; use damping_time (Kelvin-Voigt, seconds) on an ancf segment",
+                            seg.damping_ratio
+                        )));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_mount(&self) -> Result<(), SceneError> {
+        let sp = self.space;
+        let Some(m) = &self.mount else {
+            return Ok(());
+        };
+        if self.root != Root::Mounted {
+            return Err(SceneError(format!(
+                "[mount]: only a root = \"mounted\" scene has a mount (root = {:?}); remove the table or set root = \"mounted\"",
+                self.root
+            ).replace("Clamped", "\"clamped\"").replace("Pinned", "\"pinned\"").replace("Ball", "\"ball\"")));
+        }
+        let (n, nm) = (sp.dim(), sp.moment_dim());
+        for (field, v, k) in [
+            ("mount.position", &m.position, n),
+            ("mount.velocity", &m.velocity, n),
+            ("mount.acceleration", &m.acceleration, n),
+            ("mount.angular_velocity", &m.angular_velocity, nm),
+            ("mount.angular_acceleration", &m.angular_acceleration, nm),
+        ] {
+            if !v.is_empty() && v.len() != k {
+                let space = if sp == SpaceKind::Planar {
+                    "planar"
+                } else {
+                    "spatial"
+                };
+                return Err(SceneError(format!(
+                    "{field} = {v:?}: a {space} scene takes {k} components here (or leave it out for zero)"
+                )));
+            }
+            for (i, x) in v.iter().enumerate() {
+                check_finite(&format!("{field}[{i}]"), *x)?;
+            }
+        }
+        check_finite("mount.angle", m.angle)?;
+        match sp {
+            SpaceKind::Planar => {
+                if m.orientation.is_some() {
+                    return Err(SceneError(
+                        "mount.orientation: a planar scene gives the mount frame as mount.angle [rad]; remove orientation or set space = \"spatial\"".into(),
+                    ));
+                }
+            }
+            SpaceKind::Spatial => {
+                if m.angle != 0.0 {
+                    return Err(SceneError(format!(
+                        "mount.angle = {}: a spatial scene gives the mount frame as mount.orientation = [e0, e1, e2, e3]",
+                        m.angle
+                    )));
+                }
+                if let Some(e) = m.orientation {
+                    let norm = e.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    if !(norm.is_finite() && norm > 1e-6) {
+                        return Err(SceneError(format!(
+                            "mount.orientation = {e:?}: Euler parameters must be finite and not all zero (identity: [1, 0, 0, 0])"
+                        )));
+                    }
+                }
+            }
+        }
+        if self.initial.state == InitialState::Static && self.mount_turns().1 {
+            return Err(SceneError(
+                "initial.state = \"static\" with mount.angular_acceleration nonzero: a spin that changes has no static state in the mount frame; use initial.state = \"straight\", or start at a constant spin".into(),
+            ));
+        }
+        Ok(())
+    }
+}
