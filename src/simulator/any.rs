@@ -718,10 +718,12 @@ impl AnySimulator {
         each!(self, s => s.mount_accelerations_given())
     }
 
-    /// Writes the inputs set for the next step (tip force, tip moment, gravity) into `scene`.
+    /// Writes the inputs set for the next step (tip loads, gravity and, on a mounted scene, the
+    /// mount's) that differ from the scene's into `scene`: where a start of the scene begins.
     pub fn inputs_into(&self, scene: &mut Scene) {
-        for (_, id) in InputId::named(self.space()) {
-            if let Some(x) = self.input(id) {
+        let mounted = scene.mount_start().is_some();
+        for (_, id) in InputId::named_with(self.space(), mounted) {
+            if let Some(x) = self.input(id).filter(|x| *x != id.scene_value(scene)) {
                 id.set_in_scene(scene, x);
             }
         }

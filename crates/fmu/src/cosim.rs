@@ -174,6 +174,15 @@ impl BeamFmu {
         }
     }
 
+    /// The scene a start builds from: the parameters set so far and the inputs the host set
+    /// (those that differ from the scene's), taken from the simulator that holds them — the
+    /// one place inputs are copied into a scene; a running simulator owns its inputs.
+    fn start_scene(&self) -> Scene {
+        let mut scene = self.scene.clone();
+        self.sim.inputs_into(&mut scene);
+        scene
+    }
+
     /// The parameter values, in table order.
     fn parameters(&self) -> Vec<f64> {
         self.table
@@ -284,7 +293,7 @@ impl CoSimModel for BeamFmu {
             Access::Output(id) if !self.started && self.changed_before_start => {
                 let mut cached = self.pre_start.borrow_mut();
                 let outputs = cached.get_or_insert_with(|| {
-                    AnySimulator::start_at(self.scene.clone(), 0.0)
+                    AnySimulator::start_at(self.start_scene(), 0.0)
                         .map(|sim| sim.outputs())
                         .map_err(|e| e.to_string())
                 });
@@ -335,7 +344,6 @@ impl CoSimModel for BeamFmu {
                 if !self.sim.set_input(id, value) {
                     return Err(not_in_space(name, &self.sim));
                 }
-                id.set_in_scene(&mut self.scene, value);
             }
             Access::Output(_) => return Err(format!("{name} is an output and cannot be set")),
             Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
@@ -362,7 +370,7 @@ impl CoSimModel for BeamFmu {
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
-        let scene = self.scene.clone();
+        let scene = self.start_scene();
         self.sim = AnySimulator::start_at(scene, start_time).map_err(|e| e.to_string())?;
         self.refresh_outputs();
         self.backward.fill(0.0);
@@ -492,7 +500,7 @@ impl CoSimModel for BeamFmu {
                 variables[k].name
             ));
         }
-        let mut scene = self.build_scene_with_parameters(&params)?;
+        let scene = self.build_scene_with_parameters(&params)?;
         let mut sim = AnySimulator::restorable(scene.clone()).map_err(|e| e.to_string())?;
         // a snapshot that does not fit is an error of the call (fmi2Error), not of a step
         sim.restore_snapshot(&sim_bytes)
@@ -521,7 +529,6 @@ impl CoSimModel for BeamFmu {
                     .into(),
             );
         }
-        sim.inputs_into(&mut scene);
         self.scene = scene;
         self.sim = sim;
         self.backward = backward;
@@ -624,9 +631,9 @@ mod tests {
         }
         assert_eq!(b.get_real(at(&b, 6)).unwrap(), 2e-3);
         assert_eq!(
-            b.scene.tip.moment,
+            b.start_scene().tip.moment,
             [2e-3],
-            "the restored input is the scene's for a reset"
+            "the simulator owns the restored input; a start would begin from it"
         );
         assert!(b.load_state(&bytes[..bytes.len() - 3]).is_err());
         assert!(b.load_state(b"garbage").is_err());
