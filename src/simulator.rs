@@ -10,7 +10,6 @@ mod inputs;
 pub mod limits;
 mod mount;
 mod snapshot;
-mod space;
 mod step;
 
 pub use any::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
@@ -18,7 +17,6 @@ pub use inputs::{Inputs, LoadRates};
 pub use limits::*;
 pub use mount::{MountInput, MountState};
 pub use snapshot::{Memory, SNAPSHOT_VERSION};
-pub use space::SpaceModel;
 pub use step::StepControl;
 
 use crate::error::{Refusal, SimError, SnapshotError, StepLimit};
@@ -26,13 +24,13 @@ use crate::integrator::{
     solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
     CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
 };
-use crate::model::{Model, ModelValidity, Motion, Outputs, Planar, Space, Spatial};
-use crate::scene::{InitialState, Mount, Scene, SceneError, SpaceKind};
+use crate::model::{Model, ModelValidity, Motion, Outputs, Space};
+use crate::scene::{InitialState, Scene};
 use serde::{Deserialize, Serialize};
 
 /// A running simulation in the space `S`.
 #[derive(Debug)]
-pub struct Simulator<S: SpaceModel> {
+pub struct Simulator<S: Space> {
     scene: Scene,
     model: Model<S>,
     integ: GeneralizedAlpha,
@@ -49,7 +47,7 @@ pub struct Simulator<S: SpaceModel> {
     pub min_step_used: f64,
 }
 
-impl<S: SpaceModel> Simulator<S> {
+impl<S: Space> Simulator<S> {
     /// [`Simulator::start_at`] t = 0.
     pub fn new(scene: Scene) -> Result<Self, SimError> {
         Self::start_at(scene, 0.0)
@@ -72,7 +70,7 @@ impl<S: SpaceModel> Simulator<S> {
     }
 
     fn build(scene: Scene, initialize: bool) -> Result<Self, SimError> {
-        let mut model = S::model(&scene)?;
+        let mut model = crate::model::build::<S>(&scene)?;
         let n = model.coordinates();
         let m = model.constraints();
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
@@ -163,6 +161,7 @@ impl<S: SpaceModel> Simulator<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::Planar;
 
     fn case1() -> Scene {
         Scene::from_toml(include_str!("../scenes/case1.toml")).unwrap()

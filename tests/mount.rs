@@ -8,7 +8,7 @@ mod common;
 
 use hybeam::model::{Motion, MotionRates, Planar, Space, Spatial};
 use hybeam::scene::Scene;
-use hybeam::simulator::{MountInput, Simulator, SpaceModel};
+use hybeam::simulator::{MountInput, Simulator};
 
 /// A shipped scene with `root = "mounted"`, gravity `gravity` and the `[mount]` table `mount`.
 fn mounted(name: &str, gravity: &str, mount: &str) -> Scene {
@@ -45,7 +45,7 @@ fn tight(mut scene: Scene) -> Scene {
 
 /// Tip position relative to the mount point in the mount frame, at each of `steps`
 /// communication steps of `dt`.
-fn relative_tip<S: SpaceModel>(sim: &mut Simulator<S>, steps: usize, dt: f64) -> Vec<Vec<f64>> {
+fn relative_tip<S: Space>(sim: &mut Simulator<S>, steps: usize, dt: f64) -> Vec<Vec<f64>> {
     let mut out = Vec::new();
     for k in 1..=steps {
         sim.advance(k as f64 * dt).unwrap();
@@ -60,7 +60,7 @@ fn relative_tip<S: SpaceModel>(sim: &mut Simulator<S>, steps: usize, dt: f64) ->
     out
 }
 
-fn fixed_tip<S: SpaceModel>(sim: &mut Simulator<S>, steps: usize, dt: f64) -> Vec<Vec<f64>> {
+fn fixed_tip<S: Space>(sim: &mut Simulator<S>, steps: usize, dt: f64) -> Vec<Vec<f64>> {
     (1..=steps)
         .map(|k| {
             sim.advance(k as f64 * dt).unwrap();
@@ -88,7 +88,7 @@ const DT: f64 = 1e-3;
 
 /// The tip relative to the mount of `moving` equals the tip of `fixed` to 1e-9 of the
 /// deflection over 0.1 s.
-fn same_relative_motion<S: SpaceModel>(label: &str, moving: Scene, fixed: Scene) {
+fn same_relative_motion<S: Space>(label: &str, moving: Scene, fixed: Scene) {
     let mut a = Simulator::<S>::start_at(moving, 0.0).unwrap();
     let mut b = Simulator::<S>::start_at(fixed, 0.0).unwrap();
     let (diff, defl) = compare(
@@ -336,7 +336,7 @@ fn reactions_at_rest_are_the_weight_and_its_moment() {
 
 /// Runs `scene` with the mount driven by `motion(t)` (exact pose, velocity, acceleration) at
 /// communication steps of `dt`, returning (time, root force, centre of mass in world axes).
-fn driven<S: SpaceModel>(
+fn driven<S: Space>(
     scene: Scene,
     steps: usize,
     dt: f64,
@@ -584,10 +584,10 @@ fn rate_error(exact: &[f64], plus: &[f64], minus: &[f64], eps: f64) -> f64 {
 /// The tip's output rates (velocity, acceleration, angular acceleration, ė) at a deformed,
 /// moving state of a turning, accelerating mount against central differences of the outputs
 /// along the motion: q ± εq̇ + ½ε²q̈, q̇ ± εq̈, the mount advanced by ±ε on its path.
-fn tip_rates_along_the_motion<S: SpaceModel>(scene: Scene, m0: Motion<S>) -> [f64; 4] {
+fn tip_rates_along_the_motion<S: Space>(scene: Scene, m0: Motion<S>) -> [f64; 4] {
     use hybeam::integrator::Integrable;
     use hybeam::simulator::{OutputId, Quantity};
-    let mut model = S::model(&scene).unwrap();
+    let mut model = hybeam::model::build::<S>(&scene).unwrap();
     let n = model.coordinates();
     let [q, v, a, _] = common::wavy_state(&model, 0.01);
     let lam = vec![0.0; model.constraints()];
@@ -685,11 +685,7 @@ fn spinning_start(name: &str, gravity: &str, spin: &str, state: &str) -> Scene {
 
 /// The largest change of the tip's position relative to the mount (mount frame) over `steps`
 /// steps of `dt` from the start, and its start value.
-fn relative_tip_drift<S: SpaceModel>(
-    sim: &mut Simulator<S>,
-    steps: usize,
-    dt: f64,
-) -> (f64, Vec<f64>) {
+fn relative_tip_drift<S: Space>(sim: &mut Simulator<S>, steps: usize, dt: f64) -> (f64, Vec<f64>) {
     let path = relative_tip(sim, steps, dt);
     let first = path[0].clone();
     let drift = path
@@ -786,7 +782,7 @@ fn a_static_start_on_a_spinning_mount_is_the_relative_equilibrium() {
 /// gyroscopic term ω × I ω carry the moment). Reference: a rigid body's momentum balance.
 #[test]
 fn elastic_reaction_vanishes_in_rigid_motion() {
-    fn check<S: SpaceModel>(label: &str, sim: &Simulator<S>) {
+    fn check<S: Space>(label: &str, sim: &Simulator<S>) {
         let o = sim.outputs();
         let largest = |x: &[f64]| x.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         let (f, fe) = (

@@ -84,7 +84,7 @@ const L: f64 = 0.4;
 const G: f64 = 9.81;
 
 /// Total energy [J] of outputs (kinetic + strain + gravity).
-fn energy<S: hybeam::simulator::SpaceModel>(o: &Outputs<S>) -> f64 {
+fn energy<S: hybeam::model::Space>(o: &Outputs<S>) -> f64 {
     o.kinetic + o.strain + o.potential
 }
 
@@ -237,7 +237,7 @@ fn shipped(name: &str) -> Scene {
 }
 
 /// Tip positions of a scene's run to `t_end`, every `dt`.
-fn history<S: hybeam::simulator::SpaceModel>(scene: Scene, t_end: f64, dt: f64) -> Vec<S::Vec> {
+fn history<S: hybeam::model::Space>(scene: Scene, t_end: f64, dt: f64) -> Vec<S::Vec> {
     let mut sim = Simulator::<S>::start_at(scene, 0.0).expect("builds");
     let mut out = vec![sim.outputs().tip_position];
     for k in 1..=(t_end / dt).round() as usize {

@@ -7,9 +7,10 @@
 //! nonlinear by itself; the modal segment of a held frame carries K_G = ρAL Ω²G2 (+ the axial
 //! inertia term), the hybrid's joint rows the outboard tension.
 
+use hybeam::model::Space;
 use hybeam::model::{Planar, Spatial};
 use hybeam::scene::Scene;
-use hybeam::simulator::{Simulator, SpaceModel};
+use hybeam::simulator::Simulator;
 
 /// ω* = ω / √(EI/(ρAL⁴)) of the Case 1 rod: √(EI/(ρAL⁴)) [rad/s].
 fn omega_ref() -> f64 {
@@ -47,7 +48,7 @@ fn flap_frequency(scene: Scene, t_end: f64) -> f64 {
 
 /// The angular frequency [rad/s] of `signal` from the mean period between its upward
 /// crossings of its mean, sampled every 0.2 ms over `t_end`.
-fn frequency_of<S: SpaceModel>(
+fn frequency_of<S: Space>(
     sim: &mut Simulator<S>,
     t_end: f64,
     signal: impl Fn(&Simulator<S>) -> f64,
@@ -56,7 +57,7 @@ fn frequency_of<S: SpaceModel>(
 }
 
 /// [`frequency_of`] over (`t_skip`, `t_end`] only.
-fn frequency_after<S: SpaceModel>(
+fn frequency_after<S: Space>(
     sim: &mut Simulator<S>,
     t_skip: f64,
     t_end: f64,
@@ -167,7 +168,7 @@ fn lag_scene(text: &str, omega: &str, moment: &str, damping_time: f64) -> Scene 
 
 /// The tip's position across the rod in the mount frame (its y component, relative to the
 /// mount point) [m].
-fn across<S: SpaceModel>(sim: &Simulator<S>) -> f64 {
+fn across<S: Space>(sim: &Simulator<S>) -> f64 {
     let (o, m) = (sim.outputs(), sim.mount().unwrap());
     let mut r = o.tip_position;
     for c in 0..S::DIM {

@@ -3,9 +3,10 @@
 //! subset), so both run exactly the same cases. Depends only on the hybeam library.
 
 use hybeam::error::SimError;
+use hybeam::model::Space;
 use hybeam::model::{Planar, Spatial};
 use hybeam::scene::{Scene, SpaceKind};
-use hybeam::simulator::{Simulator, SpaceModel};
+use hybeam::simulator::Simulator;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::Instant;
 
@@ -655,14 +656,14 @@ fn three(a: &[f64]) -> [f64; 3] {
 }
 
 /// The moment components of space `S` from global (x, y, z): z alone in the plane.
-fn set_moment<S: SpaceModel>(m: [f64; 3], out: &mut S::Moment) {
+fn set_moment<S: Space>(m: [f64; 3], out: &mut S::Moment) {
     let c = S::moment_components_mut(out);
     let n = c.len();
     c.copy_from_slice(&m[3 - n..]);
 }
 
 /// A moment or angular velocity of space `S` as global (x, y, z).
-fn moment3<S: SpaceModel>(m: &S::Moment) -> [f64; 3] {
+fn moment3<S: Space>(m: &S::Moment) -> [f64; 3] {
     match S::moment_components(m) {
         [z] => [0.0, 0.0, *z],
         c => three(c),
@@ -679,7 +680,7 @@ fn quat_angle(a: &[f64], b: &[f64]) -> f64 {
     2.0 * c.abs().min(1.0).acos()
 }
 
-fn drive_in<S: SpaceModel>(case: &Case, scene: Scene, o: &mut Outcome) {
+fn drive_in<S: Space>(case: &Case, scene: Scene, o: &mut Outcome) {
     let mut sim = match Simulator::<S>::start_at(scene, 0.0) {
         Ok(s) => s,
         Err(e) => {

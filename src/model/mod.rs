@@ -23,6 +23,7 @@
 pub mod ancf;
 pub mod ancf3d;
 pub mod assembly;
+pub mod build;
 pub mod component;
 pub mod dofs;
 pub mod held;
@@ -36,6 +37,7 @@ pub mod spatial;
 pub mod vector;
 
 pub use assembly::{Model, Parts};
+pub use build::build;
 pub use component::{
     Constraint, ConstraintOut, Element, ElementOut, Energies, Env, LocalState, Port, Support,
     Validity,

@@ -4,12 +4,18 @@
 //! second implementation beside it.
 
 use super::dofs::Rigid;
+use crate::scene::{Mount, SpaceKind};
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::fmt::Debug;
 use std::ops::{Index, IndexMut};
 
-/// A space the beam lives in.
+/// A space the beam lives in: the one trait that names the dimension (vector types, names of
+/// axes and variables, rigid motion, port kinematics). Implemented by
+/// [`super::planar::Planar`] and [`super::spatial::Spatial`].
 pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
+    /// The scene's `space` of this dimension.
+    const KIND: SpaceKind;
     /// Number of global axes (2 in the plane).
     const DIM: usize;
     /// Names of the global axes, for variable names and CSV headers (`["x", "y"]`).
@@ -21,6 +27,16 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
     /// The components of a rigid inertia tensor a host reads (`root.inertia.<name>`), each with
     /// its index in [`super::MountInertia::inertia`] (`[("zz", 0)]` in the plane).
     const INERTIA_COMPONENTS: &'static [(&'static str, usize)];
+    /// Output name of the tip section's orientation (`tip.angle` in the plane,
+    /// `tip.orientation` in space) ...
+    const ATTITUDE: &'static str;
+    /// ... and the suffixes of its components (`[""]`: a scalar without suffix; `e0`–`e3`).
+    const ATTITUDE_COMPONENTS: &'static [&'static str];
+    /// Input name of the mount's orientation (`root.angle` in the plane, `root.orientation`).
+    const MOUNT_ATTITUDE: &'static str;
+    /// Suffixes of the mount's angular velocity and acceleration inputs (`[""]` in the plane:
+    /// `root.angular_velocity`; the moment axes in space).
+    const ANGULAR_SUFFIXES: &'static [&'static str];
     /// A global vector (position [m], velocity [m/s], force [N], gravity [m/s²]): `[f64; DIM]`.
     type Vec: Copy
         + Default
@@ -31,13 +47,15 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
         + AsRef<[f64]>
         + AsMut<[f64]>
         + Index<usize, Output = f64>
-        + IndexMut<usize>;
+        + IndexMut<usize>
+        + Serialize
+        + DeserializeOwned;
     /// A moment [N m] or an angular velocity [rad/s], global axes: the z component in the
     /// plane, `[x, y, z]` in space.
-    type Moment: Copy + Default + Debug + PartialEq + Send + Sync;
+    type Moment: Copy + Default + Debug + PartialEq + Send + Sync + Serialize + DeserializeOwned;
     /// The orientation of a section, for outputs: the angle of the tangent from global x [rad]
     /// in the plane.
-    type Attitude: Copy + Default + Debug + PartialEq + Send + Sync;
+    type Attitude: Copy + Default + Debug + PartialEq + Send + Sync + Serialize + DeserializeOwned;
     /// Kinematics of a port (an attachment point) at one state.
     type PortKin: PortKin<Self>;
 
@@ -48,6 +66,12 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
 
     /// The identity orientation (a frame aligned with the global axes).
     fn attitude_identity() -> Self::Attitude;
+    /// The components of an orientation, in the order of [`Space::ATTITUDE_COMPONENTS`].
+    fn attitude_components(a: &Self::Attitude) -> &[f64];
+    /// The components of an orientation, mutable.
+    fn attitude_components_mut(a: &mut Self::Attitude) -> &mut [f64];
+    /// The orientation of a scene's `[mount]` table.
+    fn attitude_from(m: &Mount) -> Self::Attitude;
 
     /// An inertia tensor about a point, stored as in [`super::MountInertia::inertia`] in the
     /// axes of a frame at orientation `a`, as a 3×3 tensor in world axes [kg m²] (the plane:

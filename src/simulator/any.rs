@@ -1,9 +1,9 @@
 //! The planar|spatial choice in one place ([`AnySimulator`], [`AnyOutputs`]) and the named
 //! scalars callers read and write: outputs ([`OutputId`]) and inputs ([`InputId`]), named from
 //! [`Space::AXES`], [`Space::MOMENT_AXES`] and the orientation's components
-//! ([`SpaceModel::ATTITUDE`]).
+//! ([`Space::ATTITUDE`]).
 
-use super::{Inputs, LoadRates, MountInput, Simulator, SpaceModel};
+use super::{Inputs, LoadRates, MountInput, Simulator};
 use crate::error::SimError;
 use crate::integrator::Counters;
 use crate::model::{Outputs, Planar, Space, Spatial};
@@ -49,7 +49,7 @@ pub enum Quantity {
 }
 
 /// One scalar output: a quantity and the index of its component (in [`Space::AXES`],
-/// [`Space::MOMENT_AXES`] or [`SpaceModel::ATTITUDE_COMPONENTS`]; 0 for an energy).
+/// [`Space::MOMENT_AXES`] or [`Space::ATTITUDE_COMPONENTS`]; 0 for an energy).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct OutputId {
     /// The quantity.
@@ -99,7 +99,7 @@ impl OutputId {
         }
     }
 
-    fn named_with_in<S: SpaceModel>(mounted: bool) -> Vec<(String, OutputId)> {
+    fn named_with_in<S: Space>(mounted: bool) -> Vec<(String, OutputId)> {
         let mut out = Self::named_in::<S>();
         if mounted {
             let inertia: Vec<&str> = S::INERTIA_COMPONENTS.iter().map(|(n, _)| *n).collect();
@@ -122,7 +122,7 @@ impl OutputId {
         out
     }
 
-    fn named_in<S: SpaceModel>() -> Vec<(String, OutputId)> {
+    fn named_in<S: Space>() -> Vec<(String, OutputId)> {
         use Quantity::*;
         let groups: [(Quantity, &str, &[&str]); 9] = [
             (TipPosition, "tip.position", S::AXES),
@@ -142,7 +142,7 @@ impl OutputId {
     }
 }
 
-impl<S: SpaceModel> Outputs<S> {
+impl<S: Space> Outputs<S> {
     /// The value of one scalar output; `None` for a component this space does not have.
     pub fn value(&self, id: OutputId) -> Option<f64> {
         use Quantity::*;
@@ -177,7 +177,7 @@ impl<S: SpaceModel> Outputs<S> {
     }
 }
 
-impl<S: SpaceModel> Outputs<S> {
+impl<S: Space> Outputs<S> {
     /// The exact time derivative of one tip kinematic output at this state: the velocity of
     /// the position, the acceleration of the velocity, the angular velocity of the plane angle,
     /// ė = ½ (0, ω) ⊗ e of the Euler parameters (ω in global axes), the angular acceleration
@@ -218,11 +218,7 @@ impl<S: SpaceModel> Outputs<S> {
 
 /// The slot of the `order`-th derivative (1 or 2) of a tip load component in `rates`; `None`
 /// for other inputs (gravity takes no derivatives) or components.
-fn load_rate_slot<S: SpaceModel>(
-    rates: &mut LoadRates<S>,
-    id: InputId,
-    order: u32,
-) -> Option<&mut f64> {
+fn load_rate_slot<S: Space>(rates: &mut LoadRates<S>, id: InputId, order: u32) -> Option<&mut f64> {
     let o = (order as usize).checked_sub(1).filter(|o| *o < 2)?;
     match id.kind {
         InputKind::TipForce => rates.force[o].as_mut().get_mut(id.component),
@@ -311,7 +307,7 @@ impl InputId {
         out
     }
 
-    fn mount_in<S: SpaceModel>() -> Vec<(String, InputId)> {
+    fn mount_in<S: Space>() -> Vec<(String, InputId)> {
         use InputKind::*;
         let groups: [(InputKind, &str, &[&str]); 6] = [
             (MountPosition, "root.position", S::AXES),
@@ -408,7 +404,7 @@ impl InputId {
     }
 }
 
-impl<S: SpaceModel> Inputs<S> {
+impl<S: Space> Inputs<S> {
     /// The value of one input; `None` for a component this space does not have (and for the
     /// mount's inputs, which are not part of these).
     pub fn get(&self, id: InputId) -> Option<f64> {
@@ -434,7 +430,7 @@ impl<S: SpaceModel> Inputs<S> {
     }
 }
 
-impl<S: SpaceModel> MountInput<S> {
+impl<S: Space> MountInput<S> {
     /// The slot of one mount input component (`None`: not a mount input, or a component this
     /// space does not have).
     fn slot(&mut self, id: InputId) -> Option<&mut f64> {

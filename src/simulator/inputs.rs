@@ -7,7 +7,7 @@ use super::*;
 /// The inputs of the equations a host may change between communication steps.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
-pub struct Inputs<S: SpaceModel> {
+pub struct Inputs<S: Space> {
     /// Total tip force [N], global axes.
     pub tip_force: S::Vec,
     /// Total dead tip moment [N m], global axes (in the plane: about z, counter-clockwise).
@@ -16,7 +16,7 @@ pub struct Inputs<S: SpaceModel> {
     pub gravity: S::Vec,
 }
 
-impl<S: SpaceModel> Inputs<S> {
+impl<S: Space> Inputs<S> {
     pub(super) fn of(model: &Model<S>) -> Self {
         Self {
             tip_force: model.tip_force(),
@@ -39,14 +39,14 @@ impl<S: SpaceModel> Inputs<S> {
 /// F(t₀ + τ) = F + Ḟτ + ½F̈τ² (and the moment likewise) at every internal step.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
-pub struct LoadRates<S: SpaceModel> {
+pub struct LoadRates<S: Space> {
     /// Ḟ [N/s], F̈ [N/s²], global axes.
     pub force: [S::Vec; 2],
     /// Ṁ [N m/s], M̈ [N m/s²].
     pub moment: [S::Moment; 2],
 }
 
-impl<S: SpaceModel> LoadRates<S> {
+impl<S: Space> LoadRates<S> {
     /// Whether any rate is nonzero.
     pub(super) fn any(&self) -> bool {
         self.force
@@ -80,7 +80,7 @@ impl<S: SpaceModel> LoadRates<S> {
     }
 }
 
-impl<S: SpaceModel> Simulator<S> {
+impl<S: Space> Simulator<S> {
     /// Sets gravity [m/s²] (takes effect at the next step, as a jump of the inputs).
     pub fn set_gravity(&mut self, g: S::Vec) {
         self.model.set_gravity(g);

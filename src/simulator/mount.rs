@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 /// change of its accelerations.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
-pub struct MountInput<S: SpaceModel> {
+pub struct MountInput<S: Space> {
     /// Pose, velocities and accelerations (world axes; the accelerations are ignored when
     /// `accelerations` is false).
     pub motion: Motion<S>,
@@ -27,7 +27,7 @@ pub struct MountInput<S: SpaceModel> {
 /// The mount's path as integrated, and what the host set for the next step.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
-pub struct MountState<S: SpaceModel> {
+pub struct MountState<S: Space> {
     /// Start of the current path [s].
     pub t0: f64,
     /// The motion at `t0`.
@@ -42,7 +42,7 @@ pub struct MountState<S: SpaceModel> {
     pub accelerations_given: bool,
 }
 
-impl<S: SpaceModel> MountState<S> {
+impl<S: Space> MountState<S> {
     /// The scene's start motion at `t0`, or `None` without a mount.
     pub fn of_scene(scene: &Scene, t0: f64) -> Option<Self> {
         let m = scene.mount_start()?;
@@ -121,7 +121,7 @@ impl<S: SpaceModel> MountState<S> {
 }
 
 /// The motion of a scene's `[mount]` table (vectors complete, orientation normalized).
-fn motion_of<S: SpaceModel>(m: &Mount) -> Motion<S> {
+fn motion_of<S: Space>(m: &Mount) -> Motion<S> {
     let mut out = Motion::<S>::default();
     let vec = |v: &[f64]| {
         let mut x = S::Vec::default();
@@ -146,7 +146,7 @@ fn motion_of<S: SpaceModel>(m: &Mount) -> Motion<S> {
     out
 }
 
-impl<S: SpaceModel> Simulator<S> {
+impl<S: Space> Simulator<S> {
     /// Sets the mount's motion at the current time for the next step (`root = "mounted"`):
     /// checked (finite, a defined orientation, which is normalized), with accelerations
     /// estimated from the velocities when `input.accelerations` is false. It takes effect at

@@ -9,7 +9,7 @@ use std::hash::Hasher;
 /// Everything beyond the state that a snapshot must carry for a bit-identical restart.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(bound = "")]
-pub struct Memory<S: SpaceModel> {
+pub struct Memory<S: Space> {
     /// Integrator memory.
     pub integrator: IntegratorMemory,
     /// Step control.
@@ -38,7 +38,7 @@ pub const SNAPSHOT_VERSION: u32 = 4;
 /// bytes, so restored values are bit-identical).
 #[derive(Serialize, Deserialize)]
 #[serde(bound = "")]
-struct Snapshot<S: SpaceModel> {
+struct Snapshot<S: Space> {
     /// [`SNAPSHOT_VERSION`]; first, so that another version is reported as such.
     version: u32,
     /// Coordinates of the model.
@@ -68,7 +68,7 @@ pub(super) fn scene_key(scene: &Scene) -> u64 {
     h.finish()
 }
 
-impl<S: SpaceModel> Simulator<S> {
+impl<S: Space> Simulator<S> {
     /// The memory a snapshot must carry besides the state.
     pub fn memory(&self) -> Memory<S> {
         Memory {

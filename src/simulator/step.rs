@@ -20,14 +20,14 @@ pub(super) const STEP_ROUNDING: f64 = 1e-9;
 
 /// What a communication step returns to when it fails: the state, step control, mount path
 /// and inputs at its start.
-struct Saved<S: SpaceModel> {
+struct Saved<S: Space> {
     state: State,
     step: StepControl,
     mount: Option<Box<MountState<S>>>,
     inputs: Inputs<S>,
 }
 
-impl<S: SpaceModel> Simulator<S> {
+impl<S: Space> Simulator<S> {
     /// Returns to what `saved` holds after a failed or refused communication step (the held
     /// Newton matrix belongs to the abandoned attempt).
     fn roll_back(&mut self, saved: Saved<S>) {

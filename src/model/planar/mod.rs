@@ -18,6 +18,7 @@ pub use joint::RigidJoint;
 use super::dofs::Rigid;
 use super::space::Space;
 use super::space::{Motion, MotionRates};
+use crate::scene::{Mount, SpaceKind};
 
 pub(crate) use frame::poly;
 
@@ -27,6 +28,11 @@ pub(crate) use frame::poly;
 pub struct Planar;
 
 impl Space for Planar {
+    const KIND: SpaceKind = SpaceKind::Planar;
+    const ATTITUDE: &'static str = "tip.angle";
+    const ATTITUDE_COMPONENTS: &'static [&'static str] = &[""];
+    const MOUNT_ATTITUDE: &'static str = "root.angle";
+    const ANGULAR_SUFFIXES: &'static [&'static str] = &[""];
     const DIM: usize = 2;
     const AXES: &'static [&'static str] = &["x", "y"];
     const MOMENT_AXES: &'static [&'static str] = &["z"];
@@ -47,6 +53,18 @@ impl Space for Planar {
 
     fn attitude_identity() -> f64 {
         0.0
+    }
+
+    fn attitude_components(a: &f64) -> &[f64] {
+        std::slice::from_ref(a)
+    }
+
+    fn attitude_components_mut(a: &mut f64) -> &mut [f64] {
+        std::slice::from_mut(a)
+    }
+
+    fn attitude_from(m: &Mount) -> f64 {
+        m.angle
     }
 
     fn inertia_to_world(_: &f64, inertia: &[f64; 9]) -> [[f64; 3]; 3] {

@@ -22,6 +22,7 @@ pub use node::{AncfElement3, NodePort3, NodeSupport3};
 use super::dofs::Rigid;
 use super::space::Space;
 use super::space::{Motion, MotionRates};
+use crate::scene::{Mount, SpaceKind};
 
 /// Space: vectors `[x, y, z]` (global axes), moments and angular velocities `[x, y, z]`,
 /// orientations as Euler parameters `[e0, e1, e2, e3]` (scalar first, section frame → world).
@@ -29,6 +30,11 @@ use super::space::{Motion, MotionRates};
 pub struct Spatial;
 
 impl Space for Spatial {
+    const KIND: SpaceKind = SpaceKind::Spatial;
+    const ATTITUDE: &'static str = "tip.orientation";
+    const ATTITUDE_COMPONENTS: &'static [&'static str] = &["e0", "e1", "e2", "e3"];
+    const MOUNT_ATTITUDE: &'static str = "root.orientation";
+    const ANGULAR_SUFFIXES: &'static [&'static str] = &["x", "y", "z"];
     const DIM: usize = 3;
     const AXES: &'static [&'static str] = &["x", "y", "z"];
     const MOMENT_AXES: &'static [&'static str] = &["x", "y", "z"];
@@ -56,6 +62,19 @@ impl Space for Spatial {
 
     fn attitude_identity() -> [f64; 4] {
         [1.0, 0.0, 0.0, 0.0]
+    }
+
+    fn attitude_components(a: &[f64; 4]) -> &[f64] {
+        a
+    }
+
+    fn attitude_components_mut(a: &mut [f64; 4]) -> &mut [f64] {
+        a
+    }
+
+    fn attitude_from(m: &Mount) -> [f64; 4] {
+        let e = m.orientation.unwrap_or([1.0, 0.0, 0.0, 0.0]);
+        Self::normalized_attitude(&e).unwrap_or([1.0, 0.0, 0.0, 0.0])
     }
 
     fn inertia_to_world(a: &[f64; 4], inertia: &[f64; 9]) -> [[f64; 3]; 3] {
