@@ -35,6 +35,7 @@ pub mod planar;
 pub mod space;
 pub mod spatial;
 pub mod vector;
+pub mod walk;
 
 pub use assembly::{Model, Parts};
 pub use build::build;

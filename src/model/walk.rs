@@ -1,0 +1,226 @@
+//! The segment walk of a build, written once: segments root to tip, a modal segment as a
+//! floating frame joined to its neighbours, an ANCF segment as a chain of elements whose first
+//! node is shared with an ANCF segment before it; root coordinates held by the support are
+//! eliminated. Each space supplies its parts through [`SegmentParts`] (`planar/build.rs`,
+//! `spatial/build.rs`). The order is the recordings': ANCF elements first, then modal bodies;
+//! constraints from root to tip, a segment's own rows before the joint to its upstream
+//! neighbour (this order is the summation order of the assembly).
+
+use super::assembly::{Model, Parts};
+use super::component::{Constraint, Element, Port, Support};
+use super::dofs::{Dof, LocalDofs, Numbering};
+use super::space::Space;
+use crate::scene::{Root, Scene, SceneError, Segment, SegmentKind};
+
+/// An end of a segment being built: its local coordinates with their initial values, and its
+/// port.
+pub struct End<S: Space> {
+    /// Local coordinates.
+    pub dofs: LocalDofs,
+    /// Their initial values.
+    pub q0: Vec<f64>,
+    /// The end's port.
+    pub port: Box<dyn Port<S>>,
+    /// An ANCF node (shared with a following ANCF segment instead of joined).
+    pub node: bool,
+}
+
+/// Coordinates being numbered for one component: their dofs and initial values.
+#[derive(Debug, Clone, Default)]
+pub struct Coords {
+    /// The numbered coordinates.
+    pub dofs: Vec<Dof>,
+    /// Their initial values.
+    pub q0: Vec<f64>,
+}
+
+impl Coords {
+    /// Numbers one coordinate (free or held) of initial `value` and Newton `scale`.
+    pub fn push(&mut self, num: &mut Numbering, free: bool, value: f64, scale: f64) {
+        self.dofs.push(num.coordinate(free, value, scale));
+        self.q0.push(value);
+    }
+
+    /// Indices into the held values of the `N` coordinates from `first` (all held).
+    pub fn held<const N: usize>(&self, first: usize) -> [usize; N] {
+        std::array::from_fn(|k| match self.dofs[first + k] {
+            Dof::Held(j) => j as usize,
+            Dof::Free(_) => unreachable!("a root coordinate held by the support"),
+        })
+    }
+
+    /// Whether coordinate `k` is held.
+    pub fn is_held(&self, k: usize) -> bool {
+        matches!(self.dofs[k], Dof::Held(_))
+    }
+}
+
+/// A modal segment as its space builds it.
+pub struct ModalSegment<S: Space> {
+    /// The body's coordinates.
+    pub coords: Coords,
+    /// Its root and tip ports.
+    pub root: Box<dyn Port<S>>,
+    /// See [`ModalSegment::root`].
+    pub tip: Box<dyn Port<S>>,
+    /// The element.
+    pub element: Box<dyn Element<S>>,
+    /// The support, for the first segment.
+    pub support: Option<Box<dyn Support<S>>>,
+    /// Its own rows (e.g. an Euler-parameter normalization), before its joint.
+    pub constraints: Vec<(LocalDofs, Box<dyn Constraint>)>,
+}
+
+/// What a space builds of each segment kind.
+pub trait SegmentParts<S: Space> {
+    /// The properties shared by the elements of an ANCF segment.
+    type AncfProps;
+
+    /// A modal segment `si` whose root is at arc length `s` [m]; `held` when its frame is the
+    /// support's (the first segment of a clamped or mounted root).
+    fn modal(
+        &mut self,
+        num: &mut Numbering,
+        si: usize,
+        seg: &Segment,
+        s: f64,
+        held: bool,
+    ) -> Result<ModalSegment<S>, SceneError>;
+    /// The element properties of ANCF segment `si` (elements of length `le` [m]).
+    fn ancf_props(&self, si: usize, seg: &Segment, le: f64) -> Result<Self::AncfProps, SceneError>;
+    /// One ANCF element.
+    fn ancf_element(&self, props: &Self::AncfProps) -> Box<dyn Element<S>>;
+    /// An ANCF node at arc length `s` [m], its position (`free_r`) and directions (`free_d`)
+    /// free or held, with the rigid groups it forms.
+    fn node(&self, num: &mut Numbering, s: f64, free_r: bool, free_d: bool) -> Coords;
+    /// The support of a first ANCF node.
+    fn node_support(&self, node: &Coords) -> Box<dyn Support<S>>;
+    /// An ANCF node's port.
+    fn node_port(&self) -> Box<dyn Port<S>>;
+    /// The rigid joint between `up` and `down`, its angle rows scaled by the upstream segment's
+    /// length `length` [m].
+    fn join(
+        &self,
+        up: End<S>,
+        down: End<S>,
+        length: f64,
+    ) -> Result<(LocalDofs, Box<dyn Constraint>), SceneError>;
+}
+
+/// The first `N` of `v` in a space's vector (zero where `v` is shorter).
+fn vector<S: Space>(v: &[f64]) -> S::Vec {
+    let mut out = S::Vec::default();
+    for (o, x) in out.as_mut().iter_mut().zip(v) {
+        *o = *x;
+    }
+    out
+}
+
+/// The model of a validated scene, its segments built by `parts`.
+pub fn walk<S: Space, P: SegmentParts<S>>(
+    scene: &Scene,
+    parts: &mut P,
+) -> Result<Model<S>, SceneError> {
+    let clamped = matches!(scene.root, Root::Clamped | Root::Mounted);
+    let mut num = Numbering::default();
+    let mut ancf: Vec<(LocalDofs, Box<dyn Element<S>>, usize)> = Vec::new();
+    let mut bodies: Vec<(LocalDofs, Box<dyn Element<S>>, usize)> = Vec::new();
+    let mut constraints: Vec<(LocalDofs, Box<dyn Constraint>)> = Vec::new();
+    let mut support: Option<Box<dyn Support<S>>> = None;
+    let mut prev: Option<End<S>> = None;
+    let mut s_pos = 0.0; // arc length at the segment root
+    let mut prev_len = 0.0; // length of the previous segment (joint row scale)
+    for (si, seg) in scene.segments.iter().enumerate() {
+        let first = si == 0;
+        match seg.kind {
+            SegmentKind::Modal => {
+                let m = parts.modal(&mut num, si, seg, s_pos, first && clamped)?;
+                if first {
+                    support = m.support;
+                }
+                constraints.extend(m.constraints);
+                let dofs = LocalDofs::new(m.coords.dofs.clone());
+                if let Some(up) = prev.take() {
+                    let down = End {
+                        dofs: dofs.clone(),
+                        q0: m.coords.q0.clone(),
+                        port: m.root,
+                        node: false,
+                    };
+                    constraints.push(parts.join(up, down, prev_len)?);
+                }
+                prev = Some(End {
+                    dofs: dofs.clone(),
+                    q0: m.coords.q0,
+                    port: m.tip,
+                    node: false,
+                });
+                bodies.push((dofs, m.element, si));
+            }
+            SegmentKind::Ancf => {
+                let ne = seg.elements.unwrap_or(1);
+                let le = seg.length / ne as f64;
+                let props = parts.ancf_props(si, seg, le)?;
+                // first node: shared with a previous ANCF segment, else new (held at the root)
+                let mut last = match prev.take() {
+                    Some(up) if up.node => Coords {
+                        dofs: up.dofs.dofs().to_vec(),
+                        q0: up.q0,
+                    },
+                    up => {
+                        let c = parts.node(&mut num, s_pos, !first, !(first && clamped));
+                        if first {
+                            support = Some(parts.node_support(&c));
+                        }
+                        if let Some(up) = up {
+                            let down = End {
+                                dofs: LocalDofs::new(c.dofs.clone()),
+                                q0: c.q0.clone(),
+                                port: parts.node_port(),
+                                node: true,
+                            };
+                            constraints.push(parts.join(up, down, prev_len)?);
+                        }
+                        c
+                    }
+                };
+                for k in 0..ne {
+                    let next = parts.node(&mut num, s_pos + (k + 1) as f64 * le, true, true);
+                    let dofs =
+                        LocalDofs::new(last.dofs.iter().chain(&next.dofs).copied().collect());
+                    ancf.push((dofs, parts.ancf_element(&props), si));
+                    last = next;
+                }
+                prev = Some(End {
+                    dofs: LocalDofs::new(last.dofs),
+                    q0: last.q0,
+                    port: parts.node_port(),
+                    node: true,
+                });
+            }
+        }
+        s_pos += seg.length;
+        prev_len = seg.length;
+    }
+    let tip = prev.expect("a validated scene has at least one segment");
+    let mut elements = ancf;
+    elements.append(&mut bodies);
+    let mut tip_moment = S::Moment::default();
+    for (o, x) in S::moment_components_mut(&mut tip_moment)
+        .iter_mut()
+        .zip(&scene.tip.moment)
+    {
+        *o = *x;
+    }
+    Ok(Model::assemble(Parts {
+        numbering: num,
+        elements,
+        constraints,
+        tip: (tip.dofs, tip.port),
+        support: support.expect("the first segment is held at the root"),
+        gravity: vector::<S>(&scene.gravity),
+        tip_force: vector::<S>(&scene.tip.force),
+        tip_moment,
+        mounted: scene.root == Root::Mounted,
+    }))
+}
