@@ -36,8 +36,11 @@ pub struct Simulator<S: Space> {
     integ: GeneralizedAlpha,
     state: State,
     step: StepControl,
-    /// Inputs the state's q̈ and λ are consistent with (see [`Memory::applied`]).
+    /// Inputs the state's q̈ and λ are consistent with (see [`Memory::applied`]): the ones
+    /// the model holds.
     applied: Inputs<S>,
+    /// Inputs set for the next step (a host's; the model takes them at the step's start).
+    pending: Inputs<S>,
     /// The mount's motion (`root = "mounted"`; boxed: a fixed root carries no more than a
     /// pointer).
     mount: Option<Box<MountState<S>>>,
@@ -125,6 +128,7 @@ impl<S: Space> Simulator<S> {
             state,
             step,
             applied,
+            pending: applied,
             mount: mount.map(Box::new),
             load_rates: LoadRates::default(),
             min_step_used: f64::INFINITY,

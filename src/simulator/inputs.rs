@@ -1,6 +1,8 @@
 //! The inputs a host changes between communication steps: the tip loads and gravity
 //! ([`Inputs`]), their derivatives over the next step ([`LoadRates`]), and the simulator's
-//! setters and getters of them.
+//! setters and getters of them. The simulator owns the inputs: those set for the next step
+//! (pending) and those the state is consistent with (applied); the model holds the applied
+//! ones, and the step (`step.rs`) is the one place that moves the pending ones into it.
 
 use super::*;
 
@@ -17,6 +19,7 @@ pub struct Inputs<S: Space> {
 }
 
 impl<S: Space> Inputs<S> {
+    /// The loads a model holds.
     pub(super) fn of(model: &Model<S>) -> Self {
         Self {
             tip_force: model.tip_force(),
@@ -81,9 +84,10 @@ impl<S: Space> LoadRates<S> {
 }
 
 impl<S: Space> Simulator<S> {
-    /// Sets gravity [m/s²] (takes effect at the next step, as a jump of the inputs).
+    /// Sets gravity [m/s²] (takes effect at the next step, as a jump of the inputs; the model
+    /// and the outputs keep the applied gravity until then).
     pub fn set_gravity(&mut self, g: S::Vec) {
-        self.model.set_gravity(g);
+        self.pending.gravity = g;
     }
 
     /// Work counters.
@@ -94,39 +98,39 @@ impl<S: Space> Simulator<S> {
     /// Sets the total tip force [N], global axes (replaces the scene's; takes effect at the
     /// next step, as a jump of the inputs at the current time: see [`Simulator::advance`]).
     pub fn set_tip_force(&mut self, f: S::Vec) {
-        self.model.set_tip_force(f);
+        self.pending.tip_force = f;
     }
 
-    /// The total tip force the model applies [N], global axes.
+    /// The total tip force set for the next step [N], global axes.
     pub fn tip_force(&self) -> S::Vec {
-        self.model.tip_force()
+        self.pending.tip_force
     }
 
     /// Sets the total dead tip moment [N m], global axes (in the plane: about z,
     /// counter-clockwise; replaces the scene's; takes effect at the next step, as a jump of the
     /// inputs like the tip force).
     pub fn set_tip_moment(&mut self, m: S::Moment) {
-        self.model.set_tip_moment(m);
+        self.pending.tip_moment = m;
     }
 
-    /// The total tip moment the model applies [N m], global axes.
+    /// The total tip moment set for the next step [N m], global axes.
     pub fn tip_moment(&self) -> S::Moment {
-        self.model.tip_moment()
+        self.pending.tip_moment
     }
 
-    /// Gravity [m/s²], global axes.
+    /// Gravity set for the next step [m/s²], global axes.
     pub fn gravity(&self) -> S::Vec {
-        self.model.gravity()
+        self.pending.gravity
     }
 
     /// The inputs set for the next step (tip force, tip moment, gravity).
     pub fn inputs(&self) -> Inputs<S> {
-        Inputs::of(&self.model)
+        self.pending
     }
 
     /// Sets all inputs (each takes effect at the next step, as a jump of the inputs).
     pub fn set_inputs(&mut self, inputs: &Inputs<S>) {
-        inputs.apply(&mut self.model);
+        self.pending = *inputs;
     }
 
     /// The tip loads' derivatives for the next step ([`LoadRates`]); they hold for that step

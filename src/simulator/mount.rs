@@ -249,19 +249,16 @@ impl<S: Space> Simulator<S> {
         Some(outputs.mount?.mass_matrix(&m.attitude))
     }
 
-    /// Rebuilds the held Newton matrix of `mem` under the inputs and mount motion it was
-    /// evaluated with, then returns the model to the current ones.
+    /// Rebuilds the held Newton matrix of `mem` under the mount motion it was evaluated with
+    /// (and the applied inputs the model holds), then returns the model to the current motion.
     pub(super) fn rebuild_matrix(&mut self, mem: &IntegratorMemory, at_matrix: Option<Motion<S>>) {
-        let next = Inputs::of(&self.model);
         let now = self.model.mount_motion().copied();
-        self.applied.apply(&mut self.model);
         if let Some(m) = &at_matrix {
             self.model.set_mount(m);
         }
         if self.integ.restore_memory(&mut self.model, mem).is_err() {
             self.integ.invalidate();
         }
-        next.apply(&mut self.model);
         if let Some(m) = &now {
             self.model.set_mount(m);
         }

@@ -164,20 +164,18 @@ impl<S: Space> Simulator<S> {
         if mem.mount.is_some() != self.mount.is_some() {
             return Err(SnapshotError::OtherModel.into());
         }
-        let next = Inputs::of(&self.model);
         mem.applied.apply(&mut self.model);
         let current_mount = self.model.mount_motion().copied();
         if let Some(m) = &mem.mount_at_matrix {
             self.model.set_mount(m);
         }
         if let Err(e) = self.integ.restore_memory(&mut self.model, &mem.integrator) {
-            next.apply(&mut self.model);
+            self.applied.apply(&mut self.model);
             if let Some(m) = &current_mount {
                 self.model.set_mount(m);
             }
             return Err(SnapshotError::NewtonMatrix(e).into());
         }
-        next.apply(&mut self.model);
         if let Some(ms) = &mem.mount {
             self.model.set_mount(&ms.at(s.t));
         }
@@ -199,7 +197,7 @@ impl<S: Space> Simulator<S> {
             coordinates: self.state.q.len() as u64,
             constraints: self.state.lambda.len() as u64,
             scene: scene_key(&self.scene),
-            inputs: Inputs::of(&self.model),
+            inputs: self.pending,
             state: self.state.clone(),
             memory: self.memory(),
         };
@@ -239,7 +237,7 @@ impl<S: Space> Simulator<S> {
             return Err(SnapshotError::NonFiniteField { field, value }.into());
         }
         self.restore(snap.state, &snap.memory)?;
-        snap.inputs.apply(&mut self.model);
+        self.pending = snap.inputs;
         Ok(())
     }
 }

@@ -18,21 +18,20 @@ pub struct StepControl {
 /// this fraction.
 pub(super) const STEP_ROUNDING: f64 = 1e-9;
 
-/// What a communication step returns to when it fails: the state, step control, mount path
-/// and inputs at its start.
+/// What a communication step returns to when it fails: the state, step control and mount
+/// path at its start (the applied inputs change only when it succeeds).
 struct Saved<S: Space> {
     state: State,
     step: StepControl,
     mount: Option<Box<MountState<S>>>,
-    inputs: Inputs<S>,
 }
 
 impl<S: Space> Simulator<S> {
     /// Returns to what `saved` holds after a failed or refused communication step (the held
     /// Newton matrix belongs to the abandoned attempt).
     fn roll_back(&mut self, saved: Saved<S>) {
-        // the loads set for the step (an attempt may have left them at a time within it)
-        saved.inputs.apply(&mut self.model);
+        // the applied loads (an attempt left the pending ones, or their values within the step)
+        self.applied.apply(&mut self.model);
         if let Some(ms) = &saved.mount {
             self.model.set_mount(&ms.at(saved.state.t));
         }
@@ -82,9 +81,8 @@ impl<S: Space> Simulator<S> {
             state: self.state.clone(),
             step: self.step,
             mount: self.mount.clone(),
-            inputs: Inputs::of(&self.model),
         };
-        let inputs = saved.inputs;
+        let inputs = self.pending;
         let done = self.take_mount_input().and_then(|jump| {
             self.jump_inputs(t0, &inputs, jump)?;
             let (steps, halvings) = self.internal_steps(t0, t_end, &inputs)?;
@@ -116,7 +114,7 @@ impl<S: Space> Simulator<S> {
         if *inputs == self.applied && jump.is_none() {
             return Ok(());
         }
-        self.applied.apply(&mut self.model);
+        // the model holds the applied inputs; the jump moves it to the pending ones
         self.integ
             .change_inputs(&mut self.model, &mut self.state, |m| {
                 inputs.apply(m);
@@ -249,6 +247,7 @@ impl<S: Space> Simulator<S> {
             // for this step)
             let end = self.load_rates.advanced(inputs, span);
             self.load_rates = LoadRates::default();
+            self.pending = end;
             end
         } else {
             *inputs

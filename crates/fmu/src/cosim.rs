@@ -353,11 +353,11 @@ impl CoSimModel for BeamFmu {
                     .validate()
                     .map_err(|e| format!("{name} = {value}: {e}"))?;
                 if let Access::Gravity(id) = access {
-                    // tunable: the running simulator takes it at its next step
+                    // tunable: the running simulator takes it at its next step (the outputs
+                    // are the state's, under the gravity it was integrated with, until then)
                     if !self.sim.set_input(id, value) {
                         return Err(not_in_space(name, &self.sim));
                     }
-                    self.refresh_outputs();
                 }
                 self.scene = scene;
             }
