@@ -182,9 +182,9 @@ pub(super) fn bend_twist<T: Real>(
     let cv = cross(a, c);
     let w2 = n2 * cc - g * g;
     let inv_w = w2.sqrt().recip();
-    let p = dot(cv, b);
+    let p = dot(&cv, b);
     let q = n2 * bc - ab * g;
-    let s = dot(cv, d);
+    let s = dot(&cv, d);
     let (inv_n2, inv_w2) = (inv_n * inv_n, inv_w * inv_w);
     // ½∂(w²)/w² and ½∂(n²)/n²
     let hw_a = lin2(cc * inv_w2, a, -g * inv_w2, c);
@@ -235,5 +235,5 @@ pub(super) fn bend_twist<T: Real>(
 /// Strain measures (ε, κ2, κ3, τ) at a point from r_x, r_xx, r_y, r_yx (see the module doc).
 pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3], ryx: [f64; 3]) -> [f64; 4] {
     let ([k2, k3, tau], _) = bend_twist(&rx, &rxx, &ry, &ryx);
-    [dot(rx, rx).sqrt() - 1.0, k2, k3, tau]
+    [dot(&rx, &rx).sqrt() - 1.0, k2, k3, tau]
 }

@@ -26,6 +26,10 @@
 //! the tangent and damping matrices ([`Ancf3Props::tangent`]) are the exact Jacobians of the
 //! same generic code by forward-mode AD (`num-dual`).
 
+// The kernels pass dual-number 3-vectors (hundreds of bytes each on the tangent path) to the
+// `vector` helpers by reference on purpose: by value they would be copied at every call.
+#![allow(clippy::needless_borrows_for_generic_args)]
+
 use super::ancf::{GAUSS3, GAUSS5};
 use crate::math;
 use crate::model::vector::Real;
@@ -417,7 +421,7 @@ impl Ancf3Props {
         let g = [a[0] * inv, a[1] * inv, a[2] * inv];
         let mut stress = n - 1.0;
         if let Some(ud) = ud {
-            stress += dot(g, ud[0]) * self.damping_time;
+            stress += dot(&g, &ud[0]) * self.damping_time;
         }
         let s = stress * w;
         [[g[0] * s, g[1] * s, g[2] * s]]
@@ -433,7 +437,7 @@ impl Ancf3Props {
         if let Some([ad, bd, cd, dd]) = ud {
             for i in 0..3 {
                 let gi = &g[i];
-                let rate = dot(gi.a, ad) + dot(gi.b, bd) + dot(gi.c, cd) + dot(gi.d, dd);
+                let rate = dot(&gi.a, ad) + dot(&gi.b, bd) + dot(&gi.c, cd) + dot(&gi.d, dd);
                 s[i] += rate * self.damping_time;
             }
         }
@@ -459,7 +463,7 @@ impl Ancf3Props {
             // (ȧ × b + a × ḃ)/|a|² − 2κ (a·ȧ)/|a|² − (a × ȧ) × κ/|a|²
             let r1 = cross(ad, b);
             let r2 = cross(a, bd);
-            let r3 = cross(cross(a, ad), kap);
+            let r3 = cross(&cross(a, ad), &kap);
             let ada = dot(a, ad) * 2.0;
             for c in 0..3 {
                 mv[c] += (r1[c] + r2[c] - r3[c] - kap[c] * ada) * (inv * self.damping_time);
@@ -469,10 +473,10 @@ impl Ancf3Props {
         let mv = [mv[0] * s, mv[1] * s, mv[2] * s];
         // Jᵀμ of κ̇_rel = J ė (J = ∂κ/∂e on the elastic part, κ·a = 0):
         // a-part [b × μ − 2(κ·μ) a + (a·μ) κ]/|a|², b-part (μ × a)/|a|²
-        let bm = cross(b, mv);
-        let ma = cross(mv, a);
-        let km = dot(kap, mv) * (-2.0);
-        let am = dot(a, mv);
+        let bm = cross(b, &mv);
+        let ma = cross(&mv, a);
+        let km = dot(&kap, &mv) * (-2.0);
+        let am = dot(a, &mv);
         [
             lin3(inv, &bm, km * inv, a, am * inv, &kap),
             [ma[0] * inv, ma[1] * inv, ma[2] * inv],
@@ -509,7 +513,7 @@ impl Ancf3Props {
         let mut u = 0.0;
         for (w, ds) in &tab.axial {
             let a = v(ds, &rs);
-            let eps = dot(a, a).sqrt() - 1.0;
+            let eps = dot(&a, &a).sqrt() - 1.0;
             u += 0.5 * w * eps * eps;
         }
         for p in &tab.bending {
@@ -521,9 +525,9 @@ impl Ancf3Props {
                 let [_, k2, k3, tau] = strains(a, b, c, d);
                 u += 0.5 * p.w * (self.ei_y * k2 * k2 + self.ei_z * k3 * k3 + self.gj * tau * tau);
             } else {
-                let bv = cross(a, b);
-                let n2 = dot(a, a);
-                u += 0.5 * p.w * self.cable_ei() * dot(bv, bv) / (n2 * n2);
+                let bv = cross(&a, &b);
+                let n2 = dot(&a, &a);
+                u += 0.5 * p.w * self.cable_ei() * dot(&bv, &bv) / (n2 * n2);
             }
         }
         if self.torsion {
@@ -531,8 +535,8 @@ impl Ancf3Props {
             for node in 0..2 {
                 let x = [e[9 * node + 3], e[9 * node + 4], e[9 * node + 5]];
                 let y = [e[9 * node + 6], e[9 * node + 7], e[9 * node + 8]];
-                let gam = dot(x, y) / dot(x, x).sqrt();
-                let ystr = 0.5 * (dot(y, y) - 1.0);
+                let gam = dot(&x, &y) / dot(&x, &x).sqrt();
+                let ystr = 0.5 * (dot(&y, &y) - 1.0);
                 u += 0.5 * kp * (ystr * ystr + gam * gam);
             }
         }
@@ -550,7 +554,7 @@ impl Ancf3Props {
                     a[c] += ds[j] * e[rs[j] + c];
                 }
             }
-            worst = worst.max((dot(a, a).sqrt() - 1.0).abs());
+            worst = worst.max((dot(&a, &a).sqrt() - 1.0).abs());
         }
         worst
     }
@@ -563,7 +567,7 @@ impl Ancf3Props {
     pub fn section_measures(&self, e: &[f64]) -> (f64, f64) {
         let v = |i: usize| [e[i], e[i + 1], e[i + 2]];
         let unit = |a: [f64; 3]| {
-            let n = dot(a, a).sqrt();
+            let n = dot(&a, &a).sqrt();
             a.map(|x| x / n)
         };
         let mut frames = [[[0.0; 3]; 2]; 2];
@@ -571,23 +575,23 @@ impl Ancf3Props {
         for (node, f) in frames.iter_mut().enumerate() {
             let t = unit(v(9 * node + 3));
             let y = v(9 * node + 6);
-            let u = cross(t, y);
-            let s = (dot(u, u) / dot(y, y)).sqrt();
+            let u = cross(&t, &y);
+            let s = (dot(&u, &u) / dot(&y, &y)).sqrt();
             sine = sine.min(if s.is_finite() { s } else { 0.0 });
             // d2 = normalized r_y ⟂ t = (t × r_y) × t / |t × r_y|
-            *f = [t, unit(cross(u, t))];
+            *f = [t, unit(cross(&u, &t))];
         }
         let [[t0, a], [t1, b]] = frames;
-        let w = cross(t0, t1);
-        let c = dot(t0, t1);
+        let w = cross(&t0, &t1);
+        let c = dot(&t0, &t1);
         if c.is_nan() || 1.0 + c <= 1e-12 || sine == 0.0 {
             return (std::f64::consts::PI, sine);
         }
         // a carried by R = c I + [w]× + w wᵀ/(1 + c)
-        let wa = cross(w, a);
-        let f = dot(w, a) / (1.0 + c);
+        let wa = cross(&w, &a);
+        let f = dot(&w, &a) / (1.0 + c);
         let a1 = [0, 1, 2].map(|i| c * a[i] + wa[i] + f * w[i]);
-        let twist = math::atan2(dot(t1, cross(a1, b)), dot(a1, b)).abs();
+        let twist = math::atan2(dot(&t1, &cross(&a1, &b)), dot(&a1, &b)).abs();
         let worst = std::f64::consts::PI;
         (if twist.is_nan() { worst } else { twist }, sine)
     }
@@ -648,8 +652,8 @@ pub(crate) mod tests {
     fn frame(axis: [f64; 3], angle: f64) -> [[f64; 3]; 3] {
         let rot = |v: [f64; 3]| {
             let (s, c) = angle.sin_cos();
-            let kv = cross(axis, v);
-            let kd = dot(axis, v);
+            let kv = cross(&axis, &v);
+            let kd = dot(&axis, &v);
             [0, 1, 2].map(|i| c * v[i] + s * kv[i] + (1.0 - c) * kd * axis[i])
         };
         [
@@ -801,13 +805,13 @@ pub(crate) mod tests {
             for node in 0..2 {
                 let b = st * node;
                 let r = [e[b] - e[0], e[b + 1] - e[1], e[b + 2] - e[2]];
-                let wr = cross(w, r);
+                let wr = cross(&w, &r);
                 for c in 0..3 {
                     ed[b + c] = v0[c] + wr[c];
                 }
                 for blk in (3..st).step_by(3) {
                     let d = [e[b + blk], e[b + blk + 1], e[b + blk + 2]];
-                    let wd = cross(w, d);
+                    let wd = cross(&w, &d);
                     ed[b + blk..b + blk + 3].copy_from_slice(&wd);
                 }
             }
@@ -851,7 +855,7 @@ pub(crate) mod tests {
                 }
                 for (k, v) in vecs.iter().enumerate() {
                     e[b + 3 * k..b + 3 * k + 3].copy_from_slice(v);
-                    ed[b + 3 * k..b + 3 * k + 3].copy_from_slice(&cross(w, v));
+                    ed[b + 3 * k..b + 3 * k + 3].copy_from_slice(&cross(&w, v));
                 }
             }
             let tab = p.tables();
@@ -891,7 +895,7 @@ pub(crate) mod tests {
             let (sn, cs) = th.sin_cos();
             let t = [-rho * sn / lam, rho * cs / lam, h / lam];
             let n = [-cs, -sn, 0.0];
-            let b = cross(t, n);
+            let b = cross(&t, &n);
             // Frenet: t′ = k n, n′ = −k t + τ_g b, b′ = −τ_g n (per s)
             let phi = phi0 + phi1 * s;
             let (sp, cp) = phi.sin_cos();
