@@ -164,6 +164,25 @@ pub fn is_nonzero_moment<S: Space>(m: &S::Moment) -> bool {
     S::moment_components(m).iter().any(|x| *x != 0.0)
 }
 
+/// A space's vector from the components of a list (a scene's table): the first
+/// [`Space::DIM`], zero where the list is shorter.
+pub fn vec_from<S: Space>(v: &[f64]) -> S::Vec {
+    let mut out = S::Vec::default();
+    for (o, x) in out.as_mut().iter_mut().zip(v) {
+        *o = *x;
+    }
+    out
+}
+
+/// A space's moment from the components of a list, as [`vec_from`].
+pub fn moment_from<S: Space>(v: &[f64]) -> S::Moment {
+    let mut out = S::Moment::default();
+    for (o, x) in S::moment_components_mut(&mut out).iter_mut().zip(v) {
+        *o = *x;
+    }
+    out
+}
+
 /// The motion of a frame at one instant, world axes, SI.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(bound(

@@ -9,7 +9,7 @@
 use super::assembly::{Model, Parts};
 use super::component::{Constraint, Element, Port, Support};
 use super::dofs::{Dof, LocalDofs, Numbering};
-use super::space::Space;
+use super::space::{moment_from, vec_from, Space};
 use crate::scene::{Root, Scene, SceneError, Segment, SegmentKind};
 
 /// An end of a segment being built: its local coordinates with their initial values, and its
@@ -107,15 +107,6 @@ pub trait SegmentParts<S: Space> {
     ) -> Result<(LocalDofs, Box<dyn Constraint>), SceneError>;
 }
 
-/// The first `N` of `v` in a space's vector (zero where `v` is shorter).
-fn vector<S: Space>(v: &[f64]) -> S::Vec {
-    let mut out = S::Vec::default();
-    for (o, x) in out.as_mut().iter_mut().zip(v) {
-        *o = *x;
-    }
-    out
-}
-
 /// The model of a validated scene, its segments built by `parts`.
 pub fn walk<S: Space, P: SegmentParts<S>>(
     scene: &Scene,
@@ -205,22 +196,15 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
     let tip = prev.expect("a validated scene has at least one segment");
     let mut elements = ancf;
     elements.append(&mut bodies);
-    let mut tip_moment = S::Moment::default();
-    for (o, x) in S::moment_components_mut(&mut tip_moment)
-        .iter_mut()
-        .zip(&scene.tip.moment)
-    {
-        *o = *x;
-    }
     Ok(Model::assemble(Parts {
         numbering: num,
         elements,
         constraints,
         tip: (tip.dofs, tip.port),
         support: support.expect("the first segment is held at the root"),
-        gravity: vector::<S>(&scene.gravity),
-        tip_force: vector::<S>(&scene.tip.force),
-        tip_moment,
+        gravity: vec_from::<S>(&scene.gravity),
+        tip_force: vec_from::<S>(&scene.tip.force),
+        tip_moment: moment_from::<S>(&scene.tip.moment),
         mounted: scene.root == Root::Mounted,
     }))
 }

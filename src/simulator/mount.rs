@@ -5,6 +5,7 @@
 
 use super::*;
 use crate::error::Refusal;
+use crate::model::space::{moment_from, vec_from};
 use crate::model::{Motion, MotionRates};
 use crate::scene::{MotionInput, Mount, Scene};
 use serde::{Deserialize, Serialize};
@@ -122,28 +123,14 @@ impl<S: Space> MountState<S> {
 
 /// The motion of a scene's `[mount]` table (vectors complete, orientation normalized).
 fn motion_of<S: Space>(m: &Mount) -> Motion<S> {
-    let mut out = Motion::<S>::default();
-    let vec = |v: &[f64]| {
-        let mut x = S::Vec::default();
-        for (k, c) in v.iter().enumerate().take(S::DIM) {
-            x[k] = *c;
-        }
-        x
-    };
-    let mom = |v: &[f64]| {
-        let mut x = S::Moment::default();
-        for (o, c) in S::moment_components_mut(&mut x).iter_mut().zip(v) {
-            *o = *c;
-        }
-        x
-    };
-    out.position = vec(&m.position);
-    out.velocity = vec(&m.velocity);
-    out.acceleration = vec(&m.acceleration);
-    out.angular_velocity = mom(&m.angular_velocity);
-    out.angular_acceleration = mom(&m.angular_acceleration);
-    out.attitude = S::attitude_from(m);
-    out
+    Motion {
+        position: vec_from::<S>(&m.position),
+        attitude: S::attitude_from(m),
+        velocity: vec_from::<S>(&m.velocity),
+        angular_velocity: moment_from::<S>(&m.angular_velocity),
+        acceleration: vec_from::<S>(&m.acceleration),
+        angular_acceleration: moment_from::<S>(&m.angular_acceleration),
+    }
 }
 
 impl<S: Space> Simulator<S> {

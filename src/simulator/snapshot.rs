@@ -124,20 +124,18 @@ impl<S: Space> Simulator<S> {
                     .all(|(x, y)| (x - y).abs() <= ATTITUDE_TOLERANCE)
             })
         };
-        let attitudes = mem
-            .mount
-            .iter()
-            .flat_map(|m| {
-                [("memory.mount.base", Some(&m.base.attitude))]
-                    .into_iter()
-                    .chain([("memory.mount.last", m.last.as_ref().map(|l| &l.1.attitude))])
-            })
-            .chain([(
-                "memory.mount_at_matrix",
-                mem.mount_at_matrix.as_ref().map(|m| &m.attitude),
-            )]);
+        let mut attitudes = Vec::new();
+        if let Some(m) = &mem.mount {
+            attitudes.push(("memory.mount.base", &m.base.attitude));
+            if let Some((_, last)) = &m.last {
+                attitudes.push(("memory.mount.last", &last.attitude));
+            }
+        }
+        if let Some(m) = &mem.mount_at_matrix {
+            attitudes.push(("memory.mount_at_matrix", &m.attitude));
+        }
         for (field, a) in attitudes {
-            if let Some(a) = a.filter(|a| !unit(a)) {
+            if !unit(a) {
                 return Err(SnapshotError::Attitude {
                     field,
                     components: S::attitude_components(a).to_vec(),

@@ -26,6 +26,10 @@ use super::state::{Function, ModelState};
 
 const FORMAT_VERSION: u32 = 1;
 
+/// Bytes of the FMI layer's fields between the GUID and the model byte count: state bits,
+/// three times, stop time and tolerance (flag + value each), terminated.
+const LAYER_LEN: usize = 4 + 24 + 9 + 9 + 1;
+
 /// The FMI layer's part of an FMU state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LayerState {
@@ -77,7 +81,7 @@ impl FmuState {
 
     /// Length of [`FmuState::serialize`]'s output.
     pub fn serialized_len(&self, guid: &str) -> usize {
-        8 + 4 + 4 + guid.len() + 4 + 24 + 9 + 9 + 1 + 8 + self.model.len() + 8
+        8 + 4 + 4 + guid.len() + LAYER_LEN + 8 + self.model.len() + 8
     }
 
     /// The self-contained bytes of this state for an FMU with this magic and GUID.
@@ -135,7 +139,7 @@ impl FmuState {
         // the fixed-size layer fields, then the model byte count
         let mut h = Reader {
             b: bytes,
-            at: r.at + 4 + 24 + 9 + 9 + 1,
+            at: r.at + LAYER_LEN,
         };
         let m = usize::try_from(h.u64()?).map_err(|_| "model length overflows")?;
         let total = h.at.checked_add(m).and_then(|x| x.checked_add(8));

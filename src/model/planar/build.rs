@@ -59,9 +59,8 @@ impl SegmentParts<Planar> for PlanarParts {
             c.push(num, true, 0.0, self.lref);
         }
         let support: Option<Box<dyn Support<Planar>>> = first.then(|| {
-            let [x, y] = c.held::<2>(0);
             Box::new(RootSupport::Frame {
-                position: [x, y],
+                position: c.held(0),
                 angle: c.is_held(2).then(|| c.held::<1>(2)[0]),
             }) as Box<dyn Support<Planar>>
         });

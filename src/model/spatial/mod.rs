@@ -34,7 +34,7 @@ impl Space for Spatial {
     const ATTITUDE: &'static str = "tip.orientation";
     const ATTITUDE_COMPONENTS: &'static [&'static str] = &["e0", "e1", "e2", "e3"];
     const MOUNT_ATTITUDE: &'static str = "root.orientation";
-    const ANGULAR_SUFFIXES: &'static [&'static str] = &["x", "y", "z"];
+    const ANGULAR_SUFFIXES: &'static [&'static str] = Self::MOMENT_AXES;
     const DIM: usize = 3;
     const AXES: &'static [&'static str] = &["x", "y", "z"];
     const MOMENT_AXES: &'static [&'static str] = &["x", "y", "z"];
