@@ -14,11 +14,19 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from fmpy import read_model_description, simulate_fmu  # noqa: E402
 
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("fmu")
-    ap.add_argument("--stop", type=float, default=None, help="stop time [s] (default: DefaultExperiment)")
-    ap.add_argument("--step", type=float, default=None, help="communication step [s] (default: DefaultExperiment)")
+    ap.add_argument(
+        "--stop", type=float, default=None, help="stop time [s] (default: DefaultExperiment)"
+    )
+    ap.add_argument(
+        "--step",
+        type=float,
+        default=None,
+        help="communication step [s] (default: DefaultExperiment)",
+    )
     ap.add_argument("--out", default="tip", help="output prefix: PREFIX.csv and PREFIX.png")
     a = ap.parse_args()
     md = read_model_description(a.fmu)
@@ -46,8 +54,10 @@ def main():
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
     fig.savefig(a.out + ".png", dpi=120)
-    print(f"{md.modelName}: {len(res)} samples to t = {res['time'][-1]:.3f} s; "
-          f"lowest tip deflection {', '.join(lowest)}; wrote {a.out}.csv and {a.out}.png")
+    print(
+        f"{md.modelName}: {len(res)} samples to t = {res['time'][-1]:.3f} s; "
+        f"lowest tip deflection {', '.join(lowest)}; wrote {a.out}.csv and {a.out}.png"
+    )
 
 
 if __name__ == "__main__":

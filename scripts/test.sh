@@ -50,7 +50,12 @@ for fmu in "${FMUS[@]}"; do
     .venv/bin/python -m pytest -q tests/python --fmu "$fmu"
 done
 
-echo "== vehicle example: car + mounted boom co-simulation in fmpy"
+echo "== Python tools: lint, format, the co-simulation master's tests"
+.venv/bin/ruff check .
+.venv/bin/ruff format --check .
+.venv/bin/python -m pytest -q python/tests
+
+echo "== vehicle example: car + mounted boom co-simulation (hybeam-cosim, libcosim)"
 bash examples/vehicle/run.sh --test
 
 if [ "$WIN64" = 0 ]; then

@@ -1,28 +1,29 @@
-"""The car + boom co-simulation in libcosim (libcosimpy): the same FMUs and connections as
-cosim.py, described by an OSP system structure (examples/vehicle/OspSystemStructure.xml: one
-VariableGroupConnection per OSP-IS port group of the two FMUs, the *_OspModelDescription.xml
-files their packagers write beside them;
-libcosim's fixed-step algorithm: a Jacobi exchange at the base step), compared with the
-fmpy master's naive Jacobi loop at the same step.
+"""The car + boom co-simulation in libcosim (libcosimpy), a host that only exchanges values:
+the OSP system structure (examples/vehicle/OspSystemStructure.xml: one VariableGroupConnection
+per OSP-IS port group of the two FMUs, the *_OspModelDescription.xml files their packagers
+write beside them), or the connections of a scheme of examples/vehicle/system.toml built
+through libcosim's API (run_libcosim_connected: connections only, no master arithmetic);
+libcosim's fixed-step algorithm is a Jacobi exchange at the base step, the same as
+hybeam-cosim's naive scheme, which it is compared with.
 
 Usage: python cosim_libcosim.py CAR.fmu BOOM.fmu [--t-end 1.0] [--heavy]
-(the base step is the structure file's BaseStepSize, 1 ms). --heavy: the 20x denser boom at
-1.5 ms built through libcosim's API (run_libcosim_connected), the naive exchange against
-interface mass (the beam's root.force_elastic and rigid inertia to the car).
+(the base step is the structure file's BaseStepSize, 1 ms). --heavy: the 20x boom at 1.5 ms
+through the API, the naive exchange against interface mass (the beam's root.force_elastic and
+rigid inertia to the car).
 """
 
 import argparse
 import pathlib
 import shutil
-import sys
 import tempfile
 
 import numpy as np
+from hybeam.cosim.cli import open_system
+from hybeam.cosim.master import run
+from hybeam.cosim.system import load
 
 HERE = pathlib.Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-
-from cosim import ELASTIC, INERTIA, MOUNT, REACTION, run  # noqa: E402
+SYSTEM = HERE / "system.toml"
 
 PROBES = {"car": ["body.heave", "body.pitch"], "boom": ["tip.position.y", "root.force.y"]}
 
@@ -74,38 +75,53 @@ def run_libcosim(car, boom, t_end):
     return times, out
 
 
-def run_libcosim_connected(car, boom, t_end, h, scheme="jacobi", density_factor=1.0):
-    """The same pair built through libcosim's API instead of a structure file, at base step
-    `h`, variable by variable: the car's mount.* outputs to the beam's root.* inputs, and back
-    either the reaction (`jacobi`, the naive exchange) or, for interface mass (`interface`),
-    the beam's rigid inertia (root.mass, root.center_of_mass.*, root.inertia.zz) to the car's
-    payload inputs and the reaction beyond it (root.force_elastic, root.moment_elastic) to
-    the car's beam.root.* inputs; the boom's densities scaled by `density_factor` (initial
-    values). Returns (ok, times, {name: samples}): ok is false when libcosim stops early (a
-    step refused)."""
+def run_libcosim_connected(car, boom, t_end, h, scheme="naive", mass_factor=1.0):
+    """The pair built through libcosim's API at base step `h` with the connections of a naive
+    scheme of system.toml (`naive`: the mount motion and the reaction; `interface`: the mount
+    motion, the beam's rigid inertia and the reaction beyond it), the boom's `mass_factor` knob
+    applied to the initial values. Returns (ok, times, {name: samples}): ok is false when
+    libcosim stops early (a step refused)."""
+    import fnmatch
+
     from fmpy import read_model_description
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimSlave import CosimLocalSlave
 
+    system = load(SYSTEM)
     log_output_level(CosimLogLevel.ERROR)
     ex = CosimExecution.from_step_size(step_size=int(round(h * 1e9)))
-    ci = ex.add_local_slave(CosimLocalSlave(fmu_path=str(car), instance_name="car"))
-    bi = ex.add_local_slave(CosimLocalSlave(fmu_path=str(boom), instance_name="boom"))
-    vr = {i: {v.name.decode(): v.reference for v in ex.slave_variables(i)} for i in (ci, bi)}
-    for n in MOUNT:
-        ex.connect_real_variables(ci, vr[ci]["mount." + n], bi, vr[bi]["root." + n])
-    given = ELASTIC if scheme == "interface" else REACTION
-    for src, dst in zip(given, REACTION):
-        ex.connect_real_variables(bi, vr[bi][src], ci, vr[ci]["beam." + dst])
-    if scheme == "interface":
-        for n in INERTIA:
-            ex.connect_real_variables(bi, vr[bi][n], ci, vr[ci]["beam." + n])
-    if density_factor != 1.0:
+    index = {
+        n: ex.add_local_slave(CosimLocalSlave(fmu_path=str(p), instance_name=n))
+        for n, p in (("car", car), ("boom", boom))
+    }
+    vr = {
+        n: {v.name.decode(): v.reference for v in ex.slave_variables(i)} for n, i in index.items()
+    }
+    for c in system.connections(scheme):
+        ex.connect_real_variables(
+            index[c.src], vr[c.src][c.src_var], index[c.dst], vr[c.dst][c.dst_var]
+        )
+    if mass_factor != 1.0:
         for v in read_model_description(boom).modelVariables:
-            if v.name.endswith(".density"):
-                ex.real_initial_value(bi, vr[bi][v.name], density_factor * float(v.start))
+            if any(
+                fnmatch.fnmatchcase(v.name, p) for p in system.fmus["boom"].knobs["mass_factor"]
+            ):
+                ex.real_initial_value(
+                    index["boom"], vr["boom"][v.name], mass_factor * float(v.start)
+                )
     return simulate_observed(ex, h, t_end)
+
+
+def master(car, boom, scheme, h, t_end, mass_factor=1.0):
+    """hybeam-cosim's run of system.toml with these FMUs (a `Result`)."""
+    system = load(SYSTEM, {"car": car, "boom": boom})
+    subs = open_system(system, scheme, [f"boom.mass_factor={mass_factor}"])
+    try:
+        return run(system, scheme, subs, h, t_end)
+    finally:
+        for s in subs.values():
+            s.close()
 
 
 def main():
@@ -113,26 +129,32 @@ def main():
     p.add_argument("car")
     p.add_argument("boom")
     p.add_argument("--t-end", type=float, default=1.0)
-    p.add_argument("--heavy", action="store_true",
-                   help="also the 20x boom at 1.5 ms, naive vs interface mass, through the API")
+    p.add_argument(
+        "--heavy",
+        action="store_true",
+        help="also the 20x boom at 1.5 ms, naive vs interface mass, through the API",
+    )
     a = p.parse_args()
     t, lc = run_libcosim(a.car, a.boom, a.t_end)
     print(f"libcosim: {len(t)} samples to t = {t[-1]:.3f} s")
-    rows, _, ok = run(a.car, a.boom, 1e-3, a.t_end, "jacobi")
-    cols = {"body.heave": 1, "body.pitch": 2, "root.force.y": 7}
-    for name, c in cols.items():
-        ref = np.interp(t, rows[:, 0], rows[:, c])
-        print(f"{name}: libcosim vs fmpy Jacobi max |Δ| {np.max(np.abs(lc[name] - ref)):.3e} "
-              f"(range {np.ptp(rows[:, c]):.3e})")
+    res = master(a.car, a.boom, "naive", 1e-3, a.t_end)
+    for name in ("car.body.heave", "car.body.pitch", "boom.root.force.y"):
+        col = res.column(name)
+        ref = np.interp(t, res.column("time"), col)
+        d = np.max(np.abs(lc[name.split(".", 1)[1]] - ref))
+        print(f"{name}: libcosim vs hybeam-cosim naive max |Δ| {d:.3e} (range {np.ptp(col):.3e})")
     if a.heavy:
-        for scheme in ("jacobi", "interface"):
+        for scheme in ("naive", "interface"):
             ok, t, lc = run_libcosim_connected(a.car, a.boom, 1.5, 1.5e-3, scheme, 20.0)
             line = f"20x boom, 1.5 ms, {scheme}: {'ran' if ok else 'stopped'} to {t[-1]:.4f} s"
             if ok:
-                rows, _, _ = run(a.car, a.boom, 1.5e-3, 1.5, scheme, 20.0)
-                ref = np.interp(t, rows[:, 0], rows[:, 2])
-                line += (f", body pitch vs fmpy {np.max(np.abs(lc['body.pitch'] - ref)):.3e} "
-                         f"(range {np.ptp(rows[:, 2]):.3e})")
+                res = master(a.car, a.boom, scheme, 1.5e-3, 1.5, 20.0)
+                pitch = res.column("car.body.pitch")
+                ref = np.interp(t, res.column("time"), pitch)
+                line += (
+                    f", body pitch vs hybeam-cosim {np.max(np.abs(lc['body.pitch'] - ref)):.3e} "
+                    f"(range {np.ptp(pitch):.3e})"
+                )
             else:
                 line += f", |root.force.y| up to {np.max(np.abs(lc['root.force.y'])):.3e} N"
             print(line)

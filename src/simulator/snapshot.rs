@@ -4,6 +4,7 @@
 
 use super::step::STEP_ROUNDING;
 use super::*;
+use crate::scene::Mount;
 use std::hash::Hasher;
 
 /// Everything beyond the state that a snapshot must carry for a bit-identical restart.
@@ -55,14 +56,22 @@ struct Snapshot<S: Space> {
     memory: Memory<S>,
 }
 
-/// FNV-1a 64 of the canonical TOML of `scene` without its inputs (tip force, tip moment and
-/// gravity, which
-/// a snapshot carries and a host may change): what binds a snapshot to its model.
+/// FNV-1a 64 of the canonical TOML of `scene` without its inputs (tip force, tip moment,
+/// gravity and the mount's start motion, which a snapshot carries, as inputs and as the mount's
+/// path, and a host may change; the model does not depend on them): what binds a snapshot to
+/// its model.
 pub(super) fn scene_key(scene: &Scene) -> u64 {
     let mut scene = scene.clone();
     scene.tip.force.clear();
     scene.tip.moment.clear();
     scene.gravity.clear();
+    if let Some(m) = &mut scene.mount {
+        let kept = m.motion_input;
+        *m = Mount {
+            motion_input: kept,
+            ..Mount::default()
+        };
+    }
     let mut h = fnv::FnvHasher::default();
     h.write(scene.to_toml().as_bytes());
     h.finish()

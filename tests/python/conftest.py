@@ -16,17 +16,27 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def pytest_addoption(parser):
-    parser.addoption("--fmu", default=os.environ.get("HYBEAM_FMU", str(ROOT / "target/fmu/case1.fmu")),
-                     help="FMU to test (default: $HYBEAM_FMU or target/fmu/case1.fmu)")
-    parser.addoption("--huge-force", type=float, default=float(os.environ.get("HYBEAM_HUGE_FORCE", "1e9")),
-                     help="tip force [N] that makes a step fail")
+    parser.addoption(
+        "--fmu",
+        default=os.environ.get("HYBEAM_FMU", str(ROOT / "target/fmu/case1.fmu")),
+        help="FMU to test (default: $HYBEAM_FMU or target/fmu/case1.fmu)",
+    )
+    parser.addoption(
+        "--huge-force",
+        type=float,
+        default=float(os.environ.get("HYBEAM_HUGE_FORCE", "1e9")),
+        help="tip force [N] that makes a step fail",
+    )
 
 
 @pytest.fixture(scope="session")
 def fmu_path(request):
     path = pathlib.Path(request.config.getoption("--fmu"))
     if not path.is_file():
-        pytest.fail(f"FMU {path} not found: build it with `cargo fmu-build scenes/case1.toml --out target/fmu`")
+        pytest.fail(
+            f"FMU {path} not found: build it with "
+            "`cargo fmu-build scenes/case1.toml --out target/fmu`"
+        )
     return str(path)
 
 

@@ -5,7 +5,6 @@ import csv
 import os
 import pathlib
 import subprocess
-import tempfile
 import zipfile
 
 import numpy as np
@@ -27,8 +26,21 @@ def test_simulate_fmu_matches_the_runner_to_1e_12(fmu_path, md, tmp_path):
     with zipfile.ZipFile(fmu_path) as z:
         scene.write_bytes(z.read("resources/scene.toml"))
     out = tmp_path / "runner.csv"
-    subprocess.run([str(RUNNER), "run", str(scene), "--out", str(out), "--t-end", "0.3",
-                    "--output-step", "1e-3", "--quiet"], check=True)
+    subprocess.run(
+        [
+            str(RUNNER),
+            "run",
+            str(scene),
+            "--out",
+            str(out),
+            "--t-end",
+            "0.3",
+            "--output-step",
+            "1e-3",
+            "--quiet",
+        ],
+        check=True,
+    )
     with open(out) as f:
         rows = list(csv.DictReader(f))
     # every FMU output the runner writes (planar or spatial)
@@ -44,9 +56,14 @@ def test_simulate_fmu_matches_the_runner_to_1e_12(fmu_path, md, tmp_path):
 
 
 def test_force_step_moves_the_tip_the_right_way(fmu_path):
-    t_step, f = 0.1, -0.002  # small enough for the flat strip (strip_3d) to stay within its modal range
-    inp = np.array([(0.0, 0.0, 0.0), (t_step, 0.0, 0.0), (t_step, 0.0, f), (0.4, 0.0, f)],
-                   dtype=[("time", "f8"), ("tip.force.x", "f8"), ("tip.force.y", "f8")])
+    t_step, f = (
+        0.1,
+        -0.002,
+    )  # small enough for the flat strip (strip_3d) to stay within its modal range
+    inp = np.array(
+        [(0.0, 0.0, 0.0), (t_step, 0.0, 0.0), (t_step, 0.0, f), (0.4, 0.0, f)],
+        dtype=[("time", "f8"), ("tip.force.x", "f8"), ("tip.force.y", "f8")],
+    )
     kw = dict(stop_time=0.4, output_interval=1e-3, output=["tip.position.y", "root.force.y"])
     pushed = simulate_fmu(fmu_path, input=inp, **kw)
     free = simulate_fmu(fmu_path, **kw)
@@ -69,11 +86,18 @@ def test_static_tip_force_settles_at_the_elastica(fmu_path, md):
     ei = e * np.pi * d**4 / 64.0
     p = ei / length**2
     assert "ancf.damping_time" in names
-    inp = np.array([(0.0, 0.0, -p), (3.0, 0.0, -p)],
-                   dtype=[("time", "f8"), ("tip.force.x", "f8"), ("tip.force.y", "f8")])
-    res = simulate_fmu(fmu_path, stop_time=3.0, output_interval=0.01, input=inp,
-                       start_values={"gravity.y": 0.0, "ancf.damping_time": 0.02},
-                       output=["tip.position.x", "tip.position.y"])
+    inp = np.array(
+        [(0.0, 0.0, -p), (3.0, 0.0, -p)],
+        dtype=[("time", "f8"), ("tip.force.x", "f8"), ("tip.force.y", "f8")],
+    )
+    res = simulate_fmu(
+        fmu_path,
+        stop_time=3.0,
+        output_interval=0.01,
+        input=inp,
+        start_values={"gravity.y": 0.0, "ancf.damping_time": 0.02},
+        output=["tip.position.x", "tip.position.y"],
+    )
     v = -res["tip.position.y"][-1] / length
     u = (length - res["tip.position.x"][-1]) / length
     assert abs(v - 0.30172) < 1e-3 and abs(u - 0.05643) < 1e-3, (v, u)

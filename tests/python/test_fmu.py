@@ -30,8 +30,12 @@ def vrs(md):
 def slave(fmu_path, md):
     """A low-level FMU2Slave, instantiated and initialized at t = 0."""
     unzipdir = extract(fmu_path)
-    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
-                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="test")
+    s = FMU2Slave(
+        guid=md.guid,
+        unzipDirectory=unzipdir,
+        modelIdentifier=md.coSimulation.modelIdentifier,
+        instanceName="test",
+    )
     s.instantiate()
     s.setupExperiment(startTime=0.0)
     s.enterInitializationMode()
@@ -43,8 +47,9 @@ def slave(fmu_path, md):
 
 def test_fmpy_validate_reports_nothing(fmu_path):
     assert validate_fmu(fmu_path) == []
-    cli = subprocess.run([sys.executable, "-m", "fmpy", "validate", fmu_path],
-                         capture_output=True, text=True)
+    cli = subprocess.run(
+        [sys.executable, "-m", "fmpy", "validate", fmu_path], capture_output=True, text=True
+    )
     assert cli.returncode == 0, cli.stdout + cli.stderr
     assert "No problems found" in cli.stdout
 
@@ -60,8 +65,10 @@ def test_variables_the_beam_shares(md):
 
 def test_simulate_with_input_array(fmu_path):
     # forces within the beam's small-deformation range (Case 1 rod: PL²/EI = 1 at about 1 N)
-    inp = np.array([(0.0, 0.0, 0.0), (0.5, 0.0, 0.0), (0.5, 0.05, -0.02), (1.0, 0.05, -0.02)],
-                   dtype=[("time", "f8"), ("tip.force.x", "f8"), ("tip.force.y", "f8")])
+    inp = np.array(
+        [(0.0, 0.0, 0.0), (0.5, 0.0, 0.0), (0.5, 0.05, -0.02), (1.0, 0.05, -0.02)],
+        dtype=[("time", "f8"), ("tip.force.x", "f8"), ("tip.force.y", "f8")],
+    )
     res = simulate_fmu(fmu_path, stop_time=1.0, output_interval=0.01, input=inp, output=POSITIONS)
     free = simulate_fmu(fmu_path, stop_time=1.0, output_interval=0.01, output=POSITIONS)
     assert res["time"][0] == 0.0 and abs(res["time"][-1] - 1.0) < 1e-12
@@ -70,7 +77,9 @@ def test_simulate_with_input_array(fmu_path):
     before = res["time"] <= 0.5
     after = res["time"] > 0.6
     # Identical while the input is zero, different once the force acts.
-    assert np.array_equal(res["tip.position.x"][before], free["tip.position.x"][free["time"] <= 0.5])
+    assert np.array_equal(
+        res["tip.position.x"][before], free["tip.position.x"][free["time"] <= 0.5]
+    )
     assert not np.allclose(res["tip.position.x"][after], free["tip.position.x"][free["time"] > 0.6])
 
 
@@ -96,8 +105,12 @@ def test_rollback_with_fmu_state_reproduces_outputs(slave, vrs, fmu_path, md):
     # Serialized state into a fresh instance of the same FMU.
     blob = slave.serializeFMUstate(state)
     unzipdir = extract(fmu_path)
-    other = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
-                      modelIdentifier=md.coSimulation.modelIdentifier, instanceName="other")
+    other = FMU2Slave(
+        guid=md.guid,
+        unzipDirectory=unzipdir,
+        modelIdentifier=md.coSimulation.modelIdentifier,
+        instanceName="other",
+    )
     other.instantiate()
     restored = other.deSerializeFMUstate(blob)
     other.setFMUstate(restored)
@@ -137,8 +150,10 @@ def test_simulate_fmu_does_not_pass_a_recoverable_discard(fmu_path, huge_force):
     one it neither restores a state nor stops, and calls fmi2DoStep again in stepFailed, which the
     FMU refuses (fmi2Error, as FMI 2.0 requires): the run ends with an exception, not with
     silently wrong results."""
-    inp = np.array([(0.0, 0.0), (0.5, 0.0), (0.5, huge_force), (1.0, huge_force)],
-                   dtype=[("time", "f8"), ("tip.force.x", "f8")])
+    inp = np.array(
+        [(0.0, 0.0), (0.5, 0.0), (0.5, huge_force), (1.0, huge_force)],
+        dtype=[("time", "f8"), ("tip.force.x", "f8")],
+    )
     with pytest.raises(FMICallException) as failure:
         simulate_fmu(fmu_path, stop_time=1.0, output_interval=0.01, input=inp, output=POSITIONS)
     assert failure.value.status == fmi2Error

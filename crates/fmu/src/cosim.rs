@@ -501,36 +501,31 @@ impl CoSimModel for BeamFmu {
             ));
         }
         let scene = self.build_scene_with_parameters(&params)?;
-        let mut sim = AnySimulator::restorable(scene.clone()).map_err(|e| e.to_string())?;
-        // a snapshot that does not fit is an error of the call (fmi2Error), not of a step
-        sim.restore_snapshot(&sim_bytes)
-            .map_err(|e| e.to_string())?;
-        // a state whose values are finite but whose outputs overflow (coordinates of 1e300:
-        // infinite energies) is refused too
-        let (outputs, apparent, rigid) = evaluated(&mut sim);
-        for (index, var) in variables.iter().enumerate() {
-            if let Access::Output(id) = self.table.access(index) {
-                match outputs.value(id) {
-                    Some(x) if !x.is_finite() => {
-                        return Err(format!(
-                            "the snapshot's state gives {} = {x}: its values are beyond what \
-                             the model can evaluate",
-                            var.name
-                        ))
-                    }
-                    _ => {}
+        // a rollback (the running simulator's parameters) restores into it, keeping its own
+        // state to return to if the snapshot is refused; other parameters build a model anew
+        let rollback = self.started && params == self.parameters();
+        let (mut fresh, backup) = if rollback {
+            (None, Some(self.sim.snapshot()))
+        } else {
+            let sim = AnySimulator::restorable(scene.clone()).map_err(|e| e.to_string())?;
+            (Some(sim), None)
+        };
+        let sim = fresh.as_mut().unwrap_or(&mut self.sim);
+        let checked = checked_restore(sim, &sim_bytes, &self.table);
+        let (outputs, apparent, rigid) = match checked {
+            Ok(evaluated) => evaluated,
+            Err(e) => {
+                if let Some(b) = backup {
+                    // its own snapshot of a moment ago: restores
+                    let _ = self.sim.restore_snapshot(&b);
                 }
+                return Err(e);
             }
-        }
-        if apparent.iter().flatten().flatten().any(|x| !x.is_finite()) {
-            return Err(
-                "the snapshot's state gives a non-finite apparent mass at the mount: its values \
-                 are beyond what the model can evaluate"
-                    .into(),
-            );
+        };
+        if let Some(sim) = fresh {
+            self.sim = sim;
         }
         self.scene = scene;
-        self.sim = sim;
         self.backward = backward;
         self.outputs = outputs;
         self.apparent = apparent;
@@ -539,6 +534,41 @@ impl CoSimModel for BeamFmu {
         self.pre_start.replace(None);
         Ok(())
     }
+}
+
+/// Restores `bytes` of [`AnySimulator::snapshot`] into `sim` and evaluates the state: a
+/// snapshot that does not fit is an error of the call (fmi2Error), not of a step, and so is
+/// a state whose values are finite but whose outputs overflow (coordinates of 1e300: infinite
+/// energies) or whose apparent mass is not finite.
+fn checked_restore(
+    sim: &mut AnySimulator,
+    bytes: &[u8],
+    table: &Table,
+) -> Result<Evaluated, String> {
+    sim.restore_snapshot(bytes).map_err(|e| e.to_string())?;
+    let (outputs, apparent, rigid) = evaluated(sim);
+    for (index, var) in table.variables().iter().enumerate() {
+        if let Access::Output(id) = table.access(index) {
+            match outputs.value(id) {
+                Some(x) if !x.is_finite() => {
+                    return Err(format!(
+                        "the snapshot's state gives {} = {x}: its values are beyond what the \
+                         model can evaluate",
+                        var.name
+                    ))
+                }
+                _ => {}
+            }
+        }
+    }
+    if apparent.iter().flatten().flatten().any(|x| !x.is_finite()) {
+        return Err(
+            "the snapshot's state gives a non-finite apparent mass at the mount: its values are \
+             beyond what the model can evaluate"
+                .into(),
+        );
+    }
+    Ok((outputs, apparent, rigid))
 }
 
 /// A serialized FMU state: the parameter values in table order, the bytes of

@@ -30,7 +30,10 @@
 //! reaction minus the payload's own at the mount motion the beam was given). Integrated with
 //! RK4 at a fixed internal step; the inputs are held over a communication step or follow the
 //! host's input derivatives (orders 1, 2). The energy ledger (road work, beam work, damper
-//! dissipation) is integrated with the state, so E − E₀ = W_road + W_beam − D closes to the
+//! dissipation; and the drive's work on the beam, `energy.drive_work` = ∫ F_drive V dt with
+//! F_drive the longitudinal force it adds for the beam: the reaction's x component as the car
+//! was given it, plus the payload's inertia) is integrated with the state, so
+//! E − E₀ = W_road + W_beam − D closes to the
 //! integrator's accuracy (W_beam includes the payload's inertial and gravity forces). Not
 //! modelled: tire lift-off, longitudinal dynamics.
 
@@ -202,10 +205,11 @@ pub struct Car {
 pub type Payload = [f64; 4];
 
 /// State indices: y, θ, y_f, y_r, their rates, then the energy ledger.
-const N: usize = 11;
+const N: usize = 12;
 const W_ROAD: usize = 8;
 const W_BEAM: usize = 9;
 const DISSIPATED: usize = 10;
+const W_DRIVE: usize = 11;
 
 impl Car {
     /// Road height h(x) [m] and slope dh/dx.
@@ -266,6 +270,8 @@ impl Car {
         d[..4].copy_from_slice(&s[4..8]);
         // the beam's generalized force on the body (heave, pitch)
         let (qby, qbt);
+        // the longitudinal force the drive adds to hold V against the beam (and the payload)
+        let mut drive = f[0];
         if *p == [0.0; 4] {
             d[4] = (ff + fr + qy) / b.mass - g;
             d[5] = (b.front * ff - b.rear * fr + qt) / b.pitch_inertia;
@@ -291,12 +297,15 @@ impl Car {
             d[5] = (a11 * r2 - mp_yt * r1) / det;
             qby = qy + qpy - mp * d[4] - mp_yt * d[5];
             qbt = qt + qpt - mp_yt * d[4] - mp_tt * d[5];
+            // the payload's centre of mass accelerates along x by −θ̈ r_c.y − θ̇² r_c.x
+            drive += mp * (-d[5] * rc[1] - s[5] * s[5] * rc[0]);
         }
         d[6] = (-ff + tf) / w.mass - g;
         d[7] = (-fr + tr) / w.mass - g;
         d[W_ROAD] = tf * sf * v + tr * sr * v;
         d[W_BEAM] = qby * s[4] + qbt * s[5];
         d[DISSIPATED] = ps.front_damping * dvf * dvf + ps.rear_damping * dvr * dvr;
+        d[W_DRIVE] = drive * v;
         d
     }
 
@@ -420,6 +429,8 @@ pub mod vr {
     pub const W_BEAM: u32 = 24;
     /// .
     pub const DISSIPATED: u32 = 25;
+    /// `energy.drive_work`
+    pub const W_DRIVE: u32 = 26;
 }
 
 /// The car as an FMU model.
@@ -481,6 +492,7 @@ fn variables() -> Vec<Variable> {
         v("energy.road_work", vr::W_ROAD, Output, "J", "Work done by the road on the tires since the start"),
         v("energy.beam_work", vr::W_BEAM, Output, "J", "Work done by the beam on the car (heave and pitch) since the start"),
         v("energy.dissipated", vr::DISSIPATED, Output, "J", "Energy dissipated in the dampers since the start"),
+        v("energy.drive_work", vr::W_DRIVE, Output, "J", "Work done by the drive, which holds the forward speed, against the beam's longitudinal reaction (and the payload's inertia) since the start: energy the drive puts into the beam"),
     ]
 }
 
@@ -661,6 +673,7 @@ impl CoSimModel for Vehicle {
             vr::W_ROAD => self.s[W_ROAD],
             vr::W_BEAM => self.s[W_BEAM],
             vr::DISSIPATED => self.s[DISSIPATED],
+            vr::W_DRIVE => self.s[W_DRIVE],
             _ => return Err(format!("value reference {r} is not a variable of the car")),
         })
     }

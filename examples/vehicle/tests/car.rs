@@ -113,8 +113,8 @@ fn stiffness_matrix_and_frequencies_are_the_textbook_ones() {
     let mut got = Matrix4::zeros();
     let h = 1e-6;
     for col in 0..4 {
-        let mut sp = [0.0; 11];
-        let mut sm = [0.0; 11];
+        let mut sp = [0.0; 12];
+        let mut sm = [0.0; 12];
         sp[col] = h;
         sm[col] = -h;
         let (dp, dm) = (
@@ -152,6 +152,7 @@ fn energy_balance_closes_and_converges() {
         let e0 = get(&i, vr::ENERGY);
         let beam = [vr::BEAM_FORCE_X, vr::BEAM_FORCE_Y, vr::BEAM_MOMENT_Z];
         let mut scale: f64 = 0.0;
+        let mut drive = 0.0;
         for k in 0..100 {
             let t = 0.01 * k as f64;
             let f = [
@@ -164,7 +165,11 @@ fn energy_balance_closes_and_converges() {
             for r in [vr::W_ROAD, vr::W_BEAM, vr::DISSIPATED] {
                 scale = scale.max(get(&i, r).abs());
             }
+            // the drive holds 10 m/s against the held x reaction: F_x V h per step
+            drive += f[0] * 10.0 * 0.01;
         }
+        let w = get(&i, vr::W_DRIVE);
+        assert!((w - drive).abs() < 1e-12 * drive, "drive work {w} J vs {drive} J");
         let de = get(&i, vr::ENERGY) - e0;
         let ledger = get(&i, vr::W_ROAD) + get(&i, vr::W_BEAM) - get(&i, vr::DISSIPATED);
         assert!(

@@ -1,0 +1,249 @@
+"""Studies of a coupled system: the stability map and the order of convergence.
+
+    hybeam-cosim-study map SYSTEM --scheme naive --scheme implicit \\
+        --steps 1e-4,2.5e-4,5e-4,1e-3,2e-3,5e-3,1e-2,2e-2 \\
+        --grid boom.mass_factor=1,10,20,50,100 --t-end 2 --out docs/report/coupling_map
+    hybeam-cosim-study order SYSTEM --scheme implicit --steps 2e-2,1e-2,5e-3,2e-3,1e-3 \\
+        --reference 1e-4 --columns car.body.pitch,boom.tip.position.y --out ...
+
+`map` runs every (scheme, step, grid value) cell through `hybeam.cosim.master.run` in
+parallel processes (`--jobs`, default 2) and writes CELLS.csv (one row per cell: the run's JSON
+summary), CELLS.md (a table per scheme) and CELLS.svg (green: stable, red: not; the energy
+residual as a fraction of its scale in each cell). A cell is stable when no step is refused,
+the implicit iterations converge, and the largest energy residual stays below 1 % of its scale.
+
+`order` runs one scheme at each step and at a fine reference step, and prints (and writes
+as .md) the largest difference of each column from the reference over the reference's points
+that every run shares, with the observed order between neighbouring steps.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import pathlib
+import sys
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+
+from .cli import open_system
+from .master import Settings, run
+from .system import load
+
+
+def _cell(args):
+    path, fmus, scheme, step, t_end, sets = args
+    system = load(path, fmus)
+    subs = open_system(system, scheme, sets)
+    try:
+        res = run(system, scheme, subs, step, t_end, Settings())
+    finally:
+        for s in subs.values():
+            s.close()
+    return res
+
+
+def _summary(args):
+    res = _cell(args[:-1])
+    out = res.summary(args[2], args[3])
+    out["set"] = " ".join(args[5])
+    out["grid"] = args[6]
+    return out
+
+
+def _floats(text):
+    return [float(x) for x in text.split(",") if x]
+
+
+def stability_map(a):
+    key, _, values = a.grid.partition("=")
+    grid = _floats(values)
+    steps = _floats(a.steps)
+    fmus = dict(item.split("=", 1) for item in a.fmu)
+    jobs = [
+        (a.system, fmus, s, h, a.t_end, [f"{key}={g}"] + a.set, g)
+        for s in a.scheme
+        for g in grid
+        for h in steps
+    ]
+    # the longest cells (fine steps) first, to balance the processes
+    order = sorted(range(len(jobs)), key=lambda i: jobs[i][3])
+    rows = [None] * len(jobs)
+    with ProcessPoolExecutor(max_workers=a.jobs) as ex:
+        futs = {i: ex.submit(_summary, jobs[i]) for i in order}
+        for n, i in enumerate(order):
+            rows[i] = futs[i].result()
+            r = rows[i]
+            print(
+                f"[{n + 1}/{len(jobs)}] {r['scheme']} h = {r['step']:g} {r['set']}: "
+                f"{'stable' if r['stable'] else 'NOT stable'} residual "
+                f"{r['energy_residual']} of {r['energy_scale']} ({r['wall_s']:.1f} s, "
+                f"{r['iterations']:.2f} it/step) {r['message']}",
+                file=sys.stderr,
+            )
+    out = pathlib.Path(a.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    with open(out.with_suffix(".csv"), "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    md = [f"Stability map: `{' '.join(sys.argv[1:])}`", ""]
+    for s in a.scheme:
+        md += [
+            f"**{s}** — energy residual / scale (✗: not stable; wall time per cell "
+            f"relative to the naive cell where both ran)",
+            "",
+            "| " + key + " \\ h [ms] | " + " | ".join(f"{1e3 * h:g}" for h in steps) + " |",
+            "|---" * (len(steps) + 1) + "|",
+        ]
+        for g in grid:
+            cells = []
+            for h in steps:
+                r = _find(rows, s, h, g)
+                cells.append(_text(r, rows, g, h))
+            md.append(f"| {g:g} | " + " | ".join(cells) + " |")
+        md.append("")
+    out.with_suffix(".md").write_text("\n".join(md))
+    _figure(rows, a.scheme, steps, grid, key, out.with_suffix(".svg"))
+    print("\n".join(md))
+
+
+def _find(rows, scheme, h, g):
+    return next(r for r in rows if r["scheme"] == scheme and r["step"] == h and r["grid"] == g)
+
+
+def _text(r, rows, g, h):
+    if r["energy_residual"] is None or not r["energy_scale"]:
+        frac = "-"
+    else:
+        frac = f"{r['energy_residual'] / r['energy_scale']:.1e}"
+    mark = "" if r["stable"] else "✗ "
+    naive = [x for x in rows if x["scheme"] == "naive" and x["step"] == h and x["grid"] == g]
+    cost = ""
+    if r["scheme"] != "naive" and naive and naive[0]["steps"] == r["steps"]:
+        cost = f" ({r['wall_s'] / max(naive[0]['wall_s'], 1e-9):.1f}×)"
+    return f"{mark}{frac}{cost}"
+
+
+def _figure(rows, schemes, steps, grid, key, path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, len(schemes), figsize=(4.2 * len(schemes), 3.4), squeeze=False)
+    for ax, s in zip(axes[0], schemes, strict=True):
+        for i, g in enumerate(grid):
+            for j, h in enumerate(steps):
+                r = _find(rows, s, h, g)
+                ok = r["stable"]
+                ax.add_patch(
+                    plt.Rectangle((j, i), 1, 1, color="#7fc97f" if ok else "#f0027f", alpha=0.8)
+                )
+                if r["energy_residual"] is not None and r["energy_scale"]:
+                    f = r["energy_residual"] / r["energy_scale"]
+                    txt = f"{f:.0e}" if math.isfinite(f) else "inf"
+                else:
+                    txt = "refused"
+                ax.text(j + 0.5, i + 0.5, txt, ha="center", va="center", fontsize=6)
+        ax.set_xlim(0, len(steps))
+        ax.set_ylim(0, len(grid))
+        ax.set_xticks(np.arange(len(steps)) + 0.5, [f"{1e3 * h:g}" for h in steps], fontsize=7)
+        ax.set_yticks(np.arange(len(grid)) + 0.5, [f"{g:g}" for g in grid], fontsize=7)
+        ax.set_xlabel("communication step [ms]")
+        ax.set_ylabel(key)
+        ax.set_title(s)
+    fig.suptitle(
+        "green: stable (energy residual < 1 % of its scale, no step refused); "
+        "cells: residual / scale",
+        fontsize=8,
+    )
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def order(a):
+    steps = _floats(a.steps)
+    fmus = dict(item.split("=", 1) for item in a.fmu)
+    cols = a.columns.split(",")
+    jobs = [(a.system, fmus, a.scheme, h, a.t_end, a.set) for h in [a.reference] + steps]
+    with ProcessPoolExecutor(max_workers=a.jobs) as ex:
+        results = list(ex.map(_cell, jobs))
+    ref = results[0]
+    if not ref.stable:
+        raise SystemExit(f"the reference run is not stable: {ref.message}")
+    rt = ref.table()
+    coarse = max(steps)
+    stride = int(round(coarse / a.reference))
+    md = [
+        f"Order of convergence: `{' '.join(sys.argv[1:])}`; largest difference from the "
+        f"reference (h = {a.reference:g} s) at every {coarse:g} s",
+        "",
+        "| h [ms] | " + " | ".join(cols) + " | stable | wall [s] |",
+        "|---" * (len(cols) + 3) + "|",
+    ]
+    prev = None
+    orders = []
+    for h, r in zip(steps, results[1:], strict=True):
+        t = r.table()
+        k = int(round(coarse / h))
+        errs = []
+        for c in cols:
+            got = t[::k, r.columns.index(c)]
+            want = rt[::stride, ref.columns.index(c)]
+            n = min(len(got), len(want))
+            errs.append(float(np.max(np.abs(got[:n] - want[:n]))))
+        cells = []
+        for i, e in enumerate(errs):
+            o = ""
+            if prev is not None and e > 0 and prev[0][i] > 0:
+                p = math.log(prev[0][i] / e) / math.log(prev[1] / h)
+                o = f" ({p:.2f})"
+                orders.append((c, p))
+            cells.append(f"{e:.3e}{o}")
+        prev = (errs, h)
+        md.append(f"| {1e3 * h:g} | " + " | ".join(cells) + f" | {r.stable} | {r.wall_s:.1f} |")
+    text = "\n".join(md)
+    if a.out:
+        pathlib.Path(a.out).parent.mkdir(parents=True, exist_ok=True)
+        pathlib.Path(a.out).with_suffix(".md").write_text(text + "\n")
+    print(text)
+    print(json.dumps({"orders": orders}))
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(
+        prog="hybeam-cosim-study",
+        description=__doc__.splitlines()[0],
+        epilog=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    sub = p.add_subparsers(dest="study", required=True)
+    m = sub.add_parser("map", help="stability map")
+    m.add_argument("system")
+    m.add_argument("--scheme", action="append", required=True)
+    m.add_argument("--steps", required=True, help="communication steps [s], comma separated")
+    m.add_argument("--grid", required=True, metavar="FMU.KEY=V1,V2,...")
+    m.add_argument("--out", default="out/coupling_map")
+    o = sub.add_parser("order", help="order of convergence in the communication step")
+    o.add_argument("system")
+    o.add_argument("--scheme", required=True)
+    o.add_argument("--steps", required=True)
+    o.add_argument("--reference", type=float, required=True)
+    o.add_argument("--columns", required=True)
+    o.add_argument("--out")
+    for x in (m, o):
+        x.add_argument("--t-end", type=float, default=2.0)
+        x.add_argument("--set", action="append", default=[])
+        x.add_argument("--fmu", action="append", default=[])
+        x.add_argument("--jobs", type=int, default=2)
+    a = p.parse_args(argv)
+    (stability_map if a.study == "map" else order)(a)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,209 @@
+"""What the master needs of a coupled subsystem, and its FMI 2.0 implementation on fmpy.
+
+A `Subsystem` has real inputs and outputs by name, steps from t to t + h over inputs held or
+following their first time derivatives (FMI's `fmi2SetRealInputDerivatives`), and, for the
+implicit scheme, saves and restores its state (`fmi2GetFMUstate`/`fmi2SetFMUstate`). The
+tests implement it in Python (linear oscillators); `FmuSubsystem` wraps an FMU.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import shutil
+
+import numpy as np
+
+
+class StepRefused(RuntimeError):
+    """A subsystem refused a step (fmi2Discard/fmi2Error, or a non-finite output)."""
+
+
+class Subsystem:
+    """The interface the master couples (all values SI, as the subsystem declares them)."""
+
+    name: str = "subsystem"
+    #: highest input derivative order the subsystem takes (0: inputs held over a step)
+    input_derivative_order: int = 0
+    #: saves and restores its state (needed by the implicit scheme)
+    can_rollback: bool = False
+    #: answers partial derivatives of outputs by inputs (`jacobian`)
+    provides_jacobian: bool = False
+
+    def names(self, causality: str) -> list[str]:
+        """Variable names of a causality (`input`, `output`, `parameter`)."""
+        raise NotImplementedError
+
+    def get(self, names: list[str]) -> np.ndarray:
+        raise NotImplementedError
+
+    def set(self, names: list[str], values) -> None:
+        raise NotImplementedError
+
+    def set_rates(self, names: list[str], rates) -> None:
+        """First time derivatives of inputs for the next step (only if
+        `input_derivative_order >= 1`)."""
+        raise NotImplementedError
+
+    def step(self, t: float, h: float) -> None:
+        """Advances from t to t + h; raises `StepRefused` with the subsystem's message."""
+        raise NotImplementedError
+
+    def save(self):
+        raise NotImplementedError
+
+    def restore(self, state) -> None:
+        raise NotImplementedError
+
+    def free(self, state) -> None:
+        pass
+
+    def jacobian(self, outputs: list[str], inputs: list[str]) -> np.ndarray:
+        """∂outputs/∂inputs at the current point (direct feedthrough)."""
+        raise NotImplementedError
+
+    def close(self) -> None:
+        pass
+
+
+class FmuSubsystem(Subsystem):
+    """An FMI 2.0 co-simulation FMU instance (fmpy), variables by name.
+
+    Lifecycle: `instantiate()` → `enter_initialization(params)` → `exit_initialization()` →
+    steps; `reset()` returns to instantiated. Every FMI status above fmi2Warning raises
+    (`StepRefused` from `step`) with the FMU's logged message when there is one.
+    """
+
+    def __init__(self, path: str, name: str):
+        from fmpy import extract, read_model_description
+
+        self.name = name
+        self.path = str(path)
+        self.md = read_model_description(self.path)
+        if self.md.coSimulation is None:
+            raise ValueError(f"{self.path}: not a co-simulation FMU (no <CoSimulation>)")
+        cs = self.md.coSimulation
+        self.dir = extract(self.path)
+        self.vars = {v.name: v for v in self.md.modelVariables}
+        self.vr = {n: v.valueReference for n, v in self.vars.items()}
+        # FMI 2.0: canInterpolateInputs means the FMU takes first input derivatives
+        self.input_derivative_order = 1 if cs.canInterpolateInputs else 0
+        self.can_rollback = bool(cs.canGetAndSetFMUstate)
+        self.provides_jacobian = bool(cs.providesDirectionalDerivative)
+        self.messages: list[str] = []
+        self.slave = None
+
+    def instantiate(self):
+        from ctypes import byref
+
+        from fmpy import calloc, free
+        from fmpy.fmi2 import (
+            FMU2Slave,
+            fmi2CallbackAllocateMemoryTYPE,
+            fmi2CallbackFreeMemoryTYPE,
+            fmi2CallbackFunctions,
+            fmi2CallbackLoggerTYPE,
+        )
+
+        def logger(env, instance, status, category, message):
+            self.messages.append(message.decode(errors="replace") if message else "")
+            del self.messages[:-20]
+
+        # the FMU's messages (why a step or a call was refused) kept for the errors raised
+        cb = fmi2CallbackFunctions()
+        cb.logger = fmi2CallbackLoggerTYPE(logger)
+        cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        try:
+            from fmpy.logging import addLoggerProxy
+
+            addLoggerProxy(byref(cb))  # formats the variadic message (fmpy's own proxy)
+        except Exception:
+            pass
+        self._callbacks = cb
+        self.slave = FMU2Slave(
+            guid=self.md.guid,
+            unzipDirectory=self.dir,
+            modelIdentifier=self.md.coSimulation.modelIdentifier,
+            instanceName=self.name,
+        )
+        self.slave.instantiate(callbacks=cb, loggingOn=False)
+
+    def last_message(self) -> str:
+        return self.messages[-1] if self.messages else ""
+
+    def names(self, causality):
+        return [n for n, v in self.vars.items() if v.causality == causality]
+
+    def match(self, pattern: str) -> list[str]:
+        """Variable names matching a glob pattern (`*.density`)."""
+        return [n for n in self.vars if fnmatch.fnmatchcase(n, pattern)]
+
+    def _vrs(self, names):
+        try:
+            return [self.vr[n] for n in names]
+        except KeyError as e:
+            raise KeyError(f"{self.name} ({self.path}) has no variable {e.args[0]!r}") from None
+
+    def get(self, names):
+        return np.array(self.slave.getReal(self._vrs(names)), dtype=float)
+
+    def set(self, names, values):
+        self.slave.setReal(self._vrs(names), [float(x) for x in values])
+
+    def set_rates(self, names, rates):
+        self.slave.setRealInputDerivatives(
+            self._vrs(names), [1] * len(names), [float(x) for x in rates]
+        )
+
+    def enter_initialization(self, parameters: dict[str, float], start: float = 0.0):
+        self.slave.setupExperiment(startTime=start)
+        self.slave.enterInitializationMode()
+        if parameters:
+            self.set(list(parameters), list(parameters.values()))
+
+    def exit_initialization(self):
+        self.slave.exitInitializationMode()
+
+    def reset(self):
+        self.slave.reset()
+
+    def step(self, t, h):
+        try:
+            status = self.slave.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        except Exception as e:  # fmpy raises on a status above fmi2Warning
+            raise StepRefused(
+                f"{self.name} refused the step at t = {t:.6g} s: {self.last_message() or e}"
+            ) from None
+        if status is not None and status > 1:
+            raise StepRefused(
+                f"{self.name} refused the step at t = {t:.6g} s: "
+                f"{self.last_message() or f'fmi2Status {status}'}"
+            )
+
+    def save(self):
+        return self.slave.getFMUState()
+
+    def restore(self, state):
+        self.slave.setFMUState(state)
+
+    def free(self, state):
+        self.slave.freeFMUState(state)
+
+    def jacobian(self, outputs, inputs):
+        vo, vi = self._vrs(outputs), self._vrs(inputs)
+        cols = []
+        for k in range(len(inputs)):
+            seed = [0.0] * len(inputs)
+            seed[k] = 1.0
+            cols.append(self.slave.getDirectionalDerivative(vo, vi, seed))
+        return np.array(cols, dtype=float).T
+
+    def close(self):
+        if self.slave is not None:
+            try:
+                self.slave.terminate()
+            except Exception:
+                pass
+            self.slave.freeInstance()
+            self.slave = None
+        shutil.rmtree(self.dir, ignore_errors=True)
