@@ -725,8 +725,9 @@ fn variables() -> Vec<Variable> {
         ));
     }
     for k in 0..4 {
-        out.push(v(format!("mount.orientation.e{k}"), vr::MOUNT_E0 + k as u32, Output, "1",
-            format!("Euler parameter e{k} (scalar first) of the mount frame = body frame -> world, R = R_y(pitch) R_x(roll)")));
+        // dimensionless, no unit (like the beam FMU's root.orientation.*)
+        out.push(Variable { unit: None, ..v(format!("mount.orientation.e{k}"), vr::MOUNT_E0 + k as u32, Output, "",
+            format!("Euler parameter e{k} (scalar first) of the mount frame = body frame -> world, R = R_y(pitch) R_x(roll)")) });
     }
     for (k, a) in XYZ.iter().enumerate() {
         out.push(v(
