@@ -20,7 +20,7 @@
 //!
 //! ```text
 //! P_i = k_i (z_i − z + x_i θ − y_i φ) + c_i (ż_i − ż + x_i θ̇ − y_i φ̇)   suspension on body
-//! m ż̇  = Σ P_i − m g + Q_z                         Q: generalized forces of the beam
+//! m z̈   = Σ P_i − m g + Q_z                         Q: generalized forces of the beam
 //! I_y θ̈ = −Σ x_i P_i + Q_θ
 //! I_x φ̈ =  Σ y_i P_i + Q_φ
 //! m_w z̈_i = −P_i + k_t (h(V t + x_i) − z_i) − m_w g   (h = 0 under the right wheels if "left")
