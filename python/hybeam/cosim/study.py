@@ -203,7 +203,7 @@ def order(a):
             if prev is not None and e > 0 and prev[0][i] > 0:
                 p = math.log(prev[0][i] / e) / math.log(prev[1] / h)
                 o = f" ({p:.2f})"
-                orders.append((c, p))
+                orders.append((cols[i], p))
             cells.append(f"{e:.3e}{o}")
         prev = (errs, h)
         md.append(f"| {1e3 * h:g} | " + " | ".join(cells) + f" | {r.stable} | {r.wall_s:.1f} |")
