@@ -67,3 +67,6 @@ elif [ "$WIN64" = 1 ] || { [ -x /usr/bin/cargo ] && command -v x86_64-w64-mingw3
 else
     echo "== win64 test skipped: toolchain not installed (bash scripts/setup-win64.sh, or HYBEAM_WIN64=1)"
 fi
+
+echo "== spatial vehicle example: four-wheel car + spatial boom (hybeam-cosim)"
+bash examples/vehicle3d/run.sh --test

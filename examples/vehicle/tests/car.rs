@@ -169,7 +169,10 @@ fn energy_balance_closes_and_converges() {
             drive += f[0] * 10.0 * 0.01;
         }
         let w = get(&i, vr::W_DRIVE);
-        assert!((w - drive).abs() < 1e-12 * drive, "drive work {w} J vs {drive} J");
+        assert!(
+            (w - drive).abs() < 1e-12 * drive,
+            "drive work {w} J vs {drive} J"
+        );
         let de = get(&i, vr::ENERGY) - e0;
         let ledger = get(&i, vr::W_ROAD) + get(&i, vr::W_BEAM) - get(&i, vr::DISSIPATED);
         assert!(

@@ -44,7 +44,10 @@
 //! does not account for (the beam FMU's `root.force_elastic.*`, `root.moment_elastic.*`).
 //! Integrated with RK4 at a fixed internal step; the inputs are held over a communication step
 //! or follow the host's input derivatives (orders 1, 2). The energy ledger (road work, beam
-//! work, damper dissipation) is integrated with the state, so E − E₀ = W_road + W_beam − D
+//! work, damper dissipation; and the drive's work on the beam, `energy.drive_work` =
+//! ∫ F_drive V dt with F_drive the longitudinal force it adds for the beam: the reaction's x
+//! component F_x as the car was given it, plus, with a payload, the payload's inertia force
+//! m_p a_c,x) is integrated with the state, so E − E₀ = W_road + W_beam − D
 //! closes to the integrator's accuracy (W_beam includes the payload's inertial and gravity
 //! forces). Not modelled: tire lift-off, longitudinal, lateral and yaw dynamics, the body's
 //! gyroscopic terms (its kinetic energy is ½ m ż² + ½ I_y θ̇² + ½ I_x φ̇², small-angle).
@@ -260,13 +263,15 @@ pub struct Car {
 /// the mount frame [kg m²] (tensor entries: I_xy = −∫xy dm). All zero: none.
 pub type Payload = [f64; 10];
 
-/// State layout: z, θ, φ, z_fl, z_fr, z_rl, z_rr, their rates, then the energy ledger.
-pub const N: usize = 17;
+/// State layout: z, θ, φ, z_fl, z_fr, z_rl, z_rr, their rates, then the energy ledger (road,
+/// beam, dissipated, drive).
+pub const N: usize = 18;
 /// Positions (z, θ, φ, four wheel heaves).
 const NQ: usize = 7;
 const W_ROAD: usize = 14;
 const W_BEAM: usize = 15;
 const DISSIPATED: usize = 16;
+const W_DRIVE: usize = 17;
 
 /// The body's exact kinematics at a state: the rotation, the mount arm and the maps from the
 /// body's (z̈, θ̈, φ̈) to the mount's acceleration and angular acceleration (world axes).
@@ -465,7 +470,9 @@ impl Car {
     }
 
     /// The body's accelerations (z̈, θ̈, φ̈) at `s` with the beam reaction `f`, `m` and the
-    /// payload `p`, and the beam's generalized force on the body (reaction and payload).
+    /// payload `p`, the beam's generalized force on the body (reaction and payload), and the
+    /// longitudinal force the drive adds for the beam (F_x plus the payload's x inertia force
+    /// m_p a_c,x: the x component of its reaction, gravity having none).
     fn body_accelerations(
         &self,
         k: &Kinematics,
@@ -473,7 +480,7 @@ impl Car {
         f: V3,
         m: V3,
         p: &Payload,
-    ) -> (V3, V3) {
+    ) -> (V3, V3, f64) {
         let b = &self.body;
         let (ps, _) = self.suspension(s);
         let mut qs = [-b.mass * self.solver.gravity, 0.0, 0.0];
@@ -490,13 +497,13 @@ impl Car {
                 (qs[1] + qr[1]) / b.pitch_inertia,
                 (qs[2] + qr[2]) / b.roll_inertia,
             ];
-            return (qdd, qr);
+            return (qdd, qr, f[0]);
         }
         let (mm, q0) = self.mass_matrix(k, p);
         let qdd = solve(mm, std::array::from_fn(|i| qs[i] + qr[i] + q0[i]));
         let (a, al) = k.accelerations(qdd);
         let (fp, mp) = self.payload_reaction(k, p, a, al);
-        (qdd, add(qr, k.generalized(fp, mp)))
+        (qdd, add(qr, k.generalized(fp, mp)), f[0] + fp[0])
     }
 
     /// ds/dt at time `t` with the beam reaction `f`, `m` (support on beam, world axes, moment
@@ -505,7 +512,7 @@ impl Car {
         let (w, g, v) = (&self.wheels, self.solver.gravity, self.road.speed);
         let k = self.kinematics(s);
         let (ps, dv) = self.suspension(s);
-        let (qdd, qb) = self.body_accelerations(&k, s, f, m, p);
+        let (qdd, qb, drive) = self.body_accelerations(&k, s, f, m, p);
         let mut d = [0.0; N];
         d[..NQ].copy_from_slice(&s[NQ..2 * NQ]);
         d[NQ..NQ + 3].copy_from_slice(&qdd);
@@ -517,6 +524,7 @@ impl Car {
             d[DISSIPATED] += self.corner(i).3 * dv[i] * dv[i];
         }
         d[W_BEAM] = (0..3).map(|j| qb[j] * s[NQ + j]).sum();
+        d[W_DRIVE] = drive * v;
         d
     }
 
@@ -660,6 +668,8 @@ pub mod vr {
     pub const W_BEAM: u32 = 45;
     /// .
     pub const DISSIPATED: u32 = 46;
+    /// `energy.drive_work`
+    pub const W_DRIVE: u32 = 47;
 }
 
 /// The car as an FMU model.
@@ -780,6 +790,7 @@ fn variables() -> Vec<Variable> {
         v("energy.road_work".into(), vr::W_ROAD, Output, "J", "Work done by the road on the tires since the start".into()),
         v("energy.beam_work".into(), vr::W_BEAM, Output, "J", "Work done by the beam on the car (heave, pitch, roll) since the start".into()),
         v("energy.dissipated".into(), vr::DISSIPATED, Output, "J", "Energy dissipated in the dampers since the start".into()),
+        v("energy.drive_work".into(), vr::W_DRIVE, Output, "J", "Work done by the drive, which holds the forward speed, against the beam's longitudinal reaction (and the payload's inertia) since the start: energy the drive puts into the beam".into()),
     ]);
     out
 }
@@ -807,7 +818,7 @@ impl Vehicle3d {
         let (c, s) = (&self.car, &self.s);
         let (f, m, p) = self.input_at(0.0);
         let k = c.kinematics(s);
-        let (qdd, _) = c.body_accelerations(&k, s, f, m, &p);
+        let (qdd, _, _) = c.body_accelerations(&k, s, f, m, &p);
         let (a, al) = k.accelerations(qdd);
         let pos = add([c.road.speed * self.t, 0.0, c.body.cg_height + s[0]], k.r);
         let vel = add([c.road.speed, 0.0, s[NQ]], cross(k.omega, k.r));
@@ -1054,6 +1065,7 @@ impl CoSimModel for Vehicle3d {
             vr::W_ROAD => self.s[W_ROAD],
             vr::W_BEAM => self.s[W_BEAM],
             vr::DISSIPATED => self.s[DISSIPATED],
+            vr::W_DRIVE => self.s[W_DRIVE],
             _ => return Err(format!("value reference {r} is not a variable of the car")),
         })
     }

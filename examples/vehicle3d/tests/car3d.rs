@@ -179,7 +179,7 @@ fn static_start_has_the_closed_form_wheel_loads() {
 
 /// Over the bump under the left wheels, with no beam and with a constant beam reaction at a
 /// lateral offset, the energy ledger closes: E − E₀ = W_road + W_beam − D, to RK4's accuracy
-/// (shrinking ~16× per halved step).
+/// (shrinking ~16× per halved step); the drive work is Σ F_x V h of the held x reaction.
 #[test]
 fn energy_ledger_closes_at_fourth_order() {
     let offset = edited(
@@ -201,13 +201,22 @@ fn energy_ledger_closes_at_fourth_order() {
             let e0 = get(&i, vr::ENERGY);
             let mut scale: f64 = 0.0;
             let mut beam: f64 = 0.0;
+            let mut drive = 0.0;
+            let fx = get(&i, vr::BEAM_FORCE_X);
             for k in 0..100 {
                 assert_eq!(i.do_step(0.01 * k as f64, 0.01), Status::Ok);
                 for r in [vr::W_ROAD, vr::W_BEAM, vr::DISSIPATED] {
                     scale = scale.max(get(&i, r).abs());
                 }
                 beam = beam.max(get(&i, vr::W_BEAM).abs());
+                // the drive holds 10 m/s against the held x reaction: F_x V h per step
+                drive += fx * 10.0 * 0.01;
             }
+            let w = get(&i, vr::W_DRIVE);
+            assert!(
+                (w - drive).abs() <= 1e-12 * drive.abs(),
+                "drive work {w} J vs {drive} J"
+            );
             let de = get(&i, vr::ENERGY) - e0;
             let ledger = get(&i, vr::W_ROAD) + get(&i, vr::W_BEAM) - get(&i, vr::DISSIPATED);
             assert!(get(&i, vr::W_ROAD).abs() > 1.0, "the bump is crossed");
@@ -296,6 +305,7 @@ fn symmetric_car_equals_the_pitch_plane_car() {
             (vr::W_ROAD, 1.0, pvr::W_ROAD),
             (vr::W_BEAM, 1.0, pvr::W_BEAM),
             (vr::DISSIPATED, 1.0, pvr::DISSIPATED),
+            (vr::W_DRIVE, 1.0, pvr::W_DRIVE),
         ];
         let zeros = [
             vr::ROLL,
@@ -576,7 +586,7 @@ fn saved_state_round_trips_bit_identically() {
         let mut out = Vec::new();
         for k in 0..30 {
             assert_eq!(i.do_step(0.4 + 0.01 * k as f64, 0.01), Status::Ok);
-            for r in (vr::MOUNT_X..=vr::MOUNT_ALPHA_Z).chain(vr::HEAVE..=vr::DISSIPATED) {
+            for r in (vr::MOUNT_X..=vr::MOUNT_ALPHA_Z).chain(vr::HEAVE..=vr::W_DRIVE) {
                 out.push(get(i, r).to_bits());
             }
         }

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The spatial vehicle example: builds the four-wheel car FMU (out/car3d.fmu) and the roof
+# boom's spatial beam FMU (out/boom_3d.fmu, from scenes/boom_3d.toml), couples them with
+# hybeam-cosim over the bump under the left wheels (examples/vehicle3d/system.toml) and writes
+# out/vehicle3d/cosim.csv and out/vehicle3d/cosim.png (examples/vehicle3d/README.md).
+#   bash examples/vehicle3d/run.sh          the coupled run (implicit coupling, h = 1 ms)
+#   bash examples/vehicle3d/run.sh --test   the example's pytest checks (test_cosim3d.py; the
+#                                           symmetric case compares with the planar system,
+#                                           out/car.fmu and out/boom.fmu of examples/vehicle/run.sh)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+[ -x .venv/bin/hybeam-cosim ] || bash scripts/setup.sh
+mkdir -p out
+cargo build --release -p hybeam-vehicle3d --lib --bin car3d-fmu
+target/release/car3d-fmu target/release/libhybeam_vehicle3d.so examples/vehicle3d/vehicle3d.toml out/car3d.fmu
+boom=$(cargo fmu-build scenes/boom_3d.toml --out out --platforms linux64 | tail -n 1)
+SYSTEM=examples/vehicle3d/system.toml
+case "${1:-}" in
+    --test)
+        # the planar pair of the symmetric comparison (as examples/vehicle/run.sh builds it)
+        cargo build --release -p hybeam-vehicle --lib --bin car-fmu
+        target/release/car-fmu target/release/libhybeam_vehicle.so examples/vehicle/vehicle.toml out/car.fmu
+        planar_boom=$(cargo fmu-build scenes/boom.toml --out out --platforms linux64 | tail -n 1)
+        .venv/bin/python -m pytest -q examples/vehicle3d/test_cosim3d.py --car out/car3d.fmu \
+            --boom "$boom" --planar-car out/car.fmu --planar-boom "$planar_boom"
+        ;;
+    *)
+        .venv/bin/hybeam-cosim "$SYSTEM" --scheme implicit --step 1e-3 --out out/vehicle3d
+        ;;
+esac
