@@ -58,6 +58,9 @@ echo "== Python tools: lint, format, the co-simulation master's tests"
 echo "== vehicle example: car + mounted boom co-simulation (hybeam-cosim, libcosim)"
 bash examples/vehicle/run.sh --test
 
+echo "== spatial vehicle example: four-wheel car + spatial boom (hybeam-cosim)"
+bash examples/vehicle3d/run.sh --test
+
 if [ "$WIN64" = 0 ]; then
     echo "== win64 test skipped (HYBEAM_WIN64=0)"
 elif [ "$WIN64" = 1 ] || { [ -x /usr/bin/cargo ] && command -v x86_64-w64-mingw32-gcc >/dev/null &&
@@ -67,6 +70,3 @@ elif [ "$WIN64" = 1 ] || { [ -x /usr/bin/cargo ] && command -v x86_64-w64-mingw3
 else
     echo "== win64 test skipped: toolchain not installed (bash scripts/setup-win64.sh, or HYBEAM_WIN64=1)"
 fi
-
-echo "== spatial vehicle example: four-wheel car + spatial boom (hybeam-cosim)"
-bash examples/vehicle3d/run.sh --test
