@@ -11,7 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 [ -x .venv/bin/hybeam-cosim ] || bash scripts/setup.sh
 mkdir -p out
-cargo build --release -p hybeam-vehicle --lib --bin car-fmu
+cargo build --release -p hybeam-vehicle --lib --bin car-fmu --features export
 target/release/car-fmu target/release/libhybeam_vehicle.so examples/vehicle/vehicle.toml out/car.fmu
 boom=$(cargo fmu-build scenes/boom.toml --out out --platforms linux64 | tail -n 1)
 SYSTEM=examples/vehicle/system.toml

@@ -11,14 +11,14 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 [ -x .venv/bin/hybeam-cosim ] || bash scripts/setup.sh
 mkdir -p out
-cargo build --release -p hybeam-vehicle3d --lib --bin car3d-fmu
+cargo build --release -p hybeam-vehicle3d --lib --bin car3d-fmu --features export
 target/release/car3d-fmu target/release/libhybeam_vehicle3d.so examples/vehicle3d/vehicle3d.toml out/car3d.fmu
 boom=$(cargo fmu-build scenes/boom_3d.toml --out out --platforms linux64 | tail -n 1)
 SYSTEM=examples/vehicle3d/system.toml
 case "${1:-}" in
     --test)
         # the planar pair of the symmetric comparison (as examples/vehicle/run.sh builds it)
-        cargo build --release -p hybeam-vehicle --lib --bin car-fmu
+        cargo build --release -p hybeam-vehicle --lib --bin car-fmu --features export
         target/release/car-fmu target/release/libhybeam_vehicle.so examples/vehicle/vehicle.toml out/car.fmu
         planar_boom=$(cargo fmu-build scenes/boom.toml --out out --platforms linux64 | tail -n 1)
         .venv/bin/python -m pytest -q examples/vehicle3d/test_cosim3d.py --car out/car3d.fmu \

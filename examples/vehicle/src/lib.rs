@@ -42,6 +42,10 @@ use serde::Deserialize;
 use fmi2::hash::fnv1a64;
 use fmi2::{Capabilities, Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
 
+// the FMI 2.0 C entry points, only where the cdylib is built as an FMU binary (`--features
+// export`, run.sh): two cars' exports in one test binary (the spatial car's tests compare it with
+// the pitch-plane car) would be duplicate symbols
+#[cfg(feature = "export")]
 fmi2::export_fmi2!(Vehicle);
 
 /// Solves the 4×4 system `a x = b` by Gaussian elimination with partial pivoting.

@@ -5,7 +5,7 @@
 //! ```
 //!
 //! `LIBRARY` is the built cdylib (`target/release/libhybeam_vehicle.so`, from
-//! `cargo build --release -p hybeam-vehicle --lib`), `RESOURCE` the car's TOML (packaged as
+//! `cargo build --release -p hybeam-vehicle --lib --features export`), `RESOURCE` the car's TOML (packaged as
 //! `resources/vehicle.toml`); the modelIdentifier is `OUT`'s file stem. modelDescription.xml
 //! comes from the model itself (the generic layer's generator), so it cannot disagree with
 //! the binary. Deterministic zip (fixed order, timestamps, permissions). Beside it, the car's
