@@ -37,6 +37,8 @@
 //! integrator's accuracy (W_beam includes the payload's inertial and gravity forces). Not
 //! modelled: tire lift-off, longitudinal dynamics.
 
+pub mod package;
+
 use serde::Deserialize;
 
 use fmi2::hash::fnv1a64;
@@ -48,25 +50,26 @@ use fmi2::{Capabilities, Causality, CoSimModel, ModelInfo, StepError, Variabilit
 #[cfg(feature = "export")]
 fmi2::export_fmi2!(Vehicle);
 
-/// Solves the 4×4 system `a x = b` by Gaussian elimination with partial pivoting.
-fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> [f64; 4] {
-    for c in 0..4 {
-        let p = (c..4)
+/// Solves `a x = b` (K×K) by Gaussian elimination with partial pivoting (the cars' static
+/// states and mass matrices; the spatial car shares it).
+pub fn solve<const K: usize>(mut a: [[f64; K]; K], mut b: [f64; K]) -> [f64; K] {
+    for c in 0..K {
+        let p = (c..K)
             .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
             .unwrap_or(c);
         a.swap(c, p);
         b.swap(c, p);
-        for r in c + 1..4 {
+        for r in c + 1..K {
             let f = a[r][c] / a[c][c];
-            for k in c..4 {
+            for k in c..K {
                 a[r][k] -= f * a[c][k];
             }
             b[r] -= f * b[c];
         }
     }
-    let mut x = [0.0; 4];
-    for r in (0..4).rev() {
-        let s: f64 = (r + 1..4).map(|k| a[r][k] * x[k]).sum();
+    let mut x = [0.0; K];
+    for r in (0..K).rev() {
+        let s: f64 = (r + 1..K).map(|k| a[r][k] * x[k]).sum();
         x[r] = (b[r] - s) / a[r][r];
     }
     x
@@ -92,20 +95,27 @@ struct Scene {
     solver: Solver,
 }
 
+/// A car resource's `[model]` table (the spatial car's too).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct SceneModel {
-    name: String,
+pub struct SceneModel {
+    /// modelName of the FMU.
+    pub name: String,
+    /// Its description.
     #[serde(default)]
-    description: String,
+    pub description: String,
 }
 
+/// A car resource's `[experiment]` table: the FMU's DefaultExperiment [s].
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Experiment {
-    start_time: f64,
-    stop_time: f64,
-    step_size: f64,
+pub struct Experiment {
+    /// Start time [s].
+    pub start_time: f64,
+    /// Stop time [s].
+    pub stop_time: f64,
+    /// Communication step [s].
+    pub step_size: f64,
 }
 
 /// Sprung body.
@@ -357,7 +367,7 @@ impl Car {
                     j[c] = (rp[4 + row] - res[row]) / h;
                 }
             }
-            let dx = solve4(jac, res.map(|x| -x));
+            let dx = solve(jac, res.map(|x| -x));
             for k in 0..4 {
                 s[k] += dx[k];
             }

@@ -54,6 +54,8 @@
 
 use serde::Deserialize;
 
+use hybeam_vehicle::{solve, Experiment, SceneModel};
+
 use fmi2::hash::fnv1a64;
 use fmi2::{Capabilities, Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
 
@@ -90,30 +92,6 @@ fn mat_vec(m: &[V3; 3], v: V3) -> V3 {
     [dot(m[0], v), dot(m[1], v), dot(m[2], v)]
 }
 
-/// Solves `a x = b` (K×K) by Gaussian elimination with partial pivoting.
-fn solve<const K: usize>(mut a: [[f64; K]; K], mut b: [f64; K]) -> [f64; K] {
-    for c in 0..K {
-        let p = (c..K)
-            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
-            .unwrap_or(c);
-        a.swap(c, p);
-        b.swap(c, p);
-        for r in c + 1..K {
-            let f = a[r][c] / a[c][c];
-            for k in c..K {
-                a[r][k] -= f * a[c][k];
-            }
-            b[r] -= f * b[c];
-        }
-    }
-    let mut x = [0.0; K];
-    for r in (0..K).rev() {
-        let s: f64 = (r + 1..K).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    x
-}
-
 /// Number of inputs (value references 1..=INPUTS).
 const INPUTS: usize = 16;
 
@@ -132,22 +110,6 @@ struct Scene {
     road: Road,
     mount: Mount,
     solver: Solver,
-}
-
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SceneModel {
-    name: String,
-    #[serde(default)]
-    description: String,
-}
-
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Experiment {
-    start_time: f64,
-    stop_time: f64,
-    step_size: f64,
 }
 
 /// Sprung body.

@@ -77,6 +77,21 @@ fn rotate(theta: f64, phi: f64, v: [f64; 3]) -> [f64; 3] {
 /// axles in proportion to their roll stiffnesses (series spring and tire; the warp of the
 /// four corners is zero for a rigid body), the wheels' weights on top; heave, pitch and roll
 /// are the plane through the corners' closed-form deflections; the car stays there.
+/// A rigid payload at the mount (interface-mass inputs): 40 kg, its centre of mass off every
+/// axis, a full inertia tensor about the mount point.
+const PAYLOAD: [(u32, f64); 10] = [
+    (vr::BEAM_MASS, 40.0),
+    (vr::BEAM_COM_X, 1.0),
+    (vr::BEAM_COM_X + 1, 0.1),
+    (vr::BEAM_COM_X + 2, 0.2),
+    (vr::BEAM_INERTIA_XX, 5.0),
+    (vr::BEAM_INERTIA_XX + 1, 50.0),
+    (vr::BEAM_INERTIA_XX + 2, 50.0),
+    (vr::BEAM_INERTIA_XX + 3, -4.0),
+    (vr::BEAM_INERTIA_XX + 4, -8.0),
+    (vr::BEAM_INERTIA_XX + 5, -0.8),
+];
+
 #[test]
 fn static_start_has_the_closed_form_wheel_loads() {
     let flat = edited(SCENE, &[("bump_height = 0.05", "bump_height = 0.0")]);
@@ -414,23 +429,14 @@ fn mount_kinematics_are_the_derivatives_of_the_pose() {
         SCENE,
         &[("position = [0.3, 0.0, 0.9]", "position = [0.3, 0.35, 0.9]")],
     );
-    let set = [
+    let reaction = [
         (vr::BEAM_FORCE_X, 20.0),
         (vr::BEAM_FORCE_Y, -15.0),
         (vr::BEAM_FORCE_Z, 100.0),
         (vr::BEAM_MOMENT_X, 30.0),
         (vr::BEAM_MOMENT_Y, -50.0),
-        (vr::BEAM_MASS, 40.0),
-        (vr::BEAM_COM_X, 1.0),
-        (vr::BEAM_COM_X + 1, 0.1),
-        (vr::BEAM_COM_X + 2, 0.2),
-        (vr::BEAM_INERTIA_XX, 5.0),
-        (vr::BEAM_INERTIA_XX + 1, 50.0),
-        (vr::BEAM_INERTIA_XX + 2, 50.0),
-        (vr::BEAM_INERTIA_XX + 3, -4.0),
-        (vr::BEAM_INERTIA_XX + 4, -8.0),
-        (vr::BEAM_INERTIA_XX + 5, -0.8),
     ];
+    let set: Vec<(u32, f64)> = reaction.into_iter().chain(PAYLOAD).collect();
     let mut i = started::<Vehicle3d>(&text, &set);
     for k in 0..54 {
         assert_eq!(i.do_step(0.01 * k as f64, 0.01), Status::Ok);
@@ -492,19 +498,7 @@ fn directional_derivatives_are_finite_differences() {
         SCENE,
         &[("position = [0.3, 0.0, 0.9]", "position = [0.3, 0.35, 0.9]")],
     );
-    let payload = [
-        (vr::BEAM_MASS, 40.0),
-        (vr::BEAM_COM_X, 1.0),
-        (vr::BEAM_COM_X + 1, 0.1),
-        (vr::BEAM_COM_X + 2, 0.2),
-        (vr::BEAM_INERTIA_XX, 5.0),
-        (vr::BEAM_INERTIA_XX + 1, 50.0),
-        (vr::BEAM_INERTIA_XX + 2, 50.0),
-        (vr::BEAM_INERTIA_XX + 3, -4.0),
-        (vr::BEAM_INERTIA_XX + 4, -8.0),
-        (vr::BEAM_INERTIA_XX + 5, -0.8),
-    ];
-    let mut i = started::<Vehicle3d>(&text, &payload);
+    let mut i = started::<Vehicle3d>(&text, &PAYLOAD);
     let reaction = [
         (vr::BEAM_FORCE_X, 20.0),
         (vr::BEAM_FORCE_Y, -15.0),

@@ -1,76 +1,16 @@
-//! Packages the car as an FMI 2.0 co-simulation FMU:
+//! Packages the pitch-plane car as an FMI 2.0 co-simulation FMU (`hybeam_vehicle::package`):
 //!
 //! ```text
-//! car-fmu LIBRARY RESOURCE OUT.fmu
+//! car-fmu target/release/libhybeam_vehicle.so examples/vehicle/vehicle.toml out/car.fmu
 //! ```
 //!
-//! `LIBRARY` is the built cdylib (`target/release/libhybeam_vehicle.so`, from
-//! `cargo build --release -p hybeam-vehicle --lib --features export`), `RESOURCE` the car's TOML (packaged as
-//! `resources/vehicle.toml`); the modelIdentifier is `OUT`'s file stem. modelDescription.xml
-//! comes from the model itself (the generic layer's generator), so it cannot disagree with
-//! the binary. Deterministic zip (fixed order, timestamps, permissions). Beside it, the car's
-//! OSP-IS port groups (`vehicle_OspModelDescription.xml`, [`Vehicle::osp_model_description`]).
+//! after `cargo build --release -p hybeam-vehicle --lib --features export`; writes
+//! `vehicle_OspModelDescription.xml` beside it ([`Vehicle::osp_model_description`]).
 
-use std::io::Write;
-use std::path::Path;
 use std::process::ExitCode;
 
-use fmi2::CoSimModel;
 use hybeam_vehicle::Vehicle;
-use zip::write::SimpleFileOptions;
-use zip::{CompressionMethod, DateTime, ZipWriter};
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let [library, resource, out] = args.as_slice() else {
-        eprintln!("usage: car-fmu LIBRARY RESOURCE OUT.fmu");
-        return ExitCode::FAILURE;
-    };
-    match package(Path::new(library), Path::new(resource), Path::new(out)) {
-        Ok(()) => {
-            println!("{out}");
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("car-fmu: error: {e}");
-            ExitCode::FAILURE
-        }
-    }
-}
-
-fn package(library: &Path, resource: &Path, out: &Path) -> Result<(), String> {
-    let read = |p: &Path| std::fs::read(p).map_err(|e| format!("cannot read {}: {e}", p.display()));
-    let text = String::from_utf8(read(resource)?).map_err(|e| format!("{e}"))?;
-    let model = Vehicle::from_resource(&text)?;
-    let id = out
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .ok_or_else(|| format!("{}: no file name", out.display()))?;
-    let guid = fmi2::guid::guid::<Vehicle>(text.as_bytes());
-    let xml = fmi2::xml::model_description_of(&model, id, &guid)?;
-    let entries: [(String, Vec<u8>, u32); 3] = [
-        ("modelDescription.xml".into(), xml.into_bytes(), 0o644),
-        (format!("binaries/linux64/{id}.so"), read(library)?, 0o755),
-        (
-            format!("resources/{}", Vehicle::RESOURCE),
-            text.into_bytes(),
-            0o644,
-        ),
-    ];
-    let file = std::fs::File::create(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let mut zip = ZipWriter::new(file);
-    let options = SimpleFileOptions::default()
-        .compression_method(CompressionMethod::Deflated)
-        .last_modified_time(DateTime::default());
-    for (name, data, mode) in entries {
-        zip.start_file(name, options.unix_permissions(mode))
-            .map_err(|e| e.to_string())?;
-        zip.write_all(&data).map_err(|e| e.to_string())?;
-    }
-    zip.finish().map_err(|e| e.to_string())?;
-    // the port groups, where libcosim looks for them (beside the FMU)
-    let (name, osp) = model.osp_model_description()?;
-    let osp_path = out.with_file_name(name);
-    std::fs::write(&osp_path, osp).map_err(|e| format!("{}: {e}", osp_path.display()))?;
-    Ok(())
+    hybeam_vehicle::package::command::<Vehicle>("car-fmu", Vehicle::osp_model_description)
 }
