@@ -106,29 +106,34 @@ class _Links:
         # the implicit scheme's unknowns: inputs whose source steps later (or is the same
         # position, impossible) in the order
         self.backward = [c for c in conns if pos[c.src] > pos[c.dst]]
+        # the others, per source: what a subsystem's step gives the later ones
+        self.forward_from = {
+            n: [c for c in conns if c.src == n and c not in self.backward] for n in order
+        }
 
     def read(self, subs: dict[str, Subsystem], conns: list[Connection]) -> dict:
-        by_src: dict[str, list[Connection]] = {}
-        for c in conns:
-            by_src.setdefault(c.src, []).append(c)
-        out = {}
-        for s, cs in by_src.items():
-            vals = subs[s].get([c.src_var for c in cs])
-            out.update(zip(cs, vals, strict=True))
-        return out
+        """The sources' current values of `conns`."""
+        vals = _values(subs, [(c.src, c.src_var) for c in conns])
+        return dict(zip(conns, vals, strict=True))
+
+    def write(self, subs: dict[str, Subsystem], vals: dict, dsts=None):
+        """Sets the inputs of `dsts` (default: all, in order) from `vals` (per connection)."""
+        for n in self.order if dsts is None else dsts:
+            cs = self.into[n]
+            if cs:
+                subs[n].set([c.dst_var for c in cs], [vals[c] for c in cs])
 
 
-def _energy(system: System, subs):
-    """The ledger's stored terms and its supplied and dissipated sums."""
-    e = system.energy
-
-    def val(fv):
-        return float(subs[fv[0]].get([fv[1]])[0])
-
-    stored = [val(v) for v in e.stored]
-    supplied = sum(val(v) for v in e.supplied)
-    dissipated = sum(val(v) for v in e.dissipated)
-    return stored, supplied, dissipated
+def _values(subs: dict[str, Subsystem], pairs: list[tuple[str, str]]) -> list[float]:
+    """The current values of (subsystem, output) pairs, one get per subsystem, in order."""
+    by: dict[str, list[int]] = {}
+    for i, (f, _) in enumerate(pairs):
+        by.setdefault(f, []).append(i)
+    out = [0.0] * len(pairs)
+    for f, idx in by.items():
+        for i, x in zip(idx, subs[f].get([pairs[i][1] for i in idx]), strict=True):
+            out[i] = float(x)
+    return out
 
 
 def initialize(
@@ -142,10 +147,7 @@ def initialize(
     done = set()
 
     def leave(n):
-        cs = links.into[n]
-        vals = links.read(subs, cs)
-        if cs:
-            subs[n].set([c.dst_var for c in cs], [vals[c] for c in cs])
+        links.write(subs, links.read(subs, links.into[n]), [n])
         subs[n].exit_initialization()
         done.add(n)
 
@@ -228,17 +230,24 @@ def run(
     total_iterations = 0
     # interface values at the current point (what each input was last set to)
     current = links.read(subs, links.conns)
-    for c, v in current.items():
-        subs[c.dst].set([c.dst_var], [v])
+    links.write(subs, current)
     history: list[np.ndarray] = []
     reused: list[tuple[np.ndarray, np.ndarray]] = []
 
+    e = system.energy
+    # what a point records: the columns, then the ledger's stored, supplied, dissipated terms
+    probes = system.record + e.stored + e.supplied + e.dissipated
+    ns, nst, nsu = len(system.record), len(e.stored), len(e.supplied)
+
     def record(t, its, rnorm):
         nonlocal e0, scale, worst
-        row = [t] + [float(subs[f].get([v])[0]) for f, v in system.record]
+        vals = _values(subs, probes)
+        row = [t] + vals[:ns]
         eres = float("nan")
         if ledger:
-            stored, supplied, dissipated = _energy(system, subs)
+            stored = vals[ns : ns + nst]
+            supplied = sum(vals[ns + nst : ns + nst + nsu])
+            dissipated = sum(vals[ns + nst + nsu :])
             if e0 is None:
                 e0 = stored
             d = [a - b for a, b in zip(stored, e0, strict=True)]
@@ -256,11 +265,7 @@ def run(
             if implicit:
                 its, rnorm = _implicit_step(subs, links, current, t, h, settings, history, reused)
             else:
-                vals = links.read(subs, links.conns)
-                for n in system.order:
-                    cs = links.into[n]
-                    if cs:
-                        subs[n].set([c.dst_var for c in cs], [vals[c] for c in cs])
+                links.write(subs, links.read(subs, links.conns))
                 for n in system.order:
                     subs[n].step(t, h)
                 its, rnorm = 1, float("nan")
@@ -322,8 +327,7 @@ def _implicit_step(subs, links: _Links, current: dict, t, h, st: Settings, histo
                 s.step(t, h)
                 if cs:
                     s.set(names, stop)
-                out = [c for c in links.conns if c.src == n and c not in back]
-                end.update(links.read(subs, out))
+                end.update(links.read(subs, links.forward_from[n]))
             xt = np.array(list(links.read(subs, back).values()))
             if not np.all(np.isfinite(xt)):
                 raise CouplingFailed(
@@ -334,8 +338,7 @@ def _implicit_step(subs, links: _Links, current: dict, t, h, st: Settings, histo
             scale = np.maximum(np.abs(xt), np.abs(x))
             rnorm = np.max(np.abs(r)) / max(np.max(scale), 1e-300)
             if np.max(np.abs(r)) <= st.rtol * np.max(scale) + st.atol:
-                for c in back:
-                    end[c] = x[back.index(c)]
+                end.update(zip(back, x, strict=True))
                 current.update(end)
                 history[:] = [x_n]
                 if V_cols:
