@@ -18,8 +18,7 @@ import shutil
 import tempfile
 
 import numpy as np
-from hybeam.cosim.cli import open_system
-from hybeam.cosim.master import run
+from hybeam.cosim.cli import simulate
 from hybeam.cosim.system import load
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -217,12 +216,7 @@ def master(car, boom, scheme, h, t_end, factor=1.0, knob="mass_factor"):
     """hybeam-cosim's run of system.toml with these FMUs (a `Result`), the boom's `knob` at
     `factor`."""
     system = load(SYSTEM, {"car": car, "boom": boom})
-    subs = open_system(system, scheme, [f"boom.{knob}={factor}"])
-    try:
-        return run(system, scheme, subs, h, t_end)
-    finally:
-        for s in subs.values():
-            s.close()
+    return simulate(system, scheme, h, t_end, [f"boom.{knob}={factor}"])
 
 
 def main():

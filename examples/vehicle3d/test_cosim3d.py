@@ -8,8 +8,7 @@ import subprocess
 
 import numpy as np
 import pytest
-from hybeam.cosim.cli import open_system
-from hybeam.cosim.master import run
+from hybeam.cosim.cli import simulate
 from hybeam.cosim.system import load
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -27,12 +26,7 @@ def cosim(system_path, car, boom, scheme, h, t_end, sets=(), record=None):
     system = load(system_path, {"car": car, "boom": boom})
     if record is not None:
         system.record = [tuple(c.split(".", 1)) for c in record]
-    subs = open_system(system, scheme, list(sets))
-    try:
-        return run(system, scheme, subs, h, t_end)
-    finally:
-        for s in subs.values():
-            s.close()
+    return simulate(system, scheme, h, t_end, sets)
 
 
 def test_one_sided_bump_rolls_the_car_and_swings_the_boom_sideways(fmus):

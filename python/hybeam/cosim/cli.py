@@ -86,6 +86,24 @@ def open_system(system: System, scheme: str, sets: list[str]) -> dict[str, FmuSu
     return subs
 
 
+def simulate(
+    system: System,
+    scheme: str,
+    step: float,
+    t_end: float,
+    sets=(),
+    settings: Settings | None = None,
+):
+    """Opens the system's FMUs for `scheme` (`--set` items `sets`), runs it and closes them:
+    the run's `Result`."""
+    subs = open_system(system, scheme, list(sets))
+    try:
+        return run(system, scheme, subs, step, t_end, settings)
+    finally:
+        for s in subs.values():
+            s.close()
+
+
 def write(result, out: pathlib.Path, title: str, plot: list[str]):
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "cosim.csv", "w", newline="") as fh:
@@ -143,25 +161,11 @@ def main(argv=None):
         if not step > 0 or not t_end > 0:
             raise SystemFileError(f"--step {step} / --t-end {t_end}: give positive times")
         system.scheme(a.scheme)
-        subs = open_system(system, a.scheme, a.set)
+        settings = Settings(rtol=a.rtol, max_iterations=a.max_iterations)
+        res = simulate(system, a.scheme, step, t_end, a.set, settings)
     except (SystemFileError, ValueError) as e:
         print(f"hybeam-cosim: {e}", file=sys.stderr)
         return 2
-    try:
-        res = run(
-            system,
-            a.scheme,
-            subs,
-            step,
-            t_end,
-            Settings(rtol=a.rtol, max_iterations=a.max_iterations),
-        )
-    except ValueError as e:
-        print(f"hybeam-cosim: {e}", file=sys.stderr)
-        return 2
-    finally:
-        for s in subs.values():
-            s.close()
     out = pathlib.Path(a.out)
     write(
         res,

@@ -29,21 +29,13 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
-from .cli import open_system
-from .master import Settings, run
+from .cli import simulate
 from .system import load
 
 
 def _cell(args):
     path, fmus, scheme, step, t_end, sets = args
-    system = load(path, fmus)
-    subs = open_system(system, scheme, sets)
-    try:
-        res = run(system, scheme, subs, step, t_end, Settings())
-    finally:
-        for s in subs.values():
-            s.close()
-    return res
+    return simulate(load(path, fmus), scheme, step, t_end, sets)
 
 
 def _summary(args):
