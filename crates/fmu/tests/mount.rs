@@ -576,21 +576,6 @@ fn outputs_in_initialization_mode_follow_what_was_set() {
     assert_eq!(after, turned);
 }
 
-/// An instance of the FMU of `scene` in initialization mode.
-fn in_initialization(scene: &str, tag: &str) -> Inst {
-    let args = InstantiateArgs {
-        guid: guid_of(scene),
-        location: Some(file_uri(&resources_with(scene, tag))),
-        ..InstantiateArgs::valid(tag)
-    };
-    let (c, log) = instantiate_raw(&args);
-    assert!(!c.is_null(), "{:?}", log.entries());
-    let i = Inst { c, log, api: api() };
-    assert_eq!(i.setup(0.0, None), OK);
-    assert_eq!(i.enter_init(), OK);
-    i
-}
-
 /// Whether the FMU of `scene` has the variable `r`.
 fn scene_has(scene: &str, r: u32) -> bool {
     let model = hybeam_fmu::FmuModel::from_resource(scene).unwrap();

@@ -256,8 +256,8 @@ pub fn vr_in(scene: &str, name: &str) -> u32 {
         .vr
 }
 
-/// An instance of `scene` (resources under `tag`), set up at t = 0 and initialized.
-pub fn initialized_with(scene: &str, tag: &str) -> Inst {
+/// An instance of `scene` (resources under `tag`), set up at t = 0, in initialization mode.
+pub fn in_initialization(scene: &str, tag: &str) -> Inst {
     let args = InstantiateArgs {
         guid: guid_of(scene),
         location: Some(file_uri(&resources_with(scene, tag))),
@@ -268,6 +268,12 @@ pub fn initialized_with(scene: &str, tag: &str) -> Inst {
     let i = Inst { c, log, api: api() };
     assert_eq!(i.setup(0.0, None), OK);
     assert_eq!(i.enter_init(), OK);
+    i
+}
+
+/// An instance of `scene` (resources under `tag`), set up at t = 0 and initialized.
+pub fn initialized_with(scene: &str, tag: &str) -> Inst {
+    let i = in_initialization(scene, tag);
     assert_eq!(i.exit_init(), OK);
     i
 }
