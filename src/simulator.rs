@@ -9,6 +9,7 @@ mod finite;
 mod inputs;
 pub mod limits;
 mod mount;
+mod partner;
 mod snapshot;
 mod step;
 
@@ -16,6 +17,7 @@ pub use any::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
 pub use inputs::{Inputs, LoadRates};
 pub use limits::*;
 pub use mount::{MountInput, MountState};
+pub use partner::{Partner, PARTNER_COMPONENTS, PARTNER_ITERATIONS};
 pub use snapshot::{Memory, SNAPSHOT_VERSION};
 pub use step::StepControl;
 

@@ -187,6 +187,14 @@ impl<S: Space> Model<S> {
         }
     }
 
+    /// The support's force [N] and moment [N m] on the beam at a state (the reaction of
+    /// [`Outputs`] alone).
+    pub fn reaction(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> (S::Vec, S::Moment) {
+        let mut buf = vec![0.0; self.max_local_len()];
+        let r = self.held_residual((q, v, acc), lam, &mut buf);
+        self.support.reaction(&r, &self.held)
+    }
+
     /// The held values, rates and accelerations.
     pub(crate) fn held_state(&self) -> (&[f64], &[f64], &[f64]) {
         (&self.held, &self.held_v, &self.held_a)

@@ -97,6 +97,9 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
 
     /// Angle [rad] of the rotation from orientation `a` to `b`.
     fn attitude_angle(a: &Self::Attitude, b: &Self::Attitude) -> f64;
+    /// `a` turned further by the rotation vector `phi` [rad], world axes (the plane: the angle
+    /// plus φ_z).
+    fn rotated(a: &Self::Attitude, phi: &Self::Moment) -> Self::Attitude;
 
     /// Unit orientation from any nonzero representation (Euler parameters normalized), `None`
     /// if it has none (zero or not finite).

@@ -3,7 +3,7 @@
 //! [`Space::AXES`], [`Space::MOMENT_AXES`] and the orientation's components
 //! ([`Space::ATTITUDE`]).
 
-use super::{Inputs, LoadRates, MountInput, Simulator};
+use super::{Inputs, LoadRates, MountInput, Partner, Simulator, PARTNER_COMPONENTS};
 use crate::error::SimError;
 use crate::integrator::Counters;
 use crate::model::{Outputs, Planar, Space, Spatial};
@@ -252,10 +252,26 @@ pub enum InputKind {
     MountAcceleration,
     /// `root.angular_acceleration` [rad/s²] (plane; `.x/.y/.z` world axes in space).
     MountAngularAcceleration,
+    /// `root.mobility.<a>_<r>`: the host's mobility at the mount, ∂a/∂R ([`Partner`]), the
+    /// acceleration `a` ∈ {ax, ay, az, alphax, alphay, alphaz} by the reaction `r` ∈ {fx, fy,
+    /// fz, mx, my, mz} (the plane: ax, ay, alphaz and fx, fy, mz); component `i·6 + j` for
+    /// the space's components i, j. 1/kg, 1/(kg m), 1/(kg m²).
+    MountMobility,
+    /// `root.reaction_reference.<r>` [N, N m]: the reaction the host's acceleration input was
+    /// computed with ([`Partner`]).
+    MountReactionReference,
 }
 
 impl InputKind {
-    /// Whether this is a mount input.
+    /// Whether this is an input of the partner model ([`Partner`]).
+    pub fn is_partner(self) -> bool {
+        matches!(
+            self,
+            InputKind::MountMobility | InputKind::MountReactionReference
+        )
+    }
+
+    /// Whether this is a mount input (the partner's too).
     pub fn is_mount(self) -> bool {
         !matches!(
             self,
@@ -325,7 +341,56 @@ impl InputId {
                 S::ANGULAR_SUFFIXES,
             ),
         ];
-        named_components(&groups, |kind, component| InputId { kind, component })
+        let mut out = named_components(&groups, |kind, component| InputId { kind, component });
+        out.extend(Self::partner_in::<S>());
+        out
+    }
+
+    /// The partner model's inputs: `root.mobility.<a>_<r>` row by row, then
+    /// `root.reaction_reference.<r>` ([`InputKind::MountMobility`]).
+    fn partner_in<S: Space>() -> Vec<(String, InputId)> {
+        let acc: Vec<String> = S::AXES
+            .iter()
+            .map(|a| format!("a{a}"))
+            .chain(S::MOMENT_AXES.iter().map(|a| format!("alpha{a}")))
+            .collect();
+        let reaction: Vec<String> = S::AXES
+            .iter()
+            .map(|a| format!("f{a}"))
+            .chain(S::MOMENT_AXES.iter().map(|a| format!("m{a}")))
+            .collect();
+        let mut out = Vec::new();
+        for (i, a) in acc.iter().enumerate() {
+            for (j, r) in reaction.iter().enumerate() {
+                let id = InputId {
+                    kind: InputKind::MountMobility,
+                    component: i * PARTNER_COMPONENTS + j,
+                };
+                out.push((format!("root.mobility.{a}_{r}"), id));
+            }
+        }
+        for (j, r) in reaction.iter().enumerate() {
+            let id = InputId {
+                kind: InputKind::MountReactionReference,
+                component: j,
+            };
+            out.push((format!("root.reaction_reference.{r}"), id));
+        }
+        out
+    }
+
+    /// The partner's slot of this input (`None` for another input or a component outside
+    /// the partner's arrays).
+    fn partner_slot(self, p: &mut Partner) -> Option<&mut f64> {
+        let k = self.component;
+        match self.kind {
+            InputKind::MountMobility => p
+                .mobility
+                .get_mut(k / PARTNER_COMPONENTS)
+                .map(|row| &mut row[k % PARTNER_COMPONENTS]),
+            InputKind::MountReactionReference => p.reference.get_mut(k),
+            _ => None,
+        }
     }
 
     /// The scene's value of this input (0 where the scene leaves the component out; the
@@ -349,6 +414,8 @@ impl InputId {
             InputKind::MountAngularVelocity => get(&mount().angular_velocity),
             InputKind::MountAcceleration => get(&mount().acceleration),
             InputKind::MountAngularAcceleration => get(&mount().angular_acceleration),
+            // the partner model is not part of a scene: zero (off) until a host sets it
+            InputKind::MountMobility | InputKind::MountReactionReference => 0.0,
         }
     }
 
@@ -358,7 +425,7 @@ impl InputId {
         let (space, k) = (scene.space, self.component);
         if self.kind.is_mount() {
             // the start motion of a mounted scene: where `initialize` puts the beam
-            if scene.root != crate::scene::Root::Mounted {
+            if scene.root != crate::scene::Root::Mounted || self.kind.is_partner() {
                 return;
             }
             // the raw table (renormalized when the simulator is built), every vector complete
@@ -594,6 +661,11 @@ impl AnySimulator {
     /// The value of an input set for the next step; `None` for a component this space (or a
     /// fixed root) does not have.
     pub fn input(&self, id: InputId) -> Option<f64> {
+        if id.kind.is_partner() {
+            let mounted = self.mount_accelerations_given().is_some();
+            let mut p = each!(self, s => s.partner());
+            return id.partner_slot(&mut p).filter(|_| mounted).map(|x| *x);
+        }
         if id.kind.is_mount() {
             return each!(self, s => s.mount_input().and_then(|mut m| m.slot(id).map(|x| *x)));
         }
@@ -604,6 +676,12 @@ impl AnySimulator {
     /// [`Simulator::advance`]; a mount input is checked there); `false` (and no change) for a
     /// component this space (or a fixed root) does not have.
     pub fn set_input(&mut self, id: InputId, x: f64) -> bool {
+        if id.kind.is_partner() {
+            return each!(self, s => {
+                let mut p = s.partner();
+                id.partner_slot(&mut p).map(|slot| *slot = x).is_some() && s.set_partner(p)
+            });
+        }
         if id.kind.is_mount() {
             return each!(self, s => {
                 let Some(mut m) = s.mount_input() else {
@@ -653,6 +731,10 @@ impl AnySimulator {
     pub fn set_input_derivative(&mut self, id: InputId, order: u32, x: f64) -> bool {
         if !(1..=2).contains(&order) {
             return false;
+        }
+        if id.kind.is_partner() {
+            // the partner model is held over a step: a derivative is accepted, not used
+            return self.input(id).is_some();
         }
         if !id.kind.is_mount() {
             return each!(self, s => {
@@ -714,8 +796,18 @@ impl AnySimulator {
         each!(self, s => s.mount_accelerations_given())
     }
 
+    /// [`Simulator::partner`].
+    pub fn partner(&self) -> Partner {
+        each!(self, s => s.partner())
+    }
+
+    /// [`Simulator::set_partner`].
+    pub fn set_partner(&mut self, partner: Partner) -> bool {
+        each!(self, s => s.set_partner(partner))
+    }
+
     /// Writes the inputs set for the next step (tip loads, gravity and, on a mounted scene, the
-    /// mount's) that differ from the scene's into `scene`: where a start of the scene begins.
+    /// mount's; not the partner model's, which a scene does not hold) that differ from the scene's into `scene`: where a start of the scene begins.
     pub fn inputs_into(&self, scene: &mut Scene) {
         let mounted = scene.mount_start().is_some();
         for (_, id) in InputId::named_with(self.space(), mounted) {

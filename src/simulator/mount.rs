@@ -41,6 +41,8 @@ pub struct MountState<S: Space> {
     pub last: Option<(f64, Motion<S>)>,
     /// Whether accelerations are inputs (`pose_velocity_acceleration`).
     pub accelerations_given: bool,
+    /// The host's response at the mount (zero: none), held until set again.
+    pub partner: Partner,
 }
 
 impl<S: Space> MountState<S> {
@@ -54,6 +56,7 @@ impl<S: Space> MountState<S> {
             pending: None,
             last: None,
             accelerations_given: m.motion_input == MotionInput::PoseVelocityAcceleration,
+            partner: Partner::default(),
         })
     }
 

@@ -142,6 +142,12 @@ impl<S: Space> Simulator<S> {
         let mut attempts = 0u64;
         let mut halvings = 0;
         let varying = self.load_rates.any();
+        // the partner model: its Newton matrix once per communication step
+        let partner = self.partner_step()?;
+        let mut dev = match &partner {
+            Some(p) => self.partner_start(p)?,
+            None => partner::Deviation::default(),
+        };
         while done < steps {
             let h = span / steps as f64;
             attempts += 1;
@@ -159,8 +165,15 @@ impl<S: Space> Simulator<S> {
                     .advanced(inputs, t_next - t0)
                     .apply(&mut self.model);
             }
-            match self.integ.step(&mut self.model, &mut self.state, h) {
-                Ok(_) => {
+            let stepped = match &partner {
+                Some(p) => self.step_with_partner(p, &mut dev, t_next, h),
+                None => self
+                    .integ
+                    .step(&mut self.model, &mut self.state, h)
+                    .map(|_| ()),
+            };
+            match stepped {
+                Ok(()) => {
                     done += 1;
                     self.min_step_used = self.min_step_used.min(h);
                     self.state.t = t0 + span * (done as f64 / steps as f64);
@@ -194,6 +207,9 @@ impl<S: Space> Simulator<S> {
                     done *= 2;
                 }
             }
+        }
+        if partner.is_some() {
+            self.continue_deviated(&dev, t_end);
         }
         Ok((steps, halvings))
     }

@@ -26,6 +26,9 @@ use super::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
 /// [`Variable`] may use. Extend this table to use a new unit.
 pub const UNITS: &[(&str, [i8; 8], f64)] = &[
     ("1", [0, 0, 0, 0, 0, 0, 0, 0], 1.0),
+    ("1/(kg.m)", [-1, -1, 0, 0, 0, 0, 0, 0], 1.0),
+    ("1/(kg.m2)", [-1, -2, 0, 0, 0, 0, 0, 0], 1.0),
+    ("1/kg", [-1, 0, 0, 0, 0, 0, 0, 0], 1.0),
     ("1/s", [0, 0, -1, 0, 0, 0, 0, 0], 1.0),
     ("Hz", [0, 0, -1, 0, 0, 0, 0, 0], 1.0),
     ("J", [1, 2, -2, 0, 0, 0, 0, 0], 1.0),

@@ -371,7 +371,10 @@ impl CoSimModel for BeamFmu {
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         let scene = self.start_scene();
+        // the partner model set before the start is an input a scene does not hold
+        let partner = self.sim.partner();
         self.sim = AnySimulator::start_at(scene, start_time).map_err(|e| e.to_string())?;
+        self.sim.set_partner(partner);
         self.refresh_outputs();
         self.backward.fill(0.0);
         self.started = true;

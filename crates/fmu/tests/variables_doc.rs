@@ -7,6 +7,7 @@ use std::path::Path;
 
 use fmi2::{Causality, Variability, Variable};
 use hybeam::scene::Scene;
+use hybeam::simulator::InputKind;
 use hybeam_fmu::cosim::variables::{Access, Table, SEGMENT_FIELDS};
 
 /// One documented row: name, VR, causality (inputs, outputs) or variability (parameters), unit.
@@ -65,6 +66,19 @@ fn rows_of(scene: &Scene) -> BTreeSet<Row> {
                 assert_eq!(v.vr, 1000 * (i as u32 + 1) + f.k, "{}", v.name);
                 segment_row(f.name, f.k, v.unit)
             }
+            // the partner model's inputs, written once each in a generic form
+            Access::Input(id) if id.kind == InputKind::MountMobility => (
+                "root.mobility.<a>_<r>".into(),
+                "200 + 6i + j".into(),
+                kind(v),
+                "1/kg, 1/(kg.m), 1/(kg.m2)".into(),
+            ),
+            Access::Input(id) if id.kind == InputKind::MountReactionReference => (
+                "root.reaction_reference.<r>".into(),
+                "240 + j".into(),
+                kind(v),
+                "N, N.m".into(),
+            ),
             _ => (v.name.clone(), v.vr.to_string(), kind(v), unit(v.unit)),
         })
         .collect()

@@ -445,7 +445,22 @@ pub mod vr {
     pub const DISSIPATED: u32 = 25;
     /// `energy.drive_work`
     pub const W_DRIVE: u32 = 26;
+    /// Outputs: the mobility at the mount, `mount.mobility.<a>_<r>` at 30 + 3·i + j (i: ax,
+    /// ay, alphaz; j: fx, fy, mz).
+    pub const MOBILITY: u32 = 30;
+    /// The last of them.
+    pub const MOBILITY_LAST: u32 = 38;
+    /// Outputs: the reaction inputs echoed, `mount.reaction_reference.{fx,fy,mz}` (40–42).
+    pub const REACTION_REFERENCE: u32 = 40;
+    /// The last of them.
+    pub const REACTION_REFERENCE_LAST: u32 = 42;
 }
+
+/// The mount's acceleration components and the reaction components of the partner model's
+/// names (`mount.mobility.<a>_<r>`, the beam FMU's `root.mobility.<a>_<r>`).
+const PARTNER_ACC: [&str; 3] = ["ax", "ay", "alphaz"];
+/// See [`PARTNER_ACC`].
+const PARTNER_REACTION: [&str; 3] = ["fx", "fy", "mz"];
 
 /// The car as an FMU model.
 #[derive(Debug, Clone)]
@@ -483,7 +498,28 @@ fn variables() -> Vec<Variable> {
         depends_on: beam.clone(),
         ..v(name, vr, Output, unit, description)
     };
-    vec![
+    let units = |i: usize, j: usize| match (i < 2, j < 2) {
+        (true, true) => "1/kg",
+        (false, false) => "1/(kg.m2)",
+        _ => "1/(kg.m)",
+    };
+    let mobility = (0..9).map(|k| {
+        let (i, j) = (k / 3, k % 3);
+        let (a, r) = (PARTNER_ACC[i], PARTNER_REACTION[j]);
+        let name = format!("mount.mobility.{a}_{r}");
+        let description = format!("Mobility at the mount (partner model): d{a}/d{r}, the mount acceleration by the beam's reaction input (with the payload), exact: the car is linear in the reaction");
+        v(&name, vr::MOBILITY + k as u32, Output, units(i, j), &description)
+    });
+    let reference = (0..3).map(|j| {
+        let r = PARTNER_REACTION[j];
+        let name = format!("mount.reaction_reference.{r}");
+        let unit = if j < 2 { "N" } else { "N.m" };
+        Variable {
+            depends_on: (vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z).collect(),
+            ..v(&name, vr::REACTION_REFERENCE + j as u32, Output, unit, "The beam reaction input the mount accelerations were computed with (partner model: the beam's root.reaction_reference)")
+        }
+    });
+    let mut out = vec![
         v("beam.root.force.x", vr::BEAM_FORCE_X, Input, "N", "Force of the mount on the beam, x (the beam FMU's root.force.x); the car feels its negative"),
         v("beam.root.force.y", vr::BEAM_FORCE_Y, Input, "N", "Force of the mount on the beam, y (root.force.y); the car feels its negative"),
         v("beam.root.moment.z", vr::BEAM_MOMENT_Z, Input, "N.m", "Moment of the mount on the beam about the mount point (root.moment.z); the car feels its negative"),
@@ -507,10 +543,31 @@ fn variables() -> Vec<Variable> {
         v("energy.beam_work", vr::W_BEAM, Output, "J", "Work done by the beam on the car (heave and pitch) since the start"),
         v("energy.dissipated", vr::DISSIPATED, Output, "J", "Energy dissipated in the dampers since the start"),
         v("energy.drive_work", vr::W_DRIVE, Output, "J", "Work done by the drive, which holds the forward speed, against the beam's longitudinal reaction (and the payload's inertia) since the start: energy the drive puts into the beam"),
-    ]
+    ];
+    out.extend(mobility);
+    out.extend(reference);
+    out
 }
 
 impl Vehicle {
+    /// The mobility at the mount now: ∂(a_x, a_y, α)/∂(F_x, F_y, M_z) of the beam's reaction
+    /// input (rows, columns; with the payload). The car is linear in the reaction, so a unit
+    /// change of it gives the partial exactly (up to rounding).
+    pub fn mobility(&self) -> [[f64; 3]; 3] {
+        let mut car = self.clone();
+        let base = self.mount();
+        let mut g = [[0.0; 3]; 3];
+        for j in 0..3 {
+            car.inputs[0][j] += 1.0;
+            let m = car.mount();
+            car.inputs[0][j] = self.inputs[0][j];
+            for i in 0..3 {
+                g[i][j] = m[6 + i] - base[6 + i];
+            }
+        }
+        g
+    }
+
     /// Inputs at `tau` into the current step: beam reaction (force, moment), payload.
     fn input_at(&self, tau: f64) -> ([f64; 2], f64, Payload) {
         let [u, d1, d2] = &self.inputs;
@@ -688,6 +745,13 @@ impl CoSimModel for Vehicle {
             vr::W_BEAM => self.s[W_BEAM],
             vr::DISSIPATED => self.s[DISSIPATED],
             vr::W_DRIVE => self.s[W_DRIVE],
+            vr::MOBILITY..=vr::MOBILITY_LAST => {
+                let k = (r - vr::MOBILITY) as usize;
+                self.mobility()[k / 3][k % 3]
+            }
+            vr::REACTION_REFERENCE..=vr::REACTION_REFERENCE_LAST => {
+                self.inputs[0][(r - vr::REACTION_REFERENCE) as usize]
+            }
             _ => return Err(format!("value reference {r} is not a variable of the car")),
         })
     }
@@ -809,6 +873,12 @@ impl CoSimModel for Vehicle {
     /// enters nonlinearly, its partials are central differences (relative step 1e-6).
     fn partial_derivative(&mut self, output: usize, input: usize) -> Result<f64, String> {
         let (o, i) = (self.vars[output].vr, self.vars[input].vr);
+        if (vr::REACTION_REFERENCE..=vr::REACTION_REFERENCE_LAST).contains(&o) {
+            // the echo of the reaction inputs
+            return Ok(f64::from(u8::from(
+                o - vr::REACTION_REFERENCE == i - vr::BEAM_FORCE_X,
+            )));
+        }
         if !(vr::MOUNT_AX..=vr::MOUNT_ALPHA).contains(&o)
             || !(vr::BEAM_FORCE_X..=vr::BEAM_INERTIA).contains(&i)
         {

@@ -97,6 +97,10 @@ impl Space for Planar {
         (b - a).abs()
     }
 
+    fn rotated(a: &f64, phi: &f64) -> f64 {
+        a + phi
+    }
+
     fn normalized_attitude(a: &f64) -> Option<f64> {
         a.is_finite().then_some(*a)
     }

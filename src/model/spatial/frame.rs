@@ -186,6 +186,11 @@ pub(super) fn advance(m: &Motion<Spatial>, r: &MotionRates<Spatial>, tau: f64) -
     out
 }
 
+/// `p` turned further by the world rotation vector `phi` [rad]: exp(φ) ⊗ p, normalized.
+pub(super) fn rotated(p: &Q, phi: V) -> Q {
+    normalize(qmul(exp(phi), *p)).unwrap_or(*p)
+}
+
 pub(crate) fn normalize(p: Q) -> Option<Q> {
     let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]).sqrt();
     (n.is_finite() && n > 1e-12).then(|| p.map(|x| x / n))

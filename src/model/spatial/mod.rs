@@ -120,6 +120,10 @@ impl Space for Spatial {
         frame::angle_between(a, b)
     }
 
+    fn rotated(a: &[f64; 4], phi: &[f64; 3]) -> [f64; 4] {
+        frame::rotated(a, *phi)
+    }
+
     fn normalized_attitude(a: &[f64; 4]) -> Option<[f64; 4]> {
         frame::normalize(*a)
     }

@@ -222,6 +222,39 @@ pub const MOUNT_OUTPUTS: [Row; 16] = [
     ("root.moment_elastic.z", 85, Some("N.m"), "root.moment minus the rigid reaction's moment, global z (counter-clockwise in the plane)"),
 ];
 
+/// The value reference, unit and description of a partner-model input of a mounted scene
+/// (`None` for another name): `root.mobility.<a>_<r>` at 200 + 6·i + j and
+/// `root.reaction_reference.<r>` at 240 + j, with i the index of `a` in (ax, ay, az, alphax,
+/// alphay, alphaz) and j that of `r` in (fx, fy, fz, mx, my, mz), the same in both spaces (the
+/// plane has ax, ay, alphaz and fx, fy, mz).
+pub fn partner_row(name: &str) -> Option<(u32, &'static str, String)> {
+    const ACC: [&str; 6] = ["ax", "ay", "az", "alphax", "alphay", "alphaz"];
+    const REACTION: [&str; 6] = ["fx", "fy", "fz", "mx", "my", "mz"];
+    let index = |list: &[&str; 6], x: &str| list.iter().position(|l| *l == x);
+    if let Some(r) = name.strip_prefix("root.reaction_reference.") {
+        let j = index(&REACTION, r)?;
+        let unit = if j < 3 { "N" } else { "N.m" };
+        let what = if j < 3 { "force" } else { "moment" };
+        let description = format!(
+            "partner model: the reaction {what} (support on the beam, world axes) the host's \
+             acceleration input was computed with"
+        );
+        return Some((240 + j as u32, unit, description));
+    }
+    let (a, r) = name.strip_prefix("root.mobility.")?.split_once('_')?;
+    let (i, j) = (index(&ACC, a)?, index(&REACTION, r)?);
+    let unit = match (i < 3, j < 3) {
+        (true, true) => "1/kg",
+        (false, false) => "1/(kg.m2)",
+        _ => "1/(kg.m)",
+    };
+    let description = format!(
+        "partner model: the host's mobility at the mount, d{a}/d{r} (mount acceleration by the \
+         reaction of the support on the beam, world axes; zero: off)"
+    );
+    Some((200 + 6 * i as u32 + j as u32, unit, description))
+}
+
 /// Gravity, tunable parameters of both spaces.
 pub const GRAVITY: [Row; 3] = [
     ("gravity.x", 100, Some("m/s2"), "gravity, global axes"),
@@ -425,6 +458,22 @@ impl Table {
             let v = variable(row, Causality::Input, Variability::Continuous, start);
             t.push(v, Access::Input(id));
         }
+        for (name, id) in inputs.iter().filter(|(_, id)| id.kind.is_partner()) {
+            let Some((vr, unit, description)) = partner_row(name) else {
+                continue;
+            };
+            let v = Variable {
+                name: name.clone(),
+                vr,
+                causality: Causality::Input,
+                variability: Variability::Continuous,
+                start: Some(id.scene_value(scene)),
+                unit: Some(unit),
+                description,
+                depends_on: Vec::new(),
+            };
+            t.push(v, Access::Input(*id));
+        }
         // the reaction depends directly on the inputs that define the mount's accelerations
         let drives: Vec<u32> = t
             .access
@@ -548,14 +597,21 @@ mod tests {
         }
         names.sort();
         names.dedup();
+        let mut vrs: Vec<u32> = rows.iter().map(|r| r.1).collect();
+        let mut partner_vrs = Vec::new();
         for name in &names {
+            if let Some((vr, ..)) = partner_row(name) {
+                partner_vrs.push(vr);
+                continue;
+            }
             let n = rows.iter().filter(|r| r.0 == name).count();
             assert_eq!(n, 1, "{name}: {n} rows");
         }
+        assert_eq!(partner_vrs.len(), 36 + 6, "the spatial partner inputs");
+        vrs.extend(partner_vrs);
         for row in &rows {
             assert!(names.iter().any(|n| n == row.0), "{} is in no space", row.0);
         }
-        let mut vrs: Vec<u32> = rows.iter().map(|r| r.1).collect();
         vrs.extend(SCENE_PARAMETERS.iter().map(|p| p.vr));
         vrs.sort();
         let n = vrs.len();
