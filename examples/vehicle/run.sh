@@ -23,6 +23,9 @@ case "${1:-}" in
         .venv/bin/hybeam-cosim-study map "$SYSTEM" --scheme naive --scheme implicit \
             --scheme interface --steps 1e-4,2.5e-4,5e-4,1e-3,2e-3,5e-3,1e-2,2e-2 \
             --grid boom.mass_factor=1,10,20,50,100 --t-end 2 --out docs/report/coupling_map
+        .venv/bin/hybeam-cosim-study map "$SYSTEM" --scheme partner \
+            --steps 1e-4,2.5e-4,5e-4,1e-3,2e-3,5e-3,1e-2,2e-2 \
+            --grid boom.mass_factor=1,10,20,50,100 --t-end 2 --out docs/report/coupling_map_partner
         .venv/bin/hybeam-cosim-study order "$SYSTEM" --scheme implicit \
             --steps 2e-2,1e-2,5e-3,2e-3,1e-3,5e-4 --reference 1e-4 --t-end 2 \
             --columns car.body.pitch,boom.tip.position.y --out docs/report/coupling_order

@@ -456,11 +456,59 @@ pub mod vr {
     pub const REACTION_REFERENCE_LAST: u32 = 42;
 }
 
-/// The mount's acceleration components and the reaction components of the partner model's
-/// names (`mount.mobility.<a>_<r>`, the beam FMU's `root.mobility.<a>_<r>`).
-const PARTNER_ACC: [&str; 3] = ["ax", "ay", "alphaz"];
-/// See [`PARTNER_ACC`].
-const PARTNER_REACTION: [&str; 3] = ["fx", "fy", "mz"];
+/// The partner model's outputs of a car (`docs/coupling.md`): `mount.mobility.<a>_<r>` at
+/// `mobility_vr` + n·i + j (the mount's acceleration `acc[i]` by the beam's reaction
+/// `reaction[j]`, n = `acc.len()`, the first `dim` of each linear: 1/kg, 1/(kg.m), 1/(kg.m2)) and
+/// `mount.reaction_reference.<r>` at `reference_vr` + j (the reaction inputs `reaction_inputs`
+/// echoed, on which they depend directly). The names are the beam FMU's `root.mobility.*` and
+/// `root.reaction_reference.*`.
+pub fn partner_outputs(
+    acc: &[&str],
+    reaction: &[&str],
+    dim: usize,
+    (mobility_vr, reference_vr): (u32, u32),
+    reaction_inputs: Vec<u32>,
+) -> Vec<Variable> {
+    let n = acc.len();
+    let output = |name: String, vr, unit, description: String| Variable {
+        name,
+        vr,
+        causality: Causality::Output,
+        variability: Variability::Continuous,
+        start: None,
+        unit: Some(unit),
+        description,
+        depends_on: Vec::new(),
+    };
+    let mut out = Vec::new();
+    for (i, a) in acc.iter().enumerate() {
+        for (j, r) in reaction.iter().enumerate() {
+            let unit = match (i < dim, j < dim) {
+                (true, true) => "1/kg",
+                (false, false) => "1/(kg.m2)",
+                _ => "1/(kg.m)",
+            };
+            out.push(output(
+                format!("mount.mobility.{a}_{r}"),
+                mobility_vr + (n * i + j) as u32,
+                unit,
+                format!("Mobility at the mount (partner model): d{a}/d{r}, the mount acceleration by the beam's reaction input (with the payload), exact: the car is linear in the reaction"),
+            ));
+        }
+    }
+    for (j, r) in reaction.iter().enumerate() {
+        out.push(Variable {
+            depends_on: reaction_inputs.clone(),
+            ..output(
+                format!("mount.reaction_reference.{r}"),
+                reference_vr + j as u32,
+                if j < dim { "N" } else { "N.m" },
+                "The beam reaction input the mount accelerations were computed with (partner model: the beam's root.reaction_reference)".into(),
+            )
+        });
+    }
+    out
+}
 
 /// The car as an FMU model.
 #[derive(Debug, Clone)]
@@ -498,27 +546,6 @@ fn variables() -> Vec<Variable> {
         depends_on: beam.clone(),
         ..v(name, vr, Output, unit, description)
     };
-    let units = |i: usize, j: usize| match (i < 2, j < 2) {
-        (true, true) => "1/kg",
-        (false, false) => "1/(kg.m2)",
-        _ => "1/(kg.m)",
-    };
-    let mobility = (0..9).map(|k| {
-        let (i, j) = (k / 3, k % 3);
-        let (a, r) = (PARTNER_ACC[i], PARTNER_REACTION[j]);
-        let name = format!("mount.mobility.{a}_{r}");
-        let description = format!("Mobility at the mount (partner model): d{a}/d{r}, the mount acceleration by the beam's reaction input (with the payload), exact: the car is linear in the reaction");
-        v(&name, vr::MOBILITY + k as u32, Output, units(i, j), &description)
-    });
-    let reference = (0..3).map(|j| {
-        let r = PARTNER_REACTION[j];
-        let name = format!("mount.reaction_reference.{r}");
-        let unit = if j < 2 { "N" } else { "N.m" };
-        Variable {
-            depends_on: (vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z).collect(),
-            ..v(&name, vr::REACTION_REFERENCE + j as u32, Output, unit, "The beam reaction input the mount accelerations were computed with (partner model: the beam's root.reaction_reference)")
-        }
-    });
     let mut out = vec![
         v("beam.root.force.x", vr::BEAM_FORCE_X, Input, "N", "Force of the mount on the beam, x (the beam FMU's root.force.x); the car feels its negative"),
         v("beam.root.force.y", vr::BEAM_FORCE_Y, Input, "N", "Force of the mount on the beam, y (root.force.y); the car feels its negative"),
@@ -544,8 +571,13 @@ fn variables() -> Vec<Variable> {
         v("energy.dissipated", vr::DISSIPATED, Output, "J", "Energy dissipated in the dampers since the start"),
         v("energy.drive_work", vr::W_DRIVE, Output, "J", "Work done by the drive, which holds the forward speed, against the beam's longitudinal reaction (and the payload's inertia) since the start: energy the drive puts into the beam"),
     ];
-    out.extend(mobility);
-    out.extend(reference);
+    out.extend(partner_outputs(
+        &["ax", "ay", "alphaz"],
+        &["fx", "fy", "mz"],
+        2,
+        (vr::MOBILITY, vr::REACTION_REFERENCE),
+        (vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z).collect(),
+    ));
     out
 }
 

@@ -636,6 +636,15 @@ pub mod vr {
     pub const DISSIPATED: u32 = 46;
     /// `energy.drive_work`
     pub const W_DRIVE: u32 = 47;
+    /// Outputs: the mobility at the mount, `mount.mobility.<a>_<r>` at 50 + 6·i + j (i: ax,
+    /// ay, az, alphax, alphay, alphaz; j: fx, fy, fz, mx, my, mz).
+    pub const MOBILITY: u32 = 50;
+    /// The last of them.
+    pub const MOBILITY_LAST: u32 = 85;
+    /// Outputs: the reaction inputs echoed, `mount.reaction_reference.<r>` (90–95).
+    pub const REACTION_REFERENCE: u32 = 90;
+    /// The last of them.
+    pub const REACTION_REFERENCE_LAST: u32 = 95;
 }
 
 /// The car as an FMU model.
@@ -758,6 +767,13 @@ fn variables() -> Vec<Variable> {
         v("energy.dissipated".into(), vr::DISSIPATED, Output, "J", "Energy dissipated in the dampers since the start".into()),
         v("energy.drive_work".into(), vr::W_DRIVE, Output, "J", "Work done by the drive, which holds the forward speed, against the beam's longitudinal reaction (and the payload's inertia) since the start: energy the drive puts into the beam".into()),
     ]);
+    out.extend(hybeam_vehicle::partner_outputs(
+        &["ax", "ay", "az", "alphax", "alphay", "alphaz"],
+        &["fx", "fy", "fz", "mx", "my", "mz"],
+        3,
+        (vr::MOBILITY, vr::REACTION_REFERENCE),
+        (vr::BEAM_FORCE_X..=vr::BEAM_MOMENT_Z).collect(),
+    ));
     out
 }
 
@@ -1032,6 +1048,13 @@ impl CoSimModel for Vehicle3d {
             vr::W_BEAM => self.s[W_BEAM],
             vr::DISSIPATED => self.s[DISSIPATED],
             vr::W_DRIVE => self.s[W_DRIVE],
+            vr::MOBILITY..=vr::MOBILITY_LAST => {
+                let k = (r - vr::MOBILITY) as usize;
+                self.mobility()[k / 6][k % 6]
+            }
+            vr::REACTION_REFERENCE..=vr::REACTION_REFERENCE_LAST => {
+                self.inputs[0][(r - vr::REACTION_REFERENCE) as usize]
+            }
             _ => return Err(format!("value reference {r} is not a variable of the car")),
         })
     }
@@ -1158,6 +1181,10 @@ impl CoSimModel for Vehicle3d {
     /// are central differences (relative step 1e-6).
     fn partial_derivative(&mut self, output: usize, input: usize) -> Result<f64, String> {
         let (o, i) = (self.vars[output].vr, self.vars[input].vr);
+        if (vr::REACTION_REFERENCE..=vr::REACTION_REFERENCE_LAST).contains(&o) {
+            // the echo of the reaction inputs
+            return Ok(f64::from(u8::from(o - vr::REACTION_REFERENCE + 1 == i)));
+        }
         if !(vr::MOUNT_AX..=vr::MOUNT_ALPHA_Z).contains(&o) || !(1..=16).contains(&i) {
             return Ok(0.0);
         }
