@@ -61,6 +61,9 @@ bash examples/vehicle/run.sh --test
 echo "== spatial vehicle example: four-wheel car + spatial boom (hybeam-cosim)"
 bash examples/vehicle3d/run.sh --test
 
+echo "== parameter sweeps: hybeam-sweep on a Dask LocalCluster"
+bash examples/sweeps/run.sh --test
+
 if [ "$WIN64" = 0 ]; then
     echo "== win64 test skipped (HYBEAM_WIN64=0)"
 elif [ "$WIN64" = 1 ] || { [ -x /usr/bin/cargo ] && command -v x86_64-w64-mingw32-gcc >/dev/null &&

@@ -7,9 +7,9 @@
 //! description. Value references belong to the name, the same in both spaces, never to an
 //! enumeration order that could shift: inputs 1–6, outputs 10–32, gravity 100–102, solver
 //! 110–112, and segment i's field k at 1000·(i + 1) + k (k: length 1, diameter 2, width 3,
-//! height 4, youngs_modulus 5, density 6, damping_time 7, damping_ratio 8). A scene only gets
+//! height 4, youngs_modulus 5, density 6, damping_time 7, damping_ratio 8, inner_diameter 9). A scene only gets
 //! the variables it needs: no z or quaternion in the plane, no `tip.angle` in space, no damping
-//! parameters without damping, no width/height on a round section. `docs/fmu-variables.md` is
+//! parameters without damping, no width/height on a round section, an inner diameter on a tube only. `docs/fmu-variables.md` is
 //! checked against this table by `tests/variables_doc.rs`.
 
 use fmi2::{Causality, Variability, Variable};
@@ -326,7 +326,11 @@ const SCENE_PARAMETERS: [SceneParameter; 3] = [
 ];
 
 fn round(s: &Segment) -> bool {
-    s.section == Section::Round
+    matches!(s.section, Section::Round | Section::Tube)
+}
+
+fn tube(s: &Segment) -> bool {
+    s.section == Section::Tube
 }
 
 fn rectangle(s: &Segment) -> bool {
@@ -334,7 +338,7 @@ fn rectangle(s: &Segment) -> bool {
 }
 
 /// Segment fields, in value-reference order.
-pub const SEGMENT_FIELDS: [SegmentField; 8] = [
+pub const SEGMENT_FIELDS: [SegmentField; 9] = [
     SegmentField {
         name: "length",
         k: 1,
@@ -398,6 +402,14 @@ pub const SEGMENT_FIELDS: [SegmentField; 8] = [
         applies: |s| s.kind == SegmentKind::Modal && s.damping_ratio > 0.0,
         get: |s| s.damping_ratio,
         set: |s, x| s.damping_ratio = x,
+    },
+    SegmentField {
+        name: "inner_diameter",
+        k: 9,
+        unit: Some("m"),
+        applies: tube,
+        get: |s| s.inner_diameter.unwrap_or(0.0),
+        set: |s, x| s.inner_diameter = Some(x),
     },
 ];
 

@@ -1,0 +1,159 @@
+"""`hybeam-sweep`: parameter studies of a beam FMU (docs/sweeps.md).
+
+    hybeam-sweep run STUDY.toml --out DIR [--scheduler tcp://HOST:PORT] [--workers N] [--serial]
+    hybeam-sweep plot DIR
+
+`run` runs every variant of the study (a Dask LocalCluster of all cores unless `--scheduler`
+names a running one; `--serial`: in this process), skipping those DIR/variants.parquet already
+holds (the same content hash), and writes DIR/variants.parquet (one row per variant: id,
+parameters, summaries, status, message, wall_s), DIR/series.parquet (variant, time, the series)
+and DIR/sweep.png. `plot` redraws DIR/sweep.png from the tables.
+"""
+
+import argparse
+import json
+import pathlib
+import sys
+
+from .run import execute
+from .study import StudyError, load
+
+
+def _table(study, done: dict, order: list[tuple[str, dict]]):
+    """The variants table and the series table, rows in grid order."""
+    import pandas as pd
+
+    rows, series = [], []
+    for vid, values in order:
+        r = done.get(vid)
+        if r is None:
+            continue
+        row = {"variant": vid, **values}
+        row.update(r.get("summaries", {}))
+        row.update(status=r["status"], message=r["message"], wall_s=r.get("wall_s", float("nan")))
+        rows.append(row)
+        if r["status"] == "ok" and "time" in r:
+            part = pd.DataFrame({"variant": vid, "time": r["time"], **r["series"]})
+            series.append(part)
+    variants = pd.DataFrame(rows)
+    ts = pd.concat(series, ignore_index=True) if series else pd.DataFrame()
+    return variants, ts
+
+
+def _previous(out: pathlib.Path, study) -> dict:
+    """Results of an earlier run in `out`, by variant id (summaries, status, series)."""
+    import pandas as pd
+
+    vp, sp = out / "variants.parquet", out / "series.parquet"
+    if not vp.exists():
+        return {}
+    v = pd.read_parquet(vp)
+    s = pd.read_parquet(sp) if sp.exists() else pd.DataFrame(columns=["variant", "time"])
+    done = {}
+    for _, row in v.iterrows():
+        part = s[s["variant"] == row["variant"]]
+        done[row["variant"]] = {
+            "status": row["status"],
+            "message": row["message"],
+            "wall_s": row["wall_s"],
+            "summaries": {k: row[k] for k in study.summaries if k in v.columns},
+            "time": part["time"].to_numpy(),
+            "series": {c: part[c].to_numpy() for c in s.columns if c not in ("variant", "time")},
+        }
+    return done
+
+
+def plot(out: pathlib.Path, study=None):
+    """DIR/sweep.png: each summary against each swept parameter (one point per variant)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    v = pd.read_parquet(out / "variants.parquet")
+    meta = json.loads((out / "study.json").read_text())
+    params, sums = meta["parameters"], meta["summaries"]
+    ok = v[v["status"] == "ok"]
+    fig, axes = plt.subplots(
+        len(sums), len(params), figsize=(3.2 * len(params), 2.6 * len(sums)), squeeze=False
+    )
+    for i, s in enumerate(sums):
+        for j, p in enumerate(params):
+            ax = axes[i][j]
+            ax.plot(ok[p], ok[s], "o", ms=4)
+            ax.set_xlabel(p)
+            ax.set_ylabel(s)
+            ax.grid(alpha=0.3)
+    fig.suptitle(f"{meta['study']}: {len(ok)} of {len(v)} variants ran")
+    fig.tight_layout()
+    fig.savefig(out / "sweep.png", dpi=110)
+    plt.close(fig)
+
+
+def run(study_path, out, scheduler=None, workers=None, serial=False, quiet=False):
+    """Runs a study into `out` (see the module's docstring); returns the variants table."""
+    study = load(study_path)
+    out = pathlib.Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    digest = study.fmu_digest()
+    order = [(study.variant_id(v, digest), v) for v in study.variants()]
+    previous = _previous(out, study)
+    todo = [(vid, v) for vid, v in order if vid not in previous]
+
+    def progress(done, failed, total, elapsed):
+        if quiet:
+            return
+        left = elapsed / done * (total - done) if done else float("nan")
+        print(
+            f"\r{done}/{total} variants, {failed} failed, {elapsed:.0f} s, ~{left:.0f} s left",
+            end="" if done < total else "\n",
+            file=sys.stderr,
+            flush=True,
+        )
+
+    if not quiet and len(todo) < len(order):
+        print(f"{len(order) - len(todo)} variants already in {out}", file=sys.stderr)
+    results = execute(study, todo, scheduler, workers, serial, progress)
+    done = {**previous, **results}
+    variants, series = _table(study, done, order)
+    variants.to_parquet(out / "variants.parquet", index=False)
+    series.to_parquet(out / "series.parquet", index=False)
+    meta = {
+        "study": study.path.name,
+        "parameters": list(study.parameters),
+        "summaries": list(study.summaries),
+    }
+    (out / "study.json").write_text(json.dumps(meta, indent=1))
+    if study.summaries:
+        plot(out)
+    return variants
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="hybeam-sweep", description=__doc__.splitlines()[0])
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="run a study")
+    r.add_argument("study")
+    r.add_argument("--out", required=True)
+    r.add_argument("--scheduler", help="a running Dask scheduler, tcp://HOST:PORT")
+    r.add_argument("--workers", type=int, help="LocalCluster worker processes (default: cores)")
+    r.add_argument("--serial", action="store_true", help="run in this process, no Dask")
+    pl = sub.add_parser("plot", help="redraw DIR/sweep.png from the tables")
+    pl.add_argument("out")
+    a = p.parse_args(argv)
+    try:
+        if a.command == "run":
+            v = run(a.study, a.out, a.scheduler, a.workers, a.serial)
+            counts = v["status"].value_counts().to_dict() if len(v) else {}
+            print(json.dumps({"variants": len(v), **counts, "out": str(a.out)}))
+        else:
+            plot(pathlib.Path(a.out))
+    except StudyError as e:
+        print(f"hybeam-sweep: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,193 @@
+"""Running a study's variants: on a Dask cluster (a `LocalCluster` of all cores by default, or an
+existing scheduler), or serially in this process, with the same results bit for bit.
+
+The convention of fmpy's `parameter_variation.py`: the variants go in chunks, each chunk runs in
+one FMU instance, `fmi2Reset` between variants (a fresh instance after a failed one). The FMU's
+bytes are shipped to the workers (scattered once), written to a file named by their SHA-256 in
+the worker's temporary directory, not assumed on a shared disk. A variant the FMU refuses is
+recorded with its message; a chunk whose worker dies is rerun once by the scheduler
+(`retries=1`). Results are ordered by the grid, whatever ran where and when.
+"""
+
+import logging
+import math
+import os
+import pathlib
+import tempfile
+import time
+
+import numpy as np
+
+from .study import Study, StudyError
+
+
+def _fmu_file(data: bytes, digest: str) -> str:
+    """The FMU's bytes as a file in this process's temporary directory (written once)."""
+    d = pathlib.Path(tempfile.gettempdir()) / "hybeam-sweep"
+    d.mkdir(exist_ok=True)
+    p = d / f"{digest}.fmu"
+    if not p.exists():
+        tmp = p.with_suffix(f".{os.getpid()}.part")
+        tmp.write_bytes(data)
+        tmp.replace(p)
+    return str(p)
+
+
+def _summary(kind: str, x: np.ndarray) -> float:
+    return float(
+        {
+            "max": np.max,
+            "min": np.min,
+            "peak": lambda v: np.max(np.abs(v)),
+            "range": np.ptp,
+            "rms": lambda v: np.sqrt(np.mean(v * v)),
+            "mean": np.mean,
+            "final": lambda v: v[-1],
+        }[kind](x)
+    )
+
+
+def parameter_names(study: Study, names_of) -> dict[str, list[str]]:
+    """The FMU parameters each study parameter (a name or a glob) sets; raises StudyError for
+    one that matches none. `names_of(pattern)` lists the FMU's parameters matching it."""
+    out = {}
+    for p in study.parameters:
+        names = names_of(p)
+        if not names:
+            raise StudyError(
+                f"[parameters] {p!r}: matches no parameter of {study.fmu.name}; "
+                f"write a parameter's name (docs/fmu-variables.md) or a glob such as '*.density'"
+            )
+        out[p] = names
+    return out
+
+
+def _run_one(sub, study: Study, variant: dict[str, float]) -> dict:
+    """One variant in an instantiated (or reset) FMU: its summaries and decimated series."""
+    from hybeam.cosim.subsystem import StepRefused
+
+    def parameters_of(pattern):
+        return [n for n in sub.match(pattern) if sub.vars[n].causality == "parameter"]
+
+    sets = parameter_names(study, parameters_of)
+    values = {n: variant[p] for p, names in sets.items() for n in names}
+    probes = list(dict.fromkeys(study.series + [v for _, v in study.summaries.values()]))
+    n = int(round(study.stop_time / study.step))
+    rows = np.empty((n + 1, len(probes)))
+    try:
+        sub.enter_initialization(values)
+        sub.exit_initialization()
+        rows[0] = sub.get(probes)
+        if study.inputs:
+            # applied from t = 0 on the initialized state: a step of the inputs
+            sub.set(list(study.inputs), list(study.inputs.values()))
+        for k in range(n):
+            sub.step(k * study.step, study.step)
+            rows[k + 1] = sub.get(probes)
+    except StepRefused as e:
+        return {"status": "failed", "message": str(e)}
+    except Exception as e:  # fmpy raises on fmi2Error from a setter or initialization
+        return {"status": "failed", "message": sub.last_message() or str(e)}
+    if not np.all(np.isfinite(rows)):
+        return {"status": "failed", "message": "an output was not finite"}
+    col = {p: rows[:, i] for i, p in enumerate(probes)}
+    keep = list(range(0, n + 1, study.decimate))
+    if keep[-1] != n:
+        keep.append(n)
+    return {
+        "status": "ok",
+        "message": "",
+        "summaries": {k: _summary(kind, col[v]) for k, (kind, v) in study.summaries.items()},
+        "time": np.array(keep, dtype=float) * study.step,
+        "series": {s: col[s][keep] for s in study.series},
+    }
+
+
+def run_chunk(data: bytes, digest: str, study: Study, chunk: list[tuple[str, dict]]) -> list:
+    """Runs `chunk` ((variant id, parameter values) pairs) in one FMU instance, reset between
+    variants; returns (id, result) pairs."""
+    from hybeam.cosim.subsystem import FmuSubsystem
+
+    sub = FmuSubsystem(_fmu_file(data, digest), "beam")
+    sub.instantiate()
+    out = []
+    try:
+        for k, (vid, variant) in enumerate(chunk):
+            t0 = time.perf_counter()
+            if k:
+                sub.reset()
+            res = _run_one(sub, study, variant)
+            res["wall_s"] = time.perf_counter() - t0
+            out.append((vid, res))
+            if res["status"] != "ok":
+                # a refused variant may leave the instance in error: the next gets a fresh one
+                sub.slave.freeInstance()
+                sub.instantiate()
+    finally:
+        sub.slave.freeInstance()
+    return out
+
+
+def _chunks(items: list, size: int) -> list[list]:
+    return [items[i : i + size] for i in range(0, len(items), size)]
+
+
+def execute(
+    study: Study,
+    todo: list[tuple[str, dict]],
+    scheduler: str | None = None,
+    workers: int | None = None,
+    serial: bool = False,
+    progress=None,
+) -> dict[str, dict]:
+    """Runs the variants `todo` ((id, values) pairs): serially here, on `scheduler`
+    (`tcp://HOST:PORT`), or on a new `LocalCluster` of `workers` processes (default: all
+    cores). `progress(done, failed, total, elapsed_s)` is called as chunks complete. Returns
+    the results by variant id."""
+    data = study.fmu.read_bytes()
+    digest = study.fmu_digest()
+    results: dict[str, dict] = {}
+    t0 = time.perf_counter()
+
+    def collect(pairs):
+        results.update(pairs)
+        if progress:
+            failed = sum(r["status"] != "ok" for r in results.values())
+            progress(len(results), failed, len(todo), time.perf_counter() - t0)
+
+    if not todo:
+        return results
+    if serial:
+        for chunk in _chunks(todo, max(1, math.ceil(len(todo) / 8))):
+            collect(run_chunk(data, digest, study, chunk))
+        return results
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    if scheduler:
+        client = Client(scheduler)
+    else:
+        n = workers or os.cpu_count() or 1
+        cluster = LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            silence_logs=logging.WARNING,
+        )
+        client = Client(cluster)
+    try:
+        n_workers = max(1, len(client.scheduler_info().get("workers", {})))
+        size = max(1, math.ceil(len(todo) / (4 * n_workers)))
+        shipped = client.scatter(data, broadcast=True)
+        futures = [
+            client.submit(run_chunk, shipped, digest, study, chunk, retries=1, pure=False)
+            for chunk in _chunks(todo, size)
+        ]
+        for f in as_completed(futures):
+            collect(f.result())
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return results
