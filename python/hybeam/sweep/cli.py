@@ -63,6 +63,27 @@ def _previous(out: pathlib.Path, study) -> dict:
     return done
 
 
+def sensitivity(variants, parameters: list[str], summaries: list[str]):
+    """The sampled study's ranking: per summary, each parameter's Spearman rank correlation
+    with it over the variants that ran (scipy.stats.spearmanr), strongest |rho| first."""
+    import pandas as pd
+    from scipy.stats import spearmanr
+
+    ok = variants[variants["status"] == "ok"]
+    rows = []
+    for s in summaries:
+        for p in parameters:
+            rho = spearmanr(ok[p], ok[s]).statistic if len(ok) > 2 else float("nan")
+            rows.append({"summary": s, "parameter": p, "spearman_rho": float(rho)})
+    table = pd.DataFrame(rows)
+    table["rank"] = (
+        table.groupby("summary")["spearman_rho"]
+        .transform(lambda r: r.abs().rank(ascending=False, method="first"))
+        .astype(int)
+    )
+    return table.sort_values(["summary", "rank"], ignore_index=True)
+
+
 def plot(out: pathlib.Path, study=None):
     """DIR/sweep.png: each summary against each swept parameter (one point per variant)."""
     import matplotlib
@@ -125,6 +146,11 @@ def run(study_path, out, scheduler=None, workers=None, serial=False, quiet=False
         "summaries": list(study.summaries),
     }
     (out / "study.json").write_text(json.dumps(meta, indent=1))
+    if study.sample is not None and study.summaries:
+        ranking = sensitivity(variants, list(study.parameters), list(study.summaries))
+        ranking.to_parquet(out / "sensitivity.parquet", index=False)
+        if not quiet:
+            print(ranking.to_string(index=False), file=sys.stderr)
     if study.summaries:
         plot(out)
     return variants

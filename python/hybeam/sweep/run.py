@@ -78,11 +78,16 @@ def _run_one(sub, study: Study, variant: dict[str, float]) -> dict:
         sub.enter_initialization(values)
         sub.exit_initialization()
         rows[0] = sub.get(probes)
-        if study.inputs:
-            # applied from t = 0 on the initialized state: a step of the inputs
-            sub.set(list(study.inputs), list(study.inputs.values()))
+        names = list(study.inputs)
+        start = [sub.vars[i].start for i in names] if names else []
+        start = [float(x) if x is not None else 0.0 for x in start]
         for k in range(n):
-            sub.step(k * study.step, study.step)
+            t = k * study.step
+            if names:
+                # from t = 0 on the initialized state (a constant is a step of the inputs)
+                signals = zip(study.inputs.values(), start, strict=True)
+                sub.set(names, [s.at(t, x0) for s, x0 in signals])
+            sub.step(t, study.step)
             rows[k + 1] = sub.get(probes)
     except StepRefused as e:
         return {"status": "failed", "message": str(e)}

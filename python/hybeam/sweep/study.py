@@ -10,8 +10,22 @@
     "tip.length" = [1.5, 2.0, 2.5]      # an FMU parameter ...
     "*.density" = [7850.0, 15700.0]     # ... or a glob: every matching parameter gets the value
 
-    [inputs]                            # constant inputs from t = 0 on, set after the
-    "tip.force.y" = -100.0              # initialization: a step on the initial state
+or, instead of a grid, a sample of ranges (scipy.stats.qmc, scaled to the ranges):
+
+    [study]
+    sample = { method = "sobol", n = 16, seed = 1 }   # or "lhs" (Latin hypercube)
+    [parameters]
+    "tip.length" = { range = [1.5, 2.5] }
+
+    [inputs]                            # inputs from t = 0 on, set after the initialization
+    "tip.force.y" = -100.0              # a constant: a step on the initial state
+    "tip.force.x" = { csv = "load.csv", column = "fx" }   # a time series (columns time, fx),
+                                        # linear between its rows, held beyond them
+    "root.position.y" = { sine = { amplitude = 0.01, frequency = 2.0, phase = 0.0 } }
+                                        # added to the input's start value (m, Hz, deg)
+
+The inputs are set at every communication point (a mount's position, velocity and
+acceleration are three inputs: give them consistently, or the FMU re-anchors the beam).
 
     [outputs]
     series = ["tip.position.y", "root.moment.z"]
@@ -27,10 +41,12 @@ name the field, the value and the fix.
 import hashlib
 import itertools
 import json
+import math
 import pathlib
 import re
 from dataclasses import dataclass, field
 
+import numpy as np
 import tomllib
 
 SUMMARY_KINDS = ("max", "min", "peak", "range", "rms", "mean", "final")
@@ -50,17 +66,30 @@ class Study:
     step: float
     decimate: int
     parameters: dict[str, list[float]]
-    inputs: dict[str, float] = field(default_factory=dict)
+    inputs: dict[str, "Signal"] = field(default_factory=dict)
     series: list[str] = field(default_factory=list)
     summaries: dict[str, tuple[str, str]] = field(default_factory=dict)
+    #: (method, n, seed) of a sampled study (then `parameters` holds [low, high] ranges)
+    sample: tuple[str, int, int] | None = None
 
     def variants(self) -> list[dict[str, float]]:
-        """Every point of the parameter grid, in file order (the last parameter fastest)."""
+        """Every point of the parameter grid, in file order (the last parameter fastest), or
+        the sample's points in the order drawn."""
         names = list(self.parameters)
-        return [
-            dict(zip(names, values, strict=True))
-            for values in itertools.product(*(self.parameters[n] for n in names))
-        ]
+        if self.sample is None:
+            return [
+                dict(zip(names, values, strict=True))
+                for values in itertools.product(*(self.parameters[n] for n in names))
+            ]
+        from scipy.stats import qmc
+
+        method, n, seed = self.sample
+        d = len(names)
+        engine = qmc.Sobol(d, seed=seed) if method == "sobol" else qmc.LatinHypercube(d, seed=seed)
+        lo = [self.parameters[k][0] for k in names]
+        hi = [self.parameters[k][1] for k in names]
+        points = qmc.scale(engine.random(n), lo, hi)
+        return [{k: float(x) for k, x in zip(names, row, strict=True)} for row in points]
 
     def fmu_digest(self) -> str:
         """SHA-256 of the FMU's bytes."""
@@ -71,13 +100,68 @@ class Study:
         content = {
             "fmu": fmu_digest,
             "parameters": variant,
-            "inputs": self.inputs,
+            "inputs": {k: v.content() for k, v in self.inputs.items()},
             "times": [self.stop_time, self.step, self.decimate],
+            "sample": self.sample,
             "series": self.series,
             "summaries": self.summaries,
         }
         text = json.dumps(content, sort_keys=True, default=float)
         return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+@dataclass
+class Signal:
+    """An input over time: a constant, a table (linear, held beyond its ends) or a sine added to
+    the input's start value."""
+
+    constant: float | None = None
+    times: list[float] | None = None
+    values: list[float] | None = None
+    sine: tuple[float, float, float] | None = None  # amplitude, frequency [Hz], phase [deg]
+
+    def at(self, t: float, start: float) -> float:
+        """The value at time `t` [s] of an input whose start value is `start`."""
+        if self.constant is not None:
+            return self.constant
+        if self.sine is not None:
+            a, f, phase = self.sine
+            return start + a * math.sin(2 * math.pi * f * t + math.radians(phase))
+        return float(np.interp(t, self.times, self.values))
+
+    def content(self):
+        return [self.constant, self.times, self.values, self.sine]
+
+
+def _signal(where: str, spec, base: pathlib.Path) -> Signal:
+    if not isinstance(spec, dict):
+        return Signal(constant=_number(where, spec))
+    if "csv" in spec:
+        csv = base / str(spec["csv"])
+        column = spec.get("column")
+        try:
+            table = np.genfromtxt(csv, delimiter=",", names=True)
+        except OSError:
+            _fail(f"{where}.csv", spec["csv"], f"no such file ({csv})")
+        names = table.dtype.names or ()
+        if "time" not in names or column not in names:
+            _fail(where, spec, f"{csv} needs a 'time' column and the column named (has {names})")
+        t, x = table["time"].astype(float), table[column].astype(float)
+        if len(t) < 1 or np.any(np.diff(t) <= 0) or not np.all(np.isfinite(x)):
+            _fail(where, spec, "the times must increase and the values be finite")
+        return Signal(times=t.tolist(), values=x.tolist())
+    if "sine" in spec and isinstance(spec["sine"], dict):
+        sn = spec["sine"]
+        amp = _number(f"{where}.sine.amplitude", sn.get("amplitude"))
+        freq = _number(f"{where}.sine.frequency", sn.get("frequency"))
+        phase = _number(f"{where}.sine.phase", sn.get("phase", 0.0))
+        return Signal(sine=(amp, freq, phase))
+    _fail(
+        where,
+        spec,
+        "give a number, { csv = FILE, column = NAME } or "
+        "{ sine = { amplitude = A, frequency = F, phase = DEG } }",
+    )
 
 
 def _fail(where: str, value, fix: str):
@@ -116,15 +200,34 @@ def load(path) -> Study:
     decimate = st.get("decimate", 1)
     if not isinstance(decimate, int) or decimate < 1:
         _fail("[study] decimate", decimate, "must be an integer >= 1")
+    sample = st.get("sample")
+    if sample is not None:
+        if not isinstance(sample, dict) or sample.get("method") not in ("sobol", "lhs"):
+            _fail("[study] sample", sample, 'write { method = "sobol" or "lhs", n = N, seed = S }')
+        n, seed = sample.get("n"), sample.get("seed", 0)
+        if not isinstance(n, int) or n < 2 or not isinstance(seed, int):
+            _fail("[study] sample", sample, "n must be an integer >= 2 and seed an integer")
+        sample = (sample["method"], n, seed)
     params = {}
     for name, values in doc.get("parameters", {}).items():
         where = f"[parameters] {name!r}"
+        if sample is not None:
+            r = values.get("range") if isinstance(values, dict) else None
+            if not (isinstance(r, list) and len(r) == 2):
+                _fail(where, values, "a sampled study gives each parameter { range = [low, high] }")
+            lo, hi = (_number(where, x) for x in r)
+            if not lo < hi:
+                _fail(where, values, "the range must have low < high")
+            params[name] = [lo, hi]
+            continue
         if not isinstance(values, list) or not values:
-            _fail(where, values, "give a non-empty list of values")
+            _fail(where, values, "give a non-empty list of values (or [study] sample and ranges)")
         params[name] = [_number(where, v) for v in values]
     if not params:
         _fail("[parameters]", {}, "vary at least one parameter")
-    inputs = {k: _number(f"[inputs] {k!r}", v) for k, v in doc.get("inputs", {}).items()}
+    inputs = {
+        k: _signal(f"[inputs] {k!r}", v, path.parent) for k, v in doc.get("inputs", {}).items()
+    }
     out = doc.get("outputs", {})
     series = out.get("series", [])
     if not isinstance(series, list) or not all(isinstance(s, str) for s in series):
@@ -139,4 +242,4 @@ def load(path) -> Study:
                 f"write KIND(variable) with KIND one of {', '.join(SUMMARY_KINDS)}",
             )
         summaries[key] = (m.group(1), m.group(2))
-    return Study(path, fmu, stop, step, decimate, params, inputs, series, summaries)
+    return Study(path, fmu, stop, step, decimate, params, inputs, series, summaries, sample)
