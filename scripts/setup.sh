@@ -26,10 +26,10 @@ if ! .venv/bin/python -c "import fmpy, pytest, numpy, matplotlib, sys; sys.exit(
 fi
 
 # the project's Python tools (python/: hybeam-cosim, the co-simulation master; hybeam-sweep,
-# parameter studies on Dask), editable, with their dependencies (dask, pandas, pyarrow, scipy), and
+# parameter studies on Dask), editable, with their dependencies (dask, pandas, pyarrow, scipy, tomli-w), and
 # ruff, which lints and formats them
 RUFF_VERSION=0.14.14
-if ! .venv/bin/python -c "import hybeam.cosim, hybeam.sweep, dask.distributed, pyarrow, scipy" 2>/dev/null || ! .venv/bin/ruff --version 2>/dev/null | grep -q "$RUFF_VERSION"; then
+if ! .venv/bin/python -c "import hybeam.cosim, hybeam.sweep, dask.distributed, pyarrow, scipy, tomli_w" 2>/dev/null || ! .venv/bin/ruff --version 2>/dev/null | grep -q "$RUFF_VERSION"; then
     echo "setup: installing the Python tools (python/, editable) and ruff==$RUFF_VERSION into .venv"
     .venv/bin/python -m pip install --quiet -e python "ruff==$RUFF_VERSION"
 fi

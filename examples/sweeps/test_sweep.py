@@ -9,6 +9,7 @@ import pathlib
 import numpy as np
 import pandas as pd
 import pytest
+from hybeam.sweep import build as build_module
 from hybeam.sweep import cli
 from hybeam.sweep.run import run_chunk
 from hybeam.sweep.study import StudyError, load
@@ -144,10 +145,10 @@ def test_a_scheduler_and_workers_as_processes_survive_a_killed_worker(tmp_path, 
                 killed.append(done)
 
         t0 = time.perf_counter()
-        remote = execute(study, todo, scheduler=address, progress=progress)
+        remote = execute([(study, todo)], scheduler=address, progress=progress)
         print(f"{len(remote)} variants in {time.perf_counter() - t0:.1f} s, worker killed")
         assert killed and procs[1].wait(timeout=10) is not None
-        serial = execute(study, todo, serial=True)
+        serial = execute([(study, todo)], serial=True)
         assert set(remote) == set(serial) and len(remote) == len(todo)
         for vid, r in serial.items():
             assert r["status"] == remote[vid]["status"] == "ok"
@@ -251,3 +252,33 @@ def test_a_mount_shaken_by_sine_inputs_carries_the_boom_rigidly(tmp_path, boom):
     expected = 2 * mass * a * w * w
     print(f"root force range {v['force'].item():.4f} N, rigid {expected:.4f} N")
     assert abs(v["force"].item() / expected - 1) < 0.1
+
+
+def test_a_scene_study_builds_an_fmu_per_structure(tmp_path):
+    """`[study] scene` with `scene:` values that change the structure (the tip segment's ANCF
+    elements, 4 and 8) and an FMU parameter (the tip length, 2 values): two FMUs built (one
+    per structure, cached: a rerun builds none), four variants; the tip drop converges in the
+    elements towards 2 F L^3/(3EI) (4 and 8 elements within 2 %); a structure that does not
+    build (0 elements) gives failed rows with fmu-build's message."""
+    scene = build_module.ROOT / "scenes" / "boom.toml"
+    path = tmp_path / "scene.toml"
+    path.write_text(
+        f'[study]\nscene = "{scene}"\nstop_time = 0.5\nstep = 1e-3\n'
+        '[parameters]\n"scene:segments.tip.elements" = [4, 8, 0]\n"tip.length" = [1.5, 2.5]\n'
+        f'[inputs]\n"tip.force.y" = {-F}\n'
+        '[outputs]\nsummaries = { tip_drop = "range(tip.position.y)" }\n'
+    )
+    v = cli.run(path, tmp_path / "out", workers=2, quiet=True)
+    fmus = sorted((tmp_path / "out" / "fmus").glob("*/boom.fmu"))
+    assert len(fmus) == 2 and len(v) == 6
+    bad = v[v["scene:segments.tip.elements"] == 0]
+    assert (bad["status"] == "failed").all() and bad["message"].str.contains("fmu-build").all()
+    ok = v[v["status"] == "ok"]
+    assert len(ok) == 4
+    inertia = math.pi / 64 * (D**4 - 0.044**4)
+    for _, row in ok.iterrows():
+        expected = 2 * F * (ROOT + row["tip.length"]) ** 3 / (3 * E * inertia)
+        assert abs(row["tip_drop"] / expected - 1) < 0.02, row
+    stamps = [f.stat().st_mtime_ns for f in fmus]
+    cli.run(path, tmp_path / "out", serial=True, quiet=True)
+    assert [f.stat().st_mtime_ns for f in fmus] == stamps

@@ -11,12 +11,14 @@ and DIR/sweep.png. `plot` redraws DIR/sweep.png from the tables.
 """
 
 import argparse
+import dataclasses
 import json
 import pathlib
 import sys
 
+from .build import build
 from .run import execute
-from .study import StudyError, load
+from .study import SCENE, StudyError, load
 
 
 def _table(study, done: dict, order: list[tuple[str, dict]]):
@@ -112,15 +114,41 @@ def plot(out: pathlib.Path, study=None):
     plt.close(fig)
 
 
+def _study_of(study, variant: dict, out: pathlib.Path, built: dict):
+    """The study that runs `variant` (its FMU: the study's, or the one built for its scene
+    values, `built` caching them by those values) and the build's error, if any."""
+    if study.scene is None:
+        return study, ""
+    values = {k: variant[k] for k in study.parameters if k.startswith(SCENE)}
+    key = json.dumps(values, sort_keys=True)
+    if key not in built:
+        fmu, error = build(study.scene, values, out / "fmus")
+        sub = dataclasses.replace(study, fmu=fmu, parameters=study.fmu_parameters())
+        built[key] = (sub, error)
+    return built[key]
+
+
 def run(study_path, out, scheduler=None, workers=None, serial=False, quiet=False):
     """Runs a study into `out` (see the module's docstring); returns the variants table."""
     study = load(study_path)
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    digest = study.fmu_digest()
-    order = [(study.variant_id(v, digest), v) for v in study.variants()]
+    order, jobs, built = [], {}, {}
+    for v in study.variants():
+        sub, error = _study_of(study, v, out, built)
+        vid = sub.variant_id(v, sub.fmu_digest() if not error else error)
+        order.append((vid, v))
+        jobs.setdefault(id(sub), (sub, error, []))[2].append((vid, v))
     previous = _previous(out, study)
-    todo = [(vid, v) for vid, v in order if vid not in previous]
+    # a structure whose FMU did not build: its variants are failed rows with the message
+    for _, error, pairs in jobs.values():
+        if error:
+            previous.update({vid: {"status": "failed", "message": error} for vid, _ in pairs})
+    todo = [
+        (sub, [(vid, v) for vid, v in pairs if vid not in previous])
+        for sub, error, pairs in jobs.values()
+        if not error
+    ]
 
     def progress(done, failed, total, elapsed):
         if quiet:
@@ -133,9 +161,10 @@ def run(study_path, out, scheduler=None, workers=None, serial=False, quiet=False
             flush=True,
         )
 
-    if not quiet and len(todo) < len(order):
-        print(f"{len(order) - len(todo)} variants already in {out}", file=sys.stderr)
-    results = execute(study, todo, scheduler, workers, serial, progress)
+    n_todo = sum(len(t) for _, t in todo)
+    if not quiet and n_todo < len(order):
+        print(f"{len(order) - n_todo} variants already in {out}", file=sys.stderr)
+    results = execute(todo, scheduler, workers, serial, progress)
     done = {**previous, **results}
     variants, series = _table(study, done, order)
     variants.to_parquet(out / "variants.parquet", index=False)

@@ -138,33 +138,34 @@ def _chunks(items: list, size: int) -> list[list]:
 
 
 def execute(
-    study: Study,
-    todo: list[tuple[str, dict]],
+    jobs: list[tuple[Study, list[tuple[str, dict]]]],
     scheduler: str | None = None,
     workers: int | None = None,
     serial: bool = False,
     progress=None,
 ) -> dict[str, dict]:
-    """Runs the variants `todo` ((id, values) pairs): serially here, on `scheduler`
-    (`tcp://HOST:PORT`), or on a new `LocalCluster` of `workers` processes (default: all
-    cores). `progress(done, failed, total, elapsed_s)` is called as chunks complete. Returns
-    the results by variant id."""
-    data = study.fmu.read_bytes()
-    digest = study.fmu_digest()
+    """Runs the variants of `jobs` ((study with its FMU, [(id, values)]) pairs): serially
+    here, on `scheduler` (`tcp://HOST:PORT`), or on a new `LocalCluster` of `workers`
+    processes (default: all cores). `progress(done, failed, total, elapsed_s)` is called as
+    chunks complete. Returns the results by variant id."""
     results: dict[str, dict] = {}
+    total = sum(len(todo) for _, todo in jobs)
     t0 = time.perf_counter()
 
     def collect(pairs):
         results.update(pairs)
         if progress:
             failed = sum(r["status"] != "ok" for r in results.values())
-            progress(len(results), failed, len(todo), time.perf_counter() - t0)
+            progress(len(results), failed, total, time.perf_counter() - t0)
 
-    if not todo:
+    jobs = [(study, todo) for study, todo in jobs if todo]
+    if not jobs:
         return results
     if serial:
-        for chunk in _chunks(todo, max(1, math.ceil(len(todo) / 8))):
-            collect(run_chunk(data, digest, study, chunk))
+        for study, todo in jobs:
+            data, digest = study.fmu.read_bytes(), study.fmu_digest()
+            for chunk in _chunks(todo, max(1, math.ceil(len(todo) / 8))):
+                collect(run_chunk(data, digest, study, chunk))
         return results
     from dask.distributed import Client, LocalCluster, as_completed
 
@@ -183,12 +184,15 @@ def execute(
         client = Client(cluster)
     try:
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
-        size = max(1, math.ceil(len(todo) / (4 * n_workers)))
-        shipped = client.scatter(data, broadcast=True)
-        futures = [
-            client.submit(run_chunk, shipped, digest, study, chunk, retries=1, pure=False)
-            for chunk in _chunks(todo, size)
-        ]
+        futures = []
+        for study, todo in jobs:
+            size = max(1, math.ceil(len(todo) / (4 * n_workers)))
+            shipped = client.scatter(study.fmu.read_bytes(), broadcast=True)
+            digest = study.fmu_digest()
+            futures += [
+                client.submit(run_chunk, shipped, digest, study, chunk, retries=1, pure=False)
+                for chunk in _chunks(todo, size)
+            ]
         for f in as_completed(futures):
             collect(f.result())
     finally:

@@ -10,6 +10,17 @@
     "tip.length" = [1.5, 2.0, 2.5]      # an FMU parameter ...
     "*.density" = [7850.0, 15700.0]     # ... or a glob: every matching parameter gets the value
 
+or, with `scene` instead of `fmu`, scene values that change the model's structure, prefixed
+`scene:` (a dotted path into the scene file; a segment by index or name): an FMU is built per
+distinct structure (`cargo fmu-build`, linux64, from the source tree) and cached by the scene's
+content in the output directory:
+
+    [study]
+    scene = "../../scenes/boom.toml"
+    [parameters]
+    "scene:segments.tip.elements" = [4, 8, 16]
+    "scene:segments.root.kind" = ["modal", "ancf"]
+
 or, instead of a grid, a sample of ranges (scipy.stats.qmc, scaled to the ranges):
 
     [study]
@@ -50,6 +61,8 @@ import numpy as np
 import tomllib
 
 SUMMARY_KINDS = ("max", "min", "peak", "range", "rms", "mean", "final")
+#: the prefix of a parameter that is a value of the scene file
+SCENE = "scene:"
 
 
 class StudyError(ValueError):
@@ -61,7 +74,8 @@ class Study:
     """A parsed study file."""
 
     path: pathlib.Path
-    fmu: pathlib.Path
+    #: the FMU, or None for a study of a scene (an FMU per structure: `scene`)
+    fmu: pathlib.Path | None
     stop_time: float
     step: float
     decimate: int
@@ -71,6 +85,8 @@ class Study:
     summaries: dict[str, tuple[str, str]] = field(default_factory=dict)
     #: (method, n, seed) of a sampled study (then `parameters` holds [low, high] ranges)
     sample: tuple[str, int, int] | None = None
+    #: the scene file of a study that builds its FMUs
+    scene: pathlib.Path | None = None
 
     def variants(self) -> list[dict[str, float]]:
         """Every point of the parameter grid, in file order (the last parameter fastest), or
@@ -91,8 +107,14 @@ class Study:
         points = qmc.scale(engine.random(n), lo, hi)
         return [{k: float(x) for k, x in zip(names, row, strict=True)} for row in points]
 
+    def fmu_parameters(self) -> dict[str, list]:
+        """The parameters set through the FMU (not `scene:` ones)."""
+        return {k: v for k, v in self.parameters.items() if not k.startswith(SCENE)}
+
     def fmu_digest(self) -> str:
         """SHA-256 of the FMU's bytes."""
+        if self.fmu is None:
+            raise StudyError("a scene study's FMU is built per structure (hybeam.sweep.build)")
         return hashlib.sha256(self.fmu.read_bytes()).hexdigest()
 
     def variant_id(self, variant: dict[str, float], fmu_digest: str) -> str:
@@ -185,11 +207,13 @@ def load(path) -> Study:
     if unknown:
         _fail("tables", sorted(unknown), "the tables are study, parameters, inputs, outputs")
     st = doc.get("study", {})
-    if "fmu" not in st:
-        _fail("[study] fmu", None, "give the FMU's path, relative to the study file")
-    fmu = (path.parent / st["fmu"]).resolve()
-    if not fmu.is_file():
-        _fail("[study] fmu", st["fmu"], f"no such file ({fmu}); build it first (fmu-build)")
+    if ("fmu" in st) == ("scene" in st):
+        _fail("[study] fmu, scene", None, "give one: the FMU's or the scene's path")
+    key = "fmu" if "fmu" in st else "scene"
+    source = (path.parent / st[key]).resolve()
+    if not source.is_file():
+        _fail(f"[study] {key}", st[key], f"no such file ({source})")
+    fmu, scene = (source, None) if key == "fmu" else (None, source)
     stop = _number("[study] stop_time", st.get("stop_time"))
     step = _number("[study] step", st.get("step"))
     if not (step > 0 and stop > 0):
@@ -222,6 +246,11 @@ def load(path) -> Study:
             continue
         if not isinstance(values, list) or not values:
             _fail(where, values, "give a non-empty list of values (or [study] sample and ranges)")
+        if name.startswith(SCENE):
+            if scene is None:
+                _fail(where, values, "a scene: parameter needs [study] scene, not fmu")
+            params[name] = list(values)
+            continue
         params[name] = [_number(where, v) for v in values]
     if not params:
         _fail("[parameters]", {}, "vary at least one parameter")
@@ -242,4 +271,4 @@ def load(path) -> Study:
                 f"write KIND(variable) with KIND one of {', '.join(SUMMARY_KINDS)}",
             )
         summaries[key] = (m.group(1), m.group(2))
-    return Study(path, fmu, stop, step, decimate, params, inputs, series, summaries, sample)
+    return Study(path, fmu, stop, step, decimate, params, inputs, series, summaries, sample, scene)
