@@ -282,3 +282,24 @@ def test_a_scene_study_builds_an_fmu_per_structure(tmp_path):
     stamps = [f.stat().st_mtime_ns for f in fmus]
     cli.run(path, tmp_path / "out", serial=True, quiet=True)
     assert [f.stat().st_mtime_ns for f in fmus] == stamps
+
+
+def test_the_tip_rings_at_the_cantilevers_first_frequency(tmp_path, boom):
+    """The frequency summary of the tip after the step load (1.5 s) against the uniform
+    cantilever's first frequency (1.8751^2 / 2 pi) sqrt(E I / (rho A L^4)), 2.5 and 3.5 m, two
+    walls: within 2 %."""
+    path = tmp_path / "freq.toml"
+    path.write_text(
+        f'[study]\nfmu = "{pathlib.Path(boom).resolve()}"\nstop_time = 1.5\nstep = 1e-3\n'
+        '[parameters]\n"tip.length" = [1.5, 2.5]\n"*.inner_diameter" = [0.044, 0.040]\n'
+        f'[inputs]\n"tip.force.y" = {-F}\n'
+        '[outputs]\nsummaries = { f1 = "frequency(tip.position.y)" }\n'
+    )
+    v = cli.run(path, tmp_path / "out", workers=2, quiet=True)
+    for _, row in v.iterrows():
+        di = row["*.inner_diameter"]
+        inertia, area = math.pi / 64 * (D**4 - di**4), math.pi / 4 * (D**2 - di**2)
+        length = ROOT + row["tip.length"]
+        f1 = 1.8751**2 / (2 * math.pi) * math.sqrt(E * inertia / (7850 * area * length**4))
+        print(f"L = {length} m, inner diameter {di}: {row['f1']:.4f} Hz, closed form {f1:.4f} Hz")
+        assert abs(row["f1"] / f1 - 1) < 0.02

@@ -33,7 +33,34 @@ def _fmu_file(data: bytes, digest: str) -> str:
     return str(p)
 
 
-def _summary(kind: str, x: np.ndarray) -> float:
+def frequency(t: np.ndarray, x: np.ndarray) -> float:
+    """The dominant frequency [Hz] of `x(t)`: its mean-crossings (times interpolated linearly)
+    over the span between the first and the last; nan with fewer than three."""
+    y = x - np.mean(x)
+    i = np.nonzero(np.signbit(y[:-1]) != np.signbit(y[1:]))[0]
+    if len(i) < 3:
+        return float("nan")
+    tc = t[i] - y[i] * (t[i + 1] - t[i]) / (y[i + 1] - y[i])
+    return float((len(tc) - 1) / (2.0 * (tc[-1] - tc[0])))
+
+
+def settling(t: np.ndarray, x: np.ndarray, band: float = 0.02) -> float:
+    """The settling time [s] of `x(t)`: the last time it is outside ±`band` of its total
+    change around its final value (0 if never; the end time if it has not settled)."""
+    change = abs(x[-1] - x[0]) or np.max(np.abs(x - x[-1])) or 1.0
+    out = np.nonzero(np.abs(x - x[-1]) > band * change)[0]
+    return (
+        float(t[out[-1] + 1])
+        if len(out) and out[-1] + 1 < len(t)
+        else float(t[-1] * bool(len(out)))
+    )
+
+
+def _summary(kind: str, t: np.ndarray, x: np.ndarray) -> float:
+    if kind == "frequency":
+        return frequency(t, x)
+    if kind == "settling":
+        return settling(t, x)
     return float(
         {
             "max": np.max,
@@ -96,13 +123,14 @@ def _run_one(sub, study: Study, variant: dict[str, float]) -> dict:
     if not np.all(np.isfinite(rows)):
         return {"status": "failed", "message": "an output was not finite"}
     col = {p: rows[:, i] for i, p in enumerate(probes)}
+    times = np.arange(n + 1) * study.step
     keep = list(range(0, n + 1, study.decimate))
     if keep[-1] != n:
         keep.append(n)
     return {
         "status": "ok",
         "message": "",
-        "summaries": {k: _summary(kind, col[v]) for k, (kind, v) in study.summaries.items()},
+        "summaries": {k: _summary(kind, times, col[v]) for k, (kind, v) in study.summaries.items()},
         "time": np.array(keep, dtype=float) * study.step,
         "series": {s: col[s][keep] for s in study.series},
     }

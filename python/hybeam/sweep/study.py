@@ -41,7 +41,9 @@ acceleration are three inputs: give them consistently, or the FMU re-anchors the
     [outputs]
     series = ["tip.position.y", "root.moment.z"]
     # a summary per name: KIND(variable), KIND one of max, min, peak (max |x|), range
-    # (max - min), rms, mean, final
+    # (max - min), rms, mean, final, frequency (the dominant one [Hz], from the signal's
+    # mean-crossings), settling (the last time [s] outside 2 % of the change from the final
+    # value)
     summaries = { tip_drop = "range(tip.position.y)", peak_root_moment = "peak(root.moment.z)" }
 
 A variant is one point of the grid; its id is a hash of its content (the FMU's bytes, the
@@ -60,7 +62,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import tomllib
 
-SUMMARY_KINDS = ("max", "min", "peak", "range", "rms", "mean", "final")
+SUMMARY_KINDS = ("max", "min", "peak", "range", "rms", "mean", "final", "frequency", "settling")
 #: the prefix of a parameter that is a value of the scene file
 SCENE = "scene:"
 
