@@ -303,3 +303,24 @@ def test_the_tip_rings_at_the_cantilevers_first_frequency(tmp_path, boom):
         f1 = 1.8751**2 / (2 * math.pi) * math.sqrt(E * inertia / (7850 * area * length**4))
         print(f"L = {length} m, inner diameter {di}: {row['f1']:.4f} Hz, closed form {f1:.4f} Hz")
         assert abs(row["f1"] / f1 - 1) < 0.02
+
+
+def test_a_list_of_csv_files_is_a_dimension_of_the_grid(tmp_path, boom):
+    """The tip load from one of two CSV files per variant (100 N and 200 N held): a column
+    `input:tip.force.y` naming the file, and each tip drop within 2 % of 2 F L^3/(3EI) for its
+    own load."""
+    for f in (100, 200):
+        (tmp_path / f"f{f}.csv").write_text(f"time,fy\n0,{-f}\n")
+    path = tmp_path / "csvs.toml"
+    path.write_text(
+        f'[study]\nfmu = "{pathlib.Path(boom).resolve()}"\nstop_time = 0.3\nstep = 1e-3\n'
+        '[parameters]\n"tip.length" = [1.5]\n'
+        '[inputs]\n"tip.force.y" = { csv = ["f100.csv", "f200.csv"], column = "fy" }\n'
+        '[outputs]\nsummaries = { tip_drop = "range(tip.position.y)" }\n'
+    )
+    v = cli.run(path, tmp_path / "out", serial=True, quiet=True)
+    assert list(v["input:tip.force.y"]) == ["f100.csv", "f200.csv"]
+    inertia = math.pi / 64 * (D**4 - 0.044**4)
+    for load_, drop in zip((100, 200), v["tip_drop"], strict=True):
+        expected = 2 * load_ * 2.5**3 / (3 * E * inertia)
+        assert abs(drop / expected - 1) < 0.02, (load_, drop, expected)

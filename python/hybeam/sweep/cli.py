@@ -154,8 +154,10 @@ def run(study_path, out, scheduler=None, workers=None, serial=False, quiet=False
         if quiet:
             return
         left = elapsed / done * (total - done) if done else float("nan")
+        bar = "#" * round(30 * done / total)
         print(
-            f"\r{done}/{total} variants, {failed} failed, {elapsed:.0f} s, ~{left:.0f} s left",
+            f"\r[{bar:<30}] {done}/{total} variants, {failed} failed, {elapsed:.0f} s, "
+            f"~{left:.0f} s left",
             end="" if done < total else "\n",
             file=sys.stderr,
             flush=True,

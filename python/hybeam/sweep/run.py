@@ -9,6 +9,7 @@ recorded with its message; a chunk whose worker dies is rerun once by the schedu
 (`retries=1`). Results are ordered by the grid, whatever ran where and when.
 """
 
+import dataclasses
 import logging
 import math
 import os
@@ -18,7 +19,7 @@ import time
 
 import numpy as np
 
-from .study import Study, StudyError
+from .study import INPUT, Study, StudyError
 
 
 def _fmu_file(data: bytes, digest: str) -> str:
@@ -96,7 +97,8 @@ def _run_one(sub, study: Study, variant: dict[str, float]) -> dict:
     def parameters_of(pattern):
         return [n for n in sub.match(pattern) if sub.vars[n].causality == "parameter"]
 
-    sets = parameter_names(study, parameters_of)
+    fmu_study = dataclasses.replace(study, parameters=study.fmu_parameters())
+    sets = parameter_names(fmu_study, parameters_of)
     values = {n: variant[p] for p, names in sets.items() for n in names}
     probes = list(dict.fromkeys(study.series + [v for _, v in study.summaries.values()]))
     n = int(round(study.stop_time / study.step))
@@ -112,8 +114,8 @@ def _run_one(sub, study: Study, variant: dict[str, float]) -> dict:
             t = k * study.step
             if names:
                 # from t = 0 on the initialized state (a constant is a step of the inputs)
-                signals = zip(study.inputs.values(), start, strict=True)
-                sub.set(names, [s.at(t, x0) for s, x0 in signals])
+                signals = zip(names, study.inputs.values(), start, strict=True)
+                sub.set(names, [s.at(t, x0, variant.get(INPUT + i)) for i, s, x0 in signals])
             sub.step(t, study.step)
             rows[k + 1] = sub.get(probes)
     except StepRefused as e:

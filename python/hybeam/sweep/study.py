@@ -31,7 +31,8 @@ or, instead of a grid, a sample of ranges (scipy.stats.qmc, scaled to the ranges
     [inputs]                            # inputs from t = 0 on, set after the initialization
     "tip.force.y" = -100.0              # a constant: a step on the initial state
     "tip.force.x" = { csv = "load.csv", column = "fx" }   # a time series (columns time, fx),
-                                        # linear between its rows, held beyond them
+                                        # linear between its rows, held beyond them; a list
+                                        # of files is a dimension of the grid, "input:tip.force.x"
     "root.position.y" = { sine = { amplitude = 0.01, frequency = 2.0, phase = 0.0 } }
                                         # added to the input's start value (m, Hz, deg)
 
@@ -110,8 +111,8 @@ class Study:
         return [{k: float(x) for k, x in zip(names, row, strict=True)} for row in points]
 
     def fmu_parameters(self) -> dict[str, list]:
-        """The parameters set through the FMU (not `scene:` ones)."""
-        return {k: v for k, v in self.parameters.items() if not k.startswith(SCENE)}
+        """The parameters set through the FMU (not `scene:` or `input:` ones)."""
+        return {k: v for k, v in self.parameters.items() if not k.startswith((SCENE, INPUT))}
 
     def fmu_digest(self) -> str:
         """SHA-256 of the FMU's bytes."""
@@ -136,44 +137,57 @@ class Study:
 
 @dataclass
 class Signal:
-    """An input over time: a constant, a table (linear, held beyond its ends) or a sine added to
-    the input's start value."""
+    """An input over time: a constant, a table (linear, held beyond its ends; one per variant
+    when the study sweeps CSV files) or a sine added to the input's start value."""
 
     constant: float | None = None
-    times: list[float] | None = None
-    values: list[float] | None = None
+    #: (times, values) per CSV file name
+    tables: dict[str, tuple[list[float], list[float]]] | None = None
     sine: tuple[float, float, float] | None = None  # amplitude, frequency [Hz], phase [deg]
 
-    def at(self, t: float, start: float) -> float:
-        """The value at time `t` [s] of an input whose start value is `start`."""
+    def at(self, t: float, start: float, table: str | None = None) -> float:
+        """The value at time `t` [s] of an input whose start value is `start` (`table`: the
+        variant's CSV file, when there are several)."""
         if self.constant is not None:
             return self.constant
         if self.sine is not None:
             a, f, phase = self.sine
             return start + a * math.sin(2 * math.pi * f * t + math.radians(phase))
-        return float(np.interp(t, self.times, self.values))
+        times, values = self.tables[table] if table else next(iter(self.tables.values()))
+        return float(np.interp(t, times, values))
 
     def content(self):
-        return [self.constant, self.times, self.values, self.sine]
+        return [self.constant, self.tables, self.sine]
+
+
+#: the prefix of the parameter that picks a swept input's CSV file
+INPUT = "input:"
+
+
+def _table(where: str, base: pathlib.Path, name: str, column) -> tuple[list, list]:
+    csv = base / str(name)
+    try:
+        table = np.genfromtxt(csv, delimiter=",", names=True)
+    except OSError:
+        _fail(f"{where}.csv", name, f"no such file ({csv})")
+    names = table.dtype.names or ()
+    if "time" not in names or column not in names:
+        _fail(where, name, f"{csv} needs a 'time' column and the column named (has {names})")
+    t, x = np.atleast_1d(table["time"]).astype(float), np.atleast_1d(table[column]).astype(float)
+    if len(t) < 1 or np.any(np.diff(t) <= 0) or not np.all(np.isfinite(x)):
+        _fail(where, name, "the times must increase and the values be finite")
+    return t.tolist(), x.tolist()
 
 
 def _signal(where: str, spec, base: pathlib.Path) -> Signal:
     if not isinstance(spec, dict):
         return Signal(constant=_number(where, spec))
     if "csv" in spec:
-        csv = base / str(spec["csv"])
+        files = spec["csv"] if isinstance(spec["csv"], list) else [spec["csv"]]
+        if not files:
+            _fail(f"{where}.csv", files, "give a file, or a list of files to sweep")
         column = spec.get("column")
-        try:
-            table = np.genfromtxt(csv, delimiter=",", names=True)
-        except OSError:
-            _fail(f"{where}.csv", spec["csv"], f"no such file ({csv})")
-        names = table.dtype.names or ()
-        if "time" not in names or column not in names:
-            _fail(where, spec, f"{csv} needs a 'time' column and the column named (has {names})")
-        t, x = table["time"].astype(float), table[column].astype(float)
-        if len(t) < 1 or np.any(np.diff(t) <= 0) or not np.all(np.isfinite(x)):
-            _fail(where, spec, "the times must increase and the values be finite")
-        return Signal(times=t.tolist(), values=x.tolist())
+        return Signal(tables={str(f): _table(where, base, f, column) for f in files})
     if "sine" in spec and isinstance(spec["sine"], dict):
         sn = spec["sine"]
         amp = _number(f"{where}.sine.amplitude", sn.get("amplitude"))
@@ -254,11 +268,17 @@ def load(path) -> Study:
             params[name] = list(values)
             continue
         params[name] = [_number(where, v) for v in values]
-    if not params:
-        _fail("[parameters]", {}, "vary at least one parameter")
     inputs = {
         k: _signal(f"[inputs] {k!r}", v, path.parent) for k, v in doc.get("inputs", {}).items()
     }
+    for k, sig in inputs.items():
+        # several CSV files of one input: a swept dimension of the grid, `input:<name>`
+        if sig.tables and len(sig.tables) > 1:
+            if sample is not None:
+                _fail(f"[inputs] {k!r}.csv", list(sig.tables), "a sampled study takes one file")
+            params[INPUT + k] = list(sig.tables)
+    if not params:
+        _fail("[parameters]", {}, "vary at least one parameter (or an input's CSV files)")
     out = doc.get("outputs", {})
     series = out.get("series", [])
     if not isinstance(series, list) or not all(isinstance(s, str) for s in series):
