@@ -42,13 +42,13 @@ summaries = {{ tip_drop = "range(tip.position.y)", peak_root_moment = "peak(root
 
 
 def test_a_cluster_of_two_workers_gives_the_serial_results_and_refusals_are_data(tmp_path, boom):
-    """12 variants, 4 with an inner diameter above the outer one (refused by the FMU): the
+    """16 variants, 4 with an inner diameter above the outer one (refused by the FMU): the
     same tables, bit for bit, serially and on a LocalCluster of 2 worker processes; the
     refused ones recorded with the FMU's message naming the field, the others complete."""
-    study = _study(tmp_path, boom)
+    study = _study(tmp_path, boom, walls="[0.044, 0.042, 0.040, 0.06]")
     serial = cli.run(study, tmp_path / "serial", serial=True, quiet=True)
     cluster = cli.run(study, tmp_path / "cluster", workers=2, quiet=True)
-    assert len(serial) == 12
+    assert len(serial) == 16
     failed = serial[serial["status"] == "failed"]
     assert len(failed) == 4 and (failed["*.inner_diameter"] == 0.06).all()
     assert failed["message"].str.contains("inner_diameter").all(), failed["message"].iloc[0]
