@@ -1,9 +1,9 @@
 """`hybeam-cosim SYSTEM --scheme NAME --step H`: couples the FMUs of a system file.
 
-Writes DIR/cosim.csv (per communication point: time, the recorded outputs, the step's
-iterations, its interface residual, the energy residual) and DIR/cosim.png, and prints as its
-last line one JSON record: stable, energy_residual, energy_scale (J), iterations (per step),
-wall_s, steps, scheme, step, t_end (reached), message.
+Writes DIR/cosim.csv and DIR/cosim.parquet (per communication point: time, the recorded
+outputs, the step's iterations, its interface residual, the energy residual) and DIR/cosim.png,
+and prints as its last line one JSON record: stable, energy_residual, energy_scale (J),
+iterations (per step), wall_s, steps, scheme, step, t_end (reached), message.
 
 --set FMU.KNOB=F scales the parameters a knob of the system file names by F (e.g.
 boom.mass_factor=100 multiplies the boom's densities); --set FMU.PARAMETER=V sets a
@@ -110,6 +110,12 @@ def write(result, out: pathlib.Path, title: str, plot: list[str]):
         w = csv.writer(fh)
         w.writerow(result.columns)
         w.writerows(result.rows)
+    import pandas as pd
+
+    # the same table as Parquet (float64 columns, what pandas and Arrow readers take directly)
+    pd.DataFrame(result.rows, columns=result.columns, dtype=float).to_parquet(
+        out / "cosim.parquet", index=False
+    )
     if not result.rows:
         return
     import matplotlib
@@ -148,7 +154,7 @@ def main(argv=None):
     p.add_argument(
         "--fmu", action="append", default=[], metavar="NAME=PATH", help="override an FMU's path"
     )
-    p.add_argument("--out", default="out/cosim", help="directory for cosim.csv and cosim.png")
+    p.add_argument("--out", default="out/cosim", help="directory for cosim.csv, .parquet and .png")
     p.add_argument("--rtol", type=float, default=Settings.rtol)
     p.add_argument("--max-iterations", type=int, default=Settings.max_iterations)
     p.add_argument("--no-plot", action="store_true")
