@@ -55,10 +55,10 @@ def main():
         walls[name] = time.perf_counter() - t0
         assert (v["status"] == "ok").all() and len(v) == n
         print(f"{name}: {walls[name]:.1f} s", flush=True)
-    digest = study.fmu_digest()
+    data, digest = study.fmu_bytes()
     variant = study.variants()[0]
     task = pickle.dumps((digest, study, [(study.variant_id(variant, digest), variant)]))
-    result = pickle.dumps(run_chunk(study.fmu.read_bytes(), digest, study, [("v", variant)]))
+    result = pickle.dumps(run_chunk(data, digest, study, [("v", variant)]))
     serial, one, two = walls.values()
     lines = [
         f"Sweep scaling (`.venv/bin/python examples/sweeps/scaling.py {a.fmu} --out {a.out}`): "

@@ -92,7 +92,7 @@ def test_a_run_after_reset_is_a_fresh_instances_run(tmp_path, boom):
     the bits of the same variant in a fresh instance."""
     study = load(_study(tmp_path, boom, lengths="[1.5]", walls="[0.044]"))
     a, b = study.variants()
-    data, digest = study.fmu.read_bytes(), study.fmu_digest()
+    data, digest = study.fmu_bytes()
     fresh = run_chunk(data, digest, study, [("a", a)])[0][1]
     reused = run_chunk(data, digest, study, [("b", b), ("a", a), ("b", b)])
     for k in ("time",):

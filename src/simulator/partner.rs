@@ -85,6 +85,16 @@ impl PartnerStep {
         let pivots = lu.u().diagonal().map(f64::abs);
         (pivots.min() > 1e-9 * pivots.max().max(1.0)).then_some(Self { partner, n, lu })
     }
+
+    /// The host's answer G (R − R_ref) to the reaction `r` (components as [`Partner`]).
+    fn answer(&self, r: &[f64; PARTNER_COMPONENTS]) -> nalgebra::DVector<f64> {
+        let (g, r_ref) = (&self.partner.mobility, &self.partner.reference);
+        nalgebra::DVector::from_fn(self.n, |i, _| {
+            (0..self.n)
+                .map(|j| g[i][j] * (r[j] - r_ref[j]))
+                .sum::<f64>()
+        })
+    }
 }
 
 /// The mount's deviation from the host's path (components as [`Partner`]): displacement and
@@ -210,17 +220,10 @@ impl<S: Space> Simulator<S> {
     /// the step's start, and with it the explicit exchange's loop the model is there to cut.
     pub(super) fn partner_start(&mut self, p: &PartnerStep) -> Result<Deviation, SimError> {
         let t = self.state.t;
-        let r = self.reaction_now();
-        let n = p.n;
-        let b = nalgebra::DVector::from_fn(n, |i, _| {
-            let g = &p.partner.mobility[i];
-            (0..n)
-                .map(|j| g[j] * (r[j] - p.partner.reference[j]))
-                .sum::<f64>()
-        });
+        let b = p.answer(&self.reaction_now());
         let a0 = p.lu.solve(&b).unwrap_or(b);
         let mut dev = Deviation::default();
-        for i in 0..n {
+        for i in 0..p.n {
             dev.a[i] = a0[i];
         }
         let Some(path) = self.mount.as_deref().map(|ms| ms.at(t)) else {
@@ -259,14 +262,8 @@ impl<S: Space> Simulator<S> {
                 self.state = start;
                 return Err(e);
             }
-            let r = self.reaction_now();
-            let res = nalgebra::DVector::from_fn(n, |i, _| {
-                let g = &p.partner.mobility[i];
-                a1[i]
-                    - (0..n)
-                        .map(|j| g[j] * (r[j] - p.partner.reference[j]))
-                        .sum::<f64>()
-            });
+            let answer = p.answer(&self.reaction_now());
+            let res = nalgebra::DVector::from_fn(n, |i, _| a1[i] - answer[i]);
             let size = res.amax();
             let scale = a1[..n].iter().fold(1e-9f64, |m, x| m.max(x.abs()));
             if size <= PARTNER_TOLERANCE * scale || it + 1 == PARTNER_ITERATIONS {

@@ -586,15 +586,16 @@ impl Vehicle {
     /// input (rows, columns; with the payload). The car is linear in the reaction, so a unit
     /// change of it gives the partial exactly (up to rounding).
     pub fn mobility(&self) -> [[f64; 3]; 3] {
-        let mut car = self.clone();
-        let base = self.mount();
+        let (f, m, _) = self.input_at(0.0);
+        let u = [f[0], f[1], m];
+        let base = self.mount_under(u);
         let mut g = [[0.0; 3]; 3];
         for j in 0..3 {
-            car.inputs[0][j] += 1.0;
-            let m = car.mount();
-            car.inputs[0][j] = self.inputs[0][j];
+            let mut uj = u;
+            uj[j] += 1.0;
+            let a = self.mount_under(uj);
             for i in 0..3 {
-                g[i][j] = m[6 + i] - base[6 + i];
+                g[i][j] = a[6 + i] - base[6 + i];
             }
         }
         g
@@ -610,9 +611,16 @@ impl Vehicle {
     /// Mount kinematics now: position, angle, velocity, angular velocity, acceleration,
     /// angular acceleration (world).
     pub fn mount(&self) -> [f64; 9] {
+        let (f, m, _) = self.input_at(0.0);
+        self.mount_under([f[0], f[1], m])
+    }
+
+    /// [`Vehicle::mount`] with the beam reaction `u` (force x, y, moment z) in place of the
+    /// inputs' (the payload the inputs').
+    fn mount_under(&self, u: [f64; 3]) -> [f64; 9] {
         let (c, s) = (&self.car, &self.s);
-        let (f, m, p) = self.input_at(0.0);
-        let d = c.rate(self.t, s, f, m, &p);
+        let (_, _, p) = self.input_at(0.0);
+        let d = c.rate(self.t, s, [u[0], u[1]], u[2], &p);
         let r = c.offset(s[1]);
         let (w, al) = (s[5], d[5]);
         [
@@ -900,9 +908,8 @@ impl CoSimModel for Vehicle {
         Ok(())
     }
 
-    /// ∂(mount acceleration, angular acceleration)/∂(inputs): the car is linear in the beam
-    /// reaction, so a unit change of it gives the partial exactly (up to rounding); the payload
-    /// enters nonlinearly, its partials are central differences (relative step 1e-6).
+    /// ∂(mount acceleration, angular acceleration)/∂(inputs): by the reaction, the car's
+    /// mobility ([`Vehicle::mobility`], exact up to rounding); the payload enters nonlinearly, its partials are central differences (relative step 1e-6).
     fn partial_derivative(&mut self, output: usize, input: usize) -> Result<f64, String> {
         let (o, i) = (self.vars[output].vr, self.vars[input].vr);
         if (vr::REACTION_REFERENCE..=vr::REACTION_REFERENCE_LAST).contains(&o) {
@@ -918,6 +925,9 @@ impl CoSimModel for Vehicle {
         }
         let row = (o - vr::MOUNT_X) as usize;
         let k = (i - vr::BEAM_FORCE_X) as usize;
+        if i <= vr::BEAM_MOMENT_Z {
+            return Ok(self.mobility()[row - 6][k]);
+        }
         let kept = self.inputs[0][k];
         let mut at = |x: f64| {
             self.inputs[0][k] = x;
@@ -925,12 +935,8 @@ impl CoSimModel for Vehicle {
             self.inputs[0][k] = kept;
             a
         };
-        Ok(if i <= vr::BEAM_MOMENT_Z {
-            at(kept + 1.0) - at(kept)
-        } else {
-            let d = 1e-6 * kept.abs().max(1.0);
-            (at(kept + d) - at(kept - d)) / (2.0 * d)
-        })
+        let d = 1e-6 * kept.abs().max(1.0);
+        Ok((at(kept + d) - at(kept - d)) / (2.0 * d))
     }
 
     fn set_input_derivative(&mut self, index: usize, order: u32, value: f64) -> Result<(), String> {

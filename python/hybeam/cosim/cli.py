@@ -39,12 +39,7 @@ def parameters(system: System, subs: dict[str, FmuSubsystem], sets: list[str]):
             raise SystemFileError(f"--set {item!r}: {value!r} is not a number") from None
         s = subs[fmu]
         if name in system.fmus[fmu].knobs:
-            names = [
-                v
-                for p in system.fmus[fmu].knobs[name]
-                for v in s.match(p)
-                if s.vars[v].causality == "parameter"
-            ]
+            names = [v for p in system.fmus[fmu].knobs[name] for v in s.parameters(p)]
             if not names:
                 raise SystemFileError(
                     f"--set {item!r}: knob {name} matches no parameter of "

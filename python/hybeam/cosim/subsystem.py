@@ -138,6 +138,10 @@ class FmuSubsystem(Subsystem):
         """Variable names matching a glob pattern (`*.density`)."""
         return [n for n in self.vars if fnmatch.fnmatchcase(n, pattern)]
 
+    def parameters(self, pattern: str) -> list[str]:
+        """The parameters among `match(pattern)`."""
+        return [n for n in self.match(pattern) if self.vars[n].causality == "parameter"]
+
     def _vrs(self, names):
         try:
             return [self.vr[n] for n in names]

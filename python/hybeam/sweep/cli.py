@@ -133,10 +133,13 @@ def run(study_path, out, scheduler=None, workers=None, serial=False, quiet=False
     study = load(study_path)
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    order, jobs, built = [], {}, {}
+    order, jobs, built, digests = [], {}, {}, {}
     for v in study.variants():
         sub, error = _study_of(study, v, out, built)
-        vid = sub.variant_id(v, sub.fmu_digest() if not error else error)
+        if id(sub) not in digests:
+            # the FMU's hash (its bytes read once per FMU, not per variant)
+            digests[id(sub)] = error or sub.fmu_digest()
+        vid = sub.variant_id(v, digests[id(sub)])
         order.append((vid, v))
         jobs.setdefault(id(sub), (sub, error, []))[2].append((vid, v))
     previous = _previous(out, study)

@@ -94,11 +94,8 @@ def _run_one(sub, study: Study, variant: dict[str, float]) -> dict:
     """One variant in an instantiated (or reset) FMU: its summaries and decimated series."""
     from hybeam.cosim.subsystem import StepRefused
 
-    def parameters_of(pattern):
-        return [n for n in sub.match(pattern) if sub.vars[n].causality == "parameter"]
-
     fmu_study = dataclasses.replace(study, parameters=study.fmu_parameters())
-    sets = parameter_names(fmu_study, parameters_of)
+    sets = parameter_names(fmu_study, sub.parameters)
     values = {n: variant[p] for p, names in sets.items() for n in names}
     probes = list(dict.fromkeys(study.series + [v for _, v in study.summaries.values()]))
     n = int(round(study.stop_time / study.step))
@@ -193,7 +190,7 @@ def execute(
         return results
     if serial:
         for study, todo in jobs:
-            data, digest = study.fmu.read_bytes(), study.fmu_digest()
+            data, digest = study.fmu_bytes()
             for chunk in _chunks(todo, max(1, math.ceil(len(todo) / 8))):
                 collect(run_chunk(data, digest, study, chunk))
         return results
@@ -217,8 +214,8 @@ def execute(
         futures = []
         for study, todo in jobs:
             size = max(1, math.ceil(len(todo) / (4 * n_workers)))
-            shipped = client.scatter(study.fmu.read_bytes(), broadcast=True)
-            digest = study.fmu_digest()
+            data, digest = study.fmu_bytes()
+            shipped = client.scatter(data, broadcast=True)
             futures += [
                 client.submit(run_chunk, shipped, digest, study, chunk, retries=1, pure=False)
                 for chunk in _chunks(todo, size)

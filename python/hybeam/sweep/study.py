@@ -114,11 +114,16 @@ class Study:
         """The parameters set through the FMU (not `scene:` or `input:` ones)."""
         return {k: v for k, v in self.parameters.items() if not k.startswith((SCENE, INPUT))}
 
-    def fmu_digest(self) -> str:
-        """SHA-256 of the FMU's bytes."""
+    def fmu_bytes(self) -> tuple[bytes, str]:
+        """The FMU's bytes and their SHA-256."""
         if self.fmu is None:
             raise StudyError("a scene study's FMU is built per structure (hybeam.sweep.build)")
-        return hashlib.sha256(self.fmu.read_bytes()).hexdigest()
+        data = self.fmu.read_bytes()
+        return data, hashlib.sha256(data).hexdigest()
+
+    def fmu_digest(self) -> str:
+        """SHA-256 of the FMU's bytes."""
+        return self.fmu_bytes()[1]
 
     def variant_id(self, variant: dict[str, float], fmu_digest: str) -> str:
         """The content hash of one variant's run (16 hex digits)."""
