@@ -162,6 +162,13 @@ impl<S: Space> Simulator<S> {
         let s = &self.state;
         self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda)
     }
+
+    /// The beam's shape at the current state, `per_element` intervals per element
+    /// ([`crate::model::Shape`], for viewers).
+    pub fn shape(&self, per_element: usize) -> crate::model::Shape {
+        let s = &self.state;
+        self.model.shape((&s.q, &s.v, &s.acc), per_element)
+    }
 }
 
 #[cfg(test)]

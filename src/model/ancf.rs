@@ -11,6 +11,7 @@
 //! Kelvin–Voigt damping (retardation time τ) adds EAτ ε̇ δε + EIτ K̇ δK.
 
 use crate::math;
+use crate::model::sample::ShapePoint;
 use crate::scene::StrainModel;
 use nalgebra::{SMatrix, SVector, Vector2};
 
@@ -201,6 +202,30 @@ impl AncfProps {
             u += 0.5 * wg * 0.5 * l * self.ei * k2;
         }
         u
+    }
+
+    /// The centreline at ξ ∈ [0, 1] of the element at `e`, `ed`: r = S e, ṙ = S ė, the section
+    /// frame of the tangent and the element's own strain measures (the module doc: exact ε =
+    /// |r′| − 1, K = e₃·(r′×r″)/|r′|²; paper ε = ½(r′ᵀr′ − 1), K = ±|r″| signed as r′×r″).
+    pub fn sample(&self, e: &Vec8, ed: &Vec8, xi: f64) -> ShapePoint {
+        let sh = Shape::at(xi, self.length);
+        let (r, r1, r2, v) = (sh.r(e), sh.r1(e), sh.r2(e), sh.r(ed));
+        let (eps, k) = match self.strain {
+            StrainModel::Exact => (r1.norm() - 1.0, cross(&r1, &r2) / r1.norm_squared()),
+            StrainModel::Paper => (
+                0.5 * (r1.norm_squared() - 1.0),
+                r2.norm().copysign(cross(&r1, &r2)),
+            ),
+        };
+        let t = r1.normalize();
+        ShapePoint {
+            position: [r.x, r.y, 0.0],
+            velocity: [v.x, v.y, 0.0],
+            frame: [[t.x, t.y, 0.0], [-t.y, t.x, 0.0], [0.0, 0.0, 1.0]],
+            axial_strain: eps,
+            curvature: [0.0, k],
+            ..ShapePoint::default()
+        }
     }
 
     /// Weighted shape-function derivatives at the quadrature points, computed once per

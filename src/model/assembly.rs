@@ -478,6 +478,7 @@ mod tests {
     use crate::model::dofs::Dof;
     use crate::model::planar::Planar;
     use crate::model::planar::{EndKin, Orientation};
+    use crate::model::sample::ShapePoint;
     use nalgebra::Vector2;
     use std::any::Any;
 
@@ -507,6 +508,17 @@ mod tests {
                 strain: 0.0,
                 potential: -self.0 * (g[0] * q[0] + g[1] * q[1]),
             }
+        }
+        fn length(&self) -> f64 {
+            0.0
+        }
+        fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>) {
+            let (q, v, _) = x.arrays::<2>();
+            out.extend(xi.iter().map(|_| ShapePoint {
+                position: [q[0], q[1], 0.0],
+                velocity: [v[0], v[1], 0.0],
+                ..ShapePoint::default()
+            }));
         }
         fn is_damped(&self) -> bool {
             false

@@ -9,6 +9,7 @@
 //! * a [`Support`]: the reaction from the residual of the held (eliminated) coordinates.
 
 use super::dofs::LocalDofs;
+use super::sample::ShapePoint;
 use super::space::Space;
 use std::any::Any;
 use std::fmt::Debug;
@@ -181,6 +182,14 @@ pub trait Element<S: Space>: Debug + Send + Sync + 'static {
 
     /// Whether the element carries damping.
     fn is_damped(&self) -> bool;
+
+    /// Reference length of the element [m].
+    fn length(&self) -> f64;
+
+    /// The centreline at each ξ ∈ [0, 1] of `xi` (x = ξ·[`Element::length`] from the element's
+    /// root end) pushed onto `out`: position, velocity, section frame and strains
+    /// ([`ShapePoint`]; `segment` and `arc` are the caller's to set).
+    fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>);
 
     /// Validity measures at `q` (none by default).
     fn validity(&self, _q: &[f64]) -> Validity {

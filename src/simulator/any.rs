@@ -658,6 +658,11 @@ impl AnySimulator {
         }
     }
 
+    /// The beam's shape at the current state ([`crate::simulator::Simulator::shape`]).
+    pub fn shape(&self, per_element: usize) -> crate::model::Shape {
+        each!(self, s => s.shape(per_element))
+    }
+
     /// The value of an input set for the next step; `None` for a component this space (or a
     /// fixed root) does not have.
     pub fn input(&self, id: InputId) -> Option<f64> {

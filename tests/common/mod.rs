@@ -4,6 +4,7 @@
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::model::{Model, Planar, Space};
 use hybeam::scene::Scene;
+use hybeam::simulator::{AnySimulator, InputId};
 use nalgebra::DMatrix;
 
 /// Steel.
@@ -212,4 +213,79 @@ pub fn check_newton_matrix<S: Space>(model: &mut Model<S>) -> f64 {
         }
     }
     worst
+}
+
+/// The input of `sim` named `name`.
+pub fn input_id(sim: &AnySimulator, name: &str) -> InputId {
+    let mounted = sim.scene().mount_start().is_some();
+    InputId::named_with(sim.space(), mounted)
+        .into_iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("no input {name}"))
+        .1
+}
+
+/// Sets the inputs `values` by name (each must exist).
+pub fn set_inputs(sim: &mut AnySimulator, values: &[(String, f64)]) {
+    for (name, x) in values {
+        let id = input_id(sim, name);
+        assert!(sim.set_input(id, *x), "{name}");
+    }
+}
+
+/// A mount motion: pose, velocities and accelerations at time t [s], by input name.
+pub type Drive = fn(f64) -> Vec<(String, f64)>;
+
+/// Planar boom on the car's roof: heave 1 cm and pitch 0.01 rad at 2 Hz from rest.
+pub fn boom_mount(t: f64) -> Vec<(String, f64)> {
+    let w = 2.0 * std::f64::consts::PI * 2.0;
+    let (a, b) = (0.01, 0.01);
+    let (s, c) = (w * t).sin_cos();
+    [
+        ("root.position.x", 0.3),
+        ("root.position.y", 1.4 + a * (1.0 - c)),
+        ("root.angle", b * (1.0 - c)),
+        ("root.velocity.x", 0.0),
+        ("root.velocity.y", a * w * s),
+        ("root.angular_velocity", b * w * s),
+        ("root.acceleration.x", 0.0),
+        ("root.acceleration.y", a * w * w * c),
+        ("root.angular_acceleration", b * w * w * c),
+    ]
+    .iter()
+    .map(|(n, x)| (n.to_string(), *x))
+    .collect()
+}
+
+/// The spatial mounted rod's start motion (1 m up, spinning at 2 rad/s about z, accelerating
+/// up at 3 m/s²) continued, with a 1 cm heave at 2 Hz from rest on top.
+pub fn rod_3d_mount(t: f64) -> Vec<(String, f64)> {
+    let w = 2.0 * std::f64::consts::PI * 2.0;
+    let a = 0.01;
+    let (s, c) = (w * t).sin_cos();
+    let (sh, ch) = t.sin_cos(); // half of the spin angle 2t
+    [
+        ("root.position.x", 0.0),
+        ("root.position.y", 0.0),
+        ("root.position.z", 1.0 + 1.5 * t * t + a * (1.0 - c)),
+        ("root.orientation.e0", ch),
+        ("root.orientation.e1", 0.0),
+        ("root.orientation.e2", 0.0),
+        ("root.orientation.e3", sh),
+        ("root.velocity.x", 0.0),
+        ("root.velocity.y", 0.0),
+        ("root.velocity.z", 3.0 * t + a * w * s),
+        ("root.angular_velocity.x", 0.0),
+        ("root.angular_velocity.y", 0.0),
+        ("root.angular_velocity.z", 2.0),
+        ("root.acceleration.x", 0.0),
+        ("root.acceleration.y", 0.0),
+        ("root.acceleration.z", 3.0 + a * w * w * c),
+        ("root.angular_acceleration.x", 0.0),
+        ("root.angular_acceleration.y", 0.0),
+        ("root.angular_acceleration.z", 0.0),
+    ]
+    .iter()
+    .map(|(n, x)| (n.to_string(), *x))
+    .collect()
 }

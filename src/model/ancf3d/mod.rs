@@ -32,6 +32,7 @@
 
 use super::ancf::{GAUSS3, GAUSS5};
 use crate::math;
+use crate::model::sample::{director_frame, minimal_frame, ShapePoint};
 use crate::model::vector::Real;
 use crate::model::vector::{cross, dot};
 use crate::scene::{Segment, StrainModel};
@@ -594,6 +595,46 @@ impl Ancf3Props {
         let twist = math::atan2(dot(&t1, &cross(&a1, &b)), dot(&a1, &b)).abs();
         let worst = std::f64::consts::PI;
         (if twist.is_nan() { worst } else { twist }, sine)
+    }
+
+    /// The centreline at ξ ∈ [0, 1] of the element at `e`, `ed` (d entries each): r = S e,
+    /// ṙ = S ė, the section frame (with torsion: Gram–Schmidt of r_x and the interpolated r_y,
+    /// so the twist shows; without: the smallest rotation of (e_y, e_z) onto the tangent), and
+    /// the element's own strain measures ε, (κ2, κ3), τ (the module doc); the cable's curvature
+    /// vector r_x × r_xx/|r_x|² on its frame, no twist.
+    pub fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
+        let (rs, ys) = self.slots();
+        let v = |w: &[f64], slots: &[usize], x: &[f64]| -> [f64; 3] {
+            let mut r = [0.0; 3];
+            for (wj, s) in w.iter().zip(slots) {
+                for c in 0..3 {
+                    r[c] += wj * x[s + c];
+                }
+            }
+            r
+        };
+        let l = self.length;
+        let (sh, ds, dds) = hermite(xi, l);
+        let (a, b) = (v(&ds, &rs, e), v(&dds, &rs, e));
+        let mut p = ShapePoint {
+            position: v(&sh, &rs, e),
+            velocity: v(&sh, &rs, ed),
+            axial_strain: dot(&a, &a).sqrt() - 1.0,
+            ..ShapePoint::default()
+        };
+        if self.torsion {
+            let c = v(&[1.0 - xi, xi], &ys, e);
+            let d = v(&[-1.0 / l, 1.0 / l], &ys, e);
+            let [_, k2, k3, tau] = strains(a, b, c, d);
+            p.frame = director_frame(a, c);
+            p.curvature = [k2, k3];
+            p.twist = tau;
+        } else {
+            p.frame = minimal_frame(a);
+            let k = cross(&a, &b).map(|c| c / dot(&a, &a));
+            p.curvature = [dot(&k, &p.frame[1]), dot(&k, &p.frame[2])];
+        }
+        p
     }
 
     /// Strain measures (ε, κ2, κ3, τ) at ξ ∈ [0, 1] of an element with torsion.

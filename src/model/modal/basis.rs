@@ -227,6 +227,31 @@ impl ModalBasis {
         (g1, g2)
     }
 
+    /// The field of amplitudes `a` at ξ: (Σφ_j a_j, Σφ_j′ a_j, Σφ_j″ a_j) (ξ-derivatives).
+    pub fn field(&self, a: &[f64], xi: f64) -> [f64; 3] {
+        let mut out = [0.0; 3];
+        for (j, aj) in a.iter().enumerate() {
+            let f = self.eval_one(j, xi);
+            for d in 0..3 {
+                out[d] += f[d] * aj;
+            }
+        }
+        out
+    }
+
+    /// ∫₀^ξ (φ′ᵀa)(φ′ᵀb) dξ by the composite Gauss rule of [`quadrature`] (4 panels) on [0, ξ]:
+    /// the foreshortening ½∫₀^ξ w′² dξ / L of a point inside the segment and its rate (at ξ = 1
+    /// the tip's ½aᵀGa to the rule's accuracy).
+    pub fn slope_integral(&self, a: &[f64], b: &[f64], xi: f64) -> f64 {
+        quadrature(4)
+            .iter()
+            .map(|&(x, w)| {
+                let s = xi * x;
+                xi * w * self.field(a, s)[1] * self.field(b, s)[1]
+            })
+            .sum()
+    }
+
     /// (φ_j, φ_j′, φ_j″) at ξ.
     pub fn eval_one(&self, j: usize, xi: f64) -> [f64; 3] {
         let mut out = [0.0; 3];

@@ -15,6 +15,7 @@
 
 use super::basis::ModalBasis;
 use crate::math;
+use crate::model::sample::ShapePoint;
 use nalgebra::{DMatrix, DVector, Matrix2, Vector2};
 
 /// Rotation matrix A(θ).
@@ -318,6 +319,40 @@ impl ModalBody {
             .map(|(p, a)| p * a)
             .sum::<f64>()
             / self.length
+    }
+
+    /// The centreline at ξ ∈ [0, 1] at (q, q̇): r = R + A(θ)ū, ū = (ξL − ½∫₀^ξ w′²dξ/L, w) (the
+    /// tip's [`ModalBody::tip_local`] at ξ = 1, so the last sample is the tip port's point),
+    /// ṙ = Ṙ + θ̇ J A ū + A u̇̄, the section frame of the tangent, curvature w″/L² (the linear
+    /// field's: the body's strain energy is ½EI∫w″²dx); no axial strain, no twist.
+    pub fn sample(&self, q: &[f64], v: &[f64], xi: f64) -> ShapePoint {
+        let (a, ad) = (&q[3..], &v[3..]);
+        let l = self.length;
+        let [w, w1, w2] = self.basis.field(a, xi);
+        let wd = self.basis.field(ad, xi)[0];
+        let u = if xi == 1.0 {
+            self.tip_local(q)
+        } else {
+            Vector2::new(xi * l - 0.5 * self.basis.slope_integral(a, a, xi) / l, w)
+        };
+        let short_rate = if xi == 1.0 {
+            let g = self.foreshortening_gradient(q);
+            g.iter().zip(ad).map(|(g, v)| g * v).sum::<f64>()
+        } else {
+            self.basis.slope_integral(a, ad, xi) / l
+        };
+        let ud = Vector2::new(-short_rate, wd);
+        let r = rot(q[2]);
+        let p = Vector2::new(q[0], q[1]) + r * u;
+        let vel = Vector2::new(v[0], v[1]) + v[2] * perp(r * u) + r * ud;
+        let t = r * Vector2::new(1.0, w1 / l).normalize();
+        ShapePoint {
+            position: [p.x, p.y, 0.0],
+            velocity: [vel.x, vel.y, 0.0],
+            frame: [[t.x, t.y, 0.0], [-t.y, t.x, 0.0], [0.0, 0.0, 1.0]],
+            curvature: [0.0, w2 / (l * l)],
+            ..ShapePoint::default()
+        }
     }
 
     /// Global position of the material point at x = ξL.

@@ -7,6 +7,7 @@ use crate::model::ancf::{AncfProps, Mat8, QuadTables, Vec8};
 use crate::model::assembly::Model;
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
 use crate::model::modal::{BodyOut, ModalBody};
+use crate::model::sample::ShapePoint;
 use std::any::Any;
 use std::sync::Arc;
 
@@ -93,6 +94,16 @@ impl Element<Planar> for AncfElement {
             strain: self.props.strain_energy(&e),
             potential: -self.gravity_force.dot(&e),
         }
+    }
+
+    fn length(&self) -> f64 {
+        self.props.length
+    }
+
+    fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>) {
+        let (e, ed, _) = x.arrays::<8>();
+        let (e, ed) = (Vec8::from(e), Vec8::from(ed));
+        out.extend(xi.iter().map(|&s| self.props.sample(&e, &ed, s)));
     }
 
     fn set_gravity(&mut self, g: &[f64; 2]) {
@@ -229,6 +240,15 @@ impl Element<Planar> for ModalElement {
             strain: self.body.strain_energy(&q),
             potential: self.body.potential_energy(&q, *gravity),
         }
+    }
+
+    fn length(&self) -> f64 {
+        self.body.length
+    }
+
+    fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>) {
+        let (q, v, _) = x.vectors();
+        out.extend(xi.iter().map(|&s| self.body.sample(&q, &v, s)));
     }
 
     fn is_damped(&self) -> bool {

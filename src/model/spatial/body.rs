@@ -17,6 +17,7 @@ use crate::model::component::{
 };
 use crate::model::modal::body3d::{self, euler_rotation};
 use crate::model::modal::ModalBody3;
+use crate::model::sample::ShapePoint;
 use crate::model::vector::{self, cross, Real, V3};
 use nalgebra::{Matrix3, Vector3};
 use num_dual::HyperDual64;
@@ -258,6 +259,15 @@ impl Element<Spatial> for ModalElement3 {
             strain: self.body.strain_energy(&q),
             potential: self.body.potential_energy(&q, *gravity),
         }
+    }
+
+    fn length(&self) -> f64 {
+        self.body.props.length
+    }
+
+    fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>) {
+        let (q, v, _) = x.vectors();
+        out.extend(xi.iter().map(|&s| self.body.sample(&q, &v, s)));
     }
 
     fn is_damped(&self) -> bool {

@@ -8,6 +8,7 @@ use crate::model::ancf3d::{Ancf3Props, MassPatterns, Tables3, TORSION_DOFS};
 use crate::model::component::{
     Element, ElementOut, Energies, Env, LocalState, Port, Support, Validity,
 };
+use crate::model::sample::ShapePoint;
 use crate::model::vector::Real;
 use nalgebra::{Matrix3, Vector3};
 use num_dual::{Dual2Vec, DualSVec64};
@@ -100,6 +101,15 @@ impl Element<Spatial> for AncfElement3 {
         } else {
             self.residual_d::<12>(x, res)
         }
+    }
+
+    fn length(&self) -> f64 {
+        self.props.length
+    }
+
+    fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>) {
+        let (e, ed, _) = x.vectors();
+        out.extend(xi.iter().map(|&s| self.props.sample(&e, &ed, s)));
     }
 
     fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 3]) -> Energies {
