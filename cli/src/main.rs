@@ -2,7 +2,9 @@
 //!
 //! ```text
 //! hybeam run SCENE.toml --out tip.csv [--set KEY=VALUE ...] [--t-end T] [--output-step H] [--quiet]
+//!            [--vtk DIR] [--animate PAGE.html] [--samples N]
 //! hybeam static SCENE.toml [--set KEY=VALUE ...]
+//! hybeam animate RESULT_DIR [--out PAGE.html] [--body LX,LY,LZ --body-centre X,Y,Z]
 //! ```
 //!
 //! `hybeam --help` and `hybeam run --help` print the generated help. Exit code 2 for a bad
@@ -30,6 +32,27 @@ enum Command {
     Run(RunArgs),
     /// Solve the static equilibrium and print the outputs as CSV on stdout.
     Static(SceneArgs),
+    /// Write the animation page of a ParaView series written by `run --vtk DIR` or by the FMU
+    /// (`visualization.directory`).
+    Animate(AnimateArgs),
+}
+
+#[derive(Debug, Args)]
+struct AnimateArgs {
+    /// The series' directory (holding one `.pvd` collection) or the `.pvd` file.
+    result: PathBuf,
+    /// The page to write [default: RESULT_DIR/animation.html].
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Draw a box of these edge lengths [m] carried by the root (mount) frame: a vehicle body.
+    #[arg(long, value_name = "LX,LY,LZ", value_parser = triple)]
+    body: Option<[f64; 3]>,
+    /// The box centre in the root frame [m] (with --body).
+    #[arg(long, value_name = "X,Y,Z", value_parser = triple, requires = "body")]
+    body_centre: Option<[f64; 3]>,
+    /// Page title [default: the collection's file name].
+    #[arg(long)]
+    title: Option<String>,
 }
 
 /// The scene file and its overrides, common to both commands.
@@ -59,6 +82,32 @@ struct RunArgs {
     /// No progress line on stderr.
     #[arg(long)]
     quiet: bool,
+    /// Also write the beam's shape at every output time as a ParaView series
+    /// DIR/beam.pvd of DIR/beam_NNNNNN.vtu.
+    #[arg(long, value_name = "DIR")]
+    vtk: Option<PathBuf>,
+    /// Also write a self-contained 3D animation page of the run (opens offline in a browser).
+    #[arg(long, value_name = "FILE")]
+    animate: Option<PathBuf>,
+    /// Centreline samples per element (intervals) for --vtk and --animate.
+    #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
+    samples: u32,
+}
+
+/// `X,Y,Z`: three finite numbers.
+fn triple(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| {
+            x.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("{x:?} is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [a, b, c] if v.iter().all(|x| x.is_finite()) => Ok([*a, *b, *c]),
+        _ => Err("expected three finite numbers X,Y,Z, e.g. 4.2,1.8,1.2".into()),
+    }
 }
 
 /// `KEY=VALUE` of `--set`, both trimmed.
@@ -134,6 +183,80 @@ fn row(sim: &AnySimulator, columns: &[(String, OutputId)]) -> String {
     s
 }
 
+/// The views a run writes beside its CSV (`--vtk`, `--animate`).
+struct Views {
+    series: Option<hybeam_view::Series>,
+    page: Option<(hybeam_view::Recorder, PathBuf)>,
+    samples: usize,
+    /// The tip columns shown on the page: (index into the columns).
+    tip: Vec<usize>,
+}
+
+impl Views {
+    fn new(args: &RunArgs, scene: &Scene, columns: &[(String, OutputId)]) -> Result<Self, String> {
+        let radii = hybeam_view::segment_radii(scene);
+        let series = match &args.vtk {
+            Some(dir) => Some(
+                hybeam_view::Series::create(dir, "beam", radii.clone())
+                    .map_err(|e| e.to_string())?,
+            ),
+            None => None,
+        };
+        let tip: Vec<usize> = (0..columns.len())
+            .filter(|&k| columns[k].0.starts_with("tip."))
+            .collect();
+        let names = tip.iter().map(|&k| columns[k].0.clone()).collect();
+        let page = args.animate.as_ref().map(|path| {
+            let title = format!("{} ({})", scene.name, args.scene.scene.display());
+            let rec = hybeam_view::Recorder::new(&title, &scene.gravity, radii, names);
+            (rec, path.clone())
+        });
+        Ok(Self {
+            series,
+            page,
+            samples: args.samples as usize,
+            tip,
+        })
+    }
+
+    /// Records the current state (shape computed once for both views).
+    fn record(&mut self, sim: &AnySimulator, columns: &[(String, OutputId)]) -> Result<(), String> {
+        if self.series.is_none() && self.page.is_none() {
+            return Ok(());
+        }
+        let shape = sim.shape(self.samples);
+        if let Some(series) = &mut self.series {
+            series
+                .write(sim.time(), &shape)
+                .map_err(|e| e.to_string())?;
+        }
+        if let Some((rec, _)) = &mut self.page {
+            let o = sim.outputs();
+            let tip: Vec<f64> = self
+                .tip
+                .iter()
+                .map(|&k| o.value(columns[k].1).unwrap_or(f64::NAN))
+                .collect();
+            rec.push(sim.time(), &shape, &tip);
+        }
+        Ok(())
+    }
+
+    /// Writes the collection and the page; what was written, for the summary line.
+    fn finish(&self) -> Result<String, String> {
+        let mut out = String::new();
+        if let Some(series) = &self.series {
+            let pvd = series.finish().map_err(|e| e.to_string())?;
+            out.push_str(&format!(", {} pieces -> {}", series.len(), pvd.display()));
+        }
+        if let Some((rec, path)) = &self.page {
+            rec.write(path).map_err(|e| e.to_string())?;
+            out.push_str(&format!(", animation -> {}", path.display()));
+        }
+        Ok(out)
+    }
+}
+
 fn run(args: &RunArgs) -> Result<(), String> {
     let mut scene = args.scene.load()?;
     if let Some(t) = args.t_end {
@@ -146,10 +269,12 @@ fn run(args: &RunArgs) -> Result<(), String> {
     let dt = scene.simulation.output_step;
     let wall = Instant::now();
     let columns = columns(scene.space, scene.root == Root::Mounted);
+    let mut views = Views::new(args, &scene, &columns)?;
     let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     let mut out = Vec::with_capacity(64 * 1024);
     writeln!(out, "{}", header(&columns)).map_err(|e| e.to_string())?;
     writeln!(out, "{}", row(&sim, &columns)).map_err(|e| e.to_string())?;
+    views.record(&sim, &columns)?;
     let n_out = (t_end / dt - 1e-9).ceil() as u64;
     let mut last_report = Instant::now();
     for k in 1..=n_out {
@@ -157,6 +282,7 @@ fn run(args: &RunArgs) -> Result<(), String> {
         sim.advance(t)
             .map_err(|e| format!("at t = {:.6} s: {e}", sim.time()))?;
         writeln!(out, "{}", row(&sim, &columns)).map_err(|e| e.to_string())?;
+        views.record(&sim, &columns)?;
         if !args.quiet && last_report.elapsed().as_secs_f64() > 1.0 {
             eprint!("\r  t = {t:.4} / {t_end} s ({:.0} %)", 100.0 * t / t_end);
             last_report = Instant::now();
@@ -165,6 +291,7 @@ fn run(args: &RunArgs) -> Result<(), String> {
     let elapsed = wall.elapsed().as_secs_f64();
     let out_path = args.out.display();
     std::fs::write(&args.out, out).map_err(|e| format!("cannot write {out_path}: {e}"))?;
+    let written = views.finish()?;
     let c = sim.counters();
     let o = sim.outputs();
     if !args.quiet {
@@ -176,9 +303,88 @@ fn run(args: &RunArgs) -> Result<(), String> {
         .map(|x| format!("{x:.6e}"))
         .collect();
     println!(
-        "{}: t = {:.4} s, {} steps ({} rejected), {} Newton iterations, {} factorizations, wall {:.4} s; tip = ({}) m -> {out_path}",
+        "{}: t = {:.4} s, {} steps ({} rejected), {} Newton iterations, {} factorizations, wall {:.4} s; tip = ({}) m -> {out_path}{written}",
         args.scene.scene.display(), sim.time(), c.steps, c.rejected, c.iterations, c.factorizations, elapsed,
         tip.join(", ")
+    );
+    Ok(())
+}
+
+/// `hybeam animate`: the page of a written series.
+fn animate(args: &AnimateArgs) -> Result<(), String> {
+    let pvd = if args.result.is_dir() {
+        let found: Vec<PathBuf> = std::fs::read_dir(&args.result)
+            .map_err(|e| format!("cannot read {}: {e}", args.result.display()))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x == "pvd"))
+            .collect();
+        match found.as_slice() {
+            [one] => one.clone(),
+            [] => return Err(format!("{}: no .pvd collection (write one with `hybeam run SCENE --vtk DIR` or the FMU's visualization.directory)", args.result.display())),
+            _ => return Err(format!("{}: several .pvd collections; name one: hybeam animate DIR/NAME.pvd", args.result.display())),
+        }
+    } else {
+        args.result.clone()
+    };
+    let pieces = hybeam_view::read::read_series(&pvd).map_err(|e| e.to_string())?;
+    let first = pieces
+        .first()
+        .ok_or_else(|| format!("{}: the collection is empty", pvd.display()))?;
+    // up: from the first frame's root frame is not gravity; a spatial series (any z) is z-up
+    let spatial = pieces
+        .iter()
+        .any(|p| p.shape.points.iter().any(|q| q.position[2] != 0.0));
+    let gravity: &[f64] = if spatial {
+        &[0.0, 0.0, -1.0]
+    } else {
+        &[0.0, -1.0]
+    };
+    let title = args.title.clone().unwrap_or_else(|| {
+        pvd.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    });
+    let names: Vec<String> = if spatial {
+        &["x", "y", "z"][..]
+    } else {
+        &["x", "y"][..]
+    }
+    .iter()
+    .map(|a| format!("tip.position.{a}"))
+    .collect();
+    // per-segment radii from the first piece's per-point radii
+    let radii: Vec<f64> = first
+        .shape
+        .segments
+        .iter()
+        .map(|r| first.radius.get(r.start).copied().unwrap_or(0.0))
+        .collect();
+    let mut rec = hybeam_view::Recorder::new(&title, gravity, radii, names.clone());
+    if let Some(size) = args.body {
+        rec = rec.with_body(hybeam_view::BodyBox {
+            size,
+            centre: args.body_centre.unwrap_or([0.0; 3]),
+        });
+    }
+    for p in &pieces {
+        let tip = p
+            .shape
+            .points
+            .last()
+            .map(|q| q.position)
+            .unwrap_or_default();
+        rec.push(p.time, &p.shape, &tip[..names.len()]);
+    }
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| pvd.with_file_name("animation.html"));
+    rec.write(&out).map_err(|e| e.to_string())?;
+    println!(
+        "{}: {} frames -> {}",
+        pvd.display(),
+        pieces.len(),
+        out.display()
     );
     Ok(())
 }
@@ -203,6 +409,7 @@ fn main() -> ExitCode {
     let r = match &cli.command {
         Command::Run(a) => run(a),
         Command::Static(a) => statics(a),
+        Command::Animate(a) => animate(a),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

@@ -9,6 +9,7 @@
 //! (Λ_i = λ_i⁴ for the pure clamped–free basis). All invariants are computed once here.
 
 use crate::math;
+use crate::model::ancf::GAUSS5;
 use nalgebra::{DMatrix, DVector};
 
 /// Roots of 1 + cos λ cosh λ = 0 are refined from these guesses by Newton's method.
@@ -227,29 +228,68 @@ impl ModalBasis {
         (g1, g2)
     }
 
-    /// The field of amplitudes `a` at ξ: (Σφ_j a_j, Σφ_j′ a_j, Σφ_j″ a_j) (ξ-derivatives).
-    pub fn field(&self, a: &[f64], xi: f64) -> [f64; 3] {
-        let mut out = [0.0; 3];
-        for (j, aj) in a.iter().enumerate() {
-            let f = self.eval_one(j, xi);
-            for d in 0..3 {
-                out[d] += f[d] * aj;
+    /// (φ_j, φ_j′, φ_j″) of every shape at ξ into `out` (each raw function evaluated once).
+    pub fn eval_all(&self, xi: f64, out: &mut Vec<[f64; 3]>) {
+        let raw: Vec<[f64; 3]> = self.raw.iter().map(|r| r.eval(xi)).collect();
+        out.clear();
+        out.extend((0..self.len()).map(|j| {
+            let mut f = [0.0; 3];
+            for (i, v) in raw.iter().enumerate() {
+                let c = self.coef[(i, j)];
+                for d in 0..3 {
+                    f[d] += c * v[d];
+                }
+            }
+            f
+        }));
+    }
+
+    /// The fields of the amplitude vectors `a[m]` at each ξ of `xi`: (Σφ_j a_j, Σφ_j′ a_j,
+    /// Σφ_j″ a_j) (ξ-derivatives), `[m][k]`.
+    pub fn fields(&self, a: &[&[f64]], xi: &[f64]) -> Vec<Vec<[f64; 3]>> {
+        let mut phi = Vec::new();
+        let mut out = vec![Vec::with_capacity(xi.len()); a.len()];
+        for &x in xi {
+            self.eval_all(x, &mut phi);
+            for (am, o) in a.iter().zip(&mut out) {
+                let mut f = [0.0; 3];
+                for (p, aj) in phi.iter().zip(am.iter()) {
+                    for d in 0..3 {
+                        f[d] += p[d] * aj;
+                    }
+                }
+                o.push(f);
             }
         }
         out
     }
 
-    /// ∫₀^ξ (φ′ᵀa)(φ′ᵀb) dξ by the composite Gauss rule of [`quadrature`] (4 panels) on [0, ξ]:
-    /// the foreshortening ½∫₀^ξ w′² dξ / L of a point inside the segment and its rate (at ξ = 1
-    /// the tip's ½aᵀGa to the rule's accuracy).
-    pub fn slope_integral(&self, a: &[f64], b: &[f64], xi: f64) -> f64 {
-        quadrature(4)
-            .iter()
-            .map(|&(x, w)| {
-                let s = xi * x;
-                xi * w * self.field(a, s)[1] * self.field(b, s)[1]
-            })
-            .sum()
+    /// ∫₀^ξ (φ′ᵀa)(φ′ᵀb) dξ at each ξ of the ascending `xi` for each pair (a, b) of `pairs`
+    /// (`[pair][k]`), by the 5-point Gauss rule on every interval between consecutive ξ: the
+    /// foreshortening ½∫₀^ξ w′²dξ / L of the points inside a segment and its rate.
+    pub fn slope_integrals(&self, pairs: &[(&[f64], &[f64])], xi: &[f64]) -> Vec<Vec<f64>> {
+        let mut out = vec![Vec::with_capacity(xi.len()); pairs.len()];
+        let mut acc = vec![0.0; pairs.len()];
+        let mut phi = Vec::new();
+        let mut from = 0.0;
+        for &to in xi {
+            let h = to - from;
+            if h != 0.0 {
+                for (g, w) in GAUSS5 {
+                    self.eval_all(from + 0.5 * h * (g + 1.0), &mut phi);
+                    let slope =
+                        |v: &[f64]| -> f64 { phi.iter().zip(v).map(|(p, x)| p[1] * x).sum() };
+                    for (s, (a, b)) in acc.iter_mut().zip(pairs) {
+                        *s += 0.5 * h * w * slope(a) * slope(b);
+                    }
+                }
+            }
+            for (o, s) in out.iter_mut().zip(&acc) {
+                o.push(*s);
+            }
+            from = to;
+        }
+        out
     }
 
     /// (φ_j, φ_j′, φ_j″) at ξ.

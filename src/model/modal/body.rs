@@ -321,37 +321,37 @@ impl ModalBody {
             / self.length
     }
 
-    /// The centreline at ξ ∈ [0, 1] at (q, q̇): r = R + A(θ)ū, ū = (ξL − ½∫₀^ξ w′²dξ/L, w) (the
-    /// tip's [`ModalBody::tip_local`] at ξ = 1, so the last sample is the tip port's point),
-    /// ṙ = Ṙ + θ̇ J A ū + A u̇̄, the section frame of the tangent, curvature w″/L² (the linear
-    /// field's: the body's strain energy is ½EI∫w″²dx); no axial strain, no twist.
-    pub fn sample(&self, q: &[f64], v: &[f64], xi: f64) -> ShapePoint {
+    /// The centreline at each ξ ∈ [0, 1] of the ascending `xi` at (q, q̇) onto `out`: r = R +
+    /// A(θ)ū, ū = (ξL − ½∫₀^ξ w′²dξ/L, w) (the tip's [`ModalBody::tip_local`] at ξ = 1, so the
+    /// last sample is the tip port's point), ṙ = Ṙ + θ̇ J A ū + A u̇̄, the section frame of the
+    /// tangent, curvature w″/L² (the linear field's: the body's strain energy is ½EI∫w″²dx); no
+    /// axial strain, no twist.
+    pub fn sample(&self, q: &[f64], v: &[f64], xi: &[f64], out: &mut Vec<ShapePoint>) {
         let (a, ad) = (&q[3..], &v[3..]);
         let l = self.length;
-        let [w, w1, w2] = self.basis.field(a, xi);
-        let wd = self.basis.field(ad, xi)[0];
-        let u = if xi == 1.0 {
-            self.tip_local(q)
-        } else {
-            Vector2::new(xi * l - 0.5 * self.basis.slope_integral(a, a, xi) / l, w)
-        };
-        let short_rate = if xi == 1.0 {
-            let g = self.foreshortening_gradient(q);
-            g.iter().zip(ad).map(|(g, v)| g * v).sum::<f64>()
-        } else {
-            self.basis.slope_integral(a, ad, xi) / l
-        };
-        let ud = Vector2::new(-short_rate, wd);
+        let f = self.basis.fields(&[a, ad], xi);
+        let short = self.basis.slope_integrals(&[(a, a), (a, ad)], xi);
         let r = rot(q[2]);
-        let p = Vector2::new(q[0], q[1]) + r * u;
-        let vel = Vector2::new(v[0], v[1]) + v[2] * perp(r * u) + r * ud;
-        let t = r * Vector2::new(1.0, w1 / l).normalize();
-        ShapePoint {
-            position: [p.x, p.y, 0.0],
-            velocity: [vel.x, vel.y, 0.0],
-            frame: [[t.x, t.y, 0.0], [-t.y, t.x, 0.0], [0.0, 0.0, 1.0]],
-            curvature: [0.0, w2 / (l * l)],
-            ..ShapePoint::default()
+        for (k, &x) in xi.iter().enumerate() {
+            let [w, w1, w2] = f[0][k];
+            let (u, short_rate) = if x == 1.0 {
+                let (u, g) = self.tip_local_and_gradient(q);
+                (u, g.iter().zip(ad).map(|(g, v)| g * v).sum::<f64>())
+            } else {
+                let u = Vector2::new(x * l - 0.5 * short[0][k] / l, w);
+                (u, short[1][k] / l)
+            };
+            let ud = Vector2::new(-short_rate, f[1][k][0]);
+            let p = Vector2::new(q[0], q[1]) + r * u;
+            let vel = Vector2::new(v[0], v[1]) + v[2] * perp(r * u) + r * ud;
+            let t = r * Vector2::new(1.0, w1 / l).normalize();
+            out.push(ShapePoint {
+                position: [p.x, p.y, 0.0],
+                velocity: [vel.x, vel.y, 0.0],
+                frame: [[t.x, t.y, 0.0], [-t.y, t.x, 0.0], [0.0, 0.0, 1.0]],
+                curvature: [0.0, w2 / (l * l)],
+                ..ShapePoint::default()
+            });
         }
     }
 

@@ -627,13 +627,13 @@ impl ModalBody3 {
         ([xi * self.props.length, v, w], th)
     }
 
-    /// The centreline at ξ ∈ [0, 1] at (q, q̇): r = R + A ū, ū = (ξL − ½∫₀^ξ(v′² + w′²)dξ/L, v,
-    /// w) (the tip's [`ModalBody3::tip_local`] at ξ = 1), ṙ = Ṙ + ω × Aū + A u̇̄ (ω = 2Eṗ); the
-    /// section frame: the tangent's, turned about it by the twist θ(ξ) = χᵀa_t; curvature
-    /// (−w″, v″)/L² about the body's section axes (the linear field's, whose strain energy is
-    /// ½∫(EI_y w″² + EI_z v″²)dx/L⁴: the twist does not turn them); twist rate χ′ᵀa_t/L. No
-    /// axial strain (the linear field does not stretch).
-    pub fn sample(&self, q: &[f64], qd: &[f64], xi: f64) -> ShapePoint {
+    /// The centreline at each ξ ∈ [0, 1] of the ascending `xi` at (q, q̇) onto `out`: r = R +
+    /// A ū, ū = (ξL − ½∫₀^ξ(v′² + w′²)dξ/L, v, w) (the tip's [`ModalBody3::tip_local`] at ξ =
+    /// 1), ṙ = Ṙ + ω × Aū + A u̇̄ (ω = 2Eṗ); the section frame: the tangent's, turned about it
+    /// by the twist θ(ξ) = χᵀa_t; curvature (−w″, v″)/L² about the body's section axes (the
+    /// linear field's, whose strain energy is ½∫(EI_y w″² + EI_z v″²)dx/L⁴: the twist does not
+    /// turn them); twist rate χ′ᵀa_t/L. No axial strain (the linear field does not stretch).
+    pub fn sample(&self, q: &[f64], qd: &[f64], xi: &[f64], out: &mut Vec<ShapePoint>) {
         let nb = self.modes();
         let l = self.props.length;
         let (ay, az, at) = (
@@ -642,44 +642,43 @@ impl ModalBody3 {
             &q[7 + 2 * nb..9 + 2 * nb],
         );
         let (vy, vz) = (&qd[7..7 + nb], &qd[7 + nb..7 + 2 * nb]);
-        let [v, v1, v2] = self.basis.field(ay, xi);
-        let [w, w1, w2] = self.basis.field(az, xi);
         let b = &self.basis;
-        let u = if xi == 1.0 {
-            self.tip_local(q)
-        } else {
-            let short = 0.5 * (b.slope_integral(ay, ay, xi) + b.slope_integral(az, az, xi)) / l;
-            [xi * l - short, v, w]
-        };
-        let short_rate = if xi == 1.0 {
-            let dot = |g: Vec<f64>, v: &[f64]| g.iter().zip(v).map(|(g, v)| g * v).sum::<f64>();
-            dot(self.foreshortening_gradient(ay), vy) + dot(self.foreshortening_gradient(az), vz)
-        } else {
-            (b.slope_integral(ay, vy, xi) + b.slope_integral(az, vz, xi)) / l
-        };
-        let ud = [-short_rate, b.field(vy, xi)[0], b.field(vz, xi)[0]];
-        let (chi, dchi) = torsion_shapes(xi);
-        let th = chi[0] * at[0] + chi[1] * at[1];
+        let f = b.fields(&[ay, az, vy, vz], xi);
+        let s = b.slope_integrals(&[(ay, ay), (az, az), (ay, vy), (az, vz)], xi);
         let p = [q[3], q[4], q[5], q[6]];
         let a = euler_rotation(p);
-        let au = mul(&a, u);
         let e = e_world(p);
         let omega: [f64; 3] =
             std::array::from_fn(|i| 2.0 * (0..4).map(|k| e[i][k] * qd[3 + k]).sum::<f64>());
-        let wxu = cross(omega, au);
-        let aud = mul(&a, ud);
-        let [t, d2, d3] = minimal_frame([1.0, v1 / l, w1 / l]);
-        let (s, c) = math::sin_cos(th);
-        let d2t: [f64; 3] = std::array::from_fn(|i| c * d2[i] + s * d3[i]);
-        let d3t: [f64; 3] = std::array::from_fn(|i| -s * d2[i] + c * d3[i]);
-        let (k2, k3) = (-w2 / (l * l), v2 / (l * l));
-        ShapePoint {
-            position: std::array::from_fn(|i| q[i] + au[i]),
-            velocity: std::array::from_fn(|i| qd[i] + wxu[i] + aud[i]),
-            frame: [mul(&a, t), mul(&a, d2t), mul(&a, d3t)],
-            curvature: [k2, k3],
-            twist: (dchi[0] * at[0] + dchi[1] * at[1]) / l,
-            ..ShapePoint::default()
+        let dot = |g: Vec<f64>, v: &[f64]| g.iter().zip(v).map(|(g, v)| g * v).sum::<f64>();
+        for (k, &x) in xi.iter().enumerate() {
+            let ([v, v1, v2], [w, w1, w2]) = (f[0][k], f[1][k]);
+            let (u, short_rate) = if x == 1.0 {
+                let rate = dot(self.foreshortening_gradient(ay), vy)
+                    + dot(self.foreshortening_gradient(az), vz);
+                (self.tip_local(q), rate)
+            } else {
+                let u = [x * l - 0.5 * (s[0][k] + s[1][k]) / l, v, w];
+                (u, (s[2][k] + s[3][k]) / l)
+            };
+            let ud = [-short_rate, f[2][k][0], f[3][k][0]];
+            let (chi, dchi) = torsion_shapes(x);
+            let th = chi[0] * at[0] + chi[1] * at[1];
+            let au = mul(&a, u);
+            let wxu = cross(omega, au);
+            let aud = mul(&a, ud);
+            let [t, d2, d3] = minimal_frame([1.0, v1 / l, w1 / l]);
+            let (sn, cs) = math::sin_cos(th);
+            let d2t: [f64; 3] = std::array::from_fn(|i| cs * d2[i] + sn * d3[i]);
+            let d3t: [f64; 3] = std::array::from_fn(|i| -sn * d2[i] + cs * d3[i]);
+            out.push(ShapePoint {
+                position: std::array::from_fn(|i| q[i] + au[i]),
+                velocity: std::array::from_fn(|i| qd[i] + wxu[i] + aud[i]),
+                frame: [mul(&a, t), mul(&a, d2t), mul(&a, d3t)],
+                curvature: [-w2 / (l * l), v2 / (l * l)],
+                twist: (dchi[0] * at[0] + dchi[1] * at[1]) / l,
+                ..ShapePoint::default()
+            });
         }
     }
 

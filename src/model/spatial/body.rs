@@ -267,7 +267,7 @@ impl Element<Spatial> for ModalElement3 {
 
     fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>) {
         let (q, v, _) = x.vectors();
-        out.extend(xi.iter().map(|&s| self.body.sample(&q, &v, s)));
+        self.body.sample(&q, &v, xi, out);
     }
 
     fn is_damped(&self) -> bool {

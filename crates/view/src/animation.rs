@@ -1,0 +1,224 @@
+//! A self-contained animation page of a run: the frames recorded here, serialized as JSON into
+//! `viewer/page.html` together with the viewer script (`viewer/dist/viewer.js`: three.js and
+//! `viewer/src/main.js` bundled by esbuild from the npm registry's packages), so the page opens
+//! offline in any browser.
+//!
+//! Per frame: the centreline points [m], the section y axis (twist), the strain that colours the
+//! tube (the largest fibre strain |ε| + |κ|·c, c the section's outer radius), the root frame
+//! and the tip values. Positions, axes and strains are stored as 32-bit floats (display only),
+//! times and tip values as 64-bit (shown as numbers).
+
+use crate::vtk::ViewError;
+use base64::Engine as _;
+use hybeam::model::Shape;
+use serde::Serialize;
+use std::path::Path;
+
+/// The page template (placeholders `__TITLE__`, `__DATA__`, `__VIEWER__`).
+const PAGE: &str = include_str!("../../../viewer/page.html");
+/// The bundled viewer (three.js + viewer/src/main.js), built by `npm run build` in `viewer/`.
+const VIEWER: &str = include_str!("../../../viewer/dist/viewer.js");
+
+/// A rigid body drawn as a box carried by the root (mount) frame: a vehicle's body.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BodyBox {
+    /// Edge lengths along the frame's x, y, z [m].
+    pub size: [f64; 3],
+    /// The box centre in the root frame [m].
+    pub centre: [f64; 3],
+}
+
+/// Frames of a run being recorded for the page.
+#[derive(Debug, Clone)]
+pub struct Recorder {
+    title: String,
+    up: [f64; 3],
+    tip_names: Vec<String>,
+    /// Outer radius of each segment [m].
+    segment_radii: Vec<f64>,
+    /// Outer radius at each point [m] (from the first frame).
+    radius: Vec<f32>,
+    segments: Vec<[usize; 2]>,
+    points: usize,
+    times: Vec<f64>,
+    positions: Vec<f32>,
+    section: Vec<f32>,
+    strain: Vec<f32>,
+    root: Vec<f32>,
+    tip: Vec<f64>,
+    body: Option<BodyBox>,
+}
+
+/// The page's data (viewer/src/main.js reads these fields).
+#[derive(Serialize)]
+struct PageData<'a> {
+    title: &'a str,
+    up: [f64; 3],
+    points: usize,
+    segments: &'a [[usize; 2]],
+    radius: String,
+    times: String,
+    positions: String,
+    section: String,
+    strain: String,
+    strain_label: &'a str,
+    root: String,
+    tip: TipData<'a>,
+    body: Option<BodyBox>,
+}
+
+#[derive(Serialize)]
+struct TipData<'a> {
+    names: &'a [String],
+    values: String,
+}
+
+impl Recorder {
+    /// A recorder titled `title`, `gravity` (world axes, 2 or 3 components) giving the up
+    /// direction (−g; y up without gravity in the plane, z in space), segments of outer radius
+    /// `radii` [m], tip values named `tip_names` given with each frame.
+    pub fn new(title: &str, gravity: &[f64], radii: Vec<f64>, tip_names: Vec<String>) -> Self {
+        let g: [f64; 3] = std::array::from_fn(|k| gravity.get(k).copied().unwrap_or(0.0));
+        let norm = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+        let up = if norm > 0.0 {
+            g.map(|c| -c / norm)
+        } else if gravity.len() == 2 {
+            [0.0, 1.0, 0.0]
+        } else {
+            [0.0, 0.0, 1.0]
+        };
+        Self {
+            title: title.to_string(),
+            up,
+            tip_names,
+            segment_radii: radii,
+            radius: Vec::new(),
+            segments: Vec::new(),
+            points: 0,
+            times: Vec::new(),
+            positions: Vec::new(),
+            section: Vec::new(),
+            strain: Vec::new(),
+            root: Vec::new(),
+            tip: Vec::new(),
+            body: None,
+        }
+    }
+
+    /// Draws `body` carried by the root frame.
+    pub fn with_body(mut self, body: BodyBox) -> Self {
+        self.body = Some(body);
+        self
+    }
+
+    /// Number of frames recorded.
+    pub fn len(&self) -> usize {
+        self.times.len()
+    }
+
+    /// Whether no frame was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.times.is_empty()
+    }
+
+    /// Records the frame at `time` [s]: `shape` and the tip values (one per name). A time not
+    /// after the last frame's (a rollback or reset) first drops the frames at or after it.
+    pub fn push(&mut self, time: f64, shape: &Shape, tip: &[f64]) {
+        while self.times.last().is_some_and(|t| *t >= time) {
+            self.pop();
+        }
+        if self.times.is_empty() {
+            self.points = shape.points.len();
+            self.segments = shape.segments.iter().map(|r| [r.start, r.end]).collect();
+            let radii = &self.segment_radii;
+            self.radius = shape
+                .points
+                .iter()
+                .map(|p| radii.get(p.segment).copied().unwrap_or(0.0) as f32)
+                .collect();
+        }
+        self.times.push(time);
+        for (i, p) in shape.points.iter().enumerate() {
+            self.positions.extend(p.position.map(|x| x as f32));
+            self.section.extend(p.frame[1].map(|x| x as f32));
+            let c = self.radius.get(i).copied().unwrap_or(0.0) as f64;
+            self.strain
+                .push((p.axial_strain.abs() + p.bending() * c) as f32);
+        }
+        let r = &shape.root;
+        self.root.extend(r.origin.map(|x| x as f32));
+        for a in &r.axes {
+            self.root.extend(a.map(|x| x as f32));
+        }
+        self.tip
+            .extend((0..self.tip_names.len()).map(|k| tip.get(k).copied().unwrap_or(f64::NAN)));
+    }
+
+    fn pop(&mut self) {
+        self.times.pop();
+        let n = self.points;
+        self.positions.truncate(self.positions.len() - 3 * n);
+        self.section.truncate(self.section.len() - 3 * n);
+        self.strain.truncate(self.strain.len() - n);
+        self.root.truncate(self.root.len() - 12);
+        self.tip.truncate(self.tip.len() - self.tip_names.len());
+    }
+
+    /// The page's HTML text.
+    pub fn page(&self) -> String {
+        let f32s = |v: &[f32]| {
+            let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+            base64::engine::general_purpose::STANDARD.encode(bytes)
+        };
+        let f64s = |v: &[f64]| {
+            let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+            base64::engine::general_purpose::STANDARD.encode(bytes)
+        };
+        let data = PageData {
+            title: &self.title,
+            up: self.up,
+            points: self.points,
+            segments: &self.segments,
+            radius: f32s(&self.radius),
+            times: f64s(&self.times),
+            positions: f32s(&self.positions),
+            section: f32s(&self.section),
+            strain: f32s(&self.strain),
+            strain_label: "largest fibre strain |ε| + |κ|·c [-]",
+            root: f32s(&self.root),
+            tip: TipData {
+                names: &self.tip_names,
+                values: f64s(&self.tip),
+            },
+            body: self.body,
+        };
+        let json = serde_json::to_string(&data).expect("plain data serializes");
+        // inside <script>: no "</" may end the element early
+        let json = json.replace("</", "<\\/");
+        PAGE.replacen("__TITLE__", &html_escape(&self.title), 1)
+            .replacen("__DATA__", &json, 1)
+            .replacen("__VIEWER__", &VIEWER.replace("</script", "<\\/script"), 1)
+    }
+
+    /// Writes the page to `path`.
+    pub fn write(&self, path: &Path) -> Result<(), ViewError> {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|source| ViewError::Io {
+                path: dir.to_path_buf(),
+                source,
+            })?;
+        }
+        std::fs::write(path, self.page()).map_err(|source| ViewError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+}
+
+/// `s` with the HTML special characters escaped.
+fn html_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}

@@ -1,0 +1,316 @@
+//! The beam's shape over time as a ParaView series: one `.vtu` (VTK XML unstructured grid,
+//! written by `vtkio`) per output time and a `.pvd` collection naming them with their times
+//! (written by `quick-xml`).
+//!
+//! Each `.vtu` holds the centreline samples of [`hybeam::model::Shape`] as points, one
+//! `VTK_POLY_LINE` cell per segment, a `VTK_VERTEX` at each joint and one at the root (mount)
+//! frame's origin. Point data: `velocity` [m/s], `tangent`, `section_y`, `section_z` (the
+//! section frame, unit vectors; at the root vertex the root frame's x, y, z axes),
+//! `axial_strain` [-], `curvature` [1/m] (magnitude), `curvature_y`, `curvature_z` [1/m]
+//! (about the section axes), `twist` [rad/m], `arc` [m] (reference arc length from the root).
+//! Cell data: `segment` (scene index; −1 at the root vertex), `kind` (0 segment, 1 joint,
+//! 2 root frame). A Tube filter with radius `radius` (point data, the section's outer radius
+//! [m]) draws the real section.
+
+use hybeam::model::Shape;
+use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, Event};
+use std::path::{Path, PathBuf};
+use vtkio::model::{
+    Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, ElementType,
+    UnstructuredGridPiece, Version, VertexNumbers, Vtk,
+};
+
+/// Why a view could not be written or read.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewError {
+    /// A file or directory operation failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or directory.
+        path: PathBuf,
+        /// The error.
+        source: std::io::Error,
+    },
+    /// vtkio refused to write or read a piece.
+    #[error("{path}: {message}")]
+    Vtk {
+        /// The file.
+        path: PathBuf,
+        /// vtkio's message.
+        message: String,
+    },
+    /// A series or piece is not what this module writes.
+    #[error("{path}: {message}")]
+    Format {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+impl ViewError {
+    fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Self + '_ {
+        move |source| Self::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+}
+
+/// The section's outer radius of each scene segment [m] (a tube of it shows the real section;
+/// a rectangle by half its larger side).
+pub fn segment_radii(scene: &hybeam::scene::Scene) -> Vec<f64> {
+    use hybeam::scene::Section;
+    scene
+        .segments
+        .iter()
+        .map(|s| match s.section {
+            Section::Round | Section::Tube => 0.5 * s.diameter.unwrap_or(0.0),
+            _ => {
+                let p = s.section_props();
+                // rectangles: half the larger side; any other shape: the equal-area circle
+                match (s.width, s.height) {
+                    (Some(w), Some(h)) => 0.5 * w.max(h),
+                    _ => (p.area / std::f64::consts::PI).sqrt(),
+                }
+            }
+        })
+        .collect()
+}
+
+/// The VTK data set of one shape (see the module doc); `radii` per segment [m].
+pub fn piece(shape: &Shape, radii: &[f64]) -> Vtk {
+    let n = shape.points.len();
+    let extra = shape.joints.len() + 1;
+    let total = n + 1;
+    let mut points = Vec::with_capacity(3 * total);
+    let mut vectors: [Vec<f64>; 4] = std::array::from_fn(|_| Vec::with_capacity(3 * total));
+    let mut scalars: [Vec<f64>; 7] = std::array::from_fn(|_| Vec::with_capacity(total));
+    for p in &shape.points {
+        points.extend_from_slice(&p.position);
+        vectors[0].extend_from_slice(&p.velocity);
+        for k in 0..3 {
+            vectors[k + 1].extend_from_slice(&p.frame[k]);
+        }
+        let radius = radii.get(p.segment).copied().unwrap_or(0.0);
+        for (s, v) in scalars.iter_mut().zip([
+            p.axial_strain,
+            p.bending(),
+            p.curvature[0],
+            p.curvature[1],
+            p.twist,
+            p.arc,
+            radius,
+        ]) {
+            s.push(v);
+        }
+    }
+    // the root frame's origin as one more point, its axes in the frame arrays
+    points.extend_from_slice(&shape.root.origin);
+    vectors[0].extend_from_slice(&[0.0; 3]);
+    for k in 0..3 {
+        vectors[k + 1].extend_from_slice(&shape.root.axes[k]);
+    }
+    for s in &mut scalars {
+        s.push(0.0);
+    }
+    // cells: polylines, joint vertices, the root vertex
+    let (mut connectivity, mut offsets, mut types) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut segment, mut kind) = (Vec::new(), Vec::new());
+    for (si, r) in shape.segments.iter().enumerate() {
+        connectivity.extend(r.clone().map(|i| i as u64));
+        offsets.push(connectivity.len() as u64);
+        types.push(CellType::PolyLine);
+        segment.push(si as i32);
+        kind.push(0i32);
+    }
+    for (j, r) in shape.segments.iter().skip(1).enumerate() {
+        connectivity.push(r.start as u64);
+        offsets.push(connectivity.len() as u64);
+        types.push(CellType::Vertex);
+        segment.push(j as i32 + 1);
+        kind.push(1);
+    }
+    connectivity.push(n as u64);
+    offsets.push(connectivity.len() as u64);
+    types.push(CellType::Vertex);
+    segment.push(-1);
+    kind.push(2);
+    debug_assert_eq!(types.len(), shape.segments.len() + extra);
+    let vector = |name: &str, data: Vec<f64>| {
+        Attribute::DataArray(DataArray {
+            name: name.into(),
+            elem: ElementType::Vectors,
+            data: data.into(),
+        })
+    };
+    let scalar = |name: &str, data: Vec<f64>| {
+        Attribute::DataArray(DataArray::scalars(name, 1).with_data(data))
+    };
+    let [velocity, tangent, section_y, section_z] = vectors;
+    let [axial, curvature, curvature_y, curvature_z, twist, arc, radius] = scalars;
+    let point = vec![
+        vector("velocity", velocity),
+        vector("tangent", tangent),
+        vector("section_y", section_y),
+        vector("section_z", section_z),
+        scalar("axial_strain", axial),
+        scalar("curvature", curvature),
+        scalar("curvature_y", curvature_y),
+        scalar("curvature_z", curvature_z),
+        scalar("twist", twist),
+        scalar("arc", arc),
+        scalar("radius", radius),
+    ];
+    let cell = vec![
+        Attribute::DataArray(DataArray::scalars("segment", 1).with_data(segment)),
+        Attribute::DataArray(DataArray::scalars("kind", 1).with_data(kind)),
+    ];
+    Vtk {
+        version: Version::new_xml(1, 0),
+        title: String::new(),
+        byte_order: ByteOrder::LittleEndian,
+        file_path: None,
+        data: DataSet::inline(UnstructuredGridPiece {
+            points: points.into(),
+            cells: Cells {
+                cell_verts: VertexNumbers::XML {
+                    connectivity,
+                    offsets,
+                },
+                types,
+            },
+            data: Attributes { point, cell },
+        }),
+    }
+}
+
+/// A ParaView time series being written: `DIR/STEM_000000.vtu`, … and `DIR/STEM.pvd`.
+#[derive(Debug)]
+pub struct Series {
+    dir: PathBuf,
+    stem: String,
+    radii: Vec<f64>,
+    /// (time [s], file name) of each piece written.
+    entries: Vec<(f64, String)>,
+}
+
+impl Series {
+    /// A series in `dir` (created if missing) of files named `stem`, segments of `radii` [m].
+    pub fn create(dir: &Path, stem: &str, radii: Vec<f64>) -> Result<Self, ViewError> {
+        std::fs::create_dir_all(dir).map_err(ViewError::io(dir))?;
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            stem: stem.to_string(),
+            radii,
+            entries: Vec::new(),
+        })
+    }
+
+    /// The `.pvd` file's path.
+    pub fn collection(&self) -> PathBuf {
+        self.dir.join(format!("{}.pvd", self.stem))
+    }
+
+    /// Number of pieces written.
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Whether no piece was written.
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
+    /// Writes the shape at `time` [s] as the next piece. A time not after the last one (a
+    /// host's rollback or reset) first drops the pieces at or after it from the collection.
+    pub fn write(&mut self, time: f64, shape: &Shape) -> Result<(), ViewError> {
+        while self.entries.last().is_some_and(|(t, _)| *t >= time) {
+            self.entries.pop();
+        }
+        let name = format!("{}_{:06}.vtu", self.stem, self.entries.len());
+        let path = self.dir.join(&name);
+        piece(shape, &self.radii)
+            .export(&path)
+            .map_err(|e| ViewError::Vtk {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
+        self.entries.push((time, name));
+        Ok(())
+    }
+
+    /// Writes (or rewrites) the `.pvd` collection of the pieces written so far.
+    pub fn finish(&self) -> Result<PathBuf, ViewError> {
+        let path = self.collection();
+        let xml = collection_xml(&self.entries).map_err(ViewError::io(&path))?;
+        std::fs::write(&path, xml).map_err(ViewError::io(&path))?;
+        Ok(path)
+    }
+}
+
+/// The `.pvd` text of `entries` (time, file name).
+fn collection_xml(entries: &[(f64, String)]) -> std::io::Result<Vec<u8>> {
+    let mut w = quick_xml::Writer::new_with_indent(Vec::new(), b' ', 2);
+    w.write_event(Event::Decl(BytesDecl::new("1.0", None, None)))?;
+    w.write_event(Event::Start(BytesStart::new("VTKFile").with_attributes([
+        ("type", "Collection"),
+        ("version", "0.1"),
+        ("byte_order", "LittleEndian"),
+    ])))?;
+    w.write_event(Event::Start(BytesStart::new("Collection")))?;
+    for (t, file) in entries {
+        let t = format!("{t:.17e}");
+        w.write_event(Event::Empty(BytesStart::new("DataSet").with_attributes([
+            ("timestep", t.as_str()),
+            ("group", ""),
+            ("part", "0"),
+            ("file", file.as_str()),
+        ])))?;
+    }
+    w.write_event(Event::End(BytesEnd::new("Collection")))?;
+    w.write_event(Event::End(BytesEnd::new("VTKFile")))?;
+    let mut out = w.into_inner();
+    out.push(b'\n');
+    Ok(out)
+}
+
+/// The (time [s], piece path) entries of a `.pvd` collection, in file order.
+pub fn read_collection(pvd: &Path) -> Result<Vec<(f64, PathBuf)>, ViewError> {
+    let text = std::fs::read_to_string(pvd).map_err(ViewError::io(pvd))?;
+    let bad = |message: String| ViewError::Format {
+        path: pvd.to_path_buf(),
+        message,
+    };
+    let dir = pvd.parent().unwrap_or(Path::new("."));
+    let mut reader = quick_xml::Reader::from_str(&text);
+    let mut out = Vec::new();
+    loop {
+        match reader.read_event() {
+            Ok(Event::Empty(e) | Event::Start(e)) if e.name().as_ref() == "DataSet" => {
+                let (mut t, mut file) = (None, None);
+                for a in e.attributes() {
+                    let a = a.map_err(|e| bad(e.to_string()))?;
+                    let v = a
+                        .normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                        .map_err(|e| bad(e.to_string()))?
+                        .to_string();
+                    match a.key.as_ref() {
+                        "timestep" => t = v.parse::<f64>().ok(),
+                        "file" => file = Some(v),
+                        _ => {}
+                    }
+                }
+                match (t, file) {
+                    (Some(t), Some(f)) => out.push((t, dir.join(f))),
+                    _ => return Err(bad("a DataSet without timestep or file".into())),
+                }
+            }
+            Ok(Event::Eof) => break,
+            Err(e) => return Err(bad(e.to_string())),
+            _ => {}
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,94 @@
+//! The ParaView series and the page written from a real run read back: the pieces hold the
+//! shape bit for bit, the collection lists them with their times, a rollback rewrites the tail,
+//! and the page embeds the data and the viewer without ending its script elements early.
+
+use hybeam::scene::Scene;
+use hybeam::simulator::AnySimulator;
+use hybeam_view::{read, segment_radii, Recorder, Series};
+use std::path::PathBuf;
+
+fn scene(name: &str) -> Scene {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{name}.toml"));
+    Scene::from_toml(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hybeam-view-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn pieces_read_back_bit_for_bit() {
+    for name in ["case1", "case1_3d", "strip_3d"] {
+        let sc = scene(name);
+        let radii = segment_radii(&sc);
+        let mut sim = AnySimulator::new(sc).unwrap();
+        let dir = tmp(name);
+        let mut series = Series::create(&dir, "beam", radii.clone()).unwrap();
+        let mut shapes = Vec::new();
+        for k in 0..4 {
+            let t = k as f64 * 5e-3;
+            if k > 0 {
+                sim.advance(t).unwrap();
+            }
+            let shape = sim.shape(4);
+            series.write(t, &shape).unwrap();
+            shapes.push((t, shape));
+        }
+        // a rollback to 10 ms: the pieces from there on are replaced
+        let redo = shapes[2].1.clone();
+        series.write(0.01, &redo).unwrap();
+        assert_eq!(series.len(), 3, "{name}");
+        let pvd = series.finish().unwrap();
+        let pieces = read::read_series(&pvd).unwrap();
+        assert_eq!(pieces.len(), 3, "{name}");
+        for (p, (t, shape)) in pieces.iter().zip(&shapes) {
+            assert_eq!(p.time, *t, "{name}");
+            assert_eq!(&p.shape, shape, "{name} at {t}");
+            for (q, r) in p.shape.points.iter().zip(&p.radius) {
+                assert_eq!(*r, radii[q.segment], "{name}");
+            }
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+#[test]
+fn page_embeds_data_and_viewer() {
+    let sc = scene("case1");
+    let radii = segment_radii(&sc);
+    let mut sim = AnySimulator::new(sc.clone()).unwrap();
+    let mut rec = Recorder::new(
+        "case1 </script> & <b>",
+        &sc.gravity,
+        radii,
+        vec!["tip.position.y".into()],
+    );
+    for k in 0..5 {
+        let t = k as f64 * 1e-2;
+        if k > 0 {
+            sim.advance(t).unwrap();
+        }
+        rec.push(t, &sim.shape(4), &[sim.outputs().tip_position()[1]]);
+    }
+    // a reset to 0: the recording starts over
+    rec.push(0.0, &sim.shape(4), &[0.0]);
+    assert_eq!(rec.len(), 1);
+    let page = rec.page();
+    // exactly the template's script elements: the data and the viewer
+    assert_eq!(page.matches("</script>").count(), 2);
+    assert!(page.contains("case1 &lt;/script&gt; &amp; &lt;b&gt;"));
+    let data_start = page
+        .find("id=\"hybeam-data\" type=\"application/json\">")
+        .unwrap();
+    let json_start = page[data_start..].find('>').unwrap() + data_start + 1;
+    let json_end = page[json_start..].find("</script>").unwrap() + json_start;
+    let json: serde_json::Value =
+        serde_json::from_str(&page[json_start..json_end].replace("<\\/", "</")).unwrap();
+    // the modal segment: 4 + 1 samples; the ANCF segment: 8 elements × 4 + 1
+    assert_eq!(json["points"], (4 + 1) + (8 * 4 + 1));
+    assert_eq!(json["tip"]["names"][0], "tip.position.y");
+    assert_eq!(json["up"], serde_json::json!([0.0, 1.0, 0.0]));
+    assert!(page.len() > 500_000, "the viewer is bundled into the page");
+}
