@@ -29,7 +29,7 @@ fi
 # parameter studies on Dask), editable, with their dependencies (dask, pandas, pyarrow, scipy, tomli-w), and
 # ruff, which lints and formats them
 RUFF_VERSION=0.14.14
-if ! .venv/bin/python -c "import hybeam.cosim, hybeam.sweep, dask.distributed, pyarrow, scipy, tomli_w" 2>/dev/null || ! .venv/bin/ruff --version 2>/dev/null | grep -q "$RUFF_VERSION"; then
+if ! .venv/bin/python -c "import hybeam.cosim, hybeam.sweep, dask.distributed, pyarrow, scipy, tomli_w, pyvista" 2>/dev/null || ! .venv/bin/ruff --version 2>/dev/null | grep -q "$RUFF_VERSION"; then
     echo "setup: installing the Python tools (python/, editable) and ruff==$RUFF_VERSION into .venv"
     .venv/bin/python -m pip install --quiet -e python "ruff==$RUFF_VERSION"
 fi
@@ -41,6 +41,23 @@ if ! .venv/bin/python -c "import libcosimpy" 2>/dev/null; then
     echo "setup: installing libcosimpy==$LIBCOSIMPY_VERSION into .venv"
     .venv/bin/python -m pip install --quiet "libcosimpy==$LIBCOSIMPY_VERSION" ||
         echo "setup: libcosimpy==$LIBCOSIMPY_VERSION has no wheel for this Python; the libcosim run of examples/vehicle is skipped"
+fi
+
+# The views' browser test (scripts/test-view.sh): Debian's Chromium, Node.js and the viewer's
+# npm packages (three.js, esbuild, playwright-core; versions locked in viewer/package-lock.json)
+APT_VIEW=()
+command -v chromium >/dev/null || APT_VIEW+=(chromium)
+command -v npm >/dev/null || APT_VIEW+=(nodejs npm)
+if [ ${#APT_VIEW[@]} -gt 0 ]; then
+    echo "setup: installing ${APT_VIEW[*]} (the animation page's browser test)"
+    SUDO=""
+    if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${APT_VIEW[@]}"
+fi
+if ! cmp -s viewer/package-lock.json viewer/node_modules/.hybeam-lock 2>/dev/null; then
+    echo "setup: npm ci in viewer/ (three.js, esbuild, playwright-core)"
+    (cd viewer && npm ci --no-audit --no-fund --loglevel=error && cp package-lock.json node_modules/.hybeam-lock)
 fi
 
 cargo build --workspace

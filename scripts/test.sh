@@ -55,6 +55,9 @@ echo "== Python tools: lint, format, the co-simulation master's tests"
 .venv/bin/ruff format --check .
 .venv/bin/python -m pytest -q python/tests
 
+echo "== views: the viewer bundle, the animation pages in headless Chromium"
+bash scripts/test-view.sh
+
 echo "== vehicle example: car + mounted boom co-simulation (hybeam-cosim, libcosim)"
 bash examples/vehicle/run.sh --test
 
