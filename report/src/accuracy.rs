@@ -498,6 +498,113 @@ fn describe(r: Option<&Row>) -> String {
 }
 
 /// Runs the accuracy report and writes `docs/accuracy.md`.
+/// What the work-precision figures show of a run.
+struct Run {
+    family: String,
+    wall: f64,
+    err: f64,
+    own: f64,
+}
+
+/// The two work-precision figures of a scene (`accuracy_<key>.svg`: error against the physical
+/// reference; `accuracy_<key>_own.svg`: against the converged model of each run's own
+/// formulation): a marker for every run, a line through each family's Pareto front and, on the
+/// first, the Pareto front over all runs circled.
+fn plots(spec: &Spec, runs: &[Run]) -> Result<(), String> {
+    let mut families: Vec<&str> = Vec::new();
+    for r in runs {
+        if !families.contains(&r.family.as_str()) {
+            families.push(&r.family);
+        }
+    }
+    let pts: Vec<(f64, f64)> = runs.iter().map(|r| (r.wall, r.err)).collect();
+    let front = plot::pareto(&pts);
+    for (suffix, own) in [("", false), ("_own", true)] {
+        let series: Vec<Series> = families
+            .iter()
+            .map(|&f| {
+                let p = runs
+                    .iter()
+                    .filter(|r| r.family == f)
+                    .map(|r| (r.wall, if own { r.own } else { r.err }))
+                    .collect();
+                Series::cloud(f, p)
+            })
+            .collect();
+        let extras = Extras {
+            pareto: if own {
+                Vec::new()
+            } else {
+                front.iter().map(|&i| pts[i]).collect()
+            },
+            hlines: vec![(GOAL, "1e-5 m".into())],
+            vlines: if spec.key == "case1" {
+                vec![(0.03, "0.03 s".into())]
+            } else {
+                Vec::new()
+            },
+        };
+        let title = if own {
+            format!(
+                "{}: error vs converged model of the same formulation",
+                spec.title
+            )
+        } else {
+            format!("{}: max tip error vs wall time (2 s simulated)", spec.title)
+        };
+        plot::plot(
+            &format!("accuracy_{}{suffix}.svg", spec.key),
+            &Axes {
+                title: &title,
+                x: "wall time [s]",
+                y: "max tip position error [m]",
+                log_x: true,
+                log_y: true,
+            },
+            &series,
+            &extras,
+        )?;
+    }
+    Ok(())
+}
+
+/// Redraws the work-precision figures from the CSV files of the last `accuracy` run
+/// (`docs/report/accuracy_<key>.csv`), without running anything.
+pub fn replot() -> Result<(), String> {
+    for spec in SPECS {
+        let path = common::out_dir().join(format!("accuracy_{}.csv", spec.key));
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let mut lines = text.lines();
+        let head: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+        let col = |name: &str| {
+            head.iter()
+                .position(|h| *h == name)
+                .ok_or_else(|| format!("{}: no column {name}", path.display()))
+        };
+        let (family, wall, err, own) = (
+            col("family")?,
+            col("wall_s")?,
+            col("max_tip_err_m")?,
+            col("max_tip_err_own_ref_m")?,
+        );
+        let num = |v: &str| v.parse::<f64>().unwrap_or(f64::NAN);
+        let runs: Vec<Run> = lines
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .filter(|c| c.len() == head.len())
+            .map(|c| Run {
+                family: c[family].to_string(),
+                wall: num(c[wall]),
+                err: num(c[err]),
+                own: num(c[own]),
+            })
+            .collect();
+        plots(spec, &runs)?;
+        eprintln!("  {}: {} runs redrawn", path.display(), runs.len());
+    }
+    Ok(())
+}
+
 pub fn run(opts: &Opts) -> Result<(), String> {
     let mode = if opts.quick { "--quick" } else { "--full" };
     let mut md = String::new();
@@ -568,64 +675,18 @@ pub fn run(opts: &Opts) -> Result<(), String> {
             ],
             &csv,
         )?;
-        // plots: one curve per family, Pareto front over all runs
-        let mut families: Vec<String> = Vec::new();
-        for r in rows {
-            if !families.contains(&r.p.family) {
-                families.push(r.p.family.clone());
-            }
-        }
+        let cloud: Vec<Run> = rows
+            .iter()
+            .map(|r| Run {
+                family: r.p.family.clone(),
+                wall: r.wall,
+                err: r.err_max,
+                own: r.own_max,
+            })
+            .collect();
+        plots(spec, &cloud)?;
         let pts: Vec<(f64, f64)> = rows.iter().map(|r| (r.wall, r.err_max)).collect();
         let front = plot::pareto(&pts);
-        for (suffix, own) in [("", false), ("_own", true)] {
-            let series: Vec<Series> = families
-                .iter()
-                .map(|f| {
-                    let mut p: Vec<(f64, f64)> = rows
-                        .iter()
-                        .filter(|r| &r.p.family == f)
-                        .map(|r| (r.wall, if own { r.own_max } else { r.err_max }))
-                        .collect();
-                    if f == "combined" {
-                        p.sort_by(|a, b| a.0.total_cmp(&b.0));
-                    }
-                    Series::marked(f, p)
-                })
-                .collect();
-            let extras = Extras {
-                pareto: if own {
-                    Vec::new()
-                } else {
-                    front.iter().map(|&i| pts[i]).collect()
-                },
-                hlines: vec![(GOAL, "1e-5 m".into())],
-                vlines: if spec.key == "case1" {
-                    vec![(0.03, "0.03 s".into())]
-                } else {
-                    Vec::new()
-                },
-            };
-            let title = if own {
-                format!(
-                    "{}: error vs converged model of the same formulation",
-                    spec.title
-                )
-            } else {
-                format!("{}: max tip error vs wall time (2 s simulated)", spec.title)
-            };
-            plot::plot(
-                &format!("accuracy_{}{suffix}.svg", spec.key),
-                &Axes {
-                    title: &title,
-                    x: "wall time [s]",
-                    y: "max tip position error [m]",
-                    log_x: true,
-                    log_y: true,
-                },
-                &series,
-                &extras,
-            )?;
-        }
         // page section
         let _ = writeln!(md, "## {}\n", spec.title);
         let _ = writeln!(
@@ -835,7 +896,10 @@ segment is a linear floating frame: its tip carries the second-order foreshorten
 mass has no foreshortening and no distributed geometric stiffening).\n\
 - Families: `step` (solver.max_step), `elements` (ANCF elements of the swept scene, spread over \
 its ANCF segments by length), `modes+interface` and `modes (no interface)` (every modal segment), \
-`rho_inf`, one step sweep per twin formulation, and a small `combined` grid.\n\n";
+`rho_inf`, one step sweep per twin formulation, and a small `combined` grid.\n\
+- Figures: a marker for every run, a line through each family's own Pareto front (the runs no \
+cheaper run of the family beats in error), the Pareto front over all runs circled in black. \
+`cargo run --release -p hybeam-report -- accuracy-plots` redraws them from the CSV files.\n\n";
 
 fn cost_per_step(opts: &Opts) -> Result<String, String> {
     let ns: &[usize] = &[8, 16, 32, 64, 128, 256, 512];

@@ -3,6 +3,7 @@
 //!
 //! ```text
 //! cargo run --release -p hybeam-report -- accuracy [--quick|--full] [--fresh]
+//! cargo run --release -p hybeam-report -- accuracy-plots
 //! cargo run --release -p hybeam-report -- paper
 //! cargo run --release -p hybeam-report -- stability [--quick|--full]
 //! ```
@@ -39,6 +40,9 @@ enum Command {
         #[arg(long)]
         fresh: bool,
     },
+    /// Redraw the work-precision figures (docs/report/accuracy_*.svg) from the CSV files of the
+    /// last `accuracy` run, running nothing.
+    AccuracyPlots,
     /// The paper's figures (Cases 1-3, planar and spatial, and the spatial strip) ->
     /// docs/paper-figures.md.
     Paper,
@@ -67,6 +71,7 @@ fn main() -> ExitCode {
             quick: !depth.full,
             fresh,
         }),
+        Command::AccuracyPlots => accuracy::replot(),
         Command::Paper => paper::run(),
         Command::Stability { depth } => stability::run(!depth.full),
     };
@@ -91,7 +96,7 @@ mod tests {
     fn parses_the_documented_invocations() {
         let full = |args: &[&str]| match parse(args).unwrap().command {
             Command::Accuracy { depth, .. } | Command::Stability { depth } => depth.full,
-            Command::Paper => panic!("{args:?}: not a depth command"),
+            Command::Paper | Command::AccuracyPlots => panic!("{args:?}: not a depth command"),
         };
         assert!(!full(&["accuracy"]));
         assert!(!full(&["accuracy", "--quick"]));
@@ -103,6 +108,10 @@ mod tests {
             Command::Accuracy { fresh: true, .. }
         ));
         assert!(matches!(parse(&["paper"]).unwrap().command, Command::Paper));
+        assert!(matches!(
+            parse(&["accuracy-plots"]).unwrap().command,
+            Command::AccuracyPlots
+        ));
     }
 
     #[test]
@@ -112,6 +121,7 @@ mod tests {
             &["accuracy", "--quick", "--full"],
             &["stability", "--fresh"],
             &["paper", "--full"],
+            &["accuracy-plots", "--quick"],
             &["accuracy", "--bogus"],
             &["figures"],
         ] {

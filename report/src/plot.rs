@@ -11,6 +11,9 @@ pub struct Series {
     pub pts: Vec<(f64, f64)>,
     /// Draw markers at the points.
     pub markers: bool,
+    /// Join only the points on this series' own Pareto front (lower x and lower y both
+    /// better), not every point in order; with `markers`, every point keeps its marker.
+    pub front_only: bool,
 }
 
 impl Series {
@@ -20,15 +23,24 @@ impl Series {
             name: name.into(),
             pts,
             markers: true,
+            front_only: false,
         }
     }
 
     /// A plain line.
     pub fn line(name: &str, pts: Vec<(f64, f64)>) -> Self {
         Self {
-            name: name.into(),
-            pts,
             markers: false,
+            ..Self::marked(name, pts)
+        }
+    }
+
+    /// A cloud of runs (x cost, y error): a marker at every point, a line through the cloud's
+    /// Pareto front only (a grid of runs joined in order zig-zags).
+    pub fn cloud(name: &str, pts: Vec<(f64, f64)>) -> Self {
+        Self {
+            front_only: true,
+            ..Self::marked(name, pts)
         }
     }
 }
@@ -151,8 +163,13 @@ pub fn plot(file: &str, ax: &Axes, series: &[Series], extras: &Extras) -> Result
                             && (!ax.log_y || p.1 > 0.0)
                     })
                     .collect();
+                let line: Vec<(f64, f64)> = if s.front_only {
+                    pareto(&pts).into_iter().map(|i| pts[i]).collect()
+                } else {
+                    pts.clone()
+                };
                 chart
-                    .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
+                    .draw_series(LineSeries::new(line, c.stroke_width(2)))
                     .map_err(|e| e.to_string())?
                     .label(s.name.clone())
                     .legend(move |(x, y)| {

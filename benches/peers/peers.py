@@ -1,0 +1,626 @@
+"""Peer comparison of hybeam with Exudyn 1.13.6 (issue 23, "Ten times Exudyn").
+
+Runs the planar Sohn & Yoo Case 1 rod and its spatial twin (with a sideways tip force) in both
+codes over a grid of elements x time steps, measures each run's tip error against one shared
+converged reference and its run time, and writes the CSV of all runs, the ratio tables, one
+work-precision SVG per problem and docs/performance.md.
+
+Start it through benches/peers/run.sh (builds hybeam, creates the Exudyn venv); see README.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import os
+import platform
+import re
+import shlex
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+EXUDYN_VERSION = "1.13.6"
+
+# The rod of Sohn & Yoo, Case 1 (the values of scenes/case1*.toml).
+YOUNG = 2.1e11  # Pa
+DENSITY = 7850.0  # kg/m^3
+DIAMETER = 2e-3  # m
+LENGTH = 0.4  # m
+GRAVITY = 9.81  # m/s^2
+AREA = math.pi * DIAMETER**2 / 4.0
+INERTIA = math.pi * DIAMETER**4 / 64.0
+WEIGHT = DENSITY * AREA * LENGTH * GRAVITY
+TIP_FORCE = 3.0 / 8.0 * WEIGHT  # spatial problem: along +y at the free end
+RHO_INF = 0.9  # generalized-alpha spectral radius, as the hybeam scenes
+OUTPUT_STEP = 1e-3  # s, the grid on which the tip is compared
+TOLERANCES = (1e-4, 3e-5, 1e-5)  # m
+# Exudyn's Newton: error measured on the increments (residualMode 1, like hybeam's tolerance on
+# increments), this tolerance for both relativeTolerance and absoluteTolerance. Its default
+# (residual-based, relative 1e-8) stalls near 1e-7 at 32 elements and h = 5e-5 s (round-off of
+# the axial stiffness) and the step adaptivity then stops at the minimum step; see README.md.
+EXUDYN_NEWTON_TOL = 1e-10
+
+
+@dataclass(frozen=True)
+class Family:
+    """One model of a problem in one code."""
+
+    code: str  # "hybeam" or "exudyn"
+    name: str  # label in the tables and figures
+    scene: str = ""  # hybeam scene file
+    elements_key: str = ""  # hybeam --set key of the ANCF element count
+    sets: tuple[str, ...] = ()  # further hybeam --set overrides
+    element_fraction: float = 1.0  # share of the rod meshed with ANCF elements
+
+    def elements(self, n: int) -> int:
+        """ANCF elements of this family for a grid point of n elements over the whole rod."""
+        return max(1, round(n * self.element_fraction))
+
+
+@dataclass
+class Problem:
+    name: str
+    spatial: bool
+    families: list[Family]
+    reference: Family  # the family whose finest run is the shared reference
+    peer_check: Family  # the other code's run at the reference's mesh and step
+
+
+def _tip_force_set() -> str:
+    return f"tip.force=[0.0, {TIP_FORCE!r}, 0.0]"
+
+
+EXUDYN_PLANAR = Family("exudyn", "Exudyn ObjectANCFCable2D")
+EXUDYN_SPATIAL = Family("exudyn", "Exudyn ObjectANCFCable")
+HYBEAM_PLANAR = Family("hybeam", "hybeam all-ANCF", "scenes/case1_ancf.toml", "segments.0.elements")
+HYBEAM_CABLE3D = Family(
+    "hybeam",
+    "hybeam 3D cable (torsion = false)",
+    "scenes/case1_3d_ancf.toml",
+    "segments.0.elements",
+    ("torsion=false", _tip_force_set()),
+)
+
+PROBLEMS = {
+    "planar": Problem(
+        "planar",
+        False,
+        [
+            HYBEAM_PLANAR,
+            EXUDYN_PLANAR,
+            Family(
+                "hybeam",
+                "hybeam hybrid modal+ANCF",
+                "scenes/case1.toml",
+                "segments.1.elements",
+                element_fraction=0.5,
+            ),
+        ],
+        HYBEAM_PLANAR,
+        EXUDYN_PLANAR,
+    ),
+    "spatial": Problem(
+        "spatial",
+        True,
+        [
+            HYBEAM_CABLE3D,
+            EXUDYN_SPATIAL,
+            Family(
+                "hybeam",
+                "hybeam 3D torsion element",
+                "scenes/case1_3d_ancf.toml",
+                "segments.0.elements",
+                (_tip_force_set(),),
+            ),
+        ],
+        HYBEAM_CABLE3D,
+        EXUDYN_SPATIAL,
+    ),
+}
+
+
+@dataclass(frozen=True)
+class Grid:
+    elements: tuple[int, ...]
+    steps: tuple[float, ...]
+    t_end: float
+    ref_elements: int
+    ref_step: float
+    repeats: int
+
+
+FULL = Grid((4, 8, 16, 32), (1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2.5e-5), 2.0, 64, 1e-5, 3)
+QUICK = Grid((4, 8), (1e-3, 2e-4), 0.5, 32, 5e-5, 1)
+
+
+@dataclass
+class Run:
+    """One grid point of one family: its tip series (first repeat) and its times."""
+
+    problem: str
+    family: Family
+    elements: int
+    step: float
+    times_s: list[float] = field(default_factory=list)
+    status: str = "ok"
+    error_m: float = math.nan
+    t: np.ndarray | None = None
+    tip: np.ndarray | None = None
+
+    @property
+    def time_s(self) -> float:
+        return statistics.median(self.times_s) if self.times_s else math.nan
+
+
+# ----------------------------------------------------------------------------------- hybeam
+
+
+def run_hybeam(
+    binary: Path, fam: Family, n: int, h: float, t_end: float, spatial: bool
+) -> tuple[float, np.ndarray, np.ndarray]:
+    """Runs the hybeam CLI; returns (its reported wall time, sample times, tip positions)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "tip.csv"
+        sets = [
+            f"{fam.elements_key}={n}",
+            f"solver.max_step={h!r}",
+            f"simulation.t_end={t_end!r}",
+            f"simulation.output_step={OUTPUT_STEP!r}",
+            *fam.sets,
+        ]
+        cmd = [str(binary), "run", str(ROOT / fam.scene), "--out", str(out), "--quiet"]
+        for s in sets:
+            cmd += ["--set", s]
+        proc = subprocess.run(cmd, capture_output=True, text=True)
+        if proc.returncode != 0:
+            raise RuntimeError(f"{shlex.join(cmd)}: {proc.stderr.strip()}")
+        m = re.search(r"wall ([0-9.eE+-]+) s", proc.stdout)
+        if not m:
+            raise RuntimeError(f"no 'wall X s' in hybeam's output: {proc.stdout!r}")
+        with out.open() as f:
+            header = f.readline().strip().split(",")
+        axes = ("x", "y", "z") if spatial else ("x", "y")
+        cols = [header.index(f"tip.position.{a}") for a in axes]
+        data = np.loadtxt(out, delimiter=",", skiprows=1, usecols=[0, *cols], ndmin=2)
+    return float(m.group(1)), data[:, 0], data[:, 1:]
+
+
+# ----------------------------------------------------------------------------------- Exudyn
+
+
+def run_exudyn(
+    n: int, h: float, t_end: float, spatial: bool
+) -> tuple[float, np.ndarray, np.ndarray]:
+    """Builds the rod from ANCF cable elements in Exudyn and solves it with index-3
+    generalized-alpha at the fixed step h; returns (time of exu.SolveDynamic, sample times, tip
+    positions)."""
+    import exudyn as exu
+    from exudyn.beams import GenerateBeamElementsAlongLine
+    from exudyn.itemInterface import (
+        Force,
+        MarkerNodePosition,
+        ObjectANCFCable,
+        ObjectANCFCable2D,
+        SensorNode,
+    )
+
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    cable = ObjectANCFCable if spatial else ObjectANCFCable2D
+    template = cable(
+        massPerLength=DENSITY * AREA, bendingStiffness=YOUNG * INERTIA, axialStiffness=YOUNG * AREA
+    )
+    gravity = [0.0, 0.0, -GRAVITY] if spatial else [0.0, -GRAVITY, 0.0]
+    clamp = [True] * (6 if spatial else 4)  # position and slope of the root node
+    beam = GenerateBeamElementsAlongLine(
+        mbs, [0.0, 0.0, 0.0], [LENGTH, 0.0, 0.0], n, template, gravity, clamp
+    )
+    tip_node = beam["nodes"][-1]
+    if spatial:
+        marker = mbs.AddMarker(MarkerNodePosition(nodeNumber=tip_node))
+        mbs.AddLoad(Force(markerNumber=marker, loadVector=[0.0, TIP_FORCE, 0.0]))
+    sensor = mbs.AddSensor(
+        SensorNode(
+            nodeNumber=tip_node,
+            outputVariableType=exu.OutputVariableType.Position,
+            storeInternal=True,
+            writeToFile=False,
+        )
+    )
+    mbs.Assemble()
+
+    settings = exu.SimulationSettings()
+    ti = settings.timeIntegration
+    ti.endTime = t_end
+    ti.numberOfSteps = int(round(t_end / h))
+    ti.verboseMode = 0
+    ti.newton.residualMode = 1
+    ti.newton.relativeTolerance = EXUDYN_NEWTON_TOL
+    ti.newton.absoluteTolerance = EXUDYN_NEWTON_TOL
+    ga = ti.generalizedAlpha
+    ga.spectralRadius = RHO_INF
+    ga.useIndex2Constraints = False
+    ga.useNewmark = False
+    ga.computeInitialAccelerations = True
+    settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    settings.solution.file.write = False
+    settings.solution.sensors.writePeriod = OUTPUT_STEP
+    settings.show.computationTime = False
+    settings.show.statistics = False
+    settings.show.globalTimers = False
+
+    start = time.perf_counter()
+    ok = exu.SolveDynamic(mbs, settings)
+    elapsed = time.perf_counter() - start
+    if ok is False:
+        raise RuntimeError(f"Exudyn SolveDynamic failed (n={n}, h={h})")
+    data = np.asarray(mbs.GetSensorStoredData(sensor))
+    dims = 3 if spatial else 2
+    return elapsed, data[:, 0], data[:, 1 : 1 + dims]
+
+
+# ------------------------------------------------------------------------------- the runs
+
+
+def solve(binary: Path, fam: Family, n: int, h: float, t_end: float, spatial: bool):
+    if fam.code == "hybeam":
+        return run_hybeam(binary, fam, fam.elements(n), h, t_end, spatial)
+    return run_exudyn(n, h, t_end, spatial)
+
+
+def on_grid(t: np.ndarray, tip: np.ndarray, t_end: float) -> np.ndarray:
+    """The tip on the output grid 0, 1 ms, ..., t_end (exact where the samples lie on it)."""
+    grid = np.arange(round(t_end / OUTPUT_STEP) + 1) * OUTPUT_STEP
+    if len(t) == len(grid) and np.allclose(t, grid, rtol=0.0, atol=1e-9):
+        return tip
+    return np.column_stack([np.interp(grid, t, tip[:, k]) for k in range(tip.shape[1])])
+
+
+def max_distance(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.max(np.linalg.norm(a - b, axis=1)))
+
+
+def reference(binary: Path, prob: Problem, grid: Grid, cache: Path, log) -> dict:
+    """The shared reference (the finest run of prob.reference) and the peer code's run at the
+    same mesh and step; cached in `cache` (keyed by their settings)."""
+    key = (
+        f"{prob.name} n={grid.ref_elements} h={grid.ref_step!r} t_end={grid.t_end!r} "
+        f"exudyn_tol={EXUDYN_NEWTON_TOL!r} v2"
+    )
+    if cache.exists():
+        z = np.load(cache, allow_pickle=False)
+        if str(z["key"]) == key:
+            log(f"[{prob.name}] reference from cache {cache}")
+            return {k: z[k] for k in z.files}
+    out = {"key": np.array(key)}
+    fine = (grid.ref_elements, grid.ref_step)
+    half = (grid.ref_elements // 2, 2.0 * grid.ref_step)  # for the reference's own error
+    for label, fam, (n, h) in (
+        ("ref", prob.reference, fine),
+        ("peer", prob.peer_check, fine),
+        ("half", prob.reference, half),
+    ):
+        log(f"[{prob.name}] fine run {fam.name}: n={n}, h={h:g} ...")
+        wall, t, tip = solve(binary, fam, n, h, grid.t_end, prob.spatial)
+        out[label] = on_grid(t, tip, grid.t_end)
+        out[label + "_time"] = np.array(wall)
+        log(f"[{prob.name}]   done in {wall:.2f} s")
+    cache.parent.mkdir(parents=True, exist_ok=True)
+    np.savez(cache, **out)
+    return out
+
+
+def sweep(binary: Path, prob: Problem, grid: Grid, ref: np.ndarray, log) -> list[Run]:
+    """Every family at every grid point, the codes alternating; median of grid.repeats."""
+    runs = {
+        (fam, n, h): Run(prob.name, fam, fam.elements(n), h)
+        for n in grid.elements
+        for h in grid.steps
+        for fam in prob.families
+    }
+    for rep in range(grid.repeats):
+        order = prob.families if rep % 2 == 0 else prob.families[::-1]
+        for n in grid.elements:
+            for h in grid.steps:
+                for fam in order:
+                    run = runs[(fam, n, h)]
+                    if run.status != "ok":
+                        continue
+                    try:
+                        wall, t, tip = solve(binary, fam, n, h, grid.t_end, prob.spatial)
+                    except Exception as e:  # a failed run is recorded, not fatal
+                        run.status = f"failed: {e}".replace("\n", " ")[:300]
+                        log(f"[{prob.name}] {fam.name} n={run.elements} h={h:g}: {run.status}")
+                        continue
+                    run.times_s.append(wall)
+                    if rep == 0:
+                        run.error_m = max_distance(on_grid(t, tip, grid.t_end), ref)
+                log(
+                    f"[{prob.name}] repeat {rep + 1}/{grid.repeats} n={n} h={h:g}: "
+                    + ", ".join(
+                        f"{f.name} {runs[(f, n, h)].time_s:.3g} s "
+                        f"err {runs[(f, n, h)].error_m:.2e} m"
+                        for f in prob.families
+                    )
+                )
+    return list(runs.values())
+
+
+# ---------------------------------------------------------------------------------- output
+
+
+def write_csv(path: Path, runs: list[Run], repeats: int) -> None:
+    with path.open("w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(
+            ["problem", "code", "family", "elements", "step_s", "error_m", "time_s"]
+            + [f"time_{k + 1}_s" for k in range(repeats)]
+            + ["status"]
+        )
+        for r in runs:
+            times = [f"{x:.6g}" for x in r.times_s] + [""] * (repeats - len(r.times_s))
+            w.writerow(
+                [r.problem, r.family.code, r.family.name, r.elements, f"{r.step:g}"]
+                + [f"{r.error_m:.6e}", f"{r.time_s:.6g}"]
+                + times
+                + [r.status]
+            )
+
+
+def pareto(runs: list[Run]) -> list[Run]:
+    """Runs that no cheaper run beats in error (time ascending)."""
+    front, best = [], math.inf
+    for r in sorted(runs, key=lambda r: (r.time_s, r.error_m)):
+        if r.error_m < best:
+            front.append(r)
+            best = r.error_m
+    return front
+
+
+def ok_runs(runs: list[Run]) -> list[Run]:
+    return [r for r in runs if r.status == "ok" and math.isfinite(r.error_m)]
+
+
+def cheapest(runs: list[Run], tol: float) -> Run | None:
+    hits = [r for r in ok_runs(runs) if r.error_m <= tol]
+    return min(hits, key=lambda r: r.time_s) if hits else None
+
+
+def describe(r: Run | None) -> str:
+    if r is None:
+        return "none reaches it"
+    return (
+        f"{r.family.name}, n = {r.elements}, h = {r.step:g} s: {r.time_s:.3g} s, {r.error_m:.2e} m"
+    )
+
+
+def ratio_table(runs: list[Run]) -> str:
+    """Markdown: per tolerance the cheapest run of each code and Exudyn's time / hybeam's."""
+    lines = [
+        "| tolerance [m] | cheapest hybeam run | cheapest Exudyn run | Exudyn time / hybeam time |",
+        "|---|---|---|---|",
+    ]
+    for tol in TOLERANCES:
+        hy = cheapest([r for r in runs if r.family.code == "hybeam"], tol)
+        ex = cheapest([r for r in runs if r.family.code == "exudyn"], tol)
+        ratio = f"{ex.time_s / hy.time_s:.1f}" if hy and ex else "n/a"
+        lines.append(f"| {tol:g} | {describe(hy)} | {describe(ex)} | {ratio} |")
+    return "\n".join(lines)
+
+
+def family_table(runs: list[Run], families: list[Family]) -> str:
+    """Markdown: per tolerance the cheapest run of each family (seconds; - if none)."""
+    lines = [
+        "| tolerance [m] | " + " | ".join(f.name for f in families) + " |",
+        "|---|" + "---|" * len(families),
+    ]
+    for tol in TOLERANCES:
+        cells = []
+        for fam in families:
+            r = cheapest([x for x in runs if x.family == fam], tol)
+            cells.append(
+                "-" if r is None else f"{r.time_s:.3g} s (n = {r.elements}, h = {r.step:g})"
+            )
+        lines.append(f"| {tol:g} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def xy(runs: list[Run]) -> tuple[list[float], list[float]]:
+    return [r.time_s for r in runs], [r.error_m for r in runs]
+
+
+STYLE = {0: ("tab:blue", "o"), 1: ("tab:red", "s"), 2: ("tab:green", "^")}
+
+
+def figure(path: Path, prob: Problem, runs: list[Run], title: str) -> None:
+    import matplotlib
+
+    matplotlib.use("svg")
+    import matplotlib.pyplot as plt
+
+    plt.rcParams["svg.hashsalt"] = "hybeam-peers"
+    fig, ax = plt.subplots(figsize=(7.0, 5.0))
+    for k, fam in enumerate(prob.families):
+        color, marker = STYLE[k % len(STYLE)]
+        mine = ok_runs([r for r in runs if r.family == fam])
+        if not mine:
+            continue
+        style = {"color": color, "marker": marker}
+        ax.scatter(*xy(mine), alpha=0.45, s=28, label=f"{fam.name}: every grid point", **style)
+        ax.plot(*xy(pareto(mine)), lw=1.6, label=f"{fam.name}: Pareto front", **style)
+    for tol in TOLERANCES:
+        ax.axhline(tol, color="0.6", lw=0.8, ls=":")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("run time [s] (median of the repeats)")
+    ax.set_ylabel("max |tip - reference| over the 1 ms grid [m]")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    fig.savefig(path, metadata={"Date": None})
+    plt.close(fig)
+
+
+def machine() -> dict:
+    model = ""
+    try:
+        out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+        model = next(
+            (ln.split(":", 1)[1].strip() for ln in out.splitlines() if "Model name" in ln), ""
+        )
+    except OSError:
+        pass
+    return {"nproc": os.cpu_count(), "model": model or platform.processor() or "unknown"}
+
+
+# ------------------------------------------------------------------------------------ main
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="small grid, t_end 0.5 s, 1 repeat")
+    ap.add_argument("--hybeam", type=Path, default=ROOT / "target/release/hybeam")
+    ap.add_argument("--problems", default="planar,spatial", help="comma-separated subset")
+    ap.add_argument("--t-end", type=float, help="override the grid's end time [s]")
+    ap.add_argument("--repeats", type=int, help="override the number of timing repeats")
+    ap.add_argument("--out-dir", type=Path, help="default docs/report (quick: target/peers-quick)")
+    ap.add_argument("--doc", type=Path, help="default docs/performance.md (quick: in --out-dir)")
+    ap.add_argument("--shared", default="", help="note on the machine's other load, for the doc")
+    args = ap.parse_args(argv)
+
+    grid = QUICK if args.quick else FULL
+    if args.t_end or args.repeats:
+        grid = Grid(
+            grid.elements,
+            grid.steps,
+            args.t_end or grid.t_end,
+            grid.ref_elements,
+            grid.ref_step,
+            args.repeats or grid.repeats,
+        )
+    out_dir = args.out_dir or (ROOT / ("target/peers-quick" if args.quick else "docs/report"))
+    doc = args.doc or (out_dir / "performance.md" if args.quick else ROOT / "docs/performance.md")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    cache_dir = ROOT / "target/peers-cache"
+
+    import exudyn
+
+    if exudyn.__version__ != EXUDYN_VERSION:
+        print(f"warning: Exudyn {exudyn.__version__}, not {EXUDYN_VERSION}", file=sys.stderr)
+    if not args.hybeam.exists():
+        sys.exit(f"{args.hybeam} missing: cargo build --release --bin hybeam (run.sh does)")
+
+    def log(msg: str) -> None:
+        print(time.strftime("%H:%M:%S"), msg, flush=True)
+
+    started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    load_before = os.getloadavg()
+    clock = time.perf_counter()
+    sections, all_runs = [], []
+    for name in args.problems.split(","):
+        prob = PROBLEMS[name]
+        cache = cache_dir / f"ref_{name}{'_quick' if args.quick else ''}.npz"
+        refs = reference(args.hybeam, prob, grid, cache, log)
+        peer_gap = max_distance(refs["ref"], refs["peer"])
+        log(
+            f"[{name}] fine runs of the two codes differ by {peer_gap:.3e} m; the reference lies "
+            f"{max_distance(refs['ref'], refs['half']):.3e} m from its half-refined run"
+        )
+        runs = sweep(args.hybeam, prob, grid, refs["ref"], log)
+        all_runs += runs
+        svg = out_dir / f"peers_{name}.svg"
+        figure(
+            svg,
+            prob,
+            runs,
+            f"{name}: hybeam vs Exudyn {exudyn.__version__}, t_end = {grid.t_end:g} s, "
+            f"reference {prob.reference.name} n = {grid.ref_elements}, h = {grid.ref_step:g} s",
+        )
+        sections.append((prob, runs, refs, peer_gap, svg))
+    csv_path = out_dir / "peers_runs.csv"
+    write_csv(csv_path, all_runs, grid.repeats)
+    minutes = (time.perf_counter() - clock) / 60.0
+    load_after = os.getloadavg()
+
+    for prob, runs, _, _, _ in sections:
+        print(f"\n{prob.name}\n{ratio_table(runs)}")
+    command = os.environ.get("PEERS_COMMAND") or shlex.join(["python", *sys.argv])
+    write_doc(
+        doc, sections, grid, command, csv_path, started, minutes, load_before, load_after, args
+    )
+    print(f"\nwrote {csv_path}, {doc} and the SVGs in {out_dir} ({minutes:.1f} min)")
+    return 0
+
+
+def rel(p: Path, start: Path) -> str:
+    return os.path.relpath(p.resolve(), start.resolve())
+
+
+def write_doc(doc, sections, grid, command, csv_path, started, minutes, before, after, args):
+    import exudyn
+
+    m = machine()
+    shared = args.shared or (
+        "The machine was shared with other work during the run: treat the times as indicative."
+    )
+    here = doc.parent
+    parts = [
+        "# Performance: hybeam against Exudyn",
+        "",
+        "Generated by `benches/peers/peers.py` (issue 23); the numbers below are those of the "
+        "run that wrote this page. Method, settings and caveats: `benches/peers/README.md`.",
+        "",
+        f"- Command: `{command}`",
+        f"- Started {started}, took {minutes:.1f} min.",
+        f"- Machine: {m['nproc']} cores (`nproc`), `{m['model']}` (`lscpu | grep 'Model name'`); "
+        f"load average {before[0]:.2f} at the start, {after[0]:.2f} at the end. {shared}",
+        f"- Codes: hybeam (`{rel(args.hybeam, ROOT)}`, release build), Exudyn "
+        f"{exudyn.__version__} (PyPI wheel, in its own venv).",
+        f"- Grid: elements {list(grid.elements)} (the hybrid's ANCF half gets half of them), "
+        f"steps {', '.join(f'{h:g}' for h in grid.steps)} s, t_end = {grid.t_end:g} s, "
+        f"median of {grid.repeats} repeat(s), the codes alternating.",
+        "- Error: max over the 1 ms output grid of |tip - reference| (Euclidean).",
+        "- Time: hybeam: the `wall X s` its CLI prints (model build, initial accelerations, "
+        "stepping and formatting the CSV rows in memory; no process start, no file write); "
+        "Exudyn: around `exu.SolveDynamic` (model building and `mbs.Assemble` excluded).",
+        f"- All runs: `{rel(csv_path, here)}`.",
+        "",
+    ]
+    for prob, runs, refs, gap, svg in sections:
+        ref_t, peer_t = float(refs["ref_time"]), float(refs["peer_time"])
+        parts += [
+            f"## {prob.name}",
+            "",
+            f"Reference: {prob.reference.name}, n = {grid.ref_elements}, h = {grid.ref_step:g} s "
+            f"({ref_t:.2f} s). The same mesh and step in {prob.peer_check.name} ({peer_t:.2f} s) "
+            f"lies **{gap:.2e} m** from it (max over the 1 ms grid). The reference's own error, "
+            f"estimated as its distance to the same code at half the elements and twice the step "
+            f"(n = {grid.ref_elements // 2}, h = {2 * grid.ref_step:g} s): "
+            f"{max_distance(refs['ref'], refs['half']):.2e} m.",
+            "",
+            "Cheapest run of each code reaching each tolerance:",
+            "",
+            ratio_table(runs),
+            "",
+            "Cheapest run of each family:",
+            "",
+            family_table(runs, prob.families),
+            "",
+            f"![{prob.name}]({rel(svg, here)})",
+            "",
+        ]
+    doc.write_text("\n".join(parts))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
