@@ -62,7 +62,9 @@ def test_series_opens_with_its_times_points_and_arrays(strip):
     out, rows = strip
     reader = pv.get_reader(str(out / "vtk" / "beam.pvd"))
     assert reader.number_time_points == len(rows) == 11
-    np.testing.assert_allclose(reader.time_values, [float(r["time"]) for r in rows], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(
+        reader.time_values, [float(r["time"]) for r in rows], rtol=0, atol=1e-15
+    )
     # modal segment: 1 body x 4 + 1 samples; ANCF: 8 elements x 4 + 1; + the root vertex
     n_points = (4 + 1) + (8 * 4 + 1) + 1
     for k, row in enumerate(rows):
