@@ -243,9 +243,9 @@ impl Views {
     }
 
     /// Writes the collection and the page; what was written, for the summary line.
-    fn finish(&self) -> Result<String, String> {
+    fn finish(&mut self) -> Result<String, String> {
         let mut out = String::new();
-        if let Some(series) = &self.series {
+        if let Some(series) = &mut self.series {
             let pvd = series.finish().map_err(|e| e.to_string())?;
             out.push_str(&format!(", {} pieces -> {}", series.len(), pvd.display()));
         }
@@ -288,10 +288,11 @@ fn run(args: &RunArgs) -> Result<(), String> {
             last_report = Instant::now();
         }
     }
+    // the views' last pieces and page are part of the run's time
+    let written = views.finish()?;
     let elapsed = wall.elapsed().as_secs_f64();
     let out_path = args.out.display();
     std::fs::write(&args.out, out).map_err(|e| format!("cannot write {out_path}: {e}"))?;
-    let written = views.finish()?;
     let c = sim.counters();
     let o = sim.outputs();
     if !args.quiet {

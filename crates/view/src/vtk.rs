@@ -187,6 +187,10 @@ pub fn piece(shape: &Shape, radii: &[f64]) -> Vtk {
 }
 
 /// A ParaView time series being written: `DIR/STEM_000000.vtu`, … and `DIR/STEM.pvd`.
+///
+/// The pieces are encoded and written by a writer thread of the series (joined by
+/// [`Series::finish`] and on drop), so the simulation goes on while they are written; a write
+/// that failed is reported by the next call. The files are the same as written in line.
 #[derive(Debug)]
 pub struct Series {
     dir: PathBuf,
@@ -194,6 +198,15 @@ pub struct Series {
     radii: Vec<f64>,
     /// (time [s], file name) of each piece written.
     entries: Vec<(f64, String)>,
+    writer: Option<Writer>,
+}
+
+/// The writer thread: pieces in, the first failure out.
+#[derive(Debug)]
+struct Writer {
+    send: std::sync::mpsc::SyncSender<(PathBuf, Shape)>,
+    failed: std::sync::mpsc::Receiver<ViewError>,
+    thread: std::thread::JoinHandle<()>,
 }
 
 impl Series {
@@ -205,6 +218,7 @@ impl Series {
             stem: stem.to_string(),
             radii,
             entries: Vec::new(),
+            writer: None,
         })
     }
 
@@ -225,29 +239,93 @@ impl Series {
 
     /// Writes the shape at `time` [s] as the next piece. A time not after the last one (a
     /// host's rollback or reset) first drops the pieces at or after it from the collection.
+    /// An error is this piece's (the writer thread could not be started) or an earlier
+    /// piece's that failed to write.
     pub fn write(&mut self, time: f64, shape: &Shape) -> Result<(), ViewError> {
+        self.check()?;
         while self.entries.last().is_some_and(|(t, _)| *t >= time) {
             self.entries.pop();
         }
         let name = format!("{}_{:06}.vtu", self.stem, self.entries.len());
         let path = self.dir.join(&name);
-        piece(shape, &self.radii)
-            .export(&path)
-            .map_err(|e| ViewError::Vtk {
-                path: path.clone(),
-                message: e.to_string(),
-            })?;
+        if self.writer.is_none() {
+            self.writer = Some(self.spawn()?);
+        }
+        let w = self.writer.as_ref().expect("started above");
+        if w.send.send((path.clone(), shape.clone())).is_err() {
+            // the thread is gone: write in line
+            write_piece(&path, shape, &self.radii)?;
+        }
         self.entries.push((time, name));
         Ok(())
     }
 
-    /// Writes (or rewrites) the `.pvd` collection of the pieces written so far.
-    pub fn finish(&self) -> Result<PathBuf, ViewError> {
+    fn spawn(&self) -> Result<Writer, ViewError> {
+        let (send, recv) = std::sync::mpsc::sync_channel::<(PathBuf, Shape)>(64);
+        let (fail, failed) = std::sync::mpsc::channel();
+        let radii = self.radii.clone();
+        let thread = std::thread::Builder::new()
+            .name("hybeam-vtk".into())
+            .spawn(move || {
+                for (path, shape) in recv {
+                    if let Err(e) = write_piece(&path, &shape, &radii) {
+                        let _ = fail.send(e);
+                    }
+                }
+            })
+            .map_err(ViewError::io(&self.dir))?;
+        Ok(Writer {
+            send,
+            failed,
+            thread,
+        })
+    }
+
+    /// The first failure of the writer thread since the last call, if any.
+    fn check(&self) -> Result<(), ViewError> {
+        match self.writer.as_ref().map(|w| w.failed.try_recv()) {
+            Some(Ok(e)) => Err(e),
+            _ => Ok(()),
+        }
+    }
+
+    /// Waits until every piece is written.
+    fn flush(&mut self) -> Result<(), ViewError> {
+        if let Some(w) = self.writer.take() {
+            drop(w.send);
+            let _ = w.thread.join();
+            if let Ok(e) = w.failed.try_recv() {
+                return Err(e);
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes every pending piece and (or rewrites) the `.pvd` collection of the pieces written
+    /// so far; the series can go on after it.
+    pub fn finish(&mut self) -> Result<PathBuf, ViewError> {
+        self.flush()?;
         let path = self.collection();
         let xml = collection_xml(&self.entries).map_err(ViewError::io(&path))?;
         std::fs::write(&path, xml).map_err(ViewError::io(&path))?;
         Ok(path)
     }
+}
+
+impl Drop for Series {
+    fn drop(&mut self) {
+        let _ = self.flush();
+    }
+}
+
+/// Writes one piece to `path`.
+fn write_piece(path: &Path, shape: &Shape, radii: &[f64]) -> Result<(), ViewError> {
+    piece(shape, radii)
+        .export(path)
+        .map_err(|e| ViewError::Vtk {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
 }
 
 /// The `.pvd` text of `entries` (time, file name).

@@ -41,6 +41,7 @@ fn pieces_read_back_bit_for_bit() {
         series.write(0.01, &redo).unwrap();
         assert_eq!(series.len(), 3, "{name}");
         let pvd = series.finish().unwrap();
+        drop(series);
         let pieces = read::read_series(&pvd).unwrap();
         assert_eq!(pieces.len(), 3, "{name}");
         for (p, (t, shape)) in pieces.iter().zip(&shapes) {

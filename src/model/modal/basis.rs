@@ -11,6 +11,8 @@
 use crate::math;
 use crate::model::ancf::GAUSS5;
 use nalgebra::{DMatrix, DVector};
+use std::borrow::Cow;
+use std::sync::OnceLock;
 
 /// Roots of 1 + cos λ cosh λ = 0 are refined from these guesses by Newton's method.
 fn clamped_free_root(n: usize) -> f64 {
@@ -92,6 +94,48 @@ pub struct ModalBasis {
     pub tip_slope: Vec<f64>,
     /// ∫₀¹ φ_i′φ_j′ dξ (row-major n × n): the tip foreshortening is ½ aᵀ G a / L.
     pub slope_gram: Vec<f64>,
+    /// The shapes at the first set of sample points a viewer asked for, and at the Gauss
+    /// points between them ([`ModalBasis::fields`], [`ModalBasis::slope_integrals`]): the same
+    /// values, computed once.
+    samples: OnceLock<Samples>,
+}
+
+/// (φ, φ′, φ″) of every shape at sample points `xi` and, per interval up to each, the Gauss
+/// weights (× half the interval) and the shapes at the Gauss points.
+#[derive(Debug, Clone)]
+struct Samples {
+    xi: Vec<f64>,
+    at: Vec<Vec<[f64; 3]>>,
+    gauss: Vec<Vec<(f64, Vec<[f64; 3]>)>>,
+}
+
+impl Samples {
+    fn new(basis: &ModalBasis, xi: &[f64]) -> Self {
+        let mut from = 0.0;
+        let mut gauss = Vec::with_capacity(xi.len());
+        let mut at = Vec::with_capacity(xi.len());
+        for &to in xi {
+            let h = to - from;
+            let mut g = Vec::new();
+            if h != 0.0 {
+                for (x, w) in GAUSS5 {
+                    let mut phi = Vec::new();
+                    basis.eval_all(from + 0.5 * h * (x + 1.0), &mut phi);
+                    g.push((0.5 * h * w, phi));
+                }
+            }
+            gauss.push(g);
+            let mut phi = Vec::new();
+            basis.eval_all(to, &mut phi);
+            at.push(phi);
+            from = to;
+        }
+        Self {
+            xi: xi.to_vec(),
+            at,
+            gauss,
+        }
+    }
 }
 
 /// Composite 5-point Gauss–Legendre rule on [0, 1] with `panels` panels: (points, weights).
@@ -171,6 +215,7 @@ impl ModalBasis {
             tip: vec![0.0; n],
             tip_slope: vec![0.0; n],
             slope_gram: vec![0.0; n * n],
+            samples: OnceLock::new(),
         };
         // Deterministic sign: φ_j(1) > 0 (or φ_j′(1) > 0 if the tip value vanishes).
         for j in 0..n {
@@ -244,50 +289,53 @@ impl ModalBasis {
         }));
     }
 
+    /// The shapes at the sample points `xi` (cached for the first `xi` asked for).
+    fn samples(&self, xi: &[f64]) -> Cow<'_, Samples> {
+        match self.samples.get() {
+            Some(s) if s.xi == xi => Cow::Borrowed(s),
+            Some(_) => Cow::Owned(Samples::new(self, xi)),
+            None => Cow::Borrowed(self.samples.get_or_init(|| Samples::new(self, xi))),
+        }
+    }
+
     /// The fields of the amplitude vectors `a[m]` at each ξ of `xi`: (Σφ_j a_j, Σφ_j′ a_j,
     /// Σφ_j″ a_j) (ξ-derivatives), `[m][k]`.
     pub fn fields(&self, a: &[&[f64]], xi: &[f64]) -> Vec<Vec<[f64; 3]>> {
-        let mut phi = Vec::new();
-        let mut out = vec![Vec::with_capacity(xi.len()); a.len()];
-        for &x in xi {
-            self.eval_all(x, &mut phi);
-            for (am, o) in a.iter().zip(&mut out) {
-                let mut f = [0.0; 3];
-                for (p, aj) in phi.iter().zip(am.iter()) {
-                    for d in 0..3 {
-                        f[d] += p[d] * aj;
-                    }
-                }
-                o.push(f);
-            }
-        }
-        out
+        let s = self.samples(xi);
+        a.iter()
+            .map(|am| {
+                s.at.iter()
+                    .map(|phi| {
+                        let mut f = [0.0; 3];
+                        for (p, aj) in phi.iter().zip(am.iter()) {
+                            for d in 0..3 {
+                                f[d] += p[d] * aj;
+                            }
+                        }
+                        f
+                    })
+                    .collect()
+            })
+            .collect()
     }
 
     /// ∫₀^ξ (φ′ᵀa)(φ′ᵀb) dξ at each ξ of the ascending `xi` for each pair (a, b) of `pairs`
     /// (`[pair][k]`), by the 5-point Gauss rule on every interval between consecutive ξ: the
     /// foreshortening ½∫₀^ξ w′²dξ / L of the points inside a segment and its rate.
     pub fn slope_integrals(&self, pairs: &[(&[f64], &[f64])], xi: &[f64]) -> Vec<Vec<f64>> {
+        let s = self.samples(xi);
         let mut out = vec![Vec::with_capacity(xi.len()); pairs.len()];
         let mut acc = vec![0.0; pairs.len()];
-        let mut phi = Vec::new();
-        let mut from = 0.0;
-        for &to in xi {
-            let h = to - from;
-            if h != 0.0 {
-                for (g, w) in GAUSS5 {
-                    self.eval_all(from + 0.5 * h * (g + 1.0), &mut phi);
-                    let slope =
-                        |v: &[f64]| -> f64 { phi.iter().zip(v).map(|(p, x)| p[1] * x).sum() };
-                    for (s, (a, b)) in acc.iter_mut().zip(pairs) {
-                        *s += 0.5 * h * w * slope(a) * slope(b);
-                    }
+        for g in &s.gauss {
+            for (w, phi) in g {
+                let slope = |v: &[f64]| -> f64 { phi.iter().zip(v).map(|(p, x)| p[1] * x).sum() };
+                for (s, (a, b)) in acc.iter_mut().zip(pairs) {
+                    *s += w * slope(a) * slope(b);
                 }
             }
             for (o, s) in out.iter_mut().zip(&acc) {
                 o.push(*s);
             }
-            from = to;
         }
         out
     }
