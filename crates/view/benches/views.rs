@@ -3,6 +3,7 @@
 //! recorded for the animation page, per output.
 //!
 //! `cargo bench -p hybeam-view --bench views`
+#![allow(missing_docs)] // criterion's macros generate undocumented items
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::scene::Scene;
