@@ -7,6 +7,7 @@ iterations (per step), wall_s, steps, scheme, step, t_end (reached), message.
 
 --set FMU.KNOB=F scales the parameters a knob of the system file names by F (e.g.
 boom.mass_factor=100 multiplies the boom's densities); --set FMU.PARAMETER=V sets a
+String parameter to the text V (e.g. boom.visualization.directory=out/view) or a
 parameter's start value.
 """
 
@@ -33,11 +34,15 @@ def parameters(system: System, subs: dict[str, FmuSubsystem], sets: list[str]):
             raise SystemFileError(
                 f"--set {item!r}: write FMU.NAME=VALUE with FMU one of {sorted(subs)}"
             )
+        s = subs[fmu]
+        var = s.vars.get(name)
+        if var is not None and var.type == "String" and var.causality == "parameter":
+            params[fmu][name] = value  # a String parameter takes the text as it is
+            continue
         try:
             x = float(value)
         except ValueError:
             raise SystemFileError(f"--set {item!r}: {value!r} is not a number") from None
-        s = subs[fmu]
         if name in system.fmus[fmu].knobs:
             names = [v for p in system.fmus[fmu].knobs[name] for v in s.parameters(p)]
             if not names:

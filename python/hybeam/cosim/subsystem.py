@@ -159,11 +159,15 @@ class FmuSubsystem(Subsystem):
             self._vrs(names), [1] * len(names), [float(x) for x in rates]
         )
 
-    def enter_initialization(self, parameters: dict[str, float], start: float = 0.0):
+    def enter_initialization(self, parameters: dict[str, float | str], start: float = 0.0):
         self.slave.setupExperiment(startTime=start)
         self.slave.enterInitializationMode()
-        if parameters:
-            self.set(list(parameters), list(parameters.values()))
+        text = {n: v for n, v in parameters.items() if self.vars[n].type == "String"}
+        reals = {n: v for n, v in parameters.items() if n not in text}
+        if reals:
+            self.set(list(reals), list(reals.values()))
+        if text:
+            self.slave.setString(self._vrs(list(text)), [str(v) for v in text.values()])
 
     def exit_initialization(self):
         self.slave.exitInitializationMode()

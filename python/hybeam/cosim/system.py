@@ -77,7 +77,7 @@ class Connection:
 class FmuSpec:
     name: str
     path: pathlib.Path
-    parameters: dict[str, float] = field(default_factory=dict)
+    parameters: dict[str, float | str] = field(default_factory=dict)
     knobs: dict[str, list[str]] = field(default_factory=dict)
 
 
@@ -173,8 +173,10 @@ def load(path, fmu_paths: dict[str, str] | None = None) -> System:
         if unknown:
             _fail(f"[fmus.{name}]", sorted(unknown), "keys are path, parameters, knobs")
         p = (fmu_paths or {}).get(name) or base / spec["path"]
+        # numbers for Real parameters; a string for a String parameter (e.g. the beam's
+        # visualization.directory)
         params = {
-            k: _num(f"fmus.{name}.parameters.{k}", v, False)
+            k: v if isinstance(v, str) else _num(f"fmus.{name}.parameters.{k}", v, False)
             for k, v in spec.get("parameters", {}).items()
         }
         knobs = {}
