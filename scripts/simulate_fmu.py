@@ -2,7 +2,11 @@
 the tip deflection (PNG): vertical (y) for a planar scene, y and z for a spatial one (the FMU
 has tip.position.z).
 
-usage: simulate_fmu.py FMU [--stop T] [--step H] [--out PREFIX]
+usage: simulate_fmu.py FMU [--stop T] [--step H] [--out PREFIX] [--view DIR]
+
+--view DIR sets the FMU's String parameter visualization.directory: the FMU itself writes the
+ParaView series of the beam's shape and, at fmi2Terminate, its animation page there
+(docs/view.md).
 """
 
 import argparse
@@ -28,12 +32,18 @@ def main():
         help="communication step [s] (default: DefaultExperiment)",
     )
     ap.add_argument("--out", default="tip", help="output prefix: PREFIX.csv and PREFIX.png")
+    ap.add_argument(
+        "--view", default=None, help="the FMU writes its ParaView series and page into DIR"
+    )
     a = ap.parse_args()
     md = read_model_description(a.fmu)
     stop = a.stop or float(md.defaultExperiment.stopTime)
     step = a.step or float(md.defaultExperiment.stepSize)
     outputs = [v.name for v in md.modelVariables if v.causality == "output"]
-    res = simulate_fmu(a.fmu, stop_time=stop, output_interval=step, output=outputs)
+    start = {"visualization.directory": a.view} if a.view else {}
+    res = simulate_fmu(
+        a.fmu, stop_time=stop, output_interval=step, output=outputs, start_values=start
+    )
     with open(a.out + ".csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["time"] + outputs)
@@ -57,6 +67,7 @@ def main():
     print(
         f"{md.modelName}: {len(res)} samples to t = {res['time'][-1]:.3f} s; "
         f"lowest tip deflection {', '.join(lowest)}; wrote {a.out}.csv and {a.out}.png"
+        + (f"; the FMU wrote its series and animation page into {a.view}/" if a.view else "")
     )
 
 

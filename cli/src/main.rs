@@ -467,6 +467,42 @@ mod tests {
         );
         let cli = parse(&["static", "scenes/case3.toml"]).unwrap();
         assert!(matches!(cli.command, Command::Static(s) if s.sets.is_empty()));
+        // docs/view.md
+        let cli = parse(&[
+            "run",
+            "scenes/strip_3d.toml",
+            "--out",
+            "out/strip.csv",
+            "--vtk",
+            "out/strip_vtk",
+            "--animate",
+            "out/strip.html",
+            "--samples",
+            "4",
+        ])
+        .unwrap();
+        let Command::Run(a) = cli.command else {
+            panic!("not run")
+        };
+        assert_eq!(a.vtk.as_deref(), Some(Path::new("out/strip_vtk")));
+        assert_eq!(a.animate.as_deref(), Some(Path::new("out/strip.html")));
+        assert_eq!(a.samples, 4);
+        let cli = parse(&[
+            "animate",
+            "out/vehicle/view",
+            "--body",
+            "4.1,1.3,1.8",
+            "--body-centre",
+            "-0.45, -0.65, 0",
+            "--out",
+            "page.html",
+        ])
+        .unwrap();
+        let Command::Animate(a) = cli.command else {
+            panic!("not animate")
+        };
+        assert_eq!(a.body, Some([4.1, 1.3, 1.8]));
+        assert_eq!(a.body_centre, Some([-0.45, -0.65, 0.0]));
     }
 
     #[test]
@@ -481,6 +517,12 @@ mod tests {
             &["static", "s.toml", "--bogus"],
             &["static"],
             &["simulate", "s.toml"],
+            &["run", "s.toml", "--out", "a", "--samples", "0"], // at least one interval
+            &["run", "s.toml", "--out", "a", "--samples", "65"],
+            &["animate", "d", "--body", "1,2"], // three numbers
+            &["animate", "d", "--body", "1,2,nan"],
+            &["animate", "d", "--body-centre", "1,2,3"], // needs --body
+            &["animate"],
         ] {
             assert!(parse(bad).is_err(), "{bad:?} accepted");
         }

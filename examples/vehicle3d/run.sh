@@ -2,7 +2,9 @@
 # The spatial vehicle example: builds the four-wheel car FMU (out/car3d.fmu) and the roof
 # boom's spatial beam FMU (out/boom_3d.fmu, from scenes/boom_3d.toml), couples them with
 # hybeam-cosim over the bump under the left wheels (examples/vehicle3d/system.toml) and writes
-# out/vehicle3d/cosim.csv and out/vehicle3d/cosim.png (examples/vehicle3d/README.md).
+# out/vehicle3d/cosim.csv and out/vehicle3d/cosim.png, the boom's ParaView series
+# (out/vehicle3d/view/) and the animation out/vehicle3d/animation.html
+# (examples/vehicle3d/README.md).
 #   bash examples/vehicle3d/run.sh          the coupled run (implicit coupling, h = 1 ms)
 #   bash examples/vehicle3d/run.sh --test   the example's pytest checks (test_cosim3d.py; the
 #                                           symmetric case compares with the planar system,
@@ -25,6 +27,14 @@ case "${1:-}" in
             --boom "$boom" --planar-car out/car.fmu --planar-boom "$planar_boom"
         ;;
     *)
-        .venv/bin/hybeam-cosim "$SYSTEM" --scheme implicit --step 1e-3 --out out/vehicle3d
+        # the boom FMU writes its shape into out/vehicle3d/view; the page shows the car body
+        # (4.1 x 1.8 x 1.3 m) as a box carried by the mount frame (the roof point 0.3 m ahead
+        # of and 0.9 m above the centre of mass)
+        rm -rf out/vehicle3d/view
+        .venv/bin/hybeam-cosim "$SYSTEM" --scheme implicit --step 1e-3 --out out/vehicle3d \
+            --set boom.visualization.directory=out/vehicle3d/view
+        cargo run --release --quiet --bin hybeam -- animate out/vehicle3d/view \
+            --body 4.1,1.8,1.3 --body-centre -0.45,0,-0.65 --title "car over a one-sided bump with the roof boom" \
+            --out out/vehicle3d/animation.html
         ;;
 esac

@@ -28,7 +28,7 @@ pub struct ShapePoint {
 impl ShapePoint {
     /// The magnitude of the bending curvature [1/m].
     pub fn bending(&self) -> f64 {
-        self.curvature[0].hypot(self.curvature[1])
+        (self.curvature[0] * self.curvature[0] + self.curvature[1] * self.curvature[1]).sqrt()
     }
 }
 

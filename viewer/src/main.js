@@ -121,6 +121,13 @@ const traceGeom = new THREE.BufferGeometry();
 traceGeom.setAttribute("position", new THREE.BufferAttribute(trace, 3));
 scene.add(new THREE.Line(traceGeom, new THREE.LineBasicMaterial({ color: 0xd0402b })));
 
+// the joints between segments: a sphere at each downstream segment's first point
+const joints = data.segments.slice(1).map(([a]) => {
+  const m = new THREE.Mesh(new THREE.SphereGeometry(1, 16, 12), new THREE.MeshStandardMaterial({ color: 0x303338 }));
+  scene.add(m);
+  return { index: a, mesh: m };
+});
+
 // ---- one frame onto the geometry
 const t = new THREE.Vector3(), d2 = new THREE.Vector3(), d3 = new THREE.Vector3(), p = new THREE.Vector3();
 function tangent(f, i) {
@@ -166,6 +173,11 @@ function show(f) {
   if (body) {
     const c = data.body.centre;
     body.matrix.copy(m).multiply(new THREE.Matrix4().makeTranslation(c[0], c[1], c[2]));
+  }
+  for (const j of joints) {
+    const i = j.index;
+    j.mesh.position.set(pos[o + 3 * i], pos[o + 3 * i + 1], pos[o + 3 * i + 2]);
+    j.mesh.scale.setScalar(1.8 * radius[i] * thickness);
   }
   traceGeom.setDrawRange(0, f + 1);
   document.getElementById("time").textContent = `t = ${times[f].toFixed(4)} s`;
