@@ -48,7 +48,7 @@ struct AnimateArgs {
     #[arg(long, value_name = "LX,LY,LZ", value_parser = triple)]
     body: Option<[f64; 3]>,
     /// The box centre in the root frame [m] (with --body).
-    #[arg(long, value_name = "X,Y,Z", value_parser = triple, requires = "body")]
+    #[arg(long, value_name = "X,Y,Z", value_parser = triple, requires = "body", allow_hyphen_values = true)]
     body_centre: Option<[f64; 3]>,
     /// Page title [default: the collection's file name].
     #[arg(long)]

@@ -19,6 +19,9 @@ const PAGE: &str = include_str!("../../../viewer/page.html");
 /// The bundled viewer (three.js + viewer/src/main.js), built by `npm run build` in `viewer/`.
 const VIEWER: &str = include_str!("../../../viewer/dist/viewer.js");
 
+/// The most frames a page holds (at 40 points, ~5 MB of data per 1000 frames).
+pub const MAX_FRAMES: usize = 5000;
+
 /// A rigid body drawn as a box carried by the root (mount) frame: a vehicle's body.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BodyBox {
@@ -123,7 +126,12 @@ impl Recorder {
 
     /// Records the frame at `time` [s]: `shape` and the tip values (one per name). A time not
     /// after the last frame's (a rollback or reset) first drops the frames at or after it.
+    /// Beyond [`MAX_FRAMES`] every other frame is dropped (the first and the latest kept), so a
+    /// long run's page stays a few tens of MB at most.
     pub fn push(&mut self, time: f64, shape: &Shape, tip: &[f64]) {
+        if self.times.len() >= MAX_FRAMES {
+            self.thin();
+        }
         while self.times.last().is_some_and(|t| *t >= time) {
             self.pop();
         }
@@ -152,6 +160,29 @@ impl Recorder {
         }
         self.tip
             .extend((0..self.tip_names.len()).map(|k| tip.get(k).copied().unwrap_or(f64::NAN)));
+    }
+
+    /// Keeps the even frames and the last one.
+    fn thin(&mut self) {
+        let n = self.times.len();
+        let keep = |i: usize| i.is_multiple_of(2) || i + 1 == n;
+        fn retain<T: Copy>(v: &mut Vec<T>, per: usize, keep: impl Fn(usize) -> bool) {
+            let mut w = 0;
+            for i in 0..v.len() / per.max(1) {
+                if keep(i) {
+                    v.copy_within(i * per..(i + 1) * per, w * per);
+                    w += 1;
+                }
+            }
+            v.truncate(w * per);
+        }
+        let p = self.points;
+        retain(&mut self.times, 1, keep);
+        retain(&mut self.positions, 3 * p, keep);
+        retain(&mut self.section, 3 * p, keep);
+        retain(&mut self.strain, p, keep);
+        retain(&mut self.root, 12, keep);
+        retain(&mut self.tip, self.tip_names.len(), keep);
     }
 
     fn pop(&mut self) {

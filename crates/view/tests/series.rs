@@ -93,3 +93,45 @@ fn page_embeds_data_and_viewer() {
     assert_eq!(json["up"], serde_json::json!([0.0, 1.0, 0.0]));
     assert!(page.len() > 500_000, "the viewer is bundled into the page");
 }
+
+#[test]
+fn a_long_recording_is_thinned_keeping_the_ends() {
+    let sc = scene("case1");
+    let radii = segment_radii(&sc);
+    let sim = AnySimulator::new(sc.clone()).unwrap();
+    let shape = sim.shape(1);
+    let mut rec = Recorder::new("long", &sc.gravity, radii, vec!["k".into()]);
+    let n = hybeam_view::animation::MAX_FRAMES * 3 + 7;
+    for k in 0..n {
+        rec.push(k as f64, &shape, &[k as f64]);
+    }
+    assert!(
+        rec.len() <= hybeam_view::animation::MAX_FRAMES,
+        "{}",
+        rec.len()
+    );
+    assert!(rec.len() > hybeam_view::animation::MAX_FRAMES / 2);
+    let page = rec.page();
+    let tag = "type=\"application/json\">";
+    let json_start = page.find(tag).unwrap() + tag.len();
+    let json_end = page[json_start..].find("</script>").unwrap() + json_start;
+    let json: serde_json::Value = serde_json::from_str(&page[json_start..json_end]).unwrap();
+    use base64::Engine as _;
+    let times: Vec<f64> = base64::engine::general_purpose::STANDARD
+        .decode(json["times"].as_str().unwrap())
+        .unwrap()
+        .chunks(8)
+        .map(|b| f64::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    assert_eq!(times.len(), rec.len());
+    assert_eq!(times[0], 0.0);
+    assert_eq!(*times.last().unwrap(), (n - 1) as f64);
+    assert!(times.windows(2).all(|w| w[1] > w[0]));
+    let tips: Vec<f64> = base64::engine::general_purpose::STANDARD
+        .decode(json["tip"]["values"].as_str().unwrap())
+        .unwrap()
+        .chunks(8)
+        .map(|b| f64::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    assert_eq!(tips, times, "each kept frame keeps its own tip value");
+}
