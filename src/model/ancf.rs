@@ -558,6 +558,27 @@ mod tests {
         }
     }
 
+    /// The viewer's samples carry the element's own measures: the energy density integrated by
+    /// the element's own quadrature is its strain energy.
+    #[test]
+    fn samples_integrate_to_the_strain_energy() {
+        for strain in [StrainModel::Exact, StrainModel::Paper] {
+            let p = props(strain, 0.0);
+            let (e, ed) = state();
+            let mut u = 0.0;
+            for (xg, wg) in GAUSS5 {
+                let s = p.sample(&e, &ed, 0.5 * (xg + 1.0));
+                u += 0.5 * wg * 0.5 * p.length * p.ea * s.axial_strain * s.axial_strain;
+            }
+            for (xg, wg) in GAUSS3 {
+                let s = p.sample(&e, &ed, 0.5 * (xg + 1.0));
+                u += 0.5 * wg * 0.5 * p.length * p.ei * s.curvature[1] * s.curvature[1];
+            }
+            let want = p.strain_energy(&e);
+            assert!((u - want).abs() < 1e-12 * want, "{strain:?}: {u} vs {want}");
+        }
+    }
+
     #[test]
     fn force_is_gradient_of_energy() {
         for strain in [StrainModel::Exact, StrainModel::Paper] {

@@ -919,6 +919,59 @@ pub(crate) mod tests {
         }
     }
 
+    /// The viewer's samples carry the element's own strain measures ([`Ancf3Props::strains_at`]
+    /// with torsion; the cable's curvature |r_x × r_xx|/|r_x|²), the Hermite position and an
+    /// orthonormal section frame whose d2 lies in the plane of r_x and r_y.
+    #[test]
+    fn samples_carry_the_elements_own_strains() {
+        let p = props(true, 0.0, 1.0);
+        let (e, ed) = deformed::<18>(&p, 7);
+        for xi in [0.0, 0.25, 0.5, 0.75, 1.0] {
+            let s = p.sample(&e, &ed, xi);
+            let [eps, k2, k3, tau] = p.strains_at(&e, xi);
+            assert_eq!(
+                [s.axial_strain, s.curvature[0], s.curvature[1], s.twist],
+                [eps, k2, k3, tau]
+            );
+            let (h, _, _) = hermite(xi, p.length);
+            for c in 0..3 {
+                let r = h[0] * e[c] + h[1] * e[3 + c] + h[2] * e[9 + c] + h[3] * e[12 + c];
+                assert!((s.position[c] - r).abs() < 1e-15, "{xi}");
+            }
+            let [t, d2, d3] = s.frame;
+            let ry: [f64; 3] = std::array::from_fn(|c| (1.0 - xi) * e[6 + c] + xi * e[15 + c]);
+            assert!(dot(&t, &d2).abs() < 1e-14 && dot(&d2, &d3).abs() < 1e-14);
+            assert!(
+                dot(&cross(&t, &ry), &d2).abs() < 1e-14,
+                "d2 in the plane of r_x, r_y"
+            );
+        }
+        let p = props(false, 0.0, 1.0);
+        let (e, ed) = deformed::<12>(&p, 11);
+        for xi in [0.1, 0.5, 0.9] {
+            let s = p.sample(&e, &ed, xi);
+            let (_, ds, dds) = hermite(xi, p.length);
+            let v = |w: &[f64; 4], o: usize| -> [f64; 3] {
+                std::array::from_fn(|c| {
+                    w[0] * e[c + o]
+                        + w[1] * e[3 + c + o]
+                        + w[2] * e[6 + c + o]
+                        + w[3] * e[9 + c + o]
+                })
+            };
+            let (a, b) = (v(&ds, 0), v(&dds, 0));
+            let k = cross(&a, &b);
+            let want = dot(&k, &k).sqrt() / dot(&a, &a);
+            assert!(
+                (s.bending() - want).abs() < 1e-12 * want,
+                "{xi}: {} vs {want}",
+                s.bending()
+            );
+            assert_eq!(s.axial_strain, dot(&a, &a).sqrt() - 1.0);
+            assert_eq!(s.twist, 0.0);
+        }
+    }
+
     #[test]
     fn strain_measures_of_a_helix_match_the_closed_form() {
         // Helix of radius ρ, pitch parameter h, arc length s: curvature k = ρ/λ², torsion
