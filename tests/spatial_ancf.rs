@@ -100,6 +100,7 @@ fn chain_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Model<Spatial> {
         support: Box::new(NodeSupport3 {
             position: [0, 1, 2],
             slope: Some([3, 4, 5]),
+            normal: None,
             section: torsion.then_some([6, 7, 8]),
         }),
         gravity: [0.0; 3],

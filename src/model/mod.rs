@@ -25,6 +25,7 @@ pub mod ancf3d;
 pub mod assembly;
 pub mod build;
 pub mod component;
+pub mod direction;
 pub mod dofs;
 pub mod held;
 pub mod inertia;

@@ -55,6 +55,18 @@ impl Coords {
     }
 }
 
+/// What the support holds of an ANCF node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Hold {
+    /// Nothing: every coordinate free.
+    Free,
+    /// The position (a pinned root).
+    Position,
+    /// The position, the slope's direction (not its length: the rows of
+    /// [`SegmentParts::slope_direction`]) and a section director (a clamped or mounted root).
+    Clamp,
+}
+
 /// A modal segment as its space builds it.
 pub struct ModalSegment<S: Space> {
     /// The body's coordinates.
@@ -90,11 +102,18 @@ pub trait SegmentParts<S: Space> {
     fn ancf_props(&self, si: usize, seg: &Segment, le: f64) -> Result<Self::AncfProps, SceneError>;
     /// One ANCF element.
     fn ancf_element(&self, props: &Self::AncfProps) -> Box<dyn Element<S>>;
-    /// An ANCF node at arc length `s` [m], its position (`free_r`) and directions (`free_d`)
-    /// free or held, with the rigid groups it forms.
-    fn node(&self, num: &mut Numbering, s: f64, free_r: bool, free_d: bool) -> Coords;
-    /// The support of a first ANCF node.
-    fn node_support(&self, node: &Coords) -> Box<dyn Support<S>>;
+    /// An ANCF node at arc length `s` [m], held as `hold` says, with the rigid groups it forms.
+    fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords;
+    /// The held normals of a clamped root node's slope direction (rigid directions, turning
+    /// with a mount) and the rows holding the slope `node`'s r_x to that direction
+    /// ([`super::direction::SlopeDirection`]) on their local coordinates.
+    fn slope_direction(
+        &self,
+        num: &mut Numbering,
+        node: &Coords,
+    ) -> (Coords, (LocalDofs, Box<dyn Constraint>));
+    /// The support of a first ANCF node, with the normals of a clamped slope direction.
+    fn node_support(&self, node: &Coords, normals: Option<&Coords>) -> Box<dyn Support<S>>;
     /// An ANCF node's port.
     fn node_port(&self) -> Box<dyn Port<S>>;
     /// The rigid joint between `up` and `down`, its angle rows scaled by the upstream segment's
@@ -159,9 +178,19 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                         q0: up.q0,
                     },
                     up => {
-                        let c = parts.node(&mut num, s_pos, !first, !(first && clamped));
+                        let hold = match (first, clamped) {
+                            (false, _) => Hold::Free,
+                            (true, false) => Hold::Position,
+                            (true, true) => Hold::Clamp,
+                        };
+                        let c = parts.node(&mut num, s_pos, hold);
                         if first {
-                            support = Some(parts.node_support(&c));
+                            let normals = (hold == Hold::Clamp).then(|| {
+                                let (n, rows) = parts.slope_direction(&mut num, &c);
+                                constraints.push(rows);
+                                n
+                            });
+                            support = Some(parts.node_support(&c, normals.as_ref()));
                         }
                         if let Some(up) = up {
                             let down = End {
@@ -176,7 +205,7 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                     }
                 };
                 for k in 0..ne {
-                    let next = parts.node(&mut num, s_pos + (k + 1) as f64 * le, true, true);
+                    let next = parts.node(&mut num, s_pos + (k + 1) as f64 * le, Hold::Free);
                     let dofs =
                         LocalDofs::new(last.dofs.iter().chain(&next.dofs).copied().collect());
                     ancf.push((dofs, parts.ancf_element(&props), si));

@@ -10,9 +10,10 @@ use crate::math;
 use crate::model::ancf::AncfProps;
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
+use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody};
-use crate::model::walk::{walk, Coords, End, ModalSegment, SegmentParts};
+use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SpaceKind};
 use std::sync::Arc;
 
@@ -96,10 +97,11 @@ impl SegmentParts<Planar> for PlanarParts {
         Box::new(AncfElement::new(*props))
     }
 
-    fn node(&self, num: &mut Numbering, s: f64, free_r: bool, free_d: bool) -> Coords {
+    fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {
         let d = self.dir;
         let v = [s * d[0], s * d[1], d[0], d[1]];
-        let free = [free_r, free_r, free_d, free_d];
+        let free_r = hold == Hold::Free;
+        let free = [free_r, free_r, true, true];
         let scale = [self.lref, self.lref, 1.0, 1.0];
         let mut c = Coords::default();
         for k in 0..4 {
@@ -110,10 +112,27 @@ impl SegmentParts<Planar> for PlanarParts {
         c
     }
 
-    fn node_support(&self, node: &Coords) -> Box<dyn Support<Planar>> {
+    /// The normal n = (−d_y, d_x) of the clamped direction d, held; the row n · r_x = 0.
+    fn slope_direction(
+        &self,
+        num: &mut Numbering,
+        node: &Coords,
+    ) -> (Coords, (LocalDofs, Box<dyn Constraint>)) {
+        let d = self.dir;
+        let mut n = Coords::default();
+        for v in [-d[1], d[0]] {
+            n.push(num, false, v, 1.0);
+        }
+        num.rigid(Rigid::Direction, &n.dofs);
+        let dofs = LocalDofs::new(node.dofs[2..4].iter().chain(&n.dofs).copied().collect());
+        let rows = SlopeDirection { dim: 2, normals: 1 };
+        (n, (dofs, Box::new(rows)))
+    }
+
+    fn node_support(&self, node: &Coords, normals: Option<&Coords>) -> Box<dyn Support<Planar>> {
         Box::new(RootSupport::Node {
             position: node.held::<2>(0),
-            slope: node.is_held(2).then(|| node.held::<2>(2)),
+            slope: normals.map(|n| n.held::<2>(0)),
         })
     }
 

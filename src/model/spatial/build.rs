@@ -15,9 +15,10 @@ use super::{
 use crate::model::ancf3d::Ancf3Props;
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
+use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
-use crate::model::walk::{walk, Coords, End, ModalSegment, SegmentParts};
+use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use std::sync::Arc;
@@ -107,18 +108,20 @@ impl SegmentParts<Spatial> for SpatialParts {
     }
 
     /// Node coordinates r, r_x (, r_y) at arc length `s`, held as the root asks.
-    fn node(&self, num: &mut Numbering, s: f64, free_r: bool, free_d: bool) -> Coords {
+    fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {
         let mut c = Coords::default();
         let r = s * self.ax;
+        let free_r = hold == Hold::Free;
         for k in 0..3 {
             c.push(num, free_r, r[k], self.lref);
         }
         for k in 0..3 {
-            c.push(num, free_d, self.ax[k], 1.0);
+            c.push(num, true, self.ax[k], 1.0);
         }
         if self.torsion {
+            // a clamp holds the section director r_y
             for k in 0..3 {
-                c.push(num, free_d, self.ay[k], 1.0);
+                c.push(num, hold != Hold::Clamp, self.ay[k], 1.0);
             }
         }
         num.rigid(Rigid::Point, &c.dofs[..3]);
@@ -128,10 +131,33 @@ impl SegmentParts<Spatial> for SpatialParts {
         c
     }
 
-    fn node_support(&self, c: &Coords) -> Box<dyn Support<Spatial>> {
+    /// The section axes e_y, e_z (normals of the clamped axis e_x), held; the rows
+    /// e_y · r_x = 0, e_z · r_x = 0.
+    fn slope_direction(
+        &self,
+        num: &mut Numbering,
+        node: &Coords,
+    ) -> (Coords, (LocalDofs, Box<dyn Constraint>)) {
+        let az = self.ax.cross(&self.ay);
+        let mut n = Coords::default();
+        for axis in [self.ay, az] {
+            for k in 0..3 {
+                n.push(num, false, axis[k], 1.0);
+            }
+        }
+        for d in n.dofs.chunks(3) {
+            num.rigid(Rigid::Direction, d);
+        }
+        let dofs = LocalDofs::new(node.dofs[3..6].iter().chain(&n.dofs).copied().collect());
+        let rows = SlopeDirection { dim: 3, normals: 2 };
+        (n, (dofs, Box::new(rows)))
+    }
+
+    fn node_support(&self, c: &Coords, normals: Option<&Coords>) -> Box<dyn Support<Spatial>> {
         Box::new(NodeSupport3 {
             position: c.held(0),
-            slope: c.is_held(3).then(|| c.held(3)),
+            slope: normals.map(|n| n.held(0)),
+            normal: normals.map(|n| n.held(3)),
             section: (self.torsion && c.is_held(6)).then(|| c.held(6)),
         })
     }

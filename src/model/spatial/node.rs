@@ -308,19 +308,25 @@ impl Port<Spatial> for NodePort3 {
 pub struct NodeSupport3 {
     /// Held x, y, z of the root position r0.
     pub position: [usize; 3],
-    /// Held r0_x (clamped).
+    /// Held first normal of the clamped slope direction (clamped; its residual is λ r0_x).
     pub slope: Option<[usize; 3]>,
+    /// Held second normal of the clamped slope direction (clamped).
+    pub normal: Option<[usize; 3]>,
     /// Held r0_y (clamped, with torsion).
     pub section: Option<[usize; 3]>,
 }
 
 impl Support<Spatial> for NodeSupport3 {
-    /// F = r_{r0}, M = r0_x × r_{r0_x} + r0_y × r_{r0_y} about r0 (the work of a rotation δθ of
-    /// the held gradients δr0_x = δθ × r0_x, δr0_y = δθ × r0_y).
+    /// F = r_{r0}, M = Σ d × r_d about r0 over the held directions d (the normals n_1, n_2 of
+    /// the clamped slope direction, the section director r0_y): the work of a rotation δθ of
+    /// the held directions δd = δθ × d.
     fn reaction(&self, r: &[f64], held: &[f64]) -> ([f64; 3], [f64; 3]) {
         let vec = |v: &[f64], i: [usize; 3]| Vector3::new(v[i[0]], v[i[1]], v[i[2]]);
         let mut m = Vector3::zeros();
-        for idx in [self.slope, self.section].into_iter().flatten() {
+        for idx in [self.slope, self.normal, self.section]
+            .into_iter()
+            .flatten()
+        {
             m += vec(held, idx).cross(&vec(r, idx));
         }
         (vec(r, self.position).into(), m.into())
@@ -466,6 +472,7 @@ mod tests {
             let sup = NodeSupport3 {
                 position: [0, 1, 2],
                 slope: Some([3, 4, 5]),
+                normal: None,
                 section: torsion.then_some([6, 7, 8]),
             };
             let (fr, mr) = sup.reaction(&r, &e);
