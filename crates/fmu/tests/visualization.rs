@@ -236,3 +236,34 @@ fn string_calls_check_their_arguments() {
         .assert_last(ERROR, "logStatusError", &["is a fixed parameter"]);
     assert_eq!(i.get_string(&[r]).unwrap(), [""]);
 }
+
+#[test]
+fn instances_in_parallel_threads_write_their_own_series() {
+    use fmi2::{log::Logger, Instance, Status};
+    let dir = temp_dir("vis-threads");
+    let threads: Vec<_> = (0..4)
+        .map(|n| {
+            let dir = dir.clone();
+            std::thread::spawn(move || {
+                let model = hybeam_fmu::FmuModel::from_resource(SCENE).unwrap();
+                let name = format!("thread {n}");
+                let mut i =
+                    Instance::new(&name, Logger::memory(), false, guid_of(SCENE), model).unwrap();
+                let value = dir.to_str().unwrap();
+                assert_eq!(i.set_string(&[dir_vr()], &[value]), Status::Ok);
+                assert_eq!(i.enter_initialization_mode(), Status::Ok);
+                assert_eq!(i.exit_initialization_mode(), Status::Ok);
+                for k in 0..(10 + n) {
+                    assert_eq!(i.do_step(k as f64 * H, H), Status::Ok);
+                }
+                assert_eq!(i.terminate(), Status::Ok);
+            })
+        })
+        .collect();
+    for t in threads {
+        t.join().unwrap();
+    }
+    for n in 0..4 {
+        assert_eq!(written(&dir, &format!("thread_{n}")), times(10 + n));
+    }
+}
