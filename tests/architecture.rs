@@ -268,6 +268,9 @@ fn the_fmi_layer_and_the_engine_do_not_know_each_other() {
     let fmi = deps(&manifest("crates/fmi2/Cargo.toml"));
     assert!(!engine.iter().any(|d| d.starts_with("fmi")), "{engine:?}");
     assert!(!fmi.iter().any(|d| d.starts_with("hybeam")), "{fmi:?}");
+    // the views know the engine's shape, not FMI (the FMU adapter uses both)
+    let view = deps(&manifest("crates/view/Cargo.toml"));
+    assert!(!view.iter().any(|d| d.starts_with("fmi")), "{view:?}");
 }
 
 #[test]

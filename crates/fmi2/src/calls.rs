@@ -8,6 +8,8 @@
 //! call-sequence errors return fmi2Error and leave the state unchanged, as in Reference-FMUs; a
 //! failure of the model itself (initialize, reset) moves the instance to state `error`.
 
+use std::ffi::CString;
+
 use smallvec::SmallVec;
 
 use crate::fmu_state::FmuState;
@@ -41,23 +43,33 @@ macro_rules! tri {
 
 /// Why `var` cannot be set in `state`, if it cannot.
 fn check_settable(var: &Variable, state: ModelState) -> Result<(), String> {
-    match (var.causality, var.variability) {
-        (Causality::Output, _) => Err(format!(
+    match var.causality {
+        Causality::Output => Err(format!(
             "{} (value reference {}) is an output and cannot be set",
             var.name, var.vr
         )),
-        (Causality::Input, _) | (Causality::Parameter, Variability::Tunable) => Ok(()),
-        (Causality::Parameter, _) => {
-            if state.is_in(ModelState::INSTANTIATED.or(ModelState::INIT_MODE)) {
-                Ok(())
-            } else {
-                Err(format!(
-                    "{} (value reference {}) is a fixed parameter: it can only be set before \
-                     fmi2ExitInitializationMode (the instance is in {state})",
-                    var.name, var.vr
-                ))
-            }
-        }
+        Causality::Input => Ok(()),
+        Causality::Parameter => parameter_settable((&var.name, var.vr), var.variability, state),
+    }
+}
+
+/// Why the parameter (name, value reference) of `variability` cannot be set in `state`, if it
+/// cannot: a fixed one only before fmi2ExitInitializationMode, a tunable one any time. For
+/// Real and String parameters alike.
+fn parameter_settable(
+    (name, vr): (&str, u32),
+    variability: Variability,
+    state: ModelState,
+) -> Result<(), String> {
+    if variability == Variability::Tunable
+        || state.is_in(ModelState::INSTANTIATED.or(ModelState::INIT_MODE))
+    {
+        Ok(())
+    } else {
+        Err(format!(
+            "{name} (value reference {vr}) is a fixed parameter: it can only be set before \
+             fmi2ExitInitializationMode (the instance is in {state})"
+        ))
     }
 }
 
@@ -213,18 +225,21 @@ impl<M: CoSimModel> Instance<M> {
                 l.last_successful_time = l.start_time;
                 l.terminated = false;
                 self.trace(|| format!("fmi2ExitInitializationMode: t = {}", self.layer.time));
-                Status::Ok
+                self.with_model_warning(f, Status::Ok)
             }
             Err(e) => self.model_error(f, format!("model initialization failed: {e}")),
         }
     }
 
-    /// fmi2Terminate: state `terminated` (the model keeps its values for fmi2GetReal).
+    /// fmi2Terminate: `model.terminate()`, state `terminated` (the model keeps its values for
+    /// fmi2GetReal); fmi2Warning if the model has a warning to report.
     pub fn terminate(&mut self) -> Status {
-        tri!(self.check_state(F::Terminate));
+        let f = F::Terminate;
+        tri!(self.check_state(f));
+        self.model.terminate();
         self.layer.state = ModelState::TERMINATED;
         self.trace(|| format!("fmi2Terminate at t = {}", self.layer.time));
-        Status::Ok
+        self.with_model_warning(f, Status::Ok)
     }
 
     /// fmi2Reset: `model.reset()`, then state `instantiated` with the experiment cleared.
@@ -235,7 +250,7 @@ impl<M: CoSimModel> Instance<M> {
             Ok(()) => {
                 self.reset_layer();
                 self.trace(|| "fmi2Reset".to_owned());
-                Status::Ok
+                self.with_model_warning(f, Status::Ok)
             }
             Err(e) => self.model_error(f, format!("model reset failed: {e}")),
         }
@@ -247,10 +262,7 @@ impl<M: CoSimModel> Instance<M> {
         tri!(self.check_state(f));
         for (&r, slot) in vrs.iter().zip(out.iter_mut()) {
             let Some(index) = self.index_of(r) else {
-                return self.error(
-                    f,
-                    format!("value reference {r} is not a variable of this model"),
-                );
+                return self.error(f, self.not_a(r, "a Real"));
             };
             match self.model.get_real(index) {
                 Ok(v) => *slot = tri!(self.finite(f, index, "", v)),
@@ -289,10 +301,7 @@ impl<M: CoSimModel> Instance<M> {
         let mut index = SmallVec::<[usize; 8]>::new();
         for (&r, &v) in vrs.iter().zip(values) {
             let Some(found) = self.index_of(r) else {
-                return self.error(
-                    f,
-                    format!("value reference {r} is not a variable of this model"),
-                );
+                return self.error(f, self.not_a(r, "a Real"));
             };
             let var = &self.model.variables()[found];
             if let Err(e) = check_settable(var, self.layer.state) {
@@ -333,14 +342,36 @@ impl<M: CoSimModel> Instance<M> {
         Status::Ok
     }
 
-    /// Get/Set of a type the model does not have (the layer supports fmi2Real only): fmi2OK for
-    /// no value references, otherwise fmi2Error naming the first.
+    /// Why `r` is not a variable of the type `wanted` ("a Real", "a String"): it is one of the
+    /// other type (named), or no variable at all.
+    fn not_a(&self, r: fmi2ValueReference, wanted: &str) -> String {
+        if let Some(v) = self.variable(r) {
+            format!(
+                "value reference {r} is {}, a Real variable, not {wanted} variable",
+                v.name
+            )
+        } else if let Some(v) = self.string_variable(r) {
+            format!(
+                "value reference {r} is {}, a String variable, not {wanted} variable",
+                v.name
+            )
+        } else {
+            format!("value reference {r} is not a variable of this model")
+        }
+    }
+
+    /// Get/Set of a type the layer does not support (Integer, Boolean): fmi2OK for no value
+    /// references, otherwise fmi2Error naming the first.
     fn no_variables_of_type(&self, f: F, vrs: &[fmi2ValueReference]) -> Status {
         tri!(self.check_state(f));
         let type_name = match f {
             F::GetInteger | F::SetInteger => "an Integer",
-            F::GetBoolean | F::SetBoolean => "a Boolean",
-            _ => "a String",
+            _ => "a Boolean",
+        };
+        let types = if self.model.string_variables().is_empty() {
+            "Real variables"
+        } else {
+            "Real and String variables"
         };
         match vrs.first() {
             None => Status::Ok,
@@ -348,7 +379,7 @@ impl<M: CoSimModel> Instance<M> {
                 f,
                 format!(
                     "value reference {r} is not {type_name} variable of this model (it has only \
-                     Real variables)"
+                     {types})"
                 ),
             ),
         }
@@ -364,9 +395,37 @@ impl<M: CoSimModel> Instance<M> {
         self.no_variables_of_type(F::GetBoolean, vrs)
     }
 
-    /// fmi2GetString (no String variables).
-    pub fn get_string(&self, vrs: &[fmi2ValueReference], _out: &mut [fmi2String]) -> Status {
-        self.no_variables_of_type(F::GetString, vrs)
+    /// fmi2GetString: `out[i]` points to the value of the String variable `vrs[i]`, a copy the
+    /// instance keeps until its next fmi2GetString (or fmi2FreeInstance). On fmi2Error `out` is
+    /// unchanged and the previous values stay valid.
+    pub fn get_string(&mut self, vrs: &[fmi2ValueReference], out: &mut [fmi2String]) -> Status {
+        let f = F::GetString;
+        tri!(self.check_state(f));
+        // grown per element checked, never sized by a count up front
+        let mut values = Vec::new();
+        for &r in vrs.iter().take(out.len()) {
+            let Some(index) = self.string_index_of(r) else {
+                return self.error(f, self.not_a(r, "a String"));
+            };
+            let value = match self.model.get_string(index) {
+                Ok(v) => v,
+                Err(e) => return self.error(f, format!("value reference {r}: {e}")),
+            };
+            match CString::new(value) {
+                Ok(c) => values.push(c),
+                Err(_) => {
+                    return self.error(
+                        f,
+                        format!("value reference {r}: the value holds a NUL character"),
+                    )
+                }
+            }
+        }
+        self.string_out = values;
+        for (slot, c) in out.iter_mut().zip(&self.string_out) {
+            *slot = c.as_ptr();
+        }
+        Status::Ok
     }
 
     /// fmi2SetInteger (no Integer variables).
@@ -379,30 +438,108 @@ impl<M: CoSimModel> Instance<M> {
         self.no_variables_of_type(F::SetBoolean, vrs)
     }
 
-    /// fmi2SetString (no String variables).
-    pub fn set_string(&mut self, vrs: &[fmi2ValueReference], _values: &[fmi2String]) -> Status {
-        self.no_variables_of_type(F::SetString, vrs)
+    /// fmi2SetString: the model copies each value (the host's memory is not kept). All value
+    /// references are checked (a String variable, settable in this state) before any is set;
+    /// if the model refuses one, those already set are restored: on fmi2Error nothing changed.
+    pub fn set_string(&mut self, vrs: &[fmi2ValueReference], values: &[&str]) -> Status {
+        let f = F::SetString;
+        tri!(self.check_state(f));
+        let mut index = SmallVec::<[usize; 8]>::new();
+        for &r in vrs.iter().take(values.len()) {
+            let Some(found) = self.string_index_of(r) else {
+                return self.error(f, self.not_a(r, "a String"));
+            };
+            let var = &self.model.string_variables()[found];
+            if let Err(e) =
+                parameter_settable((&var.name, var.vr), var.variability, self.layer.state)
+            {
+                return self.error(f, e);
+            }
+            index.push(found);
+        }
+        let mut old = SmallVec::<[String; 8]>::new();
+        for (&r, &i) in vrs.iter().zip(index.iter()) {
+            match self.model.get_string(i) {
+                Ok(v) => old.push(v.to_owned()),
+                Err(e) => return self.error(f, format!("value reference {r}: {e}")),
+            }
+        }
+        for (k, ((&r, &i), &v)) in vrs.iter().zip(index.iter()).zip(values).enumerate() {
+            if let Err(e) = self.model.set_string(i, v) {
+                for (&i_done, v_old) in index[..k].iter().zip(&old[..k]).rev() {
+                    let _ = self.model.set_string(i_done, v_old);
+                }
+                let name = &self.model.string_variables()[i].name;
+                return self.error(
+                    f,
+                    format!("{name} (value reference {r}) = \"{v}\" refused: {e}; nothing was set"),
+                );
+            }
+        }
+        Status::Ok
     }
 
-    /// fmi2GetFMUstate: an owned copy (FMI layer state + `model.save_state()`).
+    /// fmi2GetFMUstate: an owned copy (FMI layer state + `model.save_state()` + the String
+    /// parameters' values).
     pub fn get_fmu_state(&self) -> Result<FmuState, Status> {
-        self.check_state(F::GetFMUstate)?;
-        let s = FmuState::new(self.layer, self.model.save_state());
+        let f = F::GetFMUstate;
+        self.check_state(f)?;
+        let mut strings = Vec::new();
+        for (i, v) in self.model.string_variables().iter().enumerate() {
+            match self.model.get_string(i) {
+                Ok(x) => strings.push(x.to_owned()),
+                Err(e) => return Err(self.error(f, format!("{}: {e}", v.name))),
+            }
+        }
+        let s = FmuState::new(self.layer, self.model.save_state()).with_strings(strings);
         self.trace(|| format!("fmi2GetFMUstate at t = {}", self.layer.time));
         Ok(s)
     }
 
-    /// fmi2SetFMUstate: `model.load_state`, then the FMI layer state (time, state machine,
-    /// flags).
+    /// fmi2SetFMUstate: the String parameters (`model.set_string` where the state's value
+    /// differs), `model.load_state`, then the FMI layer state (time, state machine, flags). If
+    /// the model refuses the state, the String parameters are set back: nothing changed.
     pub fn set_fmu_state(&mut self, s: &FmuState) -> Status {
         let f = F::SetFMUstate;
         tri!(self.check_state(f));
+        let n = self.model.string_variables().len();
+        // a state without String values (format version 1) keeps the current ones
+        if !s.strings.is_empty() && s.strings.len() != n {
+            return self.error(
+                f,
+                format!(
+                    "the FMU state holds {} String values, this model has {n} String variables",
+                    s.strings.len()
+                ),
+            );
+        }
+        // (index, previous value) of the String parameters changed
+        let mut changed: Vec<(usize, String)> = Vec::new();
+        let undo = |m: &mut M, changed: &[(usize, String)]| {
+            for (i, v) in changed.iter().rev() {
+                let _ = m.set_string(*i, v);
+            }
+        };
+        for (i, v) in s.strings.iter().enumerate() {
+            let old = match self.model.get_string(i) {
+                Ok(x) if x == v => continue,
+                Ok(x) => x.to_owned(),
+                Err(e) => return self.error(f, e),
+            };
+            if let Err(e) = self.model.set_string(i, v) {
+                undo(&mut self.model, &changed);
+                let name = &self.model.string_variables()[i].name;
+                return self.error(f, format!("the model refused {name} = \"{v}\": {e}"));
+            }
+            changed.push((i, old));
+        }
         if let Err(e) = self.model.load_state(&s.model) {
+            undo(&mut self.model, &changed);
             return self.error(f, format!("the model refused the FMU state: {e}"));
         }
         self.layer = s.layer;
         self.trace(|| format!("fmi2SetFMUstate: t = {}", self.layer.time));
-        Status::Ok
+        self.with_model_warning(f, Status::Ok)
     }
 
     /// fmi2FreeFMUstate: drops `*s` (a `None` is accepted); on an illegal call `*s` is kept.
@@ -678,8 +815,9 @@ impl<M: CoSimModel> Instance<M> {
             Ok(()) => {
                 self.layer.time = end;
                 self.layer.last_successful_time = end;
-                self.last_do_step_status = Status::Ok;
-                Status::Ok
+                let status = self.with_model_warning(f, Status::Ok);
+                self.last_do_step_status = status;
+                status
             }
             Err(e) => {
                 let terminate = matches!(e, StepError::Terminate(_));

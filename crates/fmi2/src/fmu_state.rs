@@ -1,6 +1,6 @@
 //! FMU states: owned copies made by fmi2GetFMUstate, and their self-contained serialized form.
 //!
-//! Serialized format, version 1 (all integers and floats little-endian):
+//! Serialized format, version 2 (all integers and floats little-endian):
 //!
 //! | bytes | field |
 //! |---|---|
@@ -12,8 +12,13 @@
 //! | 1 + 8 | stop time defined (0/1), stop time |
 //! | 1 + 8 | tolerance defined (0/1), tolerance |
 //! | 1 | terminated (0/1) |
-//! | 8 + m | model byte count, model bytes ([`CoSimModel::save_state`]) |
+//! | 8 + 8 | model byte count m, String section byte count s |
+//! | m | model bytes ([`CoSimModel::save_state`]) |
+//! | s | String section: count (4), then per String parameter (model order) its length (4) and UTF-8 bytes |
 //! | 8 | FNV-1a 64 checksum of everything before it ([`fnv1a64`]) |
+//!
+//! Version 1 (no String section, no count s) is still read: its state has no String values
+//! and fmi2SetFMUstate keeps the current ones.
 //!
 //! The checksum detects accidents only (anyone can recompute it): the model checks its own
 //! bytes when they are loaded.
@@ -24,7 +29,7 @@
 use super::hash::fnv1a64;
 use super::state::{Function, ModelState};
 
-const FORMAT_VERSION: u32 = 1;
+const FORMAT_VERSION: u32 = 2;
 
 /// Bytes of the FMI layer's fields between the GUID and the model byte count: state bits,
 /// three times, stop time and tolerance (flag + value each), terminated.
@@ -71,17 +76,34 @@ pub struct FmuState {
     pub layer: LayerState,
     /// Model bytes from `save_state`.
     pub model: Vec<u8>,
+    /// The values of the model's String parameters (model order), empty if it has none.
+    pub strings: Vec<String>,
 }
 
 impl FmuState {
     /// A state from its parts.
     pub fn new(layer: LayerState, model: Vec<u8>) -> Self {
-        Self { layer, model }
+        Self {
+            layer,
+            model,
+            strings: Vec::new(),
+        }
+    }
+
+    /// This state with the String parameters' values `strings`.
+    pub fn with_strings(mut self, strings: Vec<String>) -> Self {
+        self.strings = strings;
+        self
+    }
+
+    /// Length of the String section.
+    fn strings_len(&self) -> usize {
+        4 + self.strings.iter().map(|s| 4 + s.len()).sum::<usize>()
     }
 
     /// Length of [`FmuState::serialize`]'s output.
     pub fn serialized_len(&self, guid: &str) -> usize {
-        8 + 4 + 4 + guid.len() + LAYER_LEN + 8 + self.model.len() + 8
+        8 + 4 + 4 + guid.len() + LAYER_LEN + 16 + self.model.len() + self.strings_len() + 8
     }
 
     /// The self-contained bytes of this state for an FMU with this magic and GUID.
@@ -102,7 +124,13 @@ impl FmuState {
         }
         b.push(l.terminated as u8);
         b.extend_from_slice(&(self.model.len() as u64).to_le_bytes());
+        b.extend_from_slice(&(self.strings_len() as u64).to_le_bytes());
         b.extend_from_slice(&self.model);
+        b.extend_from_slice(&(self.strings.len() as u32).to_le_bytes());
+        for s in &self.strings {
+            b.extend_from_slice(&(s.len() as u32).to_le_bytes());
+            b.extend_from_slice(s.as_bytes());
+        }
         let sum = fnv1a64(&b);
         b.extend_from_slice(&sum.to_le_bytes());
         debug_assert_eq!(b.len(), self.serialized_len(guid));
@@ -123,7 +151,7 @@ impl FmuState {
         }
         let mut r = Reader { b: bytes, at: 8 };
         let version = r.u32()?;
-        if version != FORMAT_VERSION {
+        if version != FORMAT_VERSION && version != 1 {
             return Err(format!(
                 "serialized state format version {version} is not supported (this FMU reads version {FORMAT_VERSION})"
             ));
@@ -142,7 +170,15 @@ impl FmuState {
             at: r.at + LAYER_LEN,
         };
         let m = usize::try_from(h.u64()?).map_err(|_| "model length overflows")?;
-        let total = h.at.checked_add(m).and_then(|x| x.checked_add(8));
+        let s = if version == 1 {
+            0
+        } else {
+            usize::try_from(h.u64()?).map_err(|_| "String section length overflows")?
+        };
+        let total =
+            h.at.checked_add(m)
+                .and_then(|x| x.checked_add(s))
+                .and_then(|x| x.checked_add(8));
         if total != Some(bytes.len()) {
             return Err(format!(
                 "serialized state is {} bytes, but its header declares {} (size does not match \
@@ -168,7 +204,30 @@ impl FmuState {
         let tolerance = r.opt_f64()?;
         let terminated = r.flag()?;
         let m = usize::try_from(r.u64()?).map_err(|_| "model length overflows")?;
+        let s_len = if version == 1 {
+            None
+        } else {
+            Some(usize::try_from(r.u64()?).map_err(|_| "String section length overflows")?)
+        };
         let model = r.take(m)?.to_vec();
+        let mut strings = Vec::new();
+        // the section's length was checked against the size above
+        let section_end = r.at + s_len.unwrap_or(0);
+        let count = if s_len.is_some() { r.u32()? } else { 0 };
+        for k in 0..count {
+            let n = r.u32()? as usize;
+            let text = std::str::from_utf8(r.take(n)?)
+                .map_err(|_| format!("serialized state: String value {k} is not valid UTF-8"))?;
+            if text.contains('\0') {
+                return Err(format!(
+                    "serialized state: String value {k} holds a NUL character"
+                ));
+            }
+            strings.push(text.to_owned());
+        }
+        if r.at != section_end {
+            return Err("serialized state: the String section does not match its length".into());
+        }
         if r.at != body.len() {
             return Err(format!(
                 "serialized state has {} unexpected trailing bytes",
@@ -195,7 +254,8 @@ impl FmuState {
                 terminated,
             },
             model,
-        ))
+        )
+        .with_strings(strings))
     }
 }
 
@@ -271,6 +331,29 @@ mod tests {
         let t = FmuState::deserialize(&b, M, "{g}").unwrap();
         assert_eq!(t.layer, s.layer);
         assert_eq!(t.model, s.model);
+    }
+
+    #[test]
+    fn round_trip_with_strings_and_version_1() {
+        let s = sample().with_strings(vec!["out/dir".into(), String::new(), "ä".into()]);
+        let b = s.serialize(M, "{g}");
+        assert_eq!(b.len(), s.serialized_len("{g}"));
+        assert_eq!(FmuState::deserialize(&b, M, "{g}").unwrap(), s);
+        // version 1: no String section (and no count of it)
+        let v2 = sample().serialize(M, "{g}");
+        let at = 8 + 4 + 4 + 3 + LAYER_LEN + 8;
+        let mut v1 = v2[..at].to_vec();
+        v1[8..12].copy_from_slice(&1u32.to_le_bytes());
+        v1.extend_from_slice(&sample().model);
+        let sum = fnv1a64(&v1);
+        v1.extend_from_slice(&sum.to_le_bytes());
+        assert_eq!(FmuState::deserialize(&v1, M, "{g}").unwrap(), sample());
+        // a String section longer than its strings is refused
+        let t = sample().with_strings(vec!["x".into()]);
+        let mut c = t.serialize(M, "{g}");
+        let last = c.len() - 9;
+        c[last] = 0xff;
+        assert!(FmuState::deserialize(&c, M, "{g}").is_err());
     }
 
     #[test]

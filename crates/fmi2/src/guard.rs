@@ -408,7 +408,22 @@ values! {
     fmi2SetReal SetReal set_real slice_in (*const fmi2Real);
     fmi2SetInteger SetInteger set_integer slice_in (*const fmi2Integer);
     fmi2SetBoolean SetBoolean set_boolean slice_in (*const fmi2Boolean);
-    fmi2SetString SetString set_string slice_in (*const fmi2String);
+}
+
+guarded! {
+    /// fmi2SetString: `vr[..nvr]`, `value[..nvr]`, each value a NUL-terminated UTF-8 string
+    /// (NULL or invalid UTF-8 is refused, naming `value[k]`), copied by the model.
+    fmi2SetString SetString
+    (vr: *const fmi2ValueReference, nvr: usize, value: *const fmi2String) |i, f| {
+        let vrs = tri!(slice_in(i, f, VR, vr, nvr));
+        let ptrs = tri!(slice_in(i, f, VALUE, value, nvr));
+        // grown per element read, never sized by a count up front
+        let mut values = smallvec::SmallVec::<[&str; 8]>::new();
+        for (k, &p) in ptrs.iter().enumerate() {
+            values.push(tri!(c_str(p, &format!("value[{k}]")).map_err(|e| i.error(f, e))));
+        }
+        i.set_string(vrs, &values)
+    };
 }
 
 guarded! {

@@ -5,7 +5,7 @@ use std::ffi::{CStr, CString};
 
 use super::fmu_state::LayerState;
 use super::log::{self, LogCategory, LogFilter, Logger};
-use super::model::{CoSimModel, Variable};
+use super::model::{CoSimModel, StringVariable, Variable};
 use super::state::{Function, ModelState};
 use super::types::Status;
 
@@ -25,6 +25,11 @@ pub struct Instance<M> {
     pub guid: String,
     /// (value reference, index in `model.variables()`), sorted by value reference.
     vr_index: Vec<(u32, usize)>,
+    /// (value reference, index in `model.string_variables()`), sorted by value reference.
+    string_index: Vec<(u32, usize)>,
+    /// The values the last fmi2GetString returned: its pointers stay valid until the next
+    /// fmi2GetString on this instance (or its fmi2FreeInstance).
+    pub(crate) string_out: Vec<CString>,
     /// The model.
     pub model: M,
 }
@@ -39,20 +44,33 @@ impl<M: CoSimModel> Instance<M> {
         guid: String,
         model: M,
     ) -> Result<Self, String> {
-        let mut vr_index: Vec<(u32, usize)> = model
-            .variables()
+        // (value reference, index), sorted by value reference
+        let sorted = |vrs: &mut dyn Iterator<Item = u32>| {
+            let mut index: Vec<(u32, usize)> = vrs.zip(0..).collect();
+            index.sort_unstable();
+            index
+        };
+        let vr_index = sorted(&mut model.variables().iter().map(|v| v.vr));
+        let string_index = sorted(&mut model.string_variables().iter().map(|v| v.vr));
+        // value references unique over both types (so a wrong type is named as such)
+        let mut all: Vec<(u32, &str)> = vr_index
             .iter()
-            .enumerate()
-            .map(|(i, v)| (v.vr, i))
+            .map(|&(vr, i)| (vr, model.variables()[i].name.as_str()))
+            .chain(
+                string_index
+                    .iter()
+                    .map(|&(vr, i)| (vr, model.string_variables()[i].name.as_str())),
+            )
             .collect();
-        vr_index.sort_unstable();
-        if let Some(w) = vr_index.windows(2).find(|w| w[0].0 == w[1].0) {
-            let vars = model.variables();
+        all.sort_unstable();
+        if let Some(w) = all.windows(2).find(|w| w[0].0 == w[1].0) {
             return Err(format!(
                 "model error: value reference {} is used by both {} and {}",
-                w[0].0, vars[w[0].1].name, vars[w[1].1].name
+                w[0].0, w[0].1, w[1].1
             ));
         }
+        let mut model = model;
+        model.set_instance_name(name);
         Ok(Self {
             name: log::c_string(name),
             logger,
@@ -61,6 +79,8 @@ impl<M: CoSimModel> Instance<M> {
             last_do_step_status: Status::Ok,
             guid,
             vr_index,
+            string_index,
+            string_out: Vec::new(),
             model,
         })
     }
@@ -86,6 +106,36 @@ impl<M: CoSimModel> Instance<M> {
     pub fn index_of(&self, vr: u32) -> Option<usize> {
         let i = self.vr_index.binary_search_by_key(&vr, |p| p.0).ok()?;
         Some(self.vr_index[i].1)
+    }
+
+    /// The index in `model.string_variables()` of the String variable with value reference
+    /// `vr`, if any.
+    #[inline]
+    pub fn string_index_of(&self, vr: u32) -> Option<usize> {
+        let i = self.string_index.binary_search_by_key(&vr, |p| p.0).ok()?;
+        Some(self.string_index[i].1)
+    }
+
+    /// The String variable with value reference `vr`, if any.
+    pub fn string_variable(&self, vr: u32) -> Option<&StringVariable> {
+        self.model.string_variables().get(self.string_index_of(vr)?)
+    }
+
+    /// The values returned by the last fmi2GetString (what its pointers point to).
+    pub fn last_strings(&self) -> &[CString] {
+        &self.string_out
+    }
+
+    /// If the model has a warning to report ([`CoSimModel::take_warning`]): logs it as
+    /// `"{function}: {warning}"` (fmi2Warning) and returns [`Status::Warning`], else `status`.
+    pub fn with_model_warning(&mut self, function: Function, status: Status) -> Status {
+        match self.model.take_warning() {
+            Some(w) => {
+                self.log(Status::Warning, &format!("{}: {w}", function.name()));
+                status.max(Status::Warning)
+            }
+            None => status,
+        }
     }
 
     /// The variable with value reference `vr`, if any.

@@ -36,6 +36,9 @@ pub mod types;
 pub mod xml;
 
 pub use instance::Instance;
-pub use model::{Capabilities, Causality, CoSimModel, ModelInfo, StepError, Variability, Variable};
+pub use model::{
+    Capabilities, Causality, CoSimModel, ModelInfo, StepError, StringVariable, Variability,
+    Variable,
+};
 pub use state::{Function, ModelState};
 pub use types::Status;

@@ -48,6 +48,25 @@ pub struct Variable {
     pub depends_on: Vec<u32>,
 }
 
+/// One String parameter of the model (fmi2String; the layer's String variables are parameters,
+/// `causality="parameter"`, fixed or tunable, `initial="exact"`). Its value reference must not
+/// be used by a [`Variable`] either (stricter than FMI 2.0, which numbers each type on its own:
+/// a Real reference given to fmi2SetString is then named as such).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StringVariable {
+    /// Structured name, e.g. `visualization.directory`.
+    pub name: String,
+    /// Value reference.
+    pub vr: u32,
+    /// [`Variability::Fixed`] (settable before fmi2ExitInitializationMode only) or
+    /// [`Variability::Tunable`] (any time).
+    pub variability: Variability,
+    /// Start value (the empty string is a valid start).
+    pub start: String,
+    /// One-line description.
+    pub description: String,
+}
+
 /// Optional co-simulation capabilities (the CoSimulation flags of modelDescription.xml and
 /// the calls they enable). The default offers none of them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -156,6 +175,45 @@ pub trait CoSimModel: Sized + Send + 'static {
     fn save_state(&self) -> Vec<u8>;
     /// Restores bytes from `save_state`; refuses bytes of another resource or format version.
     fn load_state(&mut self, bytes: &[u8]) -> Result<(), String>;
+
+    /// The String parameters (none by default); value references distinct from those of
+    /// [`CoSimModel::variables`]. Fixed for the life of the instance.
+    fn string_variables(&self) -> &[StringVariable] {
+        &[]
+    }
+
+    /// Value of the String parameter `string_variables()[index]` (the layer resolved its value
+    /// reference).
+    fn get_string(&self, index: usize) -> Result<&str, String> {
+        let _ = index;
+        Err("this model has no String variables".into())
+    }
+
+    /// Sets the String parameter `string_variables()[index]` to a copy of `value` (the layer
+    /// checked that it may be set now). Also called by fmi2SetFMUstate with the state's value,
+    /// after `load_state`. The model is unchanged on error.
+    fn set_string(&mut self, index: usize, value: &str) -> Result<(), String> {
+        let _ = (index, value);
+        Err("this model has no String variables".into())
+    }
+
+    /// The instance name given at fmi2Instantiate (called once, before any other call; kept
+    /// by the model across `reset`). A model may use it to name its files.
+    fn set_instance_name(&mut self, name: &str) {
+        let _ = name;
+    }
+
+    /// Called at fmi2Terminate (after the last step): the model may flush what it writes.
+    fn terminate(&mut self) {}
+
+    /// A warning the model has to report, taken (and cleared) by the layer after every
+    /// successful fmi2ExitInitializationMode, fmi2DoStep, fmi2Terminate, fmi2Reset and
+    /// fmi2SetFMUstate: the call then returns fmi2Warning and logs the message (category
+    /// `logStatusWarning`). For side work that failed without harming the results (e.g. a file
+    /// the model writes). `None` by default.
+    fn take_warning(&mut self) -> Option<String> {
+        None
+    }
 
     /// fmi2SetRealInputDerivatives for the continuous input `variables()[index]`: its
     /// `order`-th time derivative (1 ≤ order ≤ [`Capabilities::input_derivative_order`], value

@@ -20,7 +20,7 @@ use quick_xml::events::{BytesDecl, Event};
 use quick_xml::Writer;
 
 use super::log::LogCategory;
-use super::model::{Causality, CoSimModel, ModelInfo, Variability, Variable};
+use super::model::{Causality, CoSimModel, ModelInfo, StringVariable, Variability, Variable};
 
 /// SI base-unit exponents `[kg, m, s, A, K, mol, cd, rad]` and factor of every unit symbol a
 /// [`Variable`] may use. Extend this table to use a new unit.
@@ -97,7 +97,12 @@ pub fn model_description_of<M: CoSimModel>(
         guid,
         generation_tool: M::GENERATION_TOOL,
     };
-    model_description(&model.model_info(), model.variables(), &ids)
+    model_description_with_strings(
+        &model.model_info(),
+        model.variables(),
+        model.string_variables(),
+        &ids,
+    )
 }
 
 /// The identifying attributes of a modelDescription.xml.
@@ -130,12 +135,7 @@ pub fn validate(info: &ModelInfo, vars: &[Variable], model_identifier: &str) -> 
     let mut vrs = BTreeSet::new();
     for v in vars {
         let who = format!("variable \"{}\" (value reference {})", v.name, v.vr);
-        if v.name.is_empty() || !names.insert(v.name.as_str()) {
-            return Err(format!("{who}: empty or duplicate name"));
-        }
-        if !vrs.insert(v.vr) {
-            return Err(format!("{who}: duplicate value reference"));
-        }
+        unique((&mut names, &mut vrs), (&v.name, v.vr), &who)?;
         if let Some(u) = v.unit {
             if !UNITS.iter().any(|(n, _, _)| *n == u) {
                 return Err(format!("{who}: unit \"{u}\" is not in fmi::xml::UNITS"));
@@ -183,6 +183,42 @@ pub fn validate(info: &ModelInfo, vars: &[Variable], model_identifier: &str) -> 
     Ok(())
 }
 
+/// Adds a variable's name and value reference to those seen; an empty or repeated name or a
+/// repeated value reference is the error of `who`.
+fn unique<'a>(
+    (names, vrs): (&mut BTreeSet<&'a str>, &mut BTreeSet<u32>),
+    (name, vr): (&'a str, u32),
+    who: &str,
+) -> Result<(), String> {
+    if name.is_empty() || !names.insert(name) {
+        return Err(format!("{who}: empty or duplicate name"));
+    }
+    if !vrs.insert(vr) {
+        return Err(format!("{who}: duplicate value reference"));
+    }
+    Ok(())
+}
+
+/// Checks the String parameters: names and value references unique, also against the Real
+/// variables `vars`; fixed or tunable; no NUL in the start value.
+pub fn validate_strings(vars: &[Variable], strings: &[StringVariable]) -> Result<(), String> {
+    let mut names: BTreeSet<&str> = vars.iter().map(|v| v.name.as_str()).collect();
+    let mut vrs: BTreeSet<u32> = vars.iter().map(|v| v.vr).collect();
+    for v in strings {
+        let who = format!("String variable \"{}\" (value reference {})", v.name, v.vr);
+        unique((&mut names, &mut vrs), (&v.name, v.vr), &who)?;
+        if v.variability == Variability::Continuous {
+            return Err(format!(
+                "{who}: a String parameter must be fixed or tunable"
+            ));
+        }
+        if v.start.contains('\0') {
+            return Err(format!("{who}: the start value holds a NUL character"));
+        }
+    }
+    Ok(())
+}
+
 /// modelDescription.xml (UTF-8, trailing newline) for this model information, variable table
 /// and identity. Fails if [`validate`] fails.
 pub fn model_description(
@@ -190,9 +226,23 @@ pub fn model_description(
     vars: &[Variable],
     ids: &Identity,
 ) -> Result<String, String> {
+    model_description_with_strings(info, vars, &[], ids)
+}
+
+/// [`model_description`] with String parameters, declared after the Real variables (so the
+/// indices of the Real variables, and the ModelStructure, do not depend on them) as
+/// `<ScalarVariable causality="parameter" variability="fixed|tunable" initial="exact">` with
+/// `<String start="…"/>`. Fails if [`validate`] or [`validate_strings`] fails.
+pub fn model_description_with_strings(
+    info: &ModelInfo,
+    vars: &[Variable],
+    strings: &[StringVariable],
+    ids: &Identity,
+) -> Result<String, String> {
     validate(info, vars, ids.model_identifier)?;
+    validate_strings(vars, strings)?;
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
-    write_document(&mut w, info, vars, ids)
+    write_document(&mut w, info, (vars, strings), ids)
         .map_err(|e| format!("writing modelDescription.xml: {e}"))?;
     let mut text = String::from_utf8(w.into_inner()).map_err(|e| e.to_string())?;
     text.push('\n');
@@ -207,7 +257,7 @@ fn num(x: f64) -> String {
 fn write_document(
     w: &mut Writer<Vec<u8>>,
     info: &ModelInfo,
-    vars: &[Variable],
+    (vars, strings): (&[Variable], &[StringVariable]),
     ids: &Identity,
 ) -> io::Result<()> {
     w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))?;
@@ -274,6 +324,9 @@ fn write_document(
                 .write_inner_content(|w| {
                     for v in vars {
                         write_variable(w, v)?;
+                    }
+                    for v in strings {
+                        write_string_variable(w, v)?;
                     }
                     Ok(())
                 })?;
@@ -349,6 +402,32 @@ fn write_variable(w: &mut Writer<Vec<u8>>, v: &Variable) -> io::Result<()> {
                 real = real.with_attribute(("start", s.as_str()));
             }
             real.write_empty()?;
+            Ok(())
+        })?;
+    Ok(())
+}
+
+fn write_string_variable(w: &mut Writer<Vec<u8>>, v: &StringVariable) -> io::Result<()> {
+    let vr = v.vr.to_string();
+    let mut attrs = vec![("name", v.name.as_str()), ("valueReference", vr.as_str())];
+    if !v.description.is_empty() {
+        attrs.push(("description", v.description.as_str()));
+    }
+    let variability = match v.variability {
+        Variability::Tunable => "tunable",
+        _ => "fixed",
+    };
+    attrs.extend([
+        ("causality", "parameter"),
+        ("variability", variability),
+        ("initial", "exact"),
+    ]);
+    w.create_element("ScalarVariable")
+        .with_attributes(attrs)
+        .write_inner_content(|w| {
+            w.create_element("String")
+                .with_attribute(("start", v.start.as_str()))
+                .write_empty()?;
             Ok(())
         })?;
     Ok(())

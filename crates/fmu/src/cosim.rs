@@ -5,14 +5,17 @@
 //! The variables are declared in [`variables`].
 
 pub mod variables;
+pub mod view;
 
-use fmi2::{CoSimModel, ModelInfo, StepError, Variable};
+use std::path::Path;
+
+use fmi2::{CoSimModel, ModelInfo, StepError, StringVariable, Variable};
 
 use hybeam::error::SimError;
 use hybeam::scene::{Root, Scene};
 use hybeam::simulator::{AnyOutputs, AnySimulator, InputKind, Quantity};
 
-use variables::{Access, Table};
+use variables::{Access, Table, VISUALIZATION_DIRECTORY};
 
 /// The beam FMU model.
 #[derive(Debug)]
@@ -50,9 +53,67 @@ pub struct BeamFmu {
     /// divided by it, the first-order output derivative of the outputs without an exact one
     /// (reactions, energies, inertia); 0 before the first step.
     backward: Vec<f64>,
+    /// `visualization.directory` (empty: no views).
+    vis_dir: String,
+    /// The views of this run, opened at the first state recorded with `vis_dir` set.
+    views: Option<view::Views>,
+    /// A view could not be written in this run: no more views until fmi2Reset (or another
+    /// directory).
+    views_off: bool,
+    /// The file stem of the views: the instance name, sanitized ([`view::stem_of`]).
+    stem: String,
+    /// A warning for the FMI layer to report ([`CoSimModel::take_warning`]).
+    warning: Option<String>,
 }
 
 impl BeamFmu {
+    /// Records the current state in the views, if `visualization.directory` is set (opening
+    /// them at the first state). A failure becomes the warning of the call and turns the views
+    /// off for the rest of the run.
+    fn record_view(&mut self) {
+        if self.vis_dir.is_empty() || self.views_off {
+            return;
+        }
+        if self.views.is_none() {
+            let dir = Path::new(&self.vis_dir);
+            match view::Views::open(dir, &self.stem, &self.scene, &self.table) {
+                Ok(v) => self.views = Some(v),
+                Err(e) => return self.view_failed(e),
+            }
+        }
+        if let Some(v) = &mut self.views {
+            if let Err(e) = v.record(&self.sim, &self.outputs) {
+                self.view_failed(e);
+            }
+        }
+    }
+
+    /// A view could not be written: the warning, and no more views in this run.
+    fn view_failed(&mut self, e: String) {
+        // dropping the views tries to write the collection and page of what was recorded
+        self.views = None;
+        self.views_off = true;
+        self.warning = Some(format!(
+            "visualization.directory = \"{}\": {e}; visualization is off for the rest of \
+             this run (until fmi2Reset)",
+            self.vis_dir
+        ));
+    }
+
+    /// Writes the views' collection and page (fmi2Terminate; a later step after fmi2SetFMUstate
+    /// reopens them, and the next fmi2Terminate or fmi2FreeInstance rewrites them).
+    fn finish_views(&mut self) {
+        if let Some(v) = &mut self.views {
+            if let Err(e) = v.finish() {
+                self.view_failed(e);
+            }
+        }
+    }
+
+    /// The `.pvd` collection of the views, if they are open.
+    pub fn view_collection(&self) -> Option<std::path::PathBuf> {
+        self.views.as_ref().map(|v| v.collection())
+    }
     /// modelDescription.xml of the FMU of `scene_toml` with this modelIdentifier, from the
     /// scene alone (its variable table and default experiment): no simulator is built.
     pub fn model_description(scene_toml: &str, model_identifier: &str) -> Result<String, String> {
@@ -63,7 +124,13 @@ impl BeamFmu {
             guid: &guid,
             generation_tool: Self::GENERATION_TOOL,
         };
-        fmi2::xml::model_description(&model_info(&scene), Table::of(&scene).variables(), &ids)
+        let table = Table::of(&scene);
+        fmi2::xml::model_description_with_strings(
+            &model_info(&scene),
+            table.variables(),
+            table.string_variables(),
+            &ids,
+        )
     }
 
     /// A mounted scene's OSP-IS extended model description: its file name
@@ -273,6 +340,11 @@ impl CoSimModel for BeamFmu {
             pre_start: std::cell::RefCell::new(None),
             last_step: step,
             backward,
+            vis_dir: String::new(),
+            views: None,
+            views_off: false,
+            stem: view::stem_of(""),
+            warning: None,
         };
         fmu.refresh_outputs();
         Ok(fmu)
@@ -284,6 +356,45 @@ impl CoSimModel for BeamFmu {
 
     fn variables(&self) -> &[Variable] {
         self.table.variables()
+    }
+
+    fn string_variables(&self) -> &[StringVariable] {
+        self.table.string_variables()
+    }
+
+    fn get_string(&self, index: usize) -> Result<&str, String> {
+        match index {
+            VISUALIZATION_DIRECTORY => Ok(&self.vis_dir),
+            _ => Err(format!("no String variable at index {index}")),
+        }
+    }
+
+    /// `visualization.directory`: before the start it is only stored. After it (a restored FMU
+    /// state with another directory) the views of the old directory are finished and the next
+    /// state recorded opens the new one.
+    fn set_string(&mut self, index: usize, value: &str) -> Result<(), String> {
+        if index != VISUALIZATION_DIRECTORY {
+            return Err(format!("no String variable at index {index}"));
+        }
+        if value != self.vis_dir {
+            self.finish_views();
+            self.views = None;
+            self.views_off = false;
+            self.vis_dir = value.to_owned();
+        }
+        Ok(())
+    }
+
+    fn set_instance_name(&mut self, name: &str) {
+        self.stem = view::stem_of(name);
+    }
+
+    fn terminate(&mut self) {
+        self.finish_views();
+    }
+
+    fn take_warning(&mut self) -> Option<String> {
+        self.warning.take()
     }
 
     fn get_real(&self, index: usize) -> Result<f64, String> {
@@ -379,6 +490,12 @@ impl CoSimModel for BeamFmu {
         self.backward.fill(0.0);
         self.started = true;
         self.pre_start.replace(None);
+        // a new run: a new series (after fmi2Reset the views were discarded)
+        if let Some(v) = &mut self.views {
+            v.discard();
+        }
+        self.views = None;
+        self.record_view();
         Ok(())
     }
 
@@ -398,6 +515,7 @@ impl CoSimModel for BeamFmu {
                 }
             }
         }
+        self.record_view();
         Ok(())
     }
 
@@ -466,9 +584,17 @@ impl CoSimModel for BeamFmu {
         Ok(j[col] * scale)
     }
 
+    /// Back to the instantiated model; the views of the run are discarded (no collection or
+    /// page written; the next run starts a new series under the same stem, overwriting), and
+    /// `visualization.directory` is back to its start value (empty).
     fn reset(&mut self) -> Result<(), String> {
         let fresh = Self::from_resource(&self.scene_text)?;
+        if let Some(v) = &mut self.views {
+            v.discard();
+        }
+        let stem = std::mem::take(&mut self.stem);
         *self = fresh;
+        self.stem = stem;
         Ok(())
     }
 

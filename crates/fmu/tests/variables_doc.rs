@@ -1,6 +1,7 @@
 //! `docs/fmu-variables.md` states the variable table: its rows (name, VR, causality or
 //! variability, unit) are exactly the rows of `Table::of(scene)` over every scene in `scenes/`,
-//! with segment parameters written once as `<segment>.<field>` at VR `1000(i+1) + k`.
+//! with segment parameters written once as `<segment>.<field>` at VR `1000(i+1) + k`, and the
+//! String parameters.
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -81,6 +82,13 @@ fn rows_of(scene: &Scene) -> BTreeSet<Row> {
             ),
             _ => (v.name.clone(), v.vr.to_string(), kind(v), unit(v.unit)),
         })
+        .chain(table.string_variables().iter().map(|v| {
+            let kind = match v.variability {
+                Variability::Tunable => "tunable",
+                _ => "fixed",
+            };
+            (v.name.clone(), v.vr.to_string(), kind.into(), unit(None))
+        }))
         .collect()
 }
 

@@ -3,13 +3,18 @@
 
 use super::*;
 use crate::log::Message;
-use crate::model::ModelInfo;
+use crate::model::{ModelInfo, StringVariable};
 
 /// `x' = k·u + g`: input `u` (VR 1), output `x` (VR 2), fixed `k` (VR 3), tunable `g` (VR 4).
 /// A step with |u| > 1 is refused (recoverable); one that would take x beyond 100 ends the
-/// model (`StepError::Terminate`).
+/// model (`StepError::Terminate`). String parameters: fixed `label` (VR 5, refuses "bad"),
+/// tunable `note` (VR 6; "warn" makes every successful step report a warning).
 struct Ramp {
     vars: Vec<Variable>,
+    strings: Vec<StringVariable>,
+    label: String,
+    note: String,
+    warning: Option<String>,
     x: f64,
     u: f64,
     k: f64,
@@ -47,6 +52,25 @@ impl CoSimModel for Ramp {
                 var("k", 3, Parameter, Fixed),
                 var("g", 4, Parameter, Tunable),
             ],
+            strings: vec![
+                StringVariable {
+                    name: "label".into(),
+                    vr: 5,
+                    variability: Fixed,
+                    start: "start".into(),
+                    description: String::new(),
+                },
+                StringVariable {
+                    name: "note".into(),
+                    vr: 6,
+                    variability: Tunable,
+                    start: String::new(),
+                    description: String::new(),
+                },
+            ],
+            label: "start".into(),
+            note: String::new(),
+            warning: None,
             x: 0.0,
             u: 0.0,
             k: 1.0,
@@ -91,7 +115,27 @@ impl CoSimModel for Ramp {
             return Err(StepError::Terminate("x would pass 100".into()));
         }
         self.x = x;
+        if self.note == "warn" {
+            self.warning = Some(format!("note says warn at x = {x}"));
+        }
         Ok(())
+    }
+    fn string_variables(&self) -> &[StringVariable] {
+        &self.strings
+    }
+    fn get_string(&self, index: usize) -> Result<&str, String> {
+        Ok([&self.label, &self.note][index])
+    }
+    fn set_string(&mut self, index: usize, value: &str) -> Result<(), String> {
+        match index {
+            0 if value == "bad" => return Err("label must not be bad".into()),
+            0 => self.label = value.to_owned(),
+            _ => self.note = value.to_owned(),
+        }
+        Ok(())
+    }
+    fn take_warning(&mut self) -> Option<String> {
+        self.warning.take()
     }
     fn reset(&mut self) -> Result<(), String> {
         *self = Self::from_resource("")?;
@@ -333,4 +377,111 @@ fn getters_never_answer_a_non_finite_number_with_ok() {
     );
     // the finite ones still read
     assert_eq!(i.get_real(&[1], &mut out[..1]), Status::Ok);
+}
+
+/// The values of `vrs` by fmi2GetString, read back from the instance's copies.
+fn strings(i: &mut Instance<Ramp>, vrs: &[u32]) -> Vec<String> {
+    let mut out = vec![std::ptr::null(); vrs.len()];
+    assert_eq!(i.get_string(vrs, &mut out), Status::Ok);
+    // the pointers are those of the instance's copies (valid until the next fmi2GetString)
+    for (p, c) in out.iter().zip(i.last_strings()) {
+        assert_eq!(*p, c.as_ptr());
+    }
+    i.last_strings()
+        .iter()
+        .map(|c| c.to_str().unwrap().to_owned())
+        .collect()
+}
+
+#[test]
+fn string_parameters_get_and_set() {
+    let mut i = instance();
+    // set in instantiated, read from initialization mode on (FMI 2.0's table)
+    assert_eq!(i.set_string(&[5, 6], &["a/b", "n"]), Status::Ok);
+    assert_eq!(i.get_string(&[5], &mut [std::ptr::null()]), Status::Error);
+    assert_eq!(i.enter_initialization_mode(), Status::Ok);
+    assert_eq!(strings(&mut i, &[6, 5, 5]), ["n", "a/b", "a/b"]);
+    assert_eq!(i.set_string(&[], &[]), Status::Ok);
+    // all or nothing: a refused value restores those set before it
+    assert_eq!(i.set_string(&[6, 5], &["m", "bad"]), Status::Error);
+    assert!(last(&i)
+        .text
+        .contains("label must not be bad; nothing was set"));
+    assert_eq!(strings(&mut i, &[5, 6]), ["a/b", "n"]);
+    // unknown and wrong-type value references
+    assert_eq!(i.set_string(&[99], &["x"]), Status::Error);
+    assert!(last(&i)
+        .text
+        .contains("value reference 99 is not a variable"));
+    assert_eq!(i.set_string(&[3], &["x"]), Status::Error);
+    assert!(last(&i)
+        .text
+        .contains("is k, a Real variable, not a String"));
+    let mut out = [std::ptr::null(); 1];
+    assert_eq!(i.get_string(&[2], &mut out), Status::Error);
+    assert!(out[0].is_null(), "out unchanged on error");
+    assert!(last(&i)
+        .text
+        .contains("is x, a Real variable, not a String"));
+    let mut real = [0.0];
+    assert_eq!(i.get_real(&[5], &mut real), Status::Error);
+    assert!(last(&i)
+        .text
+        .contains("is label, a String variable, not a Real"));
+    assert_eq!(i.set_real(&[6], &[1.0]), Status::Error);
+    assert_eq!(i.get_integer(&[5], &mut [0]), Status::Error);
+    assert!(last(&i).text.contains("only Real and String variables"));
+    // fixed: not after fmi2ExitInitializationMode; tunable: any time
+    assert_eq!(i.set_string(&[5], &["init"]), Status::Ok);
+    assert_eq!(i.exit_initialization_mode(), Status::Ok);
+    assert_eq!(i.set_string(&[5], &["late"]), Status::Error);
+    assert!(last(&i)
+        .text
+        .contains("label (value reference 5) is a fixed parameter"));
+    assert_eq!(i.set_string(&[6], &["late"]), Status::Ok);
+    assert_eq!(strings(&mut i, &[5, 6]), ["init", "late"]);
+}
+
+#[test]
+fn string_parameters_travel_with_the_fmu_state() {
+    let mut i = instance();
+    assert_eq!(i.enter_initialization_mode(), Status::Ok);
+    assert_eq!(strings(&mut i, &[5, 6]), ["start", ""]);
+    assert_eq!(i.exit_initialization_mode(), Status::Ok);
+    assert_eq!(i.set_string(&[6], &["first"]), Status::Ok);
+    let s = i.get_fmu_state().unwrap();
+    assert_eq!(s.strings, ["start", "first"]);
+    let bytes = s.serialize(b"RAMPFMI2", &i.guid);
+    assert_eq!(i.set_string(&[6], &["second"]), Status::Ok);
+    let t = i.deserialize_fmu_state(&bytes).unwrap();
+    assert_eq!(t.strings, s.strings);
+    assert_eq!(i.set_fmu_state(&t), Status::Ok);
+    assert_eq!(strings(&mut i, &[6]), ["first"]);
+    // a refused model state sets the String values back
+    assert_eq!(i.set_string(&[6], &["third"]), Status::Ok);
+    let mut bad = s.clone();
+    bad.model.pop();
+    assert_eq!(i.set_fmu_state(&bad), Status::Error);
+    assert_eq!(strings(&mut i, &[6]), ["third"]);
+}
+
+#[test]
+fn a_model_warning_makes_the_call_a_warning() {
+    let mut i = initialized();
+    assert_eq!(i.do_step(0.0, 0.1), Status::Ok);
+    assert_eq!(i.set_string(&[6], &["warn"]), Status::Ok);
+    assert_eq!(i.do_step(0.1, 0.1), Status::Warning);
+    let m = last(&i);
+    assert_eq!(m.status, Status::Warning);
+    assert_eq!(m.category, LogCategory::StatusWarning);
+    assert!(
+        m.text.starts_with("fmi2DoStep: note says warn"),
+        "{}",
+        m.text
+    );
+    assert_eq!(i.get_status(FMI2_DO_STEP_STATUS), Ok(Status::Warning));
+    // the step was taken
+    assert_eq!(i.get_real_status(FMI2_LAST_SUCCESSFUL_TIME), Ok(0.2));
+    assert_eq!(i.set_string(&[6], &[""]), Status::Ok);
+    assert_eq!(i.do_step(0.2, 0.1), Status::Ok);
 }

@@ -12,7 +12,7 @@
 //! parameters without damping, no width/height on a round section, an inner diameter on a tube only. `docs/fmu-variables.md` is
 //! checked against this table by `tests/variables_doc.rs`.
 
-use fmi2::{Causality, Variability, Variable};
+use fmi2::{Causality, StringVariable, Variability, Variable};
 use hybeam::scene::{MotionInput, Root, Scene, Section, Segment, SegmentKind};
 use hybeam::simulator::{InputId, InputKind, OutputId, Quantity};
 
@@ -413,11 +413,25 @@ pub const SEGMENT_FIELDS: [SegmentField; 9] = [
     },
 ];
 
+/// The String parameters (fmi2String, fixed, every scene): (name, VR, description). Declared
+/// after the Real variables in modelDescription.xml.
+pub const STRING_PARAMETERS: [Row; 1] = [(
+    "visualization.directory",
+    900,
+    None,
+    "directory the FMU writes the beam's shape to at every communication point (ParaView \
+     series <instance>.pvd and animation page <instance>.html); empty: off",
+)];
+
+/// The index of `visualization.directory` in [`Table::string_variables`].
+pub const VISUALIZATION_DIRECTORY: usize = 0;
+
 /// The variables of a scene and how each is accessed; `access(i)` belongs to `variables()[i]`.
 #[derive(Debug, Clone)]
 pub struct Table {
     variables: Vec<Variable>,
     access: Vec<Access>,
+    strings: Vec<StringVariable>,
 }
 
 impl Table {
@@ -428,6 +442,16 @@ impl Table {
         let mut t = Table {
             variables: Vec::new(),
             access: Vec::new(),
+            strings: STRING_PARAMETERS
+                .iter()
+                .map(|(name, vr, _, description)| StringVariable {
+                    name: (*name).into(),
+                    vr: *vr,
+                    variability: Variability::Fixed,
+                    start: String::new(),
+                    description: (*description).into(),
+                })
+                .collect(),
         };
         let mounted = scene.root == Root::Mounted;
         let inputs = InputId::named_with(scene.space, mounted);
@@ -566,6 +590,11 @@ impl Table {
         &self.variables
     }
 
+    /// The String parameters ([`STRING_PARAMETERS`]).
+    pub fn string_variables(&self) -> &[StringVariable] {
+        &self.strings
+    }
+
     /// How `variables()[index]` is accessed (`index` < the number of variables).
     pub fn access(&self, index: usize) -> Access {
         self.access[index]
@@ -625,6 +654,7 @@ mod tests {
             assert!(names.iter().any(|n| n == row.0), "{} is in no space", row.0);
         }
         vrs.extend(SCENE_PARAMETERS.iter().map(|p| p.vr));
+        vrs.extend(STRING_PARAMETERS.iter().map(|p| p.1));
         vrs.sort();
         let n = vrs.len();
         vrs.dedup();

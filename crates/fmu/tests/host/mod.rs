@@ -442,6 +442,24 @@ impl Inst {
             Err(s)
         }
     }
+    /// fmi2SetString with owned copies of `values` (freed after the call: the FMU must copy).
+    pub fn set_string(&self, vrs: &[u32], values: &[&str]) -> fmi2Status {
+        assert_eq!(vrs.len(), values.len());
+        let owned: Vec<CString> = values.iter().map(|v| CString::new(*v).unwrap()).collect();
+        let ptrs: Vec<*const c_char> = owned.iter().map(|c| c.as_ptr()).collect();
+        unsafe { self.api.set_string.unwrap()(self.c, vrs.as_ptr(), vrs.len(), ptrs.as_ptr()) }
+    }
+    /// fmi2GetString, the values copied before any other call.
+    pub fn get_string(&self, vrs: &[u32]) -> Result<Vec<String>, fmi2Status> {
+        let mut out = vec![std::ptr::null(); vrs.len()];
+        let s = unsafe {
+            self.api.get_string.unwrap()(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr())
+        };
+        if s != OK {
+            return Err(s);
+        }
+        Ok(out.iter().map(|&p| unsafe { text(p) }).collect())
+    }
     pub fn set_logging(&self, on: bool, categories: &[&str]) -> fmi2Status {
         let owned: Vec<CString> = categories
             .iter()
