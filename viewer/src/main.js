@@ -42,11 +42,20 @@ scene.add(new THREE.HemisphereLight(0xffffff, 0x8899aa, 2.2));
 const sun = new THREE.DirectionalLight(0xffffff, 1.6);
 scene.add(sun);
 
-// bounds of every frame's points: the camera frames them all
+// bounds of every frame's points: the camera frames them all, unless the root travels far
+// (a vehicle): then it frames the first frame (and the body) and follows the root
 const box = new THREE.Box3();
 for (let i = 0; i < pos.length; i += 3) box.expandByPoint(new THREE.Vector3(pos[i], pos[i + 1], pos[i + 2]));
-const centre = box.getCenter(new THREE.Vector3());
-const size = Math.max(box.getSize(new THREE.Vector3()).length(), 1e-3);
+const first = new THREE.Box3();
+for (let i = 0; i < 3 * n; i += 3) first.expandByPoint(new THREE.Vector3(pos[i], pos[i + 1], pos[i + 2]));
+if (data.body) first.expandByScalar(0.5 * Math.max(...data.body.size));
+const travel = box.getSize(new THREE.Vector3()).length();
+const followRoot = travel > 1.5 * first.getSize(new THREE.Vector3()).length();
+const frame0 = followRoot ? first : box;
+const centre = frame0.getCenter(new THREE.Vector3());
+const size = Math.max(frame0.getSize(new THREE.Vector3()).length(), 1e-3);
+const follow = document.getElementById("follow");
+follow.checked = followRoot;
 const side = new THREE.Vector3(0.35, -1, 0.45);
 if (up.z === 0) side.set(0.35, 0.45, 1); // y up: look from +z
 camera.position.copy(centre).addScaledVector(side.normalize(), 1.6 * size);
@@ -138,6 +147,7 @@ function tangent(f, i) {
   t.set(pos[o + 3 * b] - pos[o + 3 * a], pos[o + 3 * b + 1] - pos[o + 3 * a + 1], pos[o + 3 * b + 2] - pos[o + 3 * a + 2]).normalize();
 }
 let current = -1;
+let lastRoot = null;
 function show(f) {
   current = f;
   const o = f * n * 3;
@@ -168,6 +178,14 @@ function show(f) {
   stripeGeom.attributes.position.needsUpdate = true;
   stripeGeom.computeBoundingSphere();
   const R = root.subarray(12 * f, 12 * f + 12);
+  if (follow.checked && lastRoot) {
+    const d = new THREE.Vector3(R[0] - lastRoot[0], R[1] - lastRoot[1], R[2] - lastRoot[2]);
+    camera.position.add(d);
+    controls.target.add(d);
+    sun.position.add(d);
+    grid.position.add(d);
+  }
+  lastRoot = [R[0], R[1], R[2]];
   const m = new THREE.Matrix4().set(R[3], R[6], R[9], R[0], R[4], R[7], R[10], R[1], R[5], R[8], R[11], R[2], 0, 0, 0, 1);
   axes.matrix.copy(m);
   if (body) {

@@ -17,7 +17,7 @@ if (!page_path || !csv_path) {
 }
 
 // the run's last row, by column name
-const lines = readFileSync(csv_path, "utf8").trim().split("\n");
+const lines = readFileSync(csv_path, "utf8").trim().split(/\r?\n/);
 const header = lines[0].split(",");
 const last = Object.fromEntries(lines[lines.length - 1].split(",").map((v, i) => [header[i], Number(v)]));
 
