@@ -12,7 +12,7 @@
 
 use clap::{Args, Parser, Subcommand};
 use hybeam::scene::{Root, Scene, SpaceKind};
-use hybeam::simulator::{AnySimulator, OutputId};
+use hybeam::simulator::{AnyOutputs, AnySimulator, OutputId};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -171,11 +171,10 @@ fn header(columns: &[(String, OutputId)]) -> String {
         .join(",")
 }
 
-/// The CSV row of the current state: time to 10 digits, outputs to 18 (round trip). The
-/// outputs are computed once per row.
-fn row(sim: &AnySimulator, columns: &[(String, OutputId)]) -> String {
+/// The CSV row of the current state, whose outputs are `o`: time to 10 digits, outputs to 18
+/// (round trip).
+fn row(sim: &AnySimulator, o: &AnyOutputs, columns: &[(String, OutputId)]) -> String {
     let mut s = format!("{:.9e}", sim.time());
-    let o = sim.outputs();
     for (_, id) in columns {
         let value = o.value(*id).unwrap_or(f64::NAN);
         s.push_str(&format!(",{value:.17e}"));
@@ -183,78 +182,27 @@ fn row(sim: &AnySimulator, columns: &[(String, OutputId)]) -> String {
     s
 }
 
-/// The views a run writes beside its CSV (`--vtk`, `--animate`).
-struct Views {
-    series: Option<hybeam_view::Series>,
-    page: Option<(hybeam_view::Recorder, PathBuf)>,
-    samples: usize,
-    /// The tip columns shown on the page: (index into the columns).
-    tip: Vec<usize>,
-}
-
-impl Views {
-    fn new(args: &RunArgs, scene: &Scene, columns: &[(String, OutputId)]) -> Result<Self, String> {
-        let radii = hybeam_view::segment_radii(scene);
-        let series = match &args.vtk {
-            Some(dir) => Some(
-                hybeam_view::Series::create(dir, "beam", radii.clone())
-                    .map_err(|e| e.to_string())?,
-            ),
-            None => None,
-        };
-        let tip: Vec<usize> = (0..columns.len())
-            .filter(|&k| columns[k].0.starts_with("tip."))
-            .collect();
-        let names = tip.iter().map(|&k| columns[k].0.clone()).collect();
-        let page = args.animate.as_ref().map(|path| {
-            let title = format!("{} ({})", scene.name, args.scene.scene.display());
-            let rec = hybeam_view::Recorder::new(&title, &scene.gravity, radii, names);
-            (rec, path.clone())
-        });
-        Ok(Self {
-            series,
-            page,
-            samples: args.samples as usize,
-            tip,
-        })
-    }
-
-    /// Records the current state (shape computed once for both views).
-    fn record(&mut self, sim: &AnySimulator, columns: &[(String, OutputId)]) -> Result<(), String> {
-        if self.series.is_none() && self.page.is_none() {
-            return Ok(());
-        }
-        let shape = sim.shape(self.samples);
-        if let Some(series) = &mut self.series {
-            series
-                .write(sim.time(), &shape)
-                .map_err(|e| e.to_string())?;
-        }
-        if let Some((rec, _)) = &mut self.page {
-            let o = sim.outputs();
-            let tip: Vec<f64> = self
-                .tip
-                .iter()
-                .map(|&k| o.value(columns[k].1).unwrap_or(f64::NAN))
-                .collect();
-            rec.push(sim.time(), &shape, &tip);
-        }
-        Ok(())
-    }
-
-    /// Writes the collection and the page; what was written, for the summary line.
-    fn finish(&mut self) -> Result<String, String> {
-        let mut out = String::new();
-        if let Some(series) = &mut self.series {
-            let pvd = series.finish().map_err(|e| e.to_string())?;
-            out.push_str(&format!(", {} pieces -> {}", series.len(), pvd.display()));
-        }
-        if let Some((rec, path)) = &self.page {
-            rec.write(path).map_err(|e| e.to_string())?;
-            out.push_str(&format!(", animation -> {}", path.display()));
-        }
-        Ok(out)
-    }
+/// The views a run writes beside its CSV (`--vtk DIR` as `DIR/beam.pvd`, `--animate PAGE`),
+/// the page showing the tip columns.
+fn views(
+    args: &RunArgs,
+    scene: &Scene,
+    columns: &[(String, OutputId)],
+) -> Result<hybeam_view::Views, String> {
+    let tip = columns
+        .iter()
+        .filter(|(name, _)| name.starts_with("tip."))
+        .cloned()
+        .collect();
+    let title = format!("{} ({})", scene.name, args.scene.scene.display());
+    hybeam_view::Views::create(
+        scene,
+        args.vtk.as_deref().map(|dir| (dir, "beam")),
+        args.animate.clone().map(|page| (page, title)),
+        tip,
+        args.samples as usize,
+    )
+    .map_err(|e| e.to_string())
 }
 
 fn run(args: &RunArgs) -> Result<(), String> {
@@ -269,27 +217,38 @@ fn run(args: &RunArgs) -> Result<(), String> {
     let dt = scene.simulation.output_step;
     let wall = Instant::now();
     let columns = columns(scene.space, scene.root == Root::Mounted);
-    let mut views = Views::new(args, &scene, &columns)?;
+    let mut views = views(args, &scene, &columns)?;
     let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     let mut out = Vec::with_capacity(64 * 1024);
     writeln!(out, "{}", header(&columns)).map_err(|e| e.to_string())?;
-    writeln!(out, "{}", row(&sim, &columns)).map_err(|e| e.to_string())?;
-    views.record(&sim, &columns)?;
+    // the outputs once per output time, for the row and the page
+    let mut record = |sim: &AnySimulator, out: &mut Vec<u8>| -> Result<(), String> {
+        let o = sim.outputs();
+        writeln!(out, "{}", row(sim, &o, &columns)).map_err(|e| e.to_string())?;
+        views.record(sim, &o).map_err(|e| e.to_string())
+    };
+    record(&sim, &mut out)?;
     let n_out = (t_end / dt - 1e-9).ceil() as u64;
     let mut last_report = Instant::now();
     for k in 1..=n_out {
         let t = (k as f64 * dt).min(t_end);
         sim.advance(t)
             .map_err(|e| format!("at t = {:.6} s: {e}", sim.time()))?;
-        writeln!(out, "{}", row(&sim, &columns)).map_err(|e| e.to_string())?;
-        views.record(&sim, &columns)?;
+        record(&sim, &mut out)?;
         if !args.quiet && last_report.elapsed().as_secs_f64() > 1.0 {
             eprint!("\r  t = {t:.4} / {t_end} s ({:.0} %)", 100.0 * t / t_end);
             last_report = Instant::now();
         }
     }
     // the views' last pieces and page are part of the run's time
-    let written = views.finish()?;
+    views.finish().map_err(|e| e.to_string())?;
+    let mut written = String::new();
+    if let Some((pvd, pieces)) = views.collection() {
+        written.push_str(&format!(", {pieces} pieces -> {}", pvd.display()));
+    }
+    if let Some(page) = views.page() {
+        written.push_str(&format!(", animation -> {}", page.display()));
+    }
     let elapsed = wall.elapsed().as_secs_f64();
     let out_path = args.out.display();
     std::fs::write(&args.out, out).map_err(|e| format!("cannot write {out_path}: {e}"))?;
@@ -397,7 +356,7 @@ fn statics(args: &SceneArgs) -> Result<(), String> {
     let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     let it = sim.solve_static().map_err(|e| e.to_string())?;
     println!("{}", header(&columns));
-    println!("{}", row(&sim, &columns));
+    println!("{}", row(&sim, &sim.outputs(), &columns));
     eprintln!(
         "static equilibrium: {it} Newton iterations, wall {:.4} s",
         wall.elapsed().as_secs_f64()
@@ -550,7 +509,7 @@ mod tests {
         )
         .unwrap();
         let sim = AnySimulator::new(scene).unwrap();
-        let row = row(&sim, &planar);
+        let row = row(&sim, &sim.outputs(), &planar);
         assert_eq!(row.split(',').count(), header(&planar).split(',').count());
         assert!(!row.contains("NaN"), "{row}");
     }

@@ -1,5 +1,7 @@
 //! One sample of a beam's centreline ([`ShapePoint`]) and the small 3-vector geometry the
-//! elements' samplers share. A leaf: imports nothing of the model.
+//! elements' samplers share (on the model's 3-vector helpers, [`super::vector`]).
+
+use super::vector::{cross, dot};
 
 /// One sample of the centreline.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -39,26 +41,12 @@ pub(crate) fn embed(v: &[f64]) -> [f64; 3] {
 
 /// Unit vector of `v` (unchanged if zero).
 pub(crate) fn unit(v: [f64; 3]) -> [f64; 3] {
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let n = dot(v, v).sqrt();
     if n > 0.0 {
         v.map(|c| c / n)
     } else {
         v
     }
-}
-
-/// a × b.
-pub(crate) fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// a · b.
-pub(crate) fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The frame `[t, d2, d3]` of tangent direction `t` whose section axes are (e_y, e_z) carried by
@@ -74,8 +62,8 @@ pub(crate) fn minimal_frame(t: [f64; 3]) -> [[f64; 3]; 3] {
     let w = [0.0, -t[2], t[1]];
     let f = 1.0 / (1.0 + c);
     let col = |e: [f64; 3]| -> [f64; 3] {
-        let we = cross3(w, e);
-        let d = dot3(w, e) * f;
+        let we = cross(w, e);
+        let d = dot(w, e) * f;
         std::array::from_fn(|i| c * e[i] + we[i] + d * w[i])
     };
     [t, col([0.0, 1.0, 0.0]), col([0.0, 0.0, 1.0])]
@@ -84,7 +72,7 @@ pub(crate) fn minimal_frame(t: [f64; 3]) -> [[f64; 3]; 3] {
 /// The frame `[t, d2, d3]` from the tangent and a section director (Gram–Schmidt).
 pub(crate) fn director_frame(t: [f64; 3], d: [f64; 3]) -> [[f64; 3]; 3] {
     let t = unit(t);
-    let s = dot3(t, d);
+    let s = dot(t, d);
     let d2 = unit(std::array::from_fn(|i| d[i] - s * t[i]));
-    [t, d2, cross3(t, d2)]
+    [t, d2, cross(t, d2)]
 }

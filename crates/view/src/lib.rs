@@ -6,7 +6,9 @@
 
 pub mod animation;
 pub mod read;
+pub mod recording;
 pub mod vtk;
 
 pub use animation::{BodyBox, Recorder};
+pub use recording::Views;
 pub use vtk::{segment_radii, Series, ViewError};

@@ -601,6 +601,12 @@ impl ModalBody3 {
     /// Tip position in the body frame ū_T = (L − ½(a_yᵀGa_y + a_zᵀGa_z)/L, φ(1)ᵀa_y,
     /// φ(1)ᵀa_z) [m]: the second-order foreshortening in both planes (G = ∫φ′φ′ dξ).
     pub fn tip_local(&self, q: &[f64]) -> [f64; 3] {
+        self.tip_local_and_gradients(q).0
+    }
+
+    /// [`ModalBody3::tip_local`] and the foreshortening gradients of both planes
+    /// ([`ModalBody3::foreshortening_gradient`] of a_y and of a_z) in one pass.
+    pub fn tip_local_and_gradients(&self, q: &[f64]) -> ([f64; 3], Vec<f64>, Vec<f64>) {
         let nb = self.modes();
         let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
         let gy = self.foreshortening_gradient(ay);
@@ -609,7 +615,7 @@ impl ModalBody3 {
             * (gy.iter().zip(ay).map(|(g, a)| g * a).sum::<f64>()
                 + gz.iter().zip(az).map(|(g, a)| g * a).sum::<f64>());
         let (d, _, _) = self.tip_elastic(q);
-        [self.props.length - short, d[0], d[1]]
+        ([self.props.length - short, d[0], d[1]], gy, gz)
     }
 
     /// Centerline point ū(ξ) = (ξL, φ(ξ)ᵀa_y, φ(ξ)ᵀa_z) in the body frame [m] and the section
@@ -654,9 +660,8 @@ impl ModalBody3 {
         for (k, &x) in xi.iter().enumerate() {
             let ([v, v1, v2], [w, w1, w2]) = (f[0][k], f[1][k]);
             let (u, short_rate) = if x == 1.0 {
-                let rate = dot(self.foreshortening_gradient(ay), vy)
-                    + dot(self.foreshortening_gradient(az), vz);
-                (self.tip_local(q), rate)
+                let (u, gy, gz) = self.tip_local_and_gradients(q);
+                (u, dot(gy, vy) + dot(gz, vz))
             } else {
                 let u = [x * l - 0.5 * (s[0][k] + s[1][k]) / l, v, w];
                 (u, (s[2][k] + s[3][k]) / l)

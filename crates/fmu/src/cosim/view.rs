@@ -2,13 +2,13 @@
 //! as a ParaView series (`STEM_000000.vtu`, … and `STEM.pvd`) and the animation page
 //! (`STEM.html`), written by the FMU itself whatever host runs it (`docs/fmu-variables.md`).
 //!
-//! One [`Views`] per instance (no global state): the series and the recorder of
-//! [`hybeam_view`], as the command line's `--vtk` and `--animate` use them.
+//! One [`Views`] per instance (no global state): [`hybeam_view::Views`], as the command line's
+//! `--vtk` and `--animate` use it, closed once (terminate, reset or drop).
 
 use std::path::{Path, PathBuf};
 
 use hybeam::scene::Scene;
-use hybeam::simulator::{AnyOutputs, AnySimulator, OutputId};
+use hybeam::simulator::{AnyOutputs, AnySimulator};
 
 use super::variables::{Access, Table};
 
@@ -36,37 +36,36 @@ pub fn stem_of(instance_name: &str) -> String {
 /// The views of one run being written.
 #[derive(Debug)]
 pub struct Views {
-    series: hybeam_view::Series,
-    page: hybeam_view::Recorder,
-    html: PathBuf,
-    /// The tip outputs shown on the page.
-    tip: Vec<OutputId>,
+    views: hybeam_view::Views,
     /// The collection and the page were written (or the run was discarded): nothing to do on
     /// drop.
     closed: bool,
 }
 
 impl Views {
-    /// Views in `dir` (created if missing) named `stem`, for the beam of `scene` and its
-    /// variable `table`. Writes nothing yet.
+    /// Views in `dir` (created if missing) named `stem` (`STEM.pvd`, `STEM.html`), for the beam
+    /// of `scene` and its variable `table` (the page shows its `tip.*` outputs). Writes nothing
+    /// yet.
     pub fn open(dir: &Path, stem: &str, scene: &Scene, table: &Table) -> Result<Self, String> {
-        let radii = hybeam_view::segment_radii(scene);
-        let series = hybeam_view::Series::create(dir, stem, radii.clone())
-            .map_err(|e| format!("cannot create the ParaView series: {e}"))?;
-        let (mut names, mut tip) = (Vec::new(), Vec::new());
-        for (index, v) in table.variables().iter().enumerate() {
-            if let (Access::Output(id), true) = (table.access(index), v.name.starts_with("tip.")) {
-                names.push(v.name.clone());
-                tip.push(id);
-            }
-        }
+        let tip = (0..table.variables().len())
+            .filter_map(|index| match table.access(index) {
+                Access::Output(id) if table.variables()[index].name.starts_with("tip.") => {
+                    Some((table.variables()[index].name.clone(), id))
+                }
+                _ => None,
+            })
+            .collect();
         let title = format!("{} (FMU instance {stem})", scene.name);
-        let page = hybeam_view::Recorder::new(&title, &scene.gravity, radii, names);
-        Ok(Self {
-            series,
-            page,
-            html: dir.join(format!("{stem}.html")),
+        let views = hybeam_view::Views::create(
+            scene,
+            Some((dir, stem)),
+            Some((dir.join(format!("{stem}.html")), title)),
             tip,
+            SAMPLES_PER_ELEMENT,
+        )
+        .map_err(|e| format!("cannot create the ParaView series: {e}"))?;
+        Ok(Self {
+            views,
             closed: false,
         })
     }
@@ -76,23 +75,13 @@ impl Views {
     pub fn record(&mut self, sim: &AnySimulator, outputs: &AnyOutputs) -> Result<(), String> {
         // open again (after fmi2Terminate, a restored state that steps on)
         self.closed = false;
-        let shape = sim.shape(SAMPLES_PER_ELEMENT);
-        let t = sim.time();
-        self.series.write(t, &shape).map_err(|e| e.to_string())?;
-        let tip: Vec<f64> = self
-            .tip
-            .iter()
-            .map(|&id| outputs.value(id).unwrap_or(f64::NAN))
-            .collect();
-        self.page.push(t, &shape, &tip);
-        Ok(())
+        self.views.record(sim, outputs).map_err(|e| e.to_string())
     }
 
     /// Writes the `.pvd` collection and the page (the views are then closed).
     pub fn finish(&mut self) -> Result<(), String> {
         self.closed = true;
-        self.series.finish().map_err(|e| e.to_string())?;
-        self.page.write(&self.html).map_err(|e| e.to_string())
+        self.views.finish().map_err(|e| e.to_string())
     }
 
     /// Closes the views without writing the collection or the page (fmi2Reset: the run's
@@ -103,7 +92,10 @@ impl Views {
 
     /// The `.pvd` collection's path.
     pub fn collection(&self) -> PathBuf {
-        self.series.collection()
+        self.views
+            .collection()
+            .expect("the FMU's views write a series")
+            .0
     }
 }
 

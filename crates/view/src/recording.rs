@@ -1,0 +1,90 @@
+//! The views of one run recorded together: an optional ParaView series and an optional
+//! animation page, the shape sampled once per recorded state. What `hybeam run --vtk/--animate`
+//! and the FMU's `visualization.directory` write.
+
+use crate::animation::Recorder;
+use crate::vtk::{segment_radii, Series, ViewError};
+use hybeam::scene::Scene;
+use hybeam::simulator::{AnyOutputs, AnySimulator, OutputId};
+use std::path::{Path, PathBuf};
+
+/// The views of one run.
+#[derive(Debug)]
+pub struct Views {
+    series: Option<Series>,
+    page: Option<(Recorder, PathBuf)>,
+    /// The outputs shown on the page.
+    tip: Vec<OutputId>,
+    /// Centreline intervals per element.
+    samples: usize,
+}
+
+impl Views {
+    /// The views of a run of `scene`: a series in `series` = (directory, file stem), a page
+    /// at `page` = (path, title) showing the outputs `tip` (name, id), `samples` intervals per
+    /// element. Creates the series' directory; writes nothing yet.
+    pub fn create(
+        scene: &Scene,
+        series: Option<(&Path, &str)>,
+        page: Option<(PathBuf, String)>,
+        tip: Vec<(String, OutputId)>,
+        samples: usize,
+    ) -> Result<Self, ViewError> {
+        let radii = segment_radii(scene);
+        let series = match series {
+            Some((dir, stem)) => Some(Series::create(dir, stem, radii.clone())?),
+            None => None,
+        };
+        let (names, tip): (Vec<String>, Vec<OutputId>) = tip.into_iter().unzip();
+        let page =
+            page.map(|(path, title)| (Recorder::new(&title, &scene.gravity, radii, names), path));
+        Ok(Self {
+            series,
+            page,
+            tip,
+            samples,
+        })
+    }
+
+    /// Records the simulator's current state (`outputs` its outputs) as the next piece and
+    /// frame; a time not after the last one (a rollback) first drops the later ones.
+    pub fn record(&mut self, sim: &AnySimulator, outputs: &AnyOutputs) -> Result<(), ViewError> {
+        if self.series.is_none() && self.page.is_none() {
+            return Ok(());
+        }
+        let shape = sim.shape(self.samples);
+        if let Some(series) = &mut self.series {
+            series.write(sim.time(), &shape)?;
+        }
+        if let Some((rec, _)) = &mut self.page {
+            let tip: Vec<f64> = self
+                .tip
+                .iter()
+                .map(|&id| outputs.value(id).unwrap_or(f64::NAN))
+                .collect();
+            rec.push(sim.time(), &shape, &tip);
+        }
+        Ok(())
+    }
+
+    /// Writes every pending piece, the `.pvd` collection and the page.
+    pub fn finish(&mut self) -> Result<(), ViewError> {
+        if let Some(series) = &mut self.series {
+            series.finish()?;
+        }
+        if let Some((rec, path)) = &self.page {
+            rec.write(path)?;
+        }
+        Ok(())
+    }
+
+    /// The series' `.pvd` collection and its number of pieces, if a series is written.
+    pub fn collection(&self) -> Option<(PathBuf, usize)> {
+        self.series.as_ref().map(|s| (s.collection(), s.len()))
+    }
+
+    /// The page's path, if a page is written.
+    pub fn page(&self) -> Option<&Path> {
+        self.page.as_ref().map(|(_, p)| p.as_path())
+    }
+}
