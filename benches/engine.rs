@@ -5,9 +5,10 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
+use hybeam::linalg::LuMethod;
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
 use hybeam::model::ancf3d::Ancf3Props;
-use hybeam::model::{Model, Planar, Spatial};
+use hybeam::model::{Model, Planar, Space, Spatial};
 use hybeam::scene::{Scene, StrainModel};
 use hybeam::simulator::Simulator;
 use std::hint::black_box;
@@ -235,6 +236,59 @@ fn spatial_element(c: &mut Criterion) {
     }
 }
 
+/// The Newton matrix's LU by both methods on the peer comparison's models (planar Case 1 rod of
+/// 8 elements, spatial cable of 16, torsion rods of 16 and 512): factorize, and solve with a
+/// held factorization (what a modified-Newton iteration pays).
+fn lu(c: &mut Criterion) {
+    let rod = |n: usize, torsion: bool| {
+        let text = format!(
+            "name = \"rod\"\nspace = \"spatial\"\ngravity = [0.0, 0.0, -9.81]\n\
+             root = \"clamped\"\ntorsion = {torsion}\n[[segments]]\nname = \"a\"\n\
+             kind = \"ancf\"\nlength = 0.4\nsection = \"round\"\ndiameter = 0.002\n\
+             youngs_modulus = 2.1e11\ndensity = 7850.0\nelements = {n}\n"
+        );
+        Model::<Spatial>::from_scene(&Scene::from_toml(&text).unwrap()).unwrap()
+    };
+    let mut planar = scene("case1_ancf.toml");
+    planar.segments[0].elements = Some(8);
+    lu_of(
+        c,
+        "planar ANCF 8 el.",
+        Model::<Planar>::from_scene(&planar).unwrap(),
+    );
+    for (n, torsion) in [(16, false), (16, true), (512, true)] {
+        let kind = if torsion { "torsion" } else { "cable" };
+        lu_of(c, &format!("spatial {kind} {n} el."), rod(n, torsion));
+    }
+}
+
+fn lu_of<S: Space>(c: &mut Criterion, name: &str, mut model: Model<S>) {
+    let req = EvalRequest {
+        sd: 1e-8,
+        matrix: Some((1.1, 1e-4, 1e-8)),
+        lambda_hessian: true,
+    };
+    for method in [LuMethod::Band, LuMethod::General] {
+        model.set_lu_method(method);
+        let (n, m) = (model.coordinates(), model.constraints());
+        let q = model.initial_coordinates().to_vec();
+        let z = vec![0.0; n];
+        let lam = vec![0.0; m];
+        let mut res = vec![0.0; n + m];
+        model.eval(StateRef::new(&q, &z, &z, &lam), req, &mut res);
+        c.bench_function(&format!("lu {name} {method:?}: factorize"), |b| {
+            b.iter(|| model.factorize().unwrap())
+        });
+        let rhs = res.clone();
+        c.bench_function(&format!("lu {name} {method:?}: solve"), |b| {
+            b.iter(|| {
+                res.copy_from_slice(&rhs);
+                black_box(model.solve(&mut res))
+            })
+        });
+    }
+}
+
 criterion_group!(
     benches,
     element,
@@ -242,6 +296,7 @@ criterion_group!(
     newton,
     step,
     spatial_step,
+    lu,
     spatial_sweep
 );
 criterion_main!(benches);

@@ -18,7 +18,7 @@ use super::dofs::{LocalDofs, Numbering};
 use super::load::{moment_residual, point_force_residual, point_force_stiffness};
 use super::space::{is_nonzero, is_nonzero_moment, scaled, Space};
 use crate::integrator::{EvalRequest, Integrable, StateRef};
-use crate::linalg::{SingularMatrix, SparseLu, SparsePattern};
+use crate::linalg::{LuMethod, NewtonLu, SingularMatrix, SparsePattern};
 
 /// A component on its local coordinates.
 #[derive(Debug)]
@@ -106,7 +106,7 @@ pub struct Model<S: Space> {
     pub(crate) tip_moment: S::Moment,
     scale: Vec<f64>,
     q0: Vec<f64>,
-    lu: SparseLu,
+    lu: NewtonLu,
     values: Vec<f64>,
     work: Work,
 }
@@ -241,7 +241,7 @@ impl<S: Space> Model<S> {
             tip_moment,
             scale,
             q0,
-            lu: SparseLu::new(pattern),
+            lu: NewtonLu::new(pattern),
             values: vec![0.0; nnz],
             work,
         };
@@ -252,6 +252,19 @@ impl<S: Space> Model<S> {
     /// Coordinates of the initial configuration.
     pub fn initial_coordinates(&self) -> &[f64] {
         &self.q0
+    }
+
+    /// How the Newton matrix is factorized ([`NewtonLu`] chooses by the band width).
+    pub fn lu_method(&self) -> LuMethod {
+        self.lu.method()
+    }
+
+    /// Factorizes the Newton matrix by `method` from now on (benchmarks and the tests that
+    /// compare the two; results differ by round-off). The held factorization is dropped, so the
+    /// caller's integrator must refactorize (`GeneralizedAlpha::invalidate`).
+    pub fn set_lu_method(&mut self, method: LuMethod) {
+        let pattern = self.lu.pattern().clone();
+        self.lu = NewtonLu::with_method(pattern, method);
     }
 
     /// Whether any damping term is present.

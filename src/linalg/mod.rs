@@ -1,11 +1,24 @@
-//! Sparse Newton matrix: a pattern built once, values refilled through slot tables, and faer's
-//! sparse LU with the symbolic analysis (COLAMD ordering, elimination structure) done once per
-//! model and the numeric factorization reusing its storage.
+//! Newton matrix: a pattern built once, values refilled through slot tables, and its LU: in band
+//! storage after a reverse Cuthill–McKee ordering when the band is narrow (every chain of
+//! elements; [`band`]), otherwise faer's sparse LU with the symbolic analysis (COLAMD ordering,
+//! elimination structure) done once per model and the numeric factorization reusing its storage.
 
 use dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par};
+
+pub mod band;
+
+pub use band::{BandLu, BandOrder};
+
+/// Largest kl + ku (sub- plus super-diagonals in reverse Cuthill–McKee order) factorized in band
+/// storage; a wider band goes to the general sparse LU. A chain of ANCF elements has
+/// kl + ku ≈ 4 × a node's coordinates (16 planar, 24–36 spatial) whatever its length; a modal
+/// body adds its coordinates to the band once. At 64 a band solve costs at most about
+/// 128 multiply-adds per unknown, below the general LU's per-entry overhead at these sizes
+/// (`cargo bench --bench engine -- lu`).
+pub const BAND_MAX_WIDTH: usize = 64;
 
 /// Marker for "no slot" (a fixed coordinate).
 pub const NO_SLOT: u32 = u32::MAX;
@@ -74,7 +87,109 @@ impl SparsePattern {
 #[derive(Debug, Clone, PartialEq)]
 pub struct SingularMatrix;
 
-/// Sparse LU solver bound to one pattern.
+/// How the Newton matrix is factorized.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LuMethod {
+    /// Band storage in reverse Cuthill–McKee order ([`BandLu`]).
+    Band,
+    /// faer's general sparse LU ([`SparseLu`]).
+    General,
+}
+
+/// The Newton matrix's LU: [`BandLu`] when the reordered band is at most [`BAND_MAX_WIDTH`]
+/// wide, [`SparseLu`] otherwise. Both solve the same system; their results differ by round-off.
+#[derive(Debug)]
+pub struct NewtonLu {
+    pattern: SparsePattern,
+    solver: Solver,
+    factored: bool,
+}
+
+// one per model, built once and never moved in a step: the variants' sizes do not matter
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug)]
+enum Solver {
+    Band(BandLu),
+    General(SparseLu),
+}
+
+impl NewtonLu {
+    /// The LU for `pattern`, its method chosen by the band width.
+    pub fn new(pattern: SparsePattern) -> Self {
+        let order = BandOrder::reverse_cuthill_mckee(&pattern);
+
+        let method = if order.kl + order.ku <= BAND_MAX_WIDTH {
+            LuMethod::Band
+        } else {
+            LuMethod::General
+        };
+        Self::build(pattern, method, order)
+    }
+
+    /// The LU for `pattern` by `method` (tests and benchmarks compare the two).
+    pub fn with_method(pattern: SparsePattern, method: LuMethod) -> Self {
+        let order = BandOrder::reverse_cuthill_mckee(&pattern);
+        Self::build(pattern, method, order)
+    }
+
+    fn build(pattern: SparsePattern, method: LuMethod, order: BandOrder) -> Self {
+        let solver = match method {
+            LuMethod::Band => Solver::Band(BandLu::new(&pattern, order)),
+            LuMethod::General => Solver::General(SparseLu::new(pattern.clone())),
+        };
+        Self {
+            pattern,
+            solver,
+            factored: false,
+        }
+    }
+
+    /// The method in use.
+    pub fn method(&self) -> LuMethod {
+        match self.solver {
+            Solver::Band(_) => LuMethod::Band,
+            Solver::General(_) => LuMethod::General,
+        }
+    }
+
+    /// The pattern.
+    pub fn pattern(&self) -> &SparsePattern {
+        &self.pattern
+    }
+
+    /// Numeric factorization of the matrix with the given values (in pattern order).
+    pub fn factorize(&mut self, values: &[f64]) -> Result<(), SingularMatrix> {
+        self.factored = false;
+        if values.iter().any(|v| !v.is_finite()) {
+            return Err(SingularMatrix);
+        }
+        match &mut self.solver {
+            Solver::Band(b) => b.factorize(values)?,
+            Solver::General(g) => g.factorize(values)?,
+        }
+        self.factored = true;
+        Ok(())
+    }
+
+    /// Whether a valid factorization is held.
+    pub fn is_factored(&self) -> bool {
+        self.factored
+    }
+
+    /// Solves A x = b in place; returns false if the result is not finite.
+    pub fn solve(&mut self, rhs: &mut [f64]) -> bool {
+        debug_assert!(self.factored);
+        match &mut self.solver {
+            Solver::Band(b) => {
+                b.solve(rhs);
+                rhs.iter().all(|v| v.is_finite())
+            }
+            Solver::General(g) => g.solve(rhs),
+        }
+    }
+}
+
+/// faer's sparse LU bound to one pattern.
 pub struct SparseLu {
     pattern: SparsePattern,
     symbolic: SymbolicLu<usize>,
