@@ -180,12 +180,10 @@ impl NewtonLu {
     pub fn solve(&mut self, rhs: &mut [f64]) -> bool {
         debug_assert!(self.factored);
         match &mut self.solver {
-            Solver::Band(b) => {
-                b.solve(rhs);
-                rhs.iter().all(|v| v.is_finite())
-            }
+            Solver::Band(b) => b.solve(rhs),
             Solver::General(g) => g.solve(rhs),
         }
+        rhs.iter().all(|v| v.is_finite())
     }
 }
 
@@ -195,7 +193,6 @@ pub struct SparseLu {
     symbolic: SymbolicLu<usize>,
     numeric: NumericLu<usize, f64>,
     mem: MemBuffer,
-    factored: bool,
 }
 
 impl std::fmt::Debug for SparseLu {
@@ -228,7 +225,6 @@ impl SparseLu {
             symbolic,
             numeric: NumericLu::new(),
             mem: MemBuffer::new(req),
-            factored: false,
         }
     }
 
@@ -237,37 +233,25 @@ impl SparseLu {
         &self.pattern
     }
 
-    /// Numeric factorization of the matrix with the given values (in pattern order).
+    /// Numeric factorization of the matrix with the given finite values (in pattern order).
     pub fn factorize(&mut self, values: &[f64]) -> Result<(), SingularMatrix> {
-        self.factored = false;
-        if values.iter().any(|v| !v.is_finite()) {
-            return Err(SingularMatrix);
-        }
         let p = &self.pattern;
         let sym = SymbolicSparseColMatRef::new_checked(p.n, p.n, &p.col_ptr, None, &p.row_idx);
         let a = SparseColMatRef::new(sym, values);
         let stack = MemStack::new(&mut self.mem);
         self.symbolic
             .factorize_numeric_lu(&mut self.numeric, a, Par::Seq, stack, Default::default())
-            .map_err(|_| SingularMatrix)?;
-        self.factored = true;
-        Ok(())
+            .map(|_| ())
+            .map_err(|_| SingularMatrix)
     }
 
-    /// Whether a valid factorization is held.
-    pub fn is_factored(&self) -> bool {
-        self.factored
-    }
-
-    /// Solves A x = b in place; returns false if the result is not finite.
-    pub fn solve(&mut self, rhs: &mut [f64]) -> bool {
-        debug_assert!(self.factored);
+    /// Solves A x = b in place with the factors of the last successful [`Self::factorize`].
+    pub fn solve(&mut self, rhs: &mut [f64]) {
         let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&self.symbolic, &self.numeric);
         let n = rhs.len();
         let stack = MemStack::new(&mut self.mem);
         let mat = MatMut::from_column_major_slice_mut(rhs, n, 1);
         lu.solve_in_place_with_conj(Conj::No, mat, Par::Seq, stack);
-        rhs.iter().all(|v| v.is_finite())
     }
 }
 
@@ -294,7 +278,7 @@ mod tests {
         let mut lu = SparseLu::new(p);
         lu.factorize(&v).unwrap();
         let mut b = vec![4.0, 4.0, 1.0];
-        assert!(lu.solve(&mut b));
+        lu.solve(&mut b);
         // x0 = 1, x1 = 1, x2 = 4 - 2 - 1 = 1
         for (x, want) in b.iter().zip([1.0, 1.0, 1.0]) {
             assert!((x - want).abs() < 1e-14);
