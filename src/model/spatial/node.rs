@@ -50,24 +50,34 @@ impl AncfElement3 {
         let (e, ed, ea) = x.arrays::<D>();
         let p = &self.props;
         let (force, matrices) = if out.matrix.is_some() {
-            let (f, k, c) = p.tangent(&self.tables, &e, &ed);
-            (f, Some((k, c)))
+            let (mut f, mut k, mut c) = p.tangent(&self.tables, &e, &ed);
+            let (fi, mi) = p.director_tangent(&self.tables, (&e, &ed, &ea), &mut k, &mut c);
+            for (f, fi) in f.iter_mut().zip(&fi) {
+                *f += fi;
+            }
+            (f, Some((k, c, mi)))
         } else {
-            (p.internal_force(&self.tables, &e, &ed), None)
+            let mut f = p.internal_force(&self.tables, &e, &ed);
+            let fi = p.director_inertia(&self.tables, &e, &ed, &ea);
+            for (f, fi) in f.iter_mut().zip(&fi) {
+                *f += fi;
+            }
+            (f, None)
         };
-        // r = M ë + f_int − load·f_g
+        // r = M(e) ë + (director velocity terms) + f_int − load·f_g
         let mut res = force;
         for (r, g) in res.iter_mut().zip(&self.gravity_force) {
             *r -= env.load * g;
         }
         self.patterns.add_product(&ea, &mut res);
         out.add_residual(&res);
-        if let (Some((ca, cv, cx)), Some((k, c))) = (out.matrix, matrices) {
-            let damped = cv != 0.0 && p.damping_time > 0.0;
+        if let (Some((ca, cv, cx)), Some((k, c, mi))) = (out.matrix, matrices) {
+            // the director inertia has velocity terms whether damped or not
+            let rated = cv != 0.0 && (p.damping_time > 0.0 || p.torsion);
             let m = &self.mass;
             out.add_block(|r, col| {
-                let mut v = ca * m[r * D + col] + cx * k[r][col];
-                if damped {
+                let mut v = ca * (m[r * D + col] + mi[r][col]) + cx * k[r][col];
+                if rated {
                     v += cv * c[r][col];
                 }
                 v
@@ -78,8 +88,9 @@ impl AncfElement3 {
     fn residual_d<const D: usize>(&self, x: &LocalState<'_>, res: &mut [f64]) {
         let (e, ed, ea) = x.arrays::<D>();
         let mut r = self.props.internal_force(&self.tables, &e, &ed);
-        for (r, g) in r.iter_mut().zip(&self.gravity_force) {
-            *r -= g;
+        let fi = self.props.director_inertia(&self.tables, &e, &ed, &ea);
+        for ((r, g), fi) in r.iter_mut().zip(&self.gravity_force).zip(&fi) {
+            *r += fi - g;
         }
         self.patterns.add_product(&ea, &mut r);
         res.copy_from_slice(&r);
@@ -115,7 +126,7 @@ impl Element<Spatial> for AncfElement3 {
     fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 3]) -> Energies {
         let (e, ed, _) = x.vectors();
         let d = e.len();
-        let mut kinetic = 0.0;
+        let mut kinetic = self.props.director_kinetic(&self.tables, &e, &ed);
         for i in 0..d {
             let mv: f64 = (0..d).map(|j| self.mass[i * d + j] * ed[j]).sum();
             kinetic += 0.5 * ed[i] * mv;
