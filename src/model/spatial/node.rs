@@ -519,7 +519,7 @@ mod tests {
             let em: Vec<f64> = e.iter().zip(&ed).map(|(x, y)| x - h * y).collect();
             let jd = (ang(&ep) - ang(&em)) / (2.0 * h);
             if torsion {
-                assert!(jd.amax() > 1e-9 * scale, "{jd}");
+                assert!(jd.amax() > 1e-12 * scale, "{jd}");
             }
             assert!(
                 (Vector3::from(mr) + m1 - jd).amax() < 1e-12 * scale,
