@@ -38,3 +38,24 @@ fn clamped_ancf_root_with_modal_middle() {
         ],
     );
 }
+
+#[test]
+fn spatial_ancf_with_twist_director_and_its_inertia() {
+    // a soft, thick rod, so that the director inertia (ρI_p = 4.8e-3 kg m: mass entries ~6e-4,
+    // velocity terms ~1e-4) stands far above the tolerance 1e-6 + 1e-8·max|residual| (~1e-7)
+    use hybeam::model::Spatial;
+    for extra in ["", "damping_time = 1e-3"] {
+        let seg = format!(
+            "name = \"a\"\nkind = \"ancf\"\nlength = 0.4\n{}\nyoungs_modulus = 1e4\ndensity = 7850.0\nelements = 3\n{extra}\n",
+            round(0.05)
+        );
+        let s = scene(
+            "space = \"spatial\"\ntorsion = true\ngravity = [0.0, 1.0, -9.81]",
+            &[seg],
+        );
+        let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+        model.set_tip_force([0.3, -0.7, 0.2]);
+        let worst = check_newton_matrix(&mut model);
+        eprintln!("{extra:?}: worst error {worst:.2e} of the tolerance");
+    }
+}

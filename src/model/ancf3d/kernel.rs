@@ -237,3 +237,110 @@ pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3], ryx: [f64; 3]) -> [f64
     let ([k2, k3, tau], _) = bend_twist(&rx, &rxx, &ry, &ryx);
     [dot(&rx, &rx).sqrt() - 1.0, k2, k3, tau]
 }
+
+/// Adds the Jacobians of one point's local inertial forces `g(u, u̇, ü)` (K local vectors) to the
+/// element stiffness `k`, damping `c` and mass `m` matrices: AD with N = 9K seeds (positions,
+/// rates, accelerations), then `mapsᵀ J maps`; returns the forces `g` (f64).
+#[allow(clippy::type_complexity)]
+pub(super) fn point_tangent_acc<const K: usize, const N: usize, const D: usize>(
+    maps: &[Map<'_>; K],
+    (e, ed, ea): (&[f64; D], &[f64; D], &[f64; D]),
+    k: &mut [[f64; D]; D],
+    c: &mut [[f64; D]; D],
+    m: &mut [[f64; D]; D],
+    g: impl FnOnce(
+        &[V<DualSVec64<N>>; K],
+        &[V<DualSVec64<N>>; K],
+        &[V<DualSVec64<N>>; K],
+    ) -> [V<DualSVec64<N>>; K],
+) -> [V<f64>; K] {
+    debug_assert!(N == 9 * K);
+    let seed = |x: &[V<f64>; K], off: usize| {
+        let mut out = [[DualSVec64::<N>::from_re(0.0); 3]; K];
+        for al in 0..K {
+            for ci in 0..3 {
+                out[al][ci] = DualSVec64::<N>::from_re(x[al][ci]).derivative(off + 3 * al + ci);
+            }
+        }
+        out
+    };
+    let out = g(
+        &seed(&gather(maps, e), 0),
+        &seed(&gather(maps, ed), 3 * K),
+        &seed(&gather(maps, ea), 6 * K),
+    );
+    for (mat, off) in [(k, 0), (c, 3 * K), (m, 6 * K)] {
+        for (ma, ga) in maps.iter().zip(&out) {
+            for ci in 0..3 {
+                let Some(eps) = &ga[ci].eps.0 else { continue };
+                for (mb, bet) in maps.iter().zip(0..K) {
+                    for cj in 0..3 {
+                        let j = eps[off + 3 * bet + cj];
+                        if j == 0.0 {
+                            continue;
+                        }
+                        for (wa, sa) in ma.w.iter().zip(ma.slots) {
+                            for (wb, sb) in mb.w.iter().zip(mb.slots) {
+                                mat[sa + ci][sb + cj] += wa * wb * j;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out.map(|v| v.map(|x| x.re))
+}
+
+/// The director's velocity relative to the tangent's rotation, v = ċ − w × c with w = (a × ȧ)/|a|²
+/// (a = r_x, c = r_y at a point): v = ċ + h, h = (a (c·ȧ) − ȧ (a·c))/|a|². For a rigid rotation Ω
+/// of the section v = (Ω·t) t × c: the twist alone (bending turns t, and c with it).
+#[inline(always)]
+pub(super) fn director_rate<T: Real>(u: &[V<T>; 2], ud: &[V<T>; 2]) -> (V<T>, V<T>) {
+    let [a, c] = u;
+    let [ad, cd] = ud;
+    let inv = dot(a, a).recip();
+    let h = lin2(dot(c, ad) * inv, a, -dot(a, c) * inv, ad);
+    let v = [cd[0] + h[0], cd[1] + h[1], cd[2] + h[2]];
+    (v, h)
+}
+
+/// Local inertial forces on (a = r_x, c = r_y) of the director kinetic energy T = ½k|v|²
+/// ([`director_rate`]; k = weight × ρI_p [kg m]) at a point, d/dt ∂T/∂(ȧ, ċ) − ∂T/∂(a, c),
+/// less the constant part k c̈ (the mass pattern's) [N, N m].
+#[inline(always)]
+pub(super) fn director_point<T: Real>(
+    k: f64,
+    u: &[V<T>; 2],
+    ud: &[V<T>; 2],
+    ua: &[V<T>; 2],
+) -> [V<T>; 2] {
+    let [a, c] = u;
+    let [ad, cd] = ud;
+    let [aa, ca] = ua;
+    let inv = dot(a, a).recip();
+    let g = dot(a, c);
+    let gd = dot(ad, c) + dot(a, cd);
+    let cad = dot(c, ad);
+    let aad = dot(a, ad) * 2.0 * inv;
+    let (v, h) = director_rate(u, ud);
+    // ḣ = [ȧ (c·ȧ) + a (ċ·ȧ + c·ä) − ä g − ȧ ġ]/|a|² − 2 (a·ȧ)/|a|² h
+    let s1 = dot(cd, ad) + dot(c, aa);
+    let hd: V<T> = std::array::from_fn(|i| {
+        (ad[i] * cad + a[i] * s1 - aa[i] * g - ad[i] * gd) * inv - aad * h[i]
+    });
+    let vd: V<T> = std::array::from_fn(|i| ca[i] + hd[i]);
+    let (av, adv, hv) = (dot(a, &v), dot(ad, &v), dot(&h, &v));
+    // ∂T/∂ȧ = k p, p = (c (a·v) − g v)/|a|²; ṗ = (ċ m + c ṁ − ġ v − g v̇)/|a|² − 2 (a·ȧ)/|a|² p
+    let md = adv + dot(a, &vd);
+    let fa: V<T> = std::array::from_fn(|i| {
+        let p = (c[i] * av - v[i] * g) * inv;
+        let pd = (cd[i] * av + c[i] * md - v[i] * gd - vd[i] * g) * inv - aad * p;
+        // ∂T/∂a = k [(v (c·ȧ) − c (ȧ·v))/|a|² − 2 a (h·v)/|a|²]
+        let ta = (v[i] * cad - c[i] * adv - a[i] * hv * 2.0) * inv;
+        (pd - ta) * k
+    });
+    // ∂T/∂c = k (ȧ (a·v) − a (ȧ·v))/|a|²
+    let fc: V<T> = std::array::from_fn(|i| (hd[i] - (ad[i] * av - a[i] * adv) * inv) * k);
+    [fa, fc]
+}

@@ -21,6 +21,15 @@
 //! for rigid rotations about axes ⟂ t, but a rigid spin Ω about an axis with Ω·t ≠ 0 of a
 //! *curved* cable is damped by a moment ~EIτ_d(Ω·t)|κ| (no frame can tell it from bending).
 //!
+//! Inertia: ρA ∫|ṙ|² dx (constant Hermite mass) and, with torsion, the director's twist
+//! inertia ½ρI_p ∫|v|² dx with v = ṙ_y − w × r_y, w = (r_x × ṙ_x)/|r_x|² the rotation rate of
+//! the tangent: for a rigid rotation Ω of the section v = (Ω·t) t × r_y, so bending in either
+//! plane carries no director inertia (as the cable: no rotary inertia) and twist keeps ρI_p.
+//! Its ṙ_y·ṙ_y part is the constant ρI_p ∫N_jN_k ⊗ I₃ ([`MassPatterns`]); the rest
+//! ([`Ancf3Props::director_inertia`]: the r_x–r_y mass blocks and the velocity-quadratic
+//! terms, d/dt ∂T/∂q̇ − ∂T/∂q) is evaluated at the 3 bending points, its Jacobians (q, q̇, q̈)
+//! by the same AD.
+//!
 //! Quadrature as the planar element: 5 Gauss points axial, 3 bending and twist, penalty at the
 //! nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
 //! the tangent and damping matrices ([`Ancf3Props::tangent`]) are the exact Jacobians of the
@@ -176,8 +185,10 @@ impl Ancf3Props {
         ([0, 3, st, st + 3], [6, 15])
     }
 
-    /// Consistent mass matrix, row-major d × d (d = [`Ancf3Props::dofs`]) [kg, kg m, kg m²]:
-    /// ρA ∫SᵀS dx ⊗ I₃ on the r-blocks plus ρI_p l/6 [2 1; 1 2] ⊗ I₃ on the r_y blocks.
+    /// Constant part of the consistent mass matrix, row-major d × d (d = [`Ancf3Props::dofs`])
+    /// [kg, kg m, kg m²]: ρA ∫SᵀS dx ⊗ I₃ on the r-blocks plus ρI_p l/6 [2 1; 1 2] ⊗ I₃ on the
+    /// r_y blocks (with torsion the configuration-dependent rest is
+    /// [`Ancf3Props::director_tangent`]'s).
     pub fn mass_matrix(&self) -> Vec<f64> {
         let d = self.dofs();
         let mut m = vec![0.0; d * d];
@@ -358,6 +369,101 @@ impl Ancf3Props {
             }
         }
         (force, k, c)
+    }
+
+    /// The director inertia beyond the constant mass pattern at (e, ė, ë), with torsion (zero
+    /// without) [N, N m]: at each bending point (weight w) the kinetic energy ½wρI_p|v|² of the
+    /// director rate relative to the tangent's rotation, v = ṙ_y − w_t × r_y, w_t = (r_x ×
+    /// ṙ_x)/|r_x|² (twist only, see the module doc), less ½wρI_p|ṙ_y|² (the pattern's).
+    pub fn director_inertia<const D: usize>(
+        &self,
+        tab: &Tables3,
+        e: &[f64; D],
+        ed: &[f64; D],
+        ea: &[f64; D],
+    ) -> [f64; D] {
+        let mut f = [0.0; D];
+        if !self.torsion {
+            return f;
+        }
+        let (rs, ys) = self.slots();
+        for p in &tab.bending {
+            let loc = |x: &[f64; D]| [comb(&p.ds, &rs, x), comb(&p.ny, &ys, x)];
+            let [fa, fc] = director_point(p.w * self.rho_ip, &loc(e), &loc(ed), &loc(ea));
+            scatter(&mut f, &p.ds, &rs, &fa);
+            scatter(&mut f, &p.ny, &ys, &fc);
+        }
+        f
+    }
+
+    /// [`Ancf3Props::director_inertia`] and its exact Jacobians (forward-mode AD): adds ∂f/∂e
+    /// to `k`, ∂f/∂ė to `c`, and returns the force and ∂f/∂ë (the configuration-dependent part
+    /// of the mass matrix, row-major D × D).
+    #[allow(clippy::type_complexity)]
+    pub fn director_tangent<const D: usize>(
+        &self,
+        tab: &Tables3,
+        x: (&[f64; D], &[f64; D], &[f64; D]),
+        k: &mut [[f64; D]; D],
+        c: &mut [[f64; D]; D],
+    ) -> ([f64; D], Box<[[f64; D]; D]>) {
+        let mut f = [0.0; D];
+        let mut m = Box::new([[0.0; D]; D]);
+        if !self.torsion {
+            return (f, m);
+        }
+        let (rs, ys) = self.slots();
+        for p in &tab.bending {
+            let maps = [Map::new(&p.ds, &rs), Map::new(&p.ny, &ys)];
+            let kw = p.w * self.rho_ip;
+            let [fa, fc] = point_tangent_acc::<2, 18, D>(&maps, x, k, c, &mut m, |u, ud, ua| {
+                director_point(kw, u, ud, ua)
+            });
+            scatter(&mut f, &p.ds, &rs, &fa);
+            scatter(&mut f, &p.ny, &ys, &fc);
+        }
+        (f, m)
+    }
+
+    /// Kinetic energy [J] at (e, ė) (d entries each): ½ėᵀMė of the constant mass matrix plus
+    /// [`Ancf3Props::director_kinetic`].
+    pub fn kinetic_energy(&self, e: &[f64], ed: &[f64]) -> f64 {
+        let d = self.dofs();
+        let m = self.mass_matrix();
+        let mut t = 0.0;
+        for i in 0..d {
+            let mv: f64 = (0..d).map(|j| m[i * d + j] * ed[j]).sum();
+            t += 0.5 * ed[i] * mv;
+        }
+        t + self.director_kinetic(&self.tables(), e, ed)
+    }
+
+    /// The director's kinetic energy beyond the constant pattern's ½ρI_p∫|ṙ_y|² [J]: Σ over the
+    /// bending points of ½wρI_p(|v|² − |ṙ_y|²) ([`Ancf3Props::director_inertia`]); 0 without
+    /// torsion.
+    pub fn director_kinetic(&self, tab: &Tables3, e: &[f64], ed: &[f64]) -> f64 {
+        if !self.torsion {
+            return 0.0;
+        }
+        let (rs, ys) = self.slots();
+        let v = |w: &[f64], slots: &[usize], x: &[f64]| -> [f64; 3] {
+            let mut r = [0.0; 3];
+            for (wj, s) in w.iter().zip(slots) {
+                for c in 0..3 {
+                    r[c] += wj * x[s + c];
+                }
+            }
+            r
+        };
+        let mut t = 0.0;
+        for p in &tab.bending {
+            let u = [v(&p.ds, &rs, e), v(&p.ny, &ys, e)];
+            let ud = [v(&p.ds, &rs, ed), v(&p.ny, &ys, ed)];
+            let (dv, _) = director_rate(&u, &ud);
+            let cd = ud[1];
+            t += 0.5 * p.w * self.rho_ip * (dot(&dv, &dv) - dot(&cd, &cd));
+        }
+        t
     }
 
     fn force_generic<T: Real, const D: usize>(
@@ -861,6 +967,142 @@ pub(crate) mod tests {
             assert!(fmax < 1e-14 * p.ea, "{axis:?} {angle}: {fmax:e}");
             let u = p.strain_energy(&e);
             assert!(u < 1e-25, "{u:e}");
+        }
+    }
+
+    /// ½ρI_p Σ_points w|v|² with v = ṙ_y − w_t × r_y written out here with the cross product
+    /// (w_t = r_x × ṙ_x/|r_x|²), independent of the kernel's expanded form.
+    fn director_energy(p: &Ancf3Props, e: &[f64; 18], ed: &[f64; 18]) -> f64 {
+        let tab = p.tables();
+        let (rs, ys) = p.slots();
+        let mut t = 0.0;
+        for q in &tab.bending {
+            let (a, c) = (comb(&q.ds, &rs, e), comb(&q.ny, &ys, e));
+            let (ad, cd) = (comb(&q.ds, &rs, ed), comb(&q.ny, &ys, ed));
+            let w = cross(&a, &ad).map(|x| x / dot(&a, &a));
+            let wc = cross(&w, &c);
+            let v = [0, 1, 2].map(|i| cd[i] - wc[i]);
+            t += 0.5 * q.w * p.rho_ip * dot(&v, &v);
+        }
+        t
+    }
+
+    #[test]
+    fn director_inertia_is_lagrange_of_its_kinetic_energy() {
+        // ρI_p∫NᵀN ë_y + director_inertia = d/dt ∂T_y/∂ė − ∂T_y/∂e by central differences of
+        // the energy (T_y is quadratic in ė: its ė-gradient by differences is exact)
+        for p in [props(true, 0.0, 1.0), balanced(true, 7e-4)] {
+            let tab = p.tables();
+            let (e, ed) = deformed::<18>(&p, 5);
+            let r = noise(9, 18);
+            let ea: [f64; 18] = std::array::from_fn(|k| 40.0 * r[k]);
+            let mut f = p.director_inertia(&tab, &e, &ed, &ea);
+            let mut pat = p.mass_patterns();
+            pat.hermite = [[0.0; 4]; 4];
+            pat.add_product(&ea, &mut f);
+            let grad_rate = |e: &[f64; 18], ed: &[f64; 18], i: usize| {
+                let (mut vp, mut vm) = (*ed, *ed);
+                vp[i] += 1.0;
+                vm[i] -= 1.0;
+                0.5 * (director_energy(&p, e, &vp) - director_energy(&p, e, &vm))
+            };
+            let h = 1e-6;
+            let fmax = f.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            assert!(fmax > 0.0);
+            for i in 0..18 {
+                let ep: [f64; 18] = std::array::from_fn(|k| e[k] + h * ed[k]);
+                let em: [f64; 18] = std::array::from_fn(|k| e[k] - h * ed[k]);
+                let vp: [f64; 18] = std::array::from_fn(|k| ed[k] + h * ea[k]);
+                let vm: [f64; 18] = std::array::from_fn(|k| ed[k] - h * ea[k]);
+                let ddt = (grad_rate(&ep, &vp, i) - grad_rate(&em, &vm, i)) / (2.0 * h);
+                let (mut xp, mut xm) = (e, e);
+                xp[i] += h;
+                xm[i] -= h;
+                let dq =
+                    (director_energy(&p, &xp, &ed) - director_energy(&p, &xm, &ed)) / (2.0 * h);
+                let want = ddt - dq;
+                assert!(
+                    (f[i] - want).abs() < 1e-7 * fmax,
+                    "{i}: {} vs {want} (of {fmax:e})",
+                    f[i]
+                );
+            }
+            // the element's kinetic energy is the constant pattern's translational part plus T_y
+            let mut m = p.mass_patterns();
+            m.twist = [[0.0; 2]; 2];
+            let mut mv = [0.0; 18];
+            m.add_product(&ed, &mut mv);
+            let tr: f64 = 0.5 * (0..18).map(|k| ed[k] * mv[k]).sum::<f64>();
+            let want = tr + director_energy(&p, &e, &ed);
+            let got = p.kinetic_energy(&e, &ed);
+            assert!((got - want).abs() < 1e-13 * want, "{got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn director_inertia_tangent_matches_central_differences() {
+        let p = props(true, 0.0, 1.0);
+        let tab = p.tables();
+        let (e, ed) = deformed::<18>(&p, 3);
+        let r = noise(4, 18);
+        let ea: [f64; 18] = std::array::from_fn(|k| 40.0 * r[k]);
+        let mut k = Box::new([[0.0; 18]; 18]);
+        let mut c = Box::new([[0.0; 18]; 18]);
+        let (f, m) = p.director_tangent(&tab, (&e, &ed, &ea), &mut k, &mut c);
+        let f0 = p.director_inertia(&tab, &e, &ed, &ea);
+        let fmax = f0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for i in 0..18 {
+            assert!((f[i] - f0[i]).abs() <= 1e-14 * fmax, "force {i}");
+        }
+        let h = 1e-6;
+        for (which, mat) in [(0, &k), (1, &c), (2, &m)] {
+            let big = mat.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+            assert!(big > 0.0, "{which}");
+            for j in 0..18 {
+                let (mut xp, mut xm) = ([e, ed, ea], [e, ed, ea]);
+                xp[which][j] += h;
+                xm[which][j] -= h;
+                let fp = p.director_inertia(&tab, &xp[0], &xp[1], &xp[2]);
+                let fm = p.director_inertia(&tab, &xm[0], &xm[1], &xm[2]);
+                for i in 0..18 {
+                    let fd = (fp[i] - fm[i]) / (2.0 * h);
+                    assert!(
+                        (fd - mat[i][j]).abs() < 1e-6 * big,
+                        "{which} ({i},{j}): {fd} vs {}",
+                        mat[i][j]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rigid_rotation_carries_director_inertia_for_the_twist_only() {
+        // a bent, sheared, stretched element turning rigidly about Ω: T_y = ½ρI_p Σ w (Ω·t)²|t × r_y|²
+        let p = props(true, 0.0, 1.0);
+        let (e, _) = deformed::<18>(&p, 2);
+        let tab = p.tables();
+        let (rs, ys) = p.slots();
+        for om in [[0.0, 3.0, -2.0], [1.5, -2.0, 0.7], [4.0, 0.0, 0.0]] {
+            let mut ed = [0.0; 18];
+            for b in 0..6 {
+                let s = 3 * b;
+                let x = [e[s], e[s + 1], e[s + 2]];
+                ed[s..s + 3].copy_from_slice(&cross(&om, &x));
+            }
+            let mut want = 0.0;
+            for q in &tab.bending {
+                let (a, c) = (comb(&q.ds, &rs, &e), comb(&q.ny, &ys, &e));
+                let t = a.map(|x| x / dot(&a, &a).sqrt());
+                let tc = cross(&t, &c);
+                let wt = dot(&om, &t);
+                want += 0.5 * q.w * p.rho_ip * wt * wt * dot(&tc, &tc);
+            }
+            let got = director_energy(&p, &e, &ed);
+            assert!(
+                (got - want).abs() < 1e-12 * want.max(1e-12),
+                "{om:?}: {got} vs {want}"
+            );
         }
     }
 
