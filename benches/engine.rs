@@ -183,6 +183,73 @@ fn spatial_sweep(c: &mut Criterion) {
     );
 }
 
+/// Cost per step against the number of elements, for every family of the peer comparison
+/// (issue 23: linear from 8 to 512): Case 1 as planar all-ANCF, hybrid (modal + n ANCF
+/// elements), 3D cable and 3D torsion element, h = 1e-4 s, after 0.05 s of the released fall.
+/// Prints best-of-7 batches per step and the log–log slope between 8 and 512 elements to stderr.
+fn step_sweep(_c: &mut Criterion) {
+    fn per_step<S: Space>(mut sim: Simulator<S>, n: usize) -> f64 {
+        let h = 1e-4;
+        sim.advance(0.05).unwrap();
+        let reps = (2048 / n).max(4);
+        (0..7)
+            .map(|_| {
+                let t0 = Instant::now();
+                for _ in 0..reps {
+                    let t = sim.time() + h;
+                    sim.advance(t).unwrap();
+                }
+                t0.elapsed().as_secs_f64() / reps as f64
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+    let sized = |file: &str, segment: usize, n: usize, torsion: Option<bool>| {
+        let mut s = scene(file);
+        s.segments[segment].elements = Some(n);
+        s.solver.max_step = 1e-4;
+        if let Some(t) = torsion {
+            s.torsion = t;
+        }
+        s
+    };
+    let families: [(&str, &dyn Fn(usize) -> f64); 4] = [
+        ("planar all-ANCF", &|n| {
+            per_step(
+                Simulator::<Planar>::new(sized("case1_ancf.toml", 0, n, None)).unwrap(),
+                n,
+            )
+        }),
+        ("planar hybrid", &|n| {
+            per_step(
+                Simulator::<Planar>::new(sized("case1.toml", 1, n, None)).unwrap(),
+                n,
+            )
+        }),
+        ("3D cable", &|n| {
+            let s = sized("case1_3d_ancf.toml", 0, n, Some(false));
+            per_step(Simulator::<Spatial>::start_at(s, 0.0).unwrap(), n)
+        }),
+        ("3D torsion element", &|n| {
+            let s = sized("case1_3d_ancf.toml", 0, n, Some(true));
+            per_step(Simulator::<Spatial>::start_at(s, 0.0).unwrap(), n)
+        }),
+    ];
+    for (name, run) in families {
+        let sizes = [8usize, 32, 128, 512];
+        let t: Vec<f64> = sizes.iter().map(|&n| run(n)).collect();
+        let slope = (t[3] / t[0]).ln() / (512.0f64 / 8.0).ln();
+        eprintln!(
+            "step sweep {name}: {}; log-log slope 8 -> 512: {slope:.3}",
+            sizes
+                .iter()
+                .zip(&t)
+                .map(|(n, t)| format!("{n} el. {:.1} µs", t * 1e6))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+}
+
 /// The spatial ANCF element (with torsion, and the cable) on the planar bench's rod and state
 /// (bent in the x–y plane, r_y = ẑ × r_x): forces only and forces + exact tangent (AD).
 fn spatial_element(c: &mut Criterion) {
@@ -297,6 +364,7 @@ criterion_group!(
     step,
     spatial_step,
     lu,
-    spatial_sweep
+    spatial_sweep,
+    step_sweep
 );
 criterion_main!(benches);
