@@ -230,6 +230,22 @@ fn check_port(port: &dyn Port<Spatial>, b: &ModalBody3, seed: f64, name: &str) {
             );
         }
     }
+    // the rotation's second derivative along a direction (the angular acceleration's velocity
+    // term) = the moment stiffness contracted with it, component by component
+    let dir: Vec<f64> = (0..d)
+        .map(|i| 0.3 + 0.17 * i as f64 - 0.05 * (i * i) as f64)
+        .collect();
+    let along = port.rotation_second_derivative_along(&q, &dir);
+    for (c, got) in along.iter().enumerate() {
+        let mut unit = [0.0; 3];
+        unit[c] = 1.0;
+        let mut want = 0.0;
+        port.add_moment_stiffness(&q, &unit, &mut |i, j, v| want -= v * dir[i] * dir[j]);
+        assert!(
+            (got - want).abs() <= 1e-12 * (1.0 + want.abs()),
+            "{name} along [{c}]: {got} vs {want}"
+        );
+    }
     eprintln!(
         "{name}: worst relative FD error d {:.1e}, dd {:.1e}, rotation {:.1e}, moment stiffness {:.1e}",
         worst[0], worst[1], worst[2], worst[3]

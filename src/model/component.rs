@@ -255,6 +255,24 @@ pub trait Port<S: Space>: Debug + Send + Sync + 'static {
         m: &S::Moment,
         add: &mut dyn FnMut(usize, usize, f64),
     );
+
+    /// The rotation's second derivative along `dir` (local), Σᵢⱼ ∂²θ/∂qᵢ∂qⱼ dirᵢ dirⱼ (global
+    /// axes): with dir = q̇ the velocity term of the angular acceleration. Default: from
+    /// [`Port::add_moment_stiffness`] with unit moments; a port whose stiffness takes one
+    /// evaluation per (i, j) overrides it with one directional evaluation.
+    fn rotation_second_derivative_along(&self, q: &[f64], dir: &[f64]) -> S::Moment {
+        let mut out = S::Moment::default();
+        let n = S::moment_components(&out).len();
+        for c in 0..n {
+            let mut m = S::Moment::default();
+            S::moment_components_mut(&mut m)[c] = 1.0;
+            // the stiffness adds −m·∂²θ/∂qᵢ∂qⱼ
+            let mut sum = 0.0;
+            self.add_moment_stiffness(q, &m, &mut |i, j, h| sum -= h * dir[i] * dir[j]);
+            S::moment_components_mut(&mut out)[c] = sum;
+        }
+        out
+    }
 }
 
 /// How the support holds the beam: turns the residual of the held coordinates (the generalized

@@ -175,15 +175,12 @@ impl<S: Space> Model<S> {
             kin.add_point_hessian(&mu, |i, j, h| sum += h * rates[i] * rates[j]);
             lin[c] += sum;
         }
-        for c in 0..S::moment_components(ang).len() {
-            let mut m = S::Moment::default();
-            S::moment_components_mut(&mut m)[c] = 1.0;
-            // the stiffness adds −m·∂(∂θ/∂qᵢ)/∂qⱼ
-            let mut sum = 0.0;
-            self.tip
-                .part
-                .add_moment_stiffness(x, &m, &mut |i, j, h| sum -= h * rates[i] * rates[j]);
-            S::moment_components_mut(ang)[c] += sum;
+        let curvature = self.tip.part.rotation_second_derivative_along(x, rates);
+        for (a, c) in S::moment_components_mut(ang)
+            .iter_mut()
+            .zip(S::moment_components(&curvature))
+        {
+            *a += c;
         }
     }
 

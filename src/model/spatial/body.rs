@@ -212,6 +212,30 @@ fn frame_moment_stiffness(
     }
 }
 
+/// [`frame_moment_stiffness`]'s second derivative along one direction: ∂²θ[dir, dir] =
+/// ½Σ_d d × ∂²d[dir, dir] (the cross term ∂d × ∂d vanishes), one hyper-dual evaluation with both
+/// parts seeded by `dir` on the `active` coordinates.
+fn frame_rotation_second_derivative(
+    q: &[f64],
+    dir: &[f64],
+    active: impl Iterator<Item = usize>,
+    directors: impl Fn(&[HyperDual64]) -> (V3<HyperDual64>, V3<HyperDual64>),
+) -> [f64; 3] {
+    let mut x: Vec<HyperDual64> = q.iter().map(|&v| HyperDual64::from_re(v)).collect();
+    for i in active {
+        x[i].eps1 = dir[i];
+        x[i].eps2 = dir[i];
+    }
+    let (t, s) = directors(&x);
+    let mut h = Vector3::zeros();
+    for d in frame_of(t, s) {
+        let re = Vector3::new(d[0].re, d[1].re, d[2].re);
+        let dd = Vector3::new(d[0].eps1eps2, d[1].eps1eps2, d[2].eps1eps2);
+        h += 0.5 * re.cross(&dd);
+    }
+    h.into()
+}
+
 /// A spatial floating-frame modal body, local coordinates `[R, p, a_y, a_z, a_t]`.
 #[derive(Debug, Clone)]
 pub struct ModalElement3 {
@@ -485,6 +509,10 @@ impl Port<Spatial> for ModalTipPort3 {
         add: &mut dyn FnMut(usize, usize, f64),
     ) {
         frame_moment_stiffness(q, m, P0..q.len(), |x| self.directors(x), add);
+    }
+
+    fn rotation_second_derivative_along(&self, q: &[f64], dir: &[f64]) -> [f64; 3] {
+        frame_rotation_second_derivative(q, dir, P0..q.len(), |x| self.directors(x))
     }
 }
 
