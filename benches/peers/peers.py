@@ -167,6 +167,7 @@ PROBLEMS = {
         ],
         HYBEAM_PLANAR,
         EXUDYN_PLANAR,
+        note="the hybrid's ANCF half gets half of the grid's elements",
     ),
     "spatial": Problem(
         "spatial",
@@ -184,6 +185,7 @@ PROBLEMS = {
         ],
         HYBEAM_CABLE3D,
         EXUDYN_SPATIAL,
+        note="every family meshes the whole rod with the grid's elements",
     ),
     "case3": Problem(
         "case3",
@@ -201,14 +203,11 @@ PROBLEMS = {
         HYBEAM_CASE3,
         EXUDYN_PLANAR,
         CASE3_ROD,
-        "n is split by length: the thick 0.2 m segment gets max(1, round(n/3)) elements, the "
-        "thin 0.4 m one the rest (all-ANCF and Exudyn: n = 8 is 3 + 5, the reference's 64 is "
-        "21 + 43); the hybrid's modal thick segment has none, its ANCF thin segment the rest "
-        "(n = 8: 5)",
+        note="n is split by length: the thick 0.2 m segment gets max(1, round(n/3)) elements, the "
+        "thin 0.4 m one the rest (all-ANCF and Exudyn: n = 8 is 3 + 5, n = 64 is 21 + 43); the "
+        "hybrid's modal thick segment has none, its ANCF thin segment the rest (n = 8: 5)",
     ),
 }
-PROBLEMS["planar"].note = "the hybrid's ANCF half gets half of the grid's elements"
-PROBLEMS["spatial"].note = "both families mesh the whole rod with the grid's elements"
 
 
 @dataclass(frozen=True)
@@ -682,6 +681,12 @@ def rel(p: Path, start: Path) -> str:
     return os.path.relpath(p.resolve(), start.resolve())
 
 
+def mesh(fam: Family, n: int) -> str:
+    """n, and its split over the family's ANCF segments if it has several ("64 (21 + 43)")."""
+    counts = [k for _, k in fam.segment_elements(n)]
+    return f"{n}" if len(counts) < 2 else f"{n} ({' + '.join(map(str, counts))})"
+
+
 def write_doc(doc, sections, grid, command, csv_path, started, minutes, before, after, args):
     import exudyn
 
@@ -720,11 +725,12 @@ def write_doc(doc, sections, grid, command, csv_path, started, minutes, before, 
             "",
             f"Elements: {prob.note}.",
             "",
-            f"Reference: {prob.reference.name}, n = {grid.ref_elements}, h = {grid.ref_step:g} s "
+            f"Reference: {prob.reference.name}, n = {mesh(prob.reference, grid.ref_elements)}, "
+            f"h = {grid.ref_step:g} s "
             f"({ref_t:.2f} s). The same mesh and step in {prob.peer_check.name} ({peer_t:.2f} s) "
             f"lies **{gap:.2e} m** from it (max over the 1 ms grid). The reference's own error, "
             f"estimated as its distance to the same code at half the elements and twice the step "
-            f"(n = {grid.ref_elements // 2}, h = {2 * grid.ref_step:g} s): "
+            f"(n = {mesh(prob.reference, grid.ref_elements // 2)}, h = {2 * grid.ref_step:g} s): "
             f"{max_distance(refs['ref'], refs['half']):.2e} m.",
             "",
             "Cheapest run of each code reaching each tolerance:",
