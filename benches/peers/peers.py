@@ -1,9 +1,9 @@
 """Peer comparison of hybeam with Exudyn 1.13.6 (issue 23, "Ten times Exudyn").
 
-Runs the planar Sohn & Yoo Case 1 rod and its spatial twin (with a sideways tip force) in both
-codes over a grid of elements x time steps, measures each run's tip error against one shared
-converged reference and its run time, and writes the CSV of all runs, the ratio tables, one
-work-precision SVG per problem and docs/performance.md.
+Runs the planar Sohn & Yoo Case 1 rod, its spatial twin (with a sideways tip force) and the
+damped stepped rod of Case 3 in both codes over a grid of elements x time steps, measures each
+run's tip error against one shared converged reference and its run time, and writes the CSV of
+all runs, the ratio tables, one work-precision SVG per problem and docs/performance.md.
 
 Start it through benches/peers/run.sh (builds hybeam, creates the Exudyn venv); see README.md.
 """
@@ -51,6 +51,44 @@ EXUDYN_NEWTON_TOL = 1e-10
 
 
 @dataclass(frozen=True)
+class Section:
+    """A straight piece of round rod (root to tip), as a segment of the hybeam scenes."""
+
+    length: float  # m
+    diameter: float  # m
+    damping_time: float = 0.0  # Kelvin-Voigt tau_d [s]: sigma = E (eps + tau_d eps')
+
+    @property
+    def area(self) -> float:
+        return math.pi * self.diameter**2 / 4.0
+
+    @property
+    def inertia(self) -> float:
+        return math.pi * self.diameter**4 / 64.0
+
+
+CASE1_ROD = (Section(LENGTH, DIAMETER),)
+# Sohn & Yoo, Case 3 (scenes/case3*.toml): 0.2 m of d = 2 mm, then 0.4 m of d = 1 mm, both damped.
+CASE3_ROD = (Section(0.2, 2e-3, 7e-4), Section(0.4, 1e-3, 7e-4))
+
+
+def shares(rod: tuple[Section, ...]) -> tuple[float, ...]:
+    """Each section's share of the rod's length."""
+    total = sum(s.length for s in rod)
+    return tuple(s.length / total for s in rod)
+
+
+def split_elements(n: int, parts: tuple[float, ...]) -> list[int]:
+    """n elements split by length shares: every part but the last max(1, round(n * share)),
+    the last the rest (Case 3, n = 8: 3 + 5)."""
+    counts = [max(1, round(n * share)) for share in parts[:-1]]
+    counts.append(n - sum(counts))
+    if counts[-1] < 1:
+        raise ValueError(f"{n} elements cannot be split over {len(parts)} segments")
+    return counts
+
+
+@dataclass(frozen=True)
 class Family:
     """One model of a problem in one code."""
 
@@ -60,10 +98,22 @@ class Family:
     elements_key: str = ""  # hybeam --set key of the ANCF element count
     sets: tuple[str, ...] = ()  # further hybeam --set overrides
     element_fraction: float = 1.0  # share of the rod meshed with ANCF elements
+    # A rod of several segments (replaces elements_key and element_fraction): per segment, root to
+    # tip, the hybeam --set key of its ANCF element count ("" for a modal segment) and its share
+    # of the length; a grid point's n elements are split by split_elements.
+    segments: tuple[tuple[str, float], ...] = ()
+
+    def segment_elements(self, n: int) -> list[tuple[str, int]]:
+        """(--set key, ANCF elements) of each ANCF segment for a grid point of n elements over
+        the whole rod."""
+        if not self.segments:
+            return [(self.elements_key, max(1, round(n * self.element_fraction)))]
+        counts = split_elements(n, tuple(share for _, share in self.segments))
+        return [(key, k) for (key, _), k in zip(self.segments, counts, strict=True) if key]
 
     def elements(self, n: int) -> int:
         """ANCF elements of this family for a grid point of n elements over the whole rod."""
-        return max(1, round(n * self.element_fraction))
+        return sum(k for _, k in self.segment_elements(n))
 
 
 @dataclass
@@ -73,6 +123,8 @@ class Problem:
     families: list[Family]
     reference: Family  # the family whose finest run is the shared reference
     peer_check: Family  # the other code's run at the reference's mesh and step
+    rod: tuple[Section, ...] = CASE1_ROD  # the Exudyn model's sections
+    note: str = ""  # how the grid's n maps onto the families' meshes, for the doc
 
 
 def _tip_force_set() -> str:
@@ -82,6 +134,14 @@ def _tip_force_set() -> str:
 EXUDYN_PLANAR = Family("exudyn", "Exudyn ObjectANCFCable2D")
 EXUDYN_SPATIAL = Family("exudyn", "Exudyn ObjectANCFCable")
 HYBEAM_PLANAR = Family("hybeam", "hybeam all-ANCF", "scenes/case1_ancf.toml", "segments.0.elements")
+HYBEAM_CASE3 = Family(
+    "hybeam",
+    "hybeam all-ANCF",
+    "scenes/case3_ancf.toml",
+    segments=tuple(
+        zip(("segments.0.elements", "segments.1.elements"), shares(CASE3_ROD), strict=True)
+    ),
+)
 HYBEAM_CABLE3D = Family(
     "hybeam",
     "hybeam 3D cable (torsion = false)",
@@ -107,6 +167,7 @@ PROBLEMS = {
         ],
         HYBEAM_PLANAR,
         EXUDYN_PLANAR,
+        note="the hybrid's ANCF half gets half of the grid's elements",
     ),
     "spatial": Problem(
         "spatial",
@@ -124,6 +185,27 @@ PROBLEMS = {
         ],
         HYBEAM_CABLE3D,
         EXUDYN_SPATIAL,
+        note="every family meshes the whole rod with the grid's elements",
+    ),
+    "case3": Problem(
+        "case3",
+        False,
+        [
+            HYBEAM_CASE3,
+            EXUDYN_PLANAR,
+            Family(
+                "hybeam",
+                "hybeam hybrid modal+ANCF",
+                "scenes/case3.toml",
+                segments=tuple(zip(("", "segments.1.elements"), shares(CASE3_ROD), strict=True)),
+            ),
+        ],
+        HYBEAM_CASE3,
+        EXUDYN_PLANAR,
+        CASE3_ROD,
+        note="n is split by length: the thick 0.2 m segment gets max(1, round(n/3)) elements, the "
+        "thin 0.4 m one the rest (all-ANCF and Exudyn: n = 8 is 3 + 5, n = 64 is 21 + 43); the "
+        "hybrid's modal thick segment has none, its ANCF thin segment the rest (n = 8: 5)",
     ),
 }
 
@@ -167,11 +249,12 @@ class Run:
 def run_hybeam(
     binary: Path, fam: Family, n: int, h: float, t_end: float, spatial: bool
 ) -> tuple[float, np.ndarray, np.ndarray]:
-    """Runs the hybeam CLI; returns (its reported wall time, sample times, tip positions)."""
+    """Runs the hybeam CLI for a grid point of n elements; returns (its reported wall time,
+    sample times, tip positions)."""
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "tip.csv"
         sets = [
-            f"{fam.elements_key}={n}",
+            *(f"{key}={k}" for key, k in fam.segment_elements(n)),
             f"solver.max_step={h!r}",
             f"simulation.t_end={t_end!r}",
             f"simulation.output_step={OUTPUT_STEP!r}",
@@ -198,9 +281,10 @@ def run_hybeam(
 
 
 def run_exudyn(
-    n: int, h: float, t_end: float, spatial: bool
+    n: int, h: float, t_end: float, spatial: bool, rod: tuple[Section, ...]
 ) -> tuple[float, np.ndarray, np.ndarray]:
-    """Builds the rod from ANCF cable elements in Exudyn and solves it with index-3
+    """Builds the rod from ANCF cable elements in Exudyn (n elements split over its sections by
+    length, consecutive sections sharing their junction's node) and solves it with index-3
     generalized-alpha at the fixed step h; returns (time of exu.SolveDynamic, sample times, tip
     positions)."""
     import exudyn as exu
@@ -216,15 +300,38 @@ def run_exudyn(
     sc = exu.SystemContainer()
     mbs = sc.AddSystem()
     cable = ObjectANCFCable if spatial else ObjectANCFCable2D
-    template = cable(
-        massPerLength=DENSITY * AREA, bendingStiffness=YOUNG * INERTIA, axialStiffness=YOUNG * AREA
-    )
     gravity = [0.0, 0.0, -GRAVITY] if spatial else [0.0, -GRAVITY, 0.0]
     clamp = [True] * (6 if spatial else 4)  # position and slope of the root node
-    beam = GenerateBeamElementsAlongLine(
-        mbs, [0.0, 0.0, 0.0], [LENGTH, 0.0, 0.0], n, template, gravity, clamp
-    )
-    tip_node = beam["nodes"][-1]
+    x0, tip_node = 0.0, None
+    for sec, k in zip(rod, split_elements(n, shares(rod)), strict=True):
+        ea, ei = YOUNG * sec.area, YOUNG * sec.inertia
+        damping = {}
+        if sec.damping_time > 0.0:
+            # Kelvin-Voigt sigma = E (eps + tau_d eps') on the axial strain and the curvature.
+            # ObjectANCFCable2D adds axialDamping * eps' to the axial force EA eps and
+            # bendingDamping * K' to the bending moment EI K, with eps' = r'.r_t'/|r'| and K'
+            # the exact rate of K = (r' x r'')/|r'|^2 (CObjectANCFCable2D.cpp; the docstrings give
+            # the virtual work int eps' d(eps) dx without the factor; Exudyn's user-function
+            # example: m = EI (K - K0) + bendingDamping K'), hence EA tau_d and EI tau_d.
+            damping = {
+                "axialDamping": ea * sec.damping_time,
+                "bendingDamping": ei * sec.damping_time,
+            }
+        template = cable(
+            massPerLength=DENSITY * sec.area, bendingStiffness=ei, axialStiffness=ea, **damping
+        )
+        x1 = x0 + sec.length
+        beam = GenerateBeamElementsAlongLine(
+            mbs,
+            [x0, 0.0, 0.0],
+            [x1, 0.0, 0.0],
+            k,
+            template,
+            gravity,
+            clamp if tip_node is None else None,
+            nodeNumberStart=tip_node,  # the previous section's last node: shared at the junction
+        )
+        x0, tip_node = x1, beam["nodes"][-1]
     if spatial:
         marker = mbs.AddMarker(MarkerNodePosition(nodeNumber=tip_node))
         mbs.AddLoad(Force(markerNumber=marker, loadVector=[0.0, TIP_FORCE, 0.0]))
@@ -271,10 +378,10 @@ def run_exudyn(
 # ------------------------------------------------------------------------------- the runs
 
 
-def solve(binary: Path, fam: Family, n: int, h: float, t_end: float, spatial: bool):
+def solve(binary: Path, prob: Problem, fam: Family, n: int, h: float, t_end: float):
     if fam.code == "hybeam":
-        return run_hybeam(binary, fam, fam.elements(n), h, t_end, spatial)
-    return run_exudyn(n, h, t_end, spatial)
+        return run_hybeam(binary, fam, n, h, t_end, prob.spatial)
+    return run_exudyn(n, h, t_end, prob.spatial, prob.rod)
 
 
 def on_grid(t: np.ndarray, tip: np.ndarray, t_end: float) -> np.ndarray:
@@ -310,7 +417,7 @@ def reference(binary: Path, prob: Problem, grid: Grid, cache: Path, log) -> dict
         ("half", prob.reference, half),
     ):
         log(f"[{prob.name}] fine run {fam.name}: n={n}, h={h:g} ...")
-        wall, t, tip = solve(binary, fam, n, h, grid.t_end, prob.spatial)
+        wall, t, tip = solve(binary, prob, fam, n, h, grid.t_end)
         out[label] = on_grid(t, tip, grid.t_end)
         out[label + "_time"] = np.array(wall)
         log(f"[{prob.name}]   done in {wall:.2f} s")
@@ -336,7 +443,7 @@ def sweep(binary: Path, prob: Problem, grid: Grid, ref: np.ndarray, log) -> list
                     if run.status != "ok":
                         continue
                     try:
-                        wall, t, tip = solve(binary, fam, n, h, grid.t_end, prob.spatial)
+                        wall, t, tip = solve(binary, prob, fam, n, h, grid.t_end)
                     except Exception as e:  # a failed run is recorded, not fatal
                         run.status = f"failed: {e}".replace("\n", " ")[:300]
                         log(f"[{prob.name}] {fam.name} n={run.elements} h={h:g}: {run.status}")
@@ -490,13 +597,21 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small grid, t_end 0.5 s, 1 repeat")
     ap.add_argument("--hybeam", type=Path, default=ROOT / "target/release/hybeam")
-    ap.add_argument("--problems", default="planar,spatial", help="comma-separated subset")
+    ap.add_argument(
+        "--problems",
+        default=",".join(PROBLEMS),
+        help=f"comma-separated subset of {','.join(PROBLEMS)} (default: all)",
+    )
     ap.add_argument("--t-end", type=float, help="override the grid's end time [s]")
     ap.add_argument("--repeats", type=int, help="override the number of timing repeats")
     ap.add_argument("--out-dir", type=Path, help="default docs/report (quick: target/peers-quick)")
     ap.add_argument("--doc", type=Path, help="default docs/performance.md (quick: in --out-dir)")
     ap.add_argument("--shared", default="", help="note on the machine's other load, for the doc")
     args = ap.parse_args(argv)
+    names = [x.strip() for x in args.problems.split(",") if x.strip()]
+    unknown = [x for x in names if x not in PROBLEMS]
+    if unknown or not names:
+        ap.error(f"--problems: unknown {unknown or names}; choose from {', '.join(PROBLEMS)}")
 
     grid = QUICK if args.quick else FULL
     if args.t_end or args.repeats:
@@ -527,7 +642,7 @@ def main(argv: list[str] | None = None) -> int:
     load_before = os.getloadavg()
     clock = time.perf_counter()
     sections, all_runs = [], []
-    for name in args.problems.split(","):
+    for name in names:
         prob = PROBLEMS[name]
         cache = cache_dir / f"ref_{name}{'_quick' if args.quick else ''}.npz"
         refs = reference(args.hybeam, prob, grid, cache, log)
@@ -566,6 +681,12 @@ def rel(p: Path, start: Path) -> str:
     return os.path.relpath(p.resolve(), start.resolve())
 
 
+def mesh(fam: Family, n: int) -> str:
+    """n, and its split over the family's ANCF segments if it has several ("64 (21 + 43)")."""
+    counts = [k for _, k in fam.segment_elements(n)]
+    return f"{n}" if len(counts) < 2 else f"{n} ({' + '.join(map(str, counts))})"
+
+
 def write_doc(doc, sections, grid, command, csv_path, started, minutes, before, after, args):
     import exudyn
 
@@ -586,8 +707,9 @@ def write_doc(doc, sections, grid, command, csv_path, started, minutes, before, 
         f"load average {before[0]:.2f} at the start, {after[0]:.2f} at the end. {shared}",
         f"- Codes: hybeam (`{rel(args.hybeam, ROOT)}`, release build), Exudyn "
         f"{exudyn.__version__} (PyPI wheel, in its own venv).",
-        f"- Grid: elements {list(grid.elements)} (the hybrid's ANCF half gets half of them), "
-        f"steps {', '.join(f'{h:g}' for h in grid.steps)} s, t_end = {grid.t_end:g} s, "
+        f"- Grid: elements {list(grid.elements)} (how they map onto each family's mesh: per "
+        f"problem below), steps {', '.join(f'{h:g}' for h in grid.steps)} s, "
+        f"t_end = {grid.t_end:g} s, "
         f"median of {grid.repeats} repeat(s), the codes alternating.",
         "- Error: max over the 1 ms output grid of |tip - reference| (Euclidean).",
         "- Time: hybeam: the `wall X s` its CLI prints (model build, initial accelerations, "
@@ -601,11 +723,14 @@ def write_doc(doc, sections, grid, command, csv_path, started, minutes, before, 
         parts += [
             f"## {prob.name}",
             "",
-            f"Reference: {prob.reference.name}, n = {grid.ref_elements}, h = {grid.ref_step:g} s "
+            f"Elements: {prob.note}.",
+            "",
+            f"Reference: {prob.reference.name}, n = {mesh(prob.reference, grid.ref_elements)}, "
+            f"h = {grid.ref_step:g} s "
             f"({ref_t:.2f} s). The same mesh and step in {prob.peer_check.name} ({peer_t:.2f} s) "
             f"lies **{gap:.2e} m** from it (max over the 1 ms grid). The reference's own error, "
             f"estimated as its distance to the same code at half the elements and twice the step "
-            f"(n = {grid.ref_elements // 2}, h = {2 * grid.ref_step:g} s): "
+            f"(n = {mesh(prob.reference, grid.ref_elements // 2)}, h = {2 * grid.ref_step:g} s): "
             f"{max_distance(refs['ref'], refs['half']):.2e} m.",
             "",
             "Cheapest run of each code reaching each tolerance:",
