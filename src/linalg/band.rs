@@ -76,10 +76,7 @@ impl BandOrder {
     /// The band of `p` in the order `perm` (`perm[new] = old`).
     pub fn of(p: &SparsePattern, perm: Vec<usize>) -> Self {
         let n = p.dim();
-        let mut inv = vec![0usize; n];
-        for (new, &old) in perm.iter().enumerate() {
-            inv[old] = new;
-        }
+        let inv = inverse(&perm);
         let (mut kl, mut ku) = (0, 0);
         for c in 0..n {
             for r in p.column(c) {
@@ -90,6 +87,15 @@ impl BandOrder {
         }
         Self { perm, kl, ku }
     }
+}
+
+/// The inverse of a permutation: `inverse(perm)[old] = new` for `perm[new] = old`.
+fn inverse(perm: &[usize]) -> Vec<usize> {
+    let mut inv = vec![0usize; perm.len()];
+    for (new, &old) in perm.iter().enumerate() {
+        inv[old] = new;
+    }
+    inv
 }
 
 /// The end of a breadth-first search from `v` that goes deepest, repeated while that deepens
@@ -160,10 +166,7 @@ impl BandLu {
         let n = p.dim();
         let BandOrder { perm, kl, ku } = order;
         let ld = 2 * kl + ku + 1;
-        let mut inv = vec![0usize; n];
-        for (new, &old) in perm.iter().enumerate() {
-            inv[old] = new;
-        }
+        let inv = inverse(&perm);
         let mut pos = Vec::with_capacity(p.nnz());
         for c in 0..n {
             for r in p.column(c) {

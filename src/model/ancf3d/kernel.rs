@@ -49,6 +49,17 @@ pub(super) fn comb<T: Real, const N: usize, const D: usize>(
     r
 }
 
+/// [`comb`] on slices: Σ_j w_j x[slot_j..slot_j + 3] (samples and energies, f64).
+pub(super) fn combine(w: &[f64], slots: &[usize], x: &[f64]) -> V<f64> {
+    let mut r = [0.0; 3];
+    for (wj, s) in w.iter().zip(slots) {
+        for c in 0..3 {
+            r[c] += wj * x[s + c];
+        }
+    }
+    r
+}
+
 /// `f[slot_j + c] += w_j v_c`.
 #[inline(always)]
 pub(super) fn scatter<T: Real, const N: usize, const D: usize>(
@@ -109,46 +120,60 @@ pub(super) fn point_tangent<const K: usize, const N: usize, const D: usize>(
     g: impl FnOnce(&[V<DualSVec64<N>>; K], &[V<DualSVec64<N>>; K]) -> [V<DualSVec64<N>>; K],
 ) {
     debug_assert!(N == 3 * K || (N == 6 * K && c.is_some()));
-    let (u0, ud0) = (gather(maps, e), gather(maps, ed));
-    let seed = |x: &[V<f64>; K], off: usize, on: bool| {
-        let mut out = [[DualSVec64::<N>::from_re(0.0); 3]; K];
-        for al in 0..K {
-            for ci in 0..3 {
-                let v = DualSVec64::<N>::from_re(x[al][ci]);
-                out[al][ci] = if on {
-                    v.derivative(off + 3 * al + ci)
-                } else {
-                    v
-                };
-            }
-        }
-        out
-    };
     let rates = N == 6 * K;
-    let out = g(&seed(&u0, 0, true), &seed(&ud0, 3 * K, rates));
-    let add = |mat: &mut [[f64; D]; D], off: usize| {
-        for (ma, ga) in maps.iter().zip(&out) {
-            for ci in 0..3 {
-                let Some(eps) = &ga[ci].eps.0 else { continue };
-                for (mb, bet) in maps.iter().zip(0..K) {
-                    for cj in 0..3 {
-                        let j = eps[off + 3 * bet + cj];
-                        if j == 0.0 {
-                            continue;
-                        }
-                        for (wa, sa) in ma.w.iter().zip(ma.slots) {
-                            for (wb, sb) in mb.w.iter().zip(mb.slots) {
-                                mat[sa + ci][sb + cj] += wa * wb * j;
-                            }
+    let out = g(
+        &seed(&gather(maps, e), Some(0)),
+        &seed(&gather(maps, ed), rates.then_some(3 * K)),
+    );
+    add_jacobian(maps, &out, 0, k);
+    if let (Some(c), true) = (c, rates) {
+        add_jacobian(maps, &out, 3 * K, c);
+    }
+}
+
+/// Local vectors as dual numbers, derivative `off + 3α + i` seeded on component i of vector α
+/// (`None`: constants).
+fn seed<const K: usize, const N: usize>(
+    x: &[V<f64>; K],
+    off: Option<usize>,
+) -> [V<DualSVec64<N>>; K] {
+    let mut out = [[DualSVec64::<N>::from_re(0.0); 3]; K];
+    for al in 0..K {
+        for ci in 0..3 {
+            let v = DualSVec64::<N>::from_re(x[al][ci]);
+            out[al][ci] = match off {
+                Some(off) => v.derivative(off + 3 * al + ci),
+                None => v,
+            };
+        }
+    }
+    out
+}
+
+/// Adds `mapsᵀ J maps` to `mat`, J the derivatives `off .. off + 3K` of the local forces `out`.
+fn add_jacobian<const K: usize, const N: usize, const D: usize>(
+    maps: &[Map<'_>; K],
+    out: &[V<DualSVec64<N>>; K],
+    off: usize,
+    mat: &mut [[f64; D]; D],
+) {
+    for (ma, ga) in maps.iter().zip(out) {
+        for ci in 0..3 {
+            let Some(eps) = &ga[ci].eps.0 else { continue };
+            for (mb, bet) in maps.iter().zip(0..K) {
+                for cj in 0..3 {
+                    let j = eps[off + 3 * bet + cj];
+                    if j == 0.0 {
+                        continue;
+                    }
+                    for (wa, sa) in ma.w.iter().zip(ma.slots) {
+                        for (wb, sb) in mb.w.iter().zip(mb.slots) {
+                            mat[sa + ci][sb + cj] += wa * wb * j;
                         }
                     }
                 }
             }
         }
-    };
-    add(k, 0);
-    if let (Some(c), true) = (c, rates) {
-        add(c, 3 * K);
     }
 }
 
@@ -255,39 +280,13 @@ pub(super) fn point_tangent_acc<const K: usize, const N: usize, const D: usize>(
     ) -> [V<DualSVec64<N>>; K],
 ) -> [V<f64>; K] {
     debug_assert!(N == 9 * K);
-    let seed = |x: &[V<f64>; K], off: usize| {
-        let mut out = [[DualSVec64::<N>::from_re(0.0); 3]; K];
-        for al in 0..K {
-            for ci in 0..3 {
-                out[al][ci] = DualSVec64::<N>::from_re(x[al][ci]).derivative(off + 3 * al + ci);
-            }
-        }
-        out
-    };
     let out = g(
-        &seed(&gather(maps, e), 0),
-        &seed(&gather(maps, ed), 3 * K),
-        &seed(&gather(maps, ea), 6 * K),
+        &seed(&gather(maps, e), Some(0)),
+        &seed(&gather(maps, ed), Some(3 * K)),
+        &seed(&gather(maps, ea), Some(6 * K)),
     );
     for (mat, off) in [(k, 0), (c, 3 * K), (m, 6 * K)] {
-        for (ma, ga) in maps.iter().zip(&out) {
-            for ci in 0..3 {
-                let Some(eps) = &ga[ci].eps.0 else { continue };
-                for (mb, bet) in maps.iter().zip(0..K) {
-                    for cj in 0..3 {
-                        let j = eps[off + 3 * bet + cj];
-                        if j == 0.0 {
-                            continue;
-                        }
-                        for (wa, sa) in ma.w.iter().zip(ma.slots) {
-                            for (wb, sb) in mb.w.iter().zip(mb.slots) {
-                                mat[sa + ci][sb + cj] += wa * wb * j;
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        add_jacobian(maps, &out, off, mat);
     }
     out.map(|v| v.map(|x| x.re))
 }

@@ -425,17 +425,16 @@ impl Ancf3Props {
         (f, m)
     }
 
-    /// Kinetic energy [J] at (e, ė) (d entries each): ½ėᵀMė of the constant mass matrix plus
-    /// [`Ancf3Props::director_kinetic`].
-    pub fn kinetic_energy(&self, e: &[f64], ed: &[f64]) -> f64 {
+    /// Kinetic energy [J] at (e, ė) (d entries each): [`Ancf3Props::director_kinetic`] plus
+    /// ½ėᵀMė of the constant mass matrix `mass` (row-major d × d, [`Ancf3Props::mass_matrix`]).
+    pub fn kinetic_energy(&self, mass: &[f64], tab: &Tables3, e: &[f64], ed: &[f64]) -> f64 {
         let d = self.dofs();
-        let m = self.mass_matrix();
-        let mut t = 0.0;
+        let mut t = self.director_kinetic(tab, e, ed);
         for i in 0..d {
-            let mv: f64 = (0..d).map(|j| m[i * d + j] * ed[j]).sum();
+            let mv: f64 = (0..d).map(|j| mass[i * d + j] * ed[j]).sum();
             t += 0.5 * ed[i] * mv;
         }
-        t + self.director_kinetic(&self.tables(), e, ed)
+        t
     }
 
     /// The director's kinetic energy beyond the constant pattern's ½ρI_p∫|ṙ_y|² [J]: Σ over the
@@ -446,19 +445,10 @@ impl Ancf3Props {
             return 0.0;
         }
         let (rs, ys) = self.slots();
-        let v = |w: &[f64], slots: &[usize], x: &[f64]| -> [f64; 3] {
-            let mut r = [0.0; 3];
-            for (wj, s) in w.iter().zip(slots) {
-                for c in 0..3 {
-                    r[c] += wj * x[s + c];
-                }
-            }
-            r
-        };
         let mut t = 0.0;
         for p in &tab.bending {
-            let u = [v(&p.ds, &rs, e), v(&p.ny, &ys, e)];
-            let ud = [v(&p.ds, &rs, ed), v(&p.ny, &ys, ed)];
+            let u = [combine(&p.ds, &rs, e), combine(&p.ny, &ys, e)];
+            let ud = [combine(&p.ds, &rs, ed), combine(&p.ny, &ys, ed)];
             let (dv, _) = director_rate(&u, &ud);
             let cd = ud[1];
             t += 0.5 * p.w * self.rho_ip * (dot(&dv, &dv) - dot(&cd, &cd));
@@ -608,15 +598,7 @@ impl Ancf3Props {
     pub fn strain_energy(&self, e: &[f64]) -> f64 {
         let tab = self.tables();
         let (rs, ys) = self.slots();
-        let v = |w: &[f64], slots: &[usize]| {
-            let mut r = [0.0; 3];
-            for (wj, s) in w.iter().zip(slots) {
-                for c in 0..3 {
-                    r[c] += wj * e[s + c];
-                }
-            }
-            r
-        };
+        let v = |w: &[f64], slots: &[usize]| combine(w, slots, e);
         let mut u = 0.0;
         for (w, ds) in &tab.axial {
             let a = v(ds, &rs);
@@ -710,27 +692,18 @@ impl Ancf3Props {
     /// vector r_x × r_xx/|r_x|² on its frame, no twist.
     pub fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
         let (rs, ys) = self.slots();
-        let v = |w: &[f64], slots: &[usize], x: &[f64]| -> [f64; 3] {
-            let mut r = [0.0; 3];
-            for (wj, s) in w.iter().zip(slots) {
-                for c in 0..3 {
-                    r[c] += wj * x[s + c];
-                }
-            }
-            r
-        };
         let l = self.length;
         let (sh, ds, dds) = hermite(xi, l);
-        let (a, b) = (v(&ds, &rs, e), v(&dds, &rs, e));
+        let (a, b) = (combine(&ds, &rs, e), combine(&dds, &rs, e));
         let mut p = ShapePoint {
-            position: v(&sh, &rs, e),
-            velocity: v(&sh, &rs, ed),
+            position: combine(&sh, &rs, e),
+            velocity: combine(&sh, &rs, ed),
             axial_strain: dot(&a, &a).sqrt() - 1.0,
             ..ShapePoint::default()
         };
         if self.torsion {
-            let c = v(&[1.0 - xi, xi], &ys, e);
-            let d = v(&[-1.0 / l, 1.0 / l], &ys, e);
+            let c = combine(&[1.0 - xi, xi], &ys, e);
+            let d = combine(&[-1.0 / l, 1.0 / l], &ys, e);
             let [_, k2, k3, tau] = strains(a, b, c, d);
             p.frame = director_frame(a, c);
             p.curvature = [k2, k3];
@@ -1034,7 +1007,7 @@ pub(crate) mod tests {
             m.add_product(&ed, &mut mv);
             let tr: f64 = 0.5 * (0..18).map(|k| ed[k] * mv[k]).sum::<f64>();
             let want = tr + director_energy(&p, &e, &ed);
-            let got = p.kinetic_energy(&e, &ed);
+            let got = p.kinetic_energy(&p.mass_matrix(), &p.tables(), &e, &ed);
             assert!((got - want).abs() < 1e-13 * want, "{got} vs {want}");
         }
     }

@@ -125,14 +125,8 @@ impl Element<Spatial> for AncfElement3 {
 
     fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 3]) -> Energies {
         let (e, ed, _) = x.vectors();
-        let d = e.len();
-        let mut kinetic = self.props.director_kinetic(&self.tables, &e, &ed);
-        for i in 0..d {
-            let mv: f64 = (0..d).map(|j| self.mass[i * d + j] * ed[j]).sum();
-            kinetic += 0.5 * ed[i] * mv;
-        }
         Energies {
-            kinetic,
+            kinetic: self.props.kinetic_energy(&self.mass, &self.tables, &e, &ed),
             strain: self.props.strain_energy(&e),
             potential: -e
                 .iter()
