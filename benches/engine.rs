@@ -5,7 +5,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
-use hybeam::linalg::LuMethod;
+use hybeam::linalg::{LuMethod, INVERSE_MAX_DIM};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
 use hybeam::model::ancf3d::Ancf3Props;
 use hybeam::model::{Model, Planar, Space, Spatial};
@@ -335,7 +335,11 @@ fn lu_of<S: Space>(c: &mut Criterion, name: &str, mut model: Model<S>) {
         matrix: Some((1.1, 1e-4, 1e-8)),
         lambda_hessian: true,
     };
-    for method in [LuMethod::Band, LuMethod::General] {
+    let mut methods = vec![LuMethod::Band, LuMethod::General];
+    if model.coordinates() + model.constraints() <= INVERSE_MAX_DIM {
+        methods.push(LuMethod::Inverse);
+    }
+    for method in methods {
         model.set_lu_method(method);
         let (n, m) = (model.coordinates(), model.constraints());
         let q = model.initial_coordinates().to_vec();

@@ -302,6 +302,121 @@ impl BandLu {
     }
 }
 
+/// The inverse of a small Newton matrix, from its band factors, kept as a dense matrix so that a
+/// held-matrix solve is one matrix-vector product.
+///
+/// A band solve is two triangular sweeps whose every column waits for the previous one (and,
+/// with columns a few entries long, for the store of the previous update to reach the next
+/// load); a product with the inverse has no such chain. For the planar 8-element rod (35
+/// unknowns) it is the cheaper solve at every modified-Newton iteration (`docs/performance.md`);
+/// its cost grows as n², so it is kept only up to [`super::INVERSE_MAX_DIM`] unknowns. The
+/// product's error is about κ(A)·ε·|x|, against the LU solve's backward-stable one: a Newton
+/// iteration, which corrects any solve error it contracts, does not notice.
+#[derive(Debug, Clone)]
+pub struct DenseInverse {
+    n: usize,
+    /// A⁻¹ in the pattern's (original) order, column-major: `inv[j * n + i]` = (A⁻¹)ᵢⱼ.
+    inv: Vec<f64>,
+    /// The permuted system's inverse, row-major (scratch of [`Self::invert`]).
+    rows: Vec<f64>,
+    /// Scratch for the product.
+    work: Vec<f64>,
+}
+
+impl DenseInverse {
+    /// Storage for an n × n inverse.
+    pub fn new(n: usize) -> Self {
+        Self {
+            n,
+            inv: vec![0.0; n * n],
+            rows: vec![0.0; n * n],
+            work: vec![0.0; n],
+        }
+    }
+
+    /// A⁻¹ from the factors of `lu` (`dgbtrs` with the identity as n right-hand sides, all
+    /// swept together: each row operation is a vector operation across the n columns).
+    pub fn invert(&mut self, lu: &BandLu) {
+        let n = self.n;
+        debug_assert_eq!(lu.n, n);
+        let (ld, kv) = (lu.ld, lu.kl + lu.ku);
+        // x: row-major n × n (row r of the permuted system across the n right-hand sides)
+        let x = &mut self.rows;
+        x.iter_mut().for_each(|v| *v = 0.0);
+        for r in 0..n {
+            x[r * n + r] = 1.0;
+        }
+        for j in 0..n {
+            let l = lu.ipiv[j];
+            if l != j {
+                let (a, b) = x.split_at_mut(l * n);
+                a[j * n..(j + 1) * n].swap_with_slice(&mut b[..n]);
+            }
+            let (head, tail) = x.split_at_mut((j + 1) * n);
+            let xj = &head[j * n..];
+            let col = j * ld + kv;
+            for (row, &lij) in tail
+                .chunks_exact_mut(n)
+                .zip(&lu.ab[col + 1..=col + lu.l_len[j]])
+            {
+                for (v, &w) in row.iter_mut().zip(xj) {
+                    *v -= lij * w;
+                }
+            }
+        }
+        for j in (0..n).rev() {
+            let (head, tail) = x.split_at_mut(j * n);
+            let xj = &mut tail[..n];
+            let d = lu.inv_diag[j];
+            xj.iter_mut().for_each(|v| *v *= d);
+            let lo = lu.u_top[j];
+            let col = j * ld + kv;
+            for (row, &uij) in head[lo * n..]
+                .chunks_exact_mut(n)
+                .zip(&lu.ab[col - (j - lo)..col])
+            {
+                for (v, &w) in row.iter_mut().zip(&*xj) {
+                    *v -= uij * w;
+                }
+            }
+        }
+        // x = P A⁻¹ Pᵀ with rows in the new order and columns the permuted unit vectors:
+        // (A⁻¹)(perm[r], perm[c]) = x[r][c]; stored column-major in the original order
+        for (r, row) in x.chunks_exact(n).enumerate() {
+            for (&v, &pc) in row.iter().zip(&lu.perm) {
+                self.inv[pc * n + lu.perm[r]] = v;
+            }
+        }
+    }
+
+    /// x = A⁻¹ b in place (b in the pattern's order): the columns of A⁻¹ are added four at a
+    /// time, yᵢ += (aᵢⱼbⱼ + aᵢⱼ₊₁bⱼ₊₁) + (aᵢⱼ₊₂bⱼ₊₂ + aᵢⱼ₊₃bⱼ₊₃), then the remaining ones
+    /// (a fixed order: the same bits on every machine).
+    pub fn solve(&mut self, rhs: &mut [f64]) {
+        let n = self.n;
+        let y = &mut self.work;
+        y.iter_mut().for_each(|v| *v = 0.0);
+        let mut cols = self.inv.chunks_exact(4 * n);
+        let mut b = rhs.chunks_exact(4);
+        for (c, b) in (&mut cols).zip(&mut b) {
+            let (c0, rest) = c.split_at(n);
+            let (c1, rest) = rest.split_at(n);
+            let (c2, c3) = rest.split_at(n);
+            let (b0, b1, b2, b3) = (b[0], b[1], b[2], b[3]);
+            let (c0, c1, c2, c3, y) = (&c0[..n], &c1[..n], &c2[..n], &c3[..n], &mut y[..n]);
+            for i in 0..n {
+                y[i] += (c0[i] * b0 + c1[i] * b1) + (c2[i] * b2 + c3[i] * b3);
+            }
+        }
+        for (col, &bj) in cols.remainder().chunks_exact(n).zip(b.remainder()) {
+            for (v, &a) in y.iter_mut().zip(col) {
+                *v += a * bj;
+            }
+        }
+        rhs.copy_from_slice(y);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::{LuMethod, NewtonLu, SparsePattern};
@@ -393,14 +508,14 @@ mod tests {
     }
 
     #[test]
-    fn band_and_general_lu_solve_saddle_point_chains_alike() {
+    fn band_general_and_inverse_solve_saddle_point_chains_alike() {
         for (nodes, b, c, seed) in [(2, 4, 2, 3), (9, 4, 2, 5), (17, 6, 3, 7), (60, 9, 3, 11)] {
             let (p, values) = chain(nodes, b, c, seed);
             let mut r = rng(seed + 100);
             let x: Vec<f64> = (0..p.dim()).map(|_| r()).collect();
             let rhs = multiply(&p, &values, &x);
             let mut sols = Vec::new();
-            for method in [LuMethod::Band, LuMethod::General] {
+            for method in [LuMethod::Band, LuMethod::General, LuMethod::Inverse] {
                 let mut lu = NewtonLu::with_method(p.clone(), method);
                 assert_eq!(lu.method(), method);
                 lu.factorize(&values).unwrap();

@@ -10,7 +10,7 @@ use faer::{Conj, MatMut, Par};
 
 pub mod band;
 
-pub use band::{BandLu, BandOrder};
+pub use band::{BandLu, BandOrder, DenseInverse};
 
 /// Largest kl + ku (sub- plus super-diagonals in reverse Cuthill–McKee order) factorized in band
 /// storage; a wider band goes to the general sparse LU. A chain of ANCF elements has
@@ -19,6 +19,10 @@ pub use band::{BandLu, BandOrder};
 /// 128 multiply-adds per unknown, below the general LU's per-entry overhead at these sizes
 /// (`cargo bench --bench engine -- lu`).
 pub const BAND_MAX_WIDTH: usize = 64;
+
+/// Systems of at most this many unknowns (coordinates and multipliers) are solved with the
+/// explicit inverse ([`DenseInverse`]).
+pub const INVERSE_MAX_DIM: usize = 48;
 
 /// Marker for "no slot" (a fixed coordinate).
 pub const NO_SLOT: u32 = u32::MAX;
@@ -94,6 +98,9 @@ pub enum LuMethod {
     Band,
     /// faer's general sparse LU ([`SparseLu`]).
     General,
+    /// [`BandLu`]'s factors turned into the explicit inverse ([`DenseInverse`]): the solve is
+    /// one matrix-vector product.
+    Inverse,
 }
 
 /// The Newton matrix's LU: [`BandLu`] when the reordered band is at most [`BAND_MAX_WIDTH`]
@@ -111,6 +118,7 @@ pub struct NewtonLu {
 enum Solver {
     Band(BandLu),
     General(SparseLu),
+    Inverse(BandLu, DenseInverse),
 }
 
 impl NewtonLu {
@@ -118,7 +126,9 @@ impl NewtonLu {
     pub fn new(pattern: SparsePattern) -> Self {
         let order = BandOrder::reverse_cuthill_mckee(&pattern);
 
-        let method = if order.kl + order.ku <= BAND_MAX_WIDTH {
+        let method = if pattern.dim() <= INVERSE_MAX_DIM {
+            LuMethod::Inverse
+        } else if order.kl + order.ku <= BAND_MAX_WIDTH {
             LuMethod::Band
         } else {
             LuMethod::General
@@ -136,6 +146,10 @@ impl NewtonLu {
         let solver = match method {
             LuMethod::Band => Solver::Band(BandLu::new(&pattern, order)),
             LuMethod::General => Solver::General(SparseLu::new(pattern.clone())),
+            LuMethod::Inverse => Solver::Inverse(
+                BandLu::new(&pattern, order),
+                DenseInverse::new(pattern.dim()),
+            ),
         };
         Self {
             pattern,
@@ -149,6 +163,7 @@ impl NewtonLu {
         match self.solver {
             Solver::Band(_) => LuMethod::Band,
             Solver::General(_) => LuMethod::General,
+            Solver::Inverse(..) => LuMethod::Inverse,
         }
     }
 
@@ -166,6 +181,10 @@ impl NewtonLu {
         match &mut self.solver {
             Solver::Band(b) => b.factorize(values)?,
             Solver::General(g) => g.factorize(values)?,
+            Solver::Inverse(b, inv) => {
+                b.factorize(values)?;
+                inv.invert(b);
+            }
         }
         self.factored = true;
         Ok(())
@@ -182,6 +201,7 @@ impl NewtonLu {
         match &mut self.solver {
             Solver::Band(b) => b.solve(rhs),
             Solver::General(g) => g.solve(rhs),
+            Solver::Inverse(_, inv) => inv.solve(rhs),
         }
         rhs.iter().all(|v| v.is_finite())
     }
