@@ -65,12 +65,8 @@ impl SegmentParts<Planar> for PlanarParts {
                 angle: c.is_held(2).then(|| c.held::<1>(2)[0]),
             }) as Box<dyn Support<Planar>>
         });
-        // a held frame's segment is stiffened by its centrifugal and axial inertia
-        let element = if held {
-            ModalElement::stiffened(body.clone())
-        } else {
-            ModalElement::new(body.clone())
-        };
+        // held or free, the body's foreshortening stiffens it by its axial force field
+        let element = ModalElement::new(body.clone());
         Ok(ModalSegment {
             coords: c,
             root: Box::new(ModalRootPort(body.clone())),
