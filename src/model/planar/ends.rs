@@ -194,38 +194,48 @@ impl ModalTipPort {
     }
 }
 
-impl Port<Planar> for ModalTipPort {
-    fn kinematics(&self, ql: &[f64]) -> EndKin {
+impl ModalTipPort {
+    /// The kinematics, with the second derivatives if `curvature`.
+    fn kinematics_with(&self, ql: &[f64], curvature: bool) -> EndKin {
         let b = &*self.0;
         let n = b.modes();
-        let u = self.slope_gradient();
         let [f, f1, f2] = tip_angle(b.tip_slope(ql));
         let mut dpsi = vec![0.0; 3 + n];
         dpsi[2] = 1.0;
         let a = rot(ql[2]);
         let (tip, gk) = b.tip_local_and_gradient(ql);
         let au = a * tip;
-        let mut dp = vec![Vector2::x(), Vector2::y(), Vector2::new(-au[1], au[0])];
-        let mut ajk = Vec::with_capacity(n);
+        let mut dp = Vec::with_capacity(3 + n);
+        dp.extend([Vector2::x(), Vector2::y(), Vector2::new(-au[1], au[0])]);
         for k in 0..n {
-            let c = a * Vector2::new(-gk[k], b.basis.tip[k]);
-            dp.push(c);
-            ajk.push(Vector2::new(-c[1], c[0]));
-            dpsi[3 + k] = f1 * u[k];
+            dp.push(a * Vector2::new(-gk[k], b.basis.tip[k]));
+            dpsi[3 + k] = f1 * b.basis.tip_slope[k] / b.length;
         }
+        let curv = curvature.then(|| TipCurvature {
+            theta: 2,
+            au,
+            j_dp_da: dp[3..].iter().map(|c| Vector2::new(-c[1], c[0])).collect(),
+            ax_over_l: a.column(0).into_owned() / b.length,
+            gram: b.gram.clone(),
+            angle: (f2, self.slope_gradient()),
+        });
         EndKin {
             p: Vector2::new(ql[0], ql[1]) + au,
             dp,
             orient: Orientation::Angle(ql[2] + f, dpsi),
-            curv: Some(TipCurvature {
-                theta: 2,
-                au,
-                j_dp_da: ajk,
-                ax_over_l: a.column(0).into_owned() / b.length,
-                gram: b.gram.clone(),
-                angle: (f2, u),
-            }),
+            curv,
         }
+    }
+}
+
+impl Port<Planar> for ModalTipPort {
+    fn kinematics(&self, ql: &[f64]) -> EndKin {
+        self.kinematics_with(ql, true)
+    }
+
+    /// Without [`EndKin::curv`] (the residual paths).
+    fn kinematics_first(&self, ql: &[f64]) -> EndKin {
+        self.kinematics_with(ql, false)
     }
 
     /// −m·∂²ψ/∂a_j∂a_k = −m f″(t) u_j u_k (ψ is linear in θ).

@@ -26,8 +26,13 @@ impl Constraint for RigidJoint {
     }
 
     fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut) {
-        let up = self.up.kinematics(&q[..self.up_len]);
-        let down = self.down.kinematics(&q[self.up_len..]);
+        // the second derivatives only for the λ-Hessian
+        let (qu, qd) = q.split_at(self.up_len);
+        let (up, down) = if lambda.is_some() {
+            (self.up.kinematics(qu), self.down.kinematics(qd))
+        } else {
+            (self.up.kinematics_first(qu), self.down.kinematics_first(qd))
+        };
         joint_eval(&up, &down, lambda.map(|l| [l[0], l[1], l[2]]), out);
     }
 }
