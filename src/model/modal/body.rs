@@ -74,6 +74,8 @@ pub struct ModalBody {
     /// 5-point Gauss, max(4, n) panels): the tip foreshortening is ½ aᵀ G a / L, the ξ = 1 case
     /// of the foreshortening of the points inside.
     pub gram: Vec<f64>,
+    /// The geometrically nonlinear body (true unless built [`ModalBody::linear`]).
+    pub nonlinear: bool,
     nl: Nonlinear,
 }
 
@@ -221,8 +223,19 @@ impl ModalBody {
             s_f,
             s_x,
             gram,
+            nonlinear: true,
             nl,
         }
+    }
+
+    /// The linear floating frame instead: ū = [x; w] inside the segment, strain energy
+    /// ½aᵀKa, the tip's foreshortening ½aᵀGa/L with the basis's G
+    /// ([`ModalBasis::slope_gram`]) and its angle θ + w′(L) (the body before the nonlinear
+    /// terms; for comparisons with linear theory and with the spatial modal body).
+    pub fn linear(mut self) -> Self {
+        self.nonlinear = false;
+        self.gram.clone_from(&self.basis.slope_gram);
+        self
     }
 
     /// Number of modal coordinates.
@@ -298,13 +311,17 @@ impl ModalBody {
             }
             out.res[3 + kk] = f;
         }
-        let sc = (rot_a[(1, 0)], rot_a[(0, 0)]);
-        self.add_nonlinear(q, v, a, g, sc, out.res.as_mut_slice(), &mut out.buf);
+        if self.nonlinear {
+            let sc = (rot_a[(1, 0)], rot_a[(0, 0)]);
+            self.add_nonlinear(q, v, a, g, sc, out.res.as_mut_slice(), &mut out.buf);
+        }
         if !matrices {
             return;
         }
         self.linear_matrices(q, v, a, g, out);
-        self.add_nonlinear_matrices(q, v, a, g, out);
+        if self.nonlinear {
+            self.add_nonlinear_matrices(q, v, a, g, out);
+        }
     }
 
     /// The partial derivatives of the linear part of the residual into `out.m`, `out.c`, `out.k`.
@@ -581,6 +598,9 @@ impl ModalBody {
         }
         // the foreshortening's part: |V⁰ + (ċ, θ̇c)|² − |V⁰|² at the quadrature points, V⁰ the
         // linear frame's local point velocity
+        if !self.nonlinear {
+            return 0.5 * t;
+        }
         let mut buf = Vec::new();
         self.fields(q, v, &vec![0.0; q.len()], &mut buf);
         let rl = rot_a.transpose() * rd;
@@ -605,6 +625,9 @@ impl ModalBody {
                 .zip(&q[3..])
                 .map(|(k, a)| k * a * a)
                 .sum::<f64>();
+        if !self.nonlinear {
+            return lin;
+        }
         let mut buf = Vec::new();
         let z = vec![0.0; q.len()];
         self.fields(q, &z, &z, &mut buf);
@@ -624,7 +647,9 @@ impl ModalBody {
         let s0 = 0.5 * self.rho_a * self.length * self.length;
         let mut buf = Vec::new();
         let z = vec![0.0; q.len()];
-        self.fields(q, &z, &z, &mut buf);
+        if self.nonlinear {
+            self.fields(q, &z, &z, &mut buf);
+        }
         let short: f64 = buf
             .chunks_exact(FIELDS)
             .zip(&self.nl.w)
@@ -701,7 +726,15 @@ impl ModalBody {
                 position: [p.x, p.y, 0.0],
                 velocity: [vel.x, vel.y, 0.0],
                 frame: [[t.x, t.y, 0.0], [-t.y, t.x, 0.0], [0.0, 0.0, 1.0]],
-                curvature: [0.0, w2 / (l * l) * (1.0 + 0.5 * (w1 / l) * (w1 / l))],
+                curvature: [
+                    0.0,
+                    w2 / (l * l)
+                        * if self.nonlinear {
+                            1.0 + 0.5 * (w1 / l) * (w1 / l)
+                        } else {
+                            1.0
+                        },
+                ],
                 ..ShapePoint::default()
             });
         }
@@ -735,7 +768,12 @@ mod tests {
 
     #[test]
     fn derivatives_match_central_differences() {
-        let b = body();
+        for b in [body(), body().linear()] {
+            derivatives_of(b);
+        }
+    }
+
+    fn derivatives_of(b: ModalBody) {
         let d = b.dim();
         let q: Vec<f64> = (0..d).map(|i| 0.1 + 0.37 * (i as f64).sin()).collect();
         let v: Vec<f64> = (0..d).map(|i| 0.5 * (1.3 * i as f64).cos()).collect();

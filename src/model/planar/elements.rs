@@ -2,6 +2,7 @@
 //! floating-frame modal body (3 + n coordinates), wrapping their kernels.
 
 use super::Planar;
+use crate::math;
 use crate::model::ancf::{AncfProps, Mat8, QuadTables, Vec8};
 use crate::model::assembly::Model;
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
@@ -136,14 +137,18 @@ impl Element<Planar> for AncfElement {
 }
 
 /// A planar floating-frame modal body, local coordinates `[R_x, R_y, θ, a_1 … a_n]`. The
-/// body's kinematics carry the foreshortening of every point, so the axial force of the
-/// centrifugal, axial inertia and gravity fields stiffens the modes of held and free frames
-/// alike (it replaces the geometric stiffness K_G = ρAL θ̇² G2 − ρA ā_x G1 that held frames
-/// used to add, docs/spatial.md, of which it is the leading term).
+/// nonlinear body's kinematics carry the foreshortening of every point, so the axial force of
+/// the centrifugal, axial inertia and gravity fields stiffens the modes of held and free frames
+/// alike; a linear body ([`ModalBody::linear`]) of a held frame adds instead its leading term,
+/// the geometric stiffness K_G = ρAL θ̇² G2 − ρA ā_x G1 (docs/spatial.md).
 #[derive(Debug, Clone)]
 pub struct ModalElement {
     /// The body (shared with its ports).
     pub body: Arc<ModalBody>,
+    /// (G1, G2) of the basis when a linear body's frame is held by a support (a clamped or
+    /// mounted root segment): the bending rows then carry K_G = ρAL θ̇² G2 − ρA ā_x G1,
+    /// ā = Aᵀ(R̈ − g), the axial force of the segment's centrifugal and axial inertia field.
+    stiffening: Option<(Vec<f64>, Vec<f64>)>,
     out: BodyOut,
     /// Local (q, q̇, q̈) of the last evaluation.
     x: [Vec<f64>; 3],
@@ -156,8 +161,51 @@ impl ModalElement {
         let out = BodyOut::new(d);
         Self {
             body,
+            stiffening: None,
             out,
             x: [vec![0.0; d], vec![0.0; d], vec![0.0; d]],
+        }
+    }
+
+    /// The element of a held frame: with the geometric stiffening K_G if the body is linear
+    /// (the nonlinear body has it in its own forces).
+    pub fn held(body: Arc<ModalBody>) -> Self {
+        let stiffening = (!body.nonlinear).then(|| body.basis.stiffening_grams());
+        Self {
+            stiffening,
+            ..Self::new(body)
+        }
+    }
+}
+
+/// Adds K_G a to the bending rows of `res` (and K_G to the a×a block of `k`) for a held frame
+/// at (q, q̇, q̈) under gravity `g`; derivatives by the held frame's coordinates are not needed
+/// (they have no columns).
+fn add_stiffening(
+    body: &ModalBody,
+    (g1, g2): &(Vec<f64>, Vec<f64>),
+    (q, v, a): (&[f64], &[f64], &[f64]),
+    g: [f64; 2],
+    res: &mut [f64],
+    k: Option<&mut nalgebra::DMatrix<f64>>,
+) {
+    let n = body.modes();
+    let (s, c) = math::sin_cos(q[2]);
+    let ax = c * (a[0] - g[0]) + s * (a[1] - g[1]);
+    let (kw, ka) = (body.rho_a * body.length * v[2] * v[2], body.rho_a * ax);
+    if kw == 0.0 && ka == 0.0 {
+        // a frame at rest with no axial field (a clamped root across gravity): K_G = 0
+        return;
+    }
+    let kg = |i: usize, j: usize| kw * g2[i * n + j] - ka * g1[i * n + j];
+    for i in 0..n {
+        res[3 + i] += (0..n).map(|j| kg(i, j) * q[3 + j]).sum::<f64>();
+    }
+    if let Some(k) = k {
+        for i in 0..n {
+            for j in 0..n {
+                k[(3 + i, 3 + j)] += kg(i, j);
+            }
         }
     }
 }
@@ -169,6 +217,10 @@ impl Element<Planar> for ModalElement {
         x.gather(q, v, a);
         let body = &mut self.out;
         self.body.eval(q, v, a, g, out.matrix.is_some(), body);
+        if let Some(grams) = &self.stiffening {
+            let k = out.matrix.is_some().then_some(&mut body.k);
+            add_stiffening(&self.body, grams, (q, v, a), g, body.res.as_mut_slice(), k);
+        }
         out.add_residual(body.res.as_slice());
         if let Some((ca, cv, cx)) = out.matrix {
             out.add_block(|r, c| ca * body.m[(r, c)] + cv * body.c[(r, c)] + cx * body.k[(r, c)]);
@@ -179,6 +231,10 @@ impl Element<Planar> for ModalElement {
         let (q, v, a) = x.vectors();
         let mut out = BodyOut::new(self.body.dim());
         self.body.eval(&q, &v, &a, env.gravity, false, &mut out);
+        if let Some(grams) = &self.stiffening {
+            let r = out.res.as_mut_slice();
+            add_stiffening(&self.body, grams, (&q, &v, &a), env.gravity, r, None);
+        }
         res.copy_from_slice(out.res.as_slice());
     }
 

@@ -199,7 +199,12 @@ impl ModalTipPort {
     fn kinematics_with(&self, ql: &[f64], curvature: bool) -> EndKin {
         let b = &*self.0;
         let n = b.modes();
-        let [f, f1, f2] = tip_angle(b.tip_slope(ql));
+        let t = b.tip_slope(ql);
+        let [f, f1, f2] = if b.nonlinear {
+            tip_angle(t)
+        } else {
+            [t, 1.0, 0.0]
+        };
         let mut dpsi = vec![0.0; 3 + n];
         dpsi[2] = 1.0;
         let a = rot(ql[2]);
@@ -238,8 +243,11 @@ impl Port<Planar> for ModalTipPort {
         self.kinematics_with(ql, false)
     }
 
-    /// −m·∂²ψ/∂a_j∂a_k = −m f″(t) u_j u_k (ψ is linear in θ).
+    /// −m·∂²ψ/∂a_j∂a_k = −m f″(t) u_j u_k (ψ is linear in θ; in a for a linear body).
     fn add_moment_stiffness(&self, ql: &[f64], m: &f64, add: &mut dyn FnMut(usize, usize, f64)) {
+        if !self.0.nonlinear {
+            return;
+        }
         let u = self.slope_gradient();
         let h = -m * tip_angle(self.0.tip_slope(ql))[2];
         if h != 0.0 {
