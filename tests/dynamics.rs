@@ -88,13 +88,17 @@ fn undamped_energy_drift_below_0_1_percent_of_peak_strain_energy() {
 
 #[test]
 fn integrator_is_second_order_on_a_single_mode() {
-    // one clamped–free mode released under gravity: y(t) = y_st (1 − cos ωt) exactly, with ω the
-    // Euler–Bernoulli frequency and y_st = φ(1)·ρAL·I1·g/K₁
+    // one clamped–free mode released under gravity: y(t) = y_st (1 − cos ωt) for the linearized
+    // body, with ω the Euler–Bernoulli frequency and y_st = φ(1)·ρAL·I1·g/K₁. The body's
+    // geometric nonlinearity shifts the motion by O(y³): at g/100 (y ≈ 0.1 mm) that shift is
+    // 1e-4 of the time-step error (at g it is as large as the error at h = 0.5 ms)
+    let g = 0.0981;
     let run = |h: f64| {
-        let s = scene(&header(h, 0.9), &[modal("m", 0.4, &round(D), 1, false, "")]);
+        let head = header(h, 0.9).replace("-9.81]", &format!("{:e}]", -g));
+        let s = scene(&head, &[modal("m", 0.4, &round(D), 1, false, "")]);
         let sim = Simulator::<Planar>::new(s.clone()).unwrap();
         let b = sim.model().modal_body(0);
-        let (w, yst) = (b.omegas()[0], b.basis.tip[0] * b.s_f[0] * -9.81 / b.k[0]);
+        let (w, yst) = (b.omegas()[0], b.basis.tip[0] * b.s_f[0] * -g / b.k[0]);
         let hist = tip_history(s, 0.5, 1e-3);
         hist.iter()
             .enumerate()

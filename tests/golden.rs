@@ -42,6 +42,22 @@
 //! 2.3e-10 m, the booms and driven histories ≤ 2.6e-14 m; the root forces, which the Newton
 //! tolerance fixes only to about 1e-4 N, by ≤ 1.1e-5 N.
 //!
+//! Re-recorded for the geometrically nonlinear planar modal body (branch modal-nl,
+//! `src/model/modal/body.rs`: the foreshortening of every point in the inertia and gravity
+//! forces, the inextensible curvature κ = w″(1 + ½w′²), the modal tip angle θ + atan2(w′,
+//! 1 − ½w′²)): every planar scene with a modal segment. Largest tip-position change against the
+//! recordings before (commit 993bf74): `case3_modal` 1.39e-3 m of a 4.8e-2 m swing (its distance
+//! to the all-ANCF Case 3 at h = 1e-5 s falls from 1.40e-3 to 1.9e-5 m), `case1_modal`
+//! 4.4e-5 m and `case1` 3.7e-5 m of 9.5e-3 m (the old floor against the all-ANCF beam),
+//! `case2_modal` 7.8e-6 m, `driven_case1` 7.2e-6 m, `case2` 5.6e-6 m, `case3` 4.0e-6 m,
+//! `boom` 2.4e-8 m (at rest: the static sag), `driven_boom` 7.9e-8 m; `soft_rod_modal` 8.1e-4 m
+//! of 0.14 m before its refusal at 0.16 s (unchanged), `soft_rod_hybrid` 1.4e-5 m of 8.0e-2 m,
+//! now refused at 0.14 s instead of 0.13 s; the statics table's hybrid and all-modal rows:
+//! tip ≤ 7.9e-6 m, tip angle ≤ 2.2e-5 rad, root moment ≤ 5.8e-6 N m (all-ANCF rows, every
+//! all-ANCF and spatial scene bit-identical). Merged after the explicit inverse and re-recorded:
+//! against the branch's recordings round-off only (tip ≤ 1.0e-7 m `case3_3d_modal`, ≤ 9.3e-9 m
+//! elsewhere), so the changes above hold against commit a3d7c6b too.
+//!
 //! Re-record (only when a physics change is intended and explained), e.g. the spatial ones:
 //! `HYBEAM_RECORD_GOLDEN=1 cargo test --test golden spatial`.
 

@@ -1,5 +1,5 @@
 //! The assembled Newton matrix (mass, damping, stiffness, joint rows and their λ-Hessian, tip
-//! load) against central differences of the assembled residual, at a random deformed state.
+//! load and moment) against central differences of the assembled residual, at a random deformed state.
 
 mod common;
 use common::*;
@@ -9,6 +9,7 @@ fn check(header: &str, segs: &[String]) {
     let s = scene(header, segs);
     let mut model = Model::<Planar>::from_scene(&s).unwrap();
     model.set_tip_force([0.3, -0.7]);
+    model.set_tip_moment(0.2);
     check_newton_matrix(&mut model);
 }
 

@@ -251,7 +251,7 @@ impl Scene {
                             "{p}.elements = {n}: must be in 1..={MAX_ELEMENTS}"
                         )));
                     }
-                    if seg.modes.is_some() || seg.interface_modes {
+                    if seg.modes.is_some() || seg.interface_modes || seg.linear {
                         return Err(SceneError(format!(
                             "{p}.modes: an ancf segment has no modes; use elements, or kind = \"modal\""
                         )));

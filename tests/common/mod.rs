@@ -289,3 +289,15 @@ pub fn rod_3d_mount(t: f64) -> Vec<(String, f64)> {
     .map(|(n, x)| (n.to_string(), *x))
     .collect()
 }
+
+/// `scene` with every modal segment the linear floating frame (`linear = true`): the planar
+/// twin of the spatial modal body, which is linear (the planar one is geometrically nonlinear
+/// by default, `src/model/modal/body.rs`).
+pub fn linear_modal(mut scene: Scene) -> Scene {
+    for seg in &mut scene.segments {
+        if seg.kind == hybeam::scene::SegmentKind::Modal {
+            seg.linear = true;
+        }
+    }
+    scene
+}

@@ -40,14 +40,15 @@ impl SegmentParts<Planar> for PlanarParts {
     ) -> Result<ModalSegment<Planar>, SceneError> {
         let (area, inertia) = seg.area_inertia();
         let basis = ModalBasis::new(seg.modes.unwrap_or(1), seg.interface_modes);
-        let body = Arc::new(ModalBody::new(
+        let body = ModalBody::new(
             basis,
             seg.length,
             seg.density * area,
             seg.youngs_modulus * inertia,
             seg.damping_ratio,
             seg.damping_time,
-        ));
+        );
+        let body = Arc::new(if seg.linear { body.linear() } else { body });
         let first = si == 0;
         let root_pt = [s * self.dir[0], s * self.dir[1]];
         let mut c = Coords::default();
@@ -65,9 +66,10 @@ impl SegmentParts<Planar> for PlanarParts {
                 angle: c.is_held(2).then(|| c.held::<1>(2)[0]),
             }) as Box<dyn Support<Planar>>
         });
-        // a held frame's segment is stiffened by its centrifugal and axial inertia
+        // the nonlinear body's foreshortening stiffens it by its axial force field, held or
+        // free; a linear body of a held frame gets the leading term
         let element = if held {
-            ModalElement::stiffened(body.clone())
+            ModalElement::held(body.clone())
         } else {
             ModalElement::new(body.clone())
         };

@@ -136,14 +136,18 @@ impl Element<Planar> for AncfElement {
     }
 }
 
-/// A planar floating-frame modal body, local coordinates `[R_x, R_y, θ, a_1 … a_n]`.
+/// A planar floating-frame modal body, local coordinates `[R_x, R_y, θ, a_1 … a_n]`. The
+/// nonlinear body's kinematics carry the foreshortening of every point, so the axial force of
+/// the centrifugal, axial inertia and gravity fields stiffens the modes of held and free frames
+/// alike; a linear body ([`ModalBody::linear`]) of a held frame adds instead its leading term,
+/// the geometric stiffness K_G = ρAL θ̇² G2 − ρA ā_x G1 (docs/spatial.md).
 #[derive(Debug, Clone)]
 pub struct ModalElement {
     /// The body (shared with its ports).
     pub body: Arc<ModalBody>,
-    /// (G1, G2) of the basis when the frame is held by a support (a clamped or mounted root
-    /// segment): the bending rows then carry K_G = ρAL θ̇² G2 − ρA ā_x G1, ā = Aᵀ(R̈ − g), the
-    /// axial force of the segment's centrifugal and axial inertia field (docs/spatial.md).
+    /// (G1, G2) of the basis when a linear body's frame is held by a support (a clamped or
+    /// mounted root segment): the bending rows then carry K_G = ρAL θ̇² G2 − ρA ā_x G1,
+    /// ā = Aᵀ(R̈ − g), the axial force of the segment's centrifugal and axial inertia field.
     stiffening: Option<(Vec<f64>, Vec<f64>)>,
     out: BodyOut,
     /// Local (q, q̇, q̈) of the last evaluation.
@@ -163,11 +167,12 @@ impl ModalElement {
         }
     }
 
-    /// The element of a held frame, with geometric stiffening.
-    pub fn stiffened(body: Arc<ModalBody>) -> Self {
-        let grams = body.basis.stiffening_grams();
+    /// The element of a held frame: with the geometric stiffening K_G if the body is linear
+    /// (the nonlinear body has it in its own forces).
+    pub fn held(body: Arc<ModalBody>) -> Self {
+        let stiffening = (!body.nonlinear).then(|| body.basis.stiffening_grams());
         Self {
-            stiffening: Some(grams),
+            stiffening,
             ..Self::new(body)
         }
     }

@@ -55,6 +55,9 @@ pub struct TipCurvature {
     pub ax_over_l: Vector2<f64>,
     /// G (row-major n × n).
     pub gram: Vec<f64>,
+    /// The tip angle ψ = θ + f(t), t = uᵀa the elastic tip slope w′(L): (f″(t), u), so that
+    /// ∂²ψ/∂a_j∂a_k = f″ u_j u_k.
+    pub angle: (f64, Vec<f64>),
 }
 
 impl EndKin {
@@ -77,6 +80,23 @@ impl EndKin {
                         if g != 0.0 {
                             add(it + 1 + j, it + 1 + k, m * g);
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Adds w·∂²ψ/∂q∂q of an angle end (local × local) through `add(i, j, value)`: nonzero
+    /// only at a modal tip ([`TipCurvature::angle`]).
+    pub fn add_angle_hessian(&self, w: f64, mut add: impl FnMut(usize, usize, f64)) {
+        if let Some(c) = &self.curv {
+            let (f2, u) = &c.angle;
+            let h = w * f2;
+            if h != 0.0 {
+                let a0 = c.theta + 1;
+                for (j, uj) in u.iter().enumerate() {
+                    for (k, uk) in u.iter().enumerate() {
+                        add(a0 + j, a0 + k, h * uj * uk);
                     }
                 }
             }
@@ -149,43 +169,95 @@ impl Port<Planar> for NodePort {
 }
 
 /// The tip (x = L) of a modal body, on the body's local coordinates `[R_x, R_y, θ, a…]`:
-/// position with the second-order foreshortening, angle θ + θ_J (frame plus elastic tip slope).
+/// position with the foreshortening ([`ModalBody::tip_local`]), angle ψ = θ + f(w′(L)), the
+/// direction of the tangent [1 − ½w′²; w′] of the body's foreshortened kinematics,
+/// f(t) = atan2(t, 1 − ½t²) = t + t³/6 + …, the elastic tip slope t = w′(L) = φ′(1)ᵀa/L.
 #[derive(Debug, Clone)]
 pub struct ModalTipPort(pub Arc<ModalBody>);
 
-impl Port<Planar> for ModalTipPort {
-    fn kinematics(&self, ql: &[f64]) -> EndKin {
+/// f(t) = atan2(t, 1 − ½t²) and its first two derivatives: f′ = (1 + ½t²)/(1 + ¼t⁴),
+/// f″ = t(1 − t² − ¼t⁴)/(1 + ¼t⁴)².
+fn tip_angle(t: f64) -> [f64; 3] {
+    let (t2, d) = (t * t, 1.0 + 0.25 * t * t * t * t);
+    [
+        math::atan2(t, 1.0 - 0.5 * t2),
+        (1.0 + 0.5 * t2) / d,
+        t * (1.0 - t2 - 0.25 * t2 * t2) / (d * d),
+    ]
+}
+
+impl ModalTipPort {
+    /// ∂t/∂a_k = φ_k′(1)/L.
+    fn slope_gradient(&self) -> Vec<f64> {
+        let b = &*self.0;
+        b.basis.tip_slope.iter().map(|s| s / b.length).collect()
+    }
+}
+
+impl ModalTipPort {
+    /// The kinematics, with the second derivatives if `curvature`.
+    fn kinematics_with(&self, ql: &[f64], curvature: bool) -> EndKin {
         let b = &*self.0;
         let n = b.modes();
+        let t = b.tip_slope(ql);
+        let [f, f1, f2] = if b.nonlinear {
+            tip_angle(t)
+        } else {
+            [t, 1.0, 0.0]
+        };
         let mut dpsi = vec![0.0; 3 + n];
         dpsi[2] = 1.0;
         let a = rot(ql[2]);
-        let (u, gk) = b.tip_local_and_gradient(ql);
-        let au = a * u;
-        let mut dp = vec![Vector2::x(), Vector2::y(), Vector2::new(-au[1], au[0])];
-        let mut ajk = Vec::with_capacity(n);
+        let (tip, gk) = b.tip_local_and_gradient(ql);
+        let au = a * tip;
+        let mut dp = Vec::with_capacity(3 + n);
+        dp.extend([Vector2::x(), Vector2::y(), Vector2::new(-au[1], au[0])]);
         for k in 0..n {
-            let c = a * Vector2::new(-gk[k], b.basis.tip[k]);
-            dp.push(c);
-            ajk.push(Vector2::new(-c[1], c[0]));
-            dpsi[3 + k] = b.basis.tip_slope[k] / b.length;
+            dp.push(a * Vector2::new(-gk[k], b.basis.tip[k]));
+            dpsi[3 + k] = f1 * b.basis.tip_slope[k] / b.length;
         }
+        let curv = curvature.then(|| TipCurvature {
+            theta: 2,
+            au,
+            j_dp_da: dp[3..].iter().map(|c| Vector2::new(-c[1], c[0])).collect(),
+            ax_over_l: a.column(0).into_owned() / b.length,
+            gram: b.gram.clone(),
+            angle: (f2, self.slope_gradient()),
+        });
         EndKin {
             p: Vector2::new(ql[0], ql[1]) + au,
             dp,
-            orient: Orientation::Angle(ql[2] + b.tip_slope(ql), dpsi),
-            curv: Some(TipCurvature {
-                theta: 2,
-                au,
-                j_dp_da: ajk,
-                ax_over_l: a.column(0).into_owned() / b.length,
-                gram: b.basis.slope_gram.clone(),
-            }),
+            orient: Orientation::Angle(ql[2] + f, dpsi),
+            curv,
         }
     }
+}
 
-    /// The tip angle θ + φ′(1)ᵀa/L is linear in q: no stiffness.
-    fn add_moment_stiffness(&self, _: &[f64], _: &f64, _: &mut dyn FnMut(usize, usize, f64)) {}
+impl Port<Planar> for ModalTipPort {
+    fn kinematics(&self, ql: &[f64]) -> EndKin {
+        self.kinematics_with(ql, true)
+    }
+
+    /// Without [`EndKin::curv`] (the residual paths).
+    fn kinematics_first(&self, ql: &[f64]) -> EndKin {
+        self.kinematics_with(ql, false)
+    }
+
+    /// −m·∂²ψ/∂a_j∂a_k = −m f″(t) u_j u_k (ψ is linear in θ; in a for a linear body).
+    fn add_moment_stiffness(&self, ql: &[f64], m: &f64, add: &mut dyn FnMut(usize, usize, f64)) {
+        if !self.0.nonlinear {
+            return;
+        }
+        let u = self.slope_gradient();
+        let h = -m * tip_angle(self.0.tip_slope(ql))[2];
+        if h != 0.0 {
+            for (j, uj) in u.iter().enumerate() {
+                for (k, uk) in u.iter().enumerate() {
+                    add(3 + j, 3 + k, h * uj * uk);
+                }
+            }
+        }
+    }
 }
 
 /// The root (frame origin) of a modal body, on the body's local coordinates: position R,

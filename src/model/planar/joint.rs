@@ -26,8 +26,13 @@ impl Constraint for RigidJoint {
     }
 
     fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut) {
-        let up = self.up.kinematics(&q[..self.up_len]);
-        let down = self.down.kinematics(&q[self.up_len..]);
+        // the second derivatives only for the λ-Hessian
+        let (qu, qd) = q.split_at(self.up_len);
+        let (up, down) = if lambda.is_some() {
+            (self.up.kinematics(qu), self.down.kinematics(qd))
+        } else {
+            (self.up.kinematics_first(qu), self.down.kinematics_first(qd))
+        };
         joint_eval(&up, &down, lambda.map(|l| [l[0], l[1], l[2]]), out);
     }
 }
@@ -62,6 +67,10 @@ fn joint_eval(up: &EndKin, down: &EndKin, lambda: Option<[f64; 3]>, out: &mut Co
             for (i, v) in dpd.iter().enumerate() {
                 jo[ku + i] = *v;
             }
+            if let Some(l) = lo {
+                down.add_angle_hessian(l, |i, j, v| hess.push((ku + i, ku + j, v)));
+                up.add_angle_hessian(-l, |i, j, v| hess.push((i, j, v)));
+            }
             pd - pu
         }
         (Orientation::Angle(psi, dpsi), Orientation::Slope(s, ds)) => {
@@ -70,6 +79,10 @@ fn joint_eval(up: &EndKin, down: &EndKin, lambda: Option<[f64; 3]>, out: &mut Co
                 dpsi,
                 at: 0,
             };
+            if let Some(l) = lo {
+                let w = l * angle.dphi_dpsi(s);
+                up.add_angle_hessian(w, |i, j, v| hess.push((i, j, v)));
+            }
             angle_slope(&angle, (s, ds, ku), jo, lo, hess)
         }
         (Orientation::Slope(s, ds), Orientation::Angle(psi, dpsi)) => {
@@ -78,6 +91,10 @@ fn joint_eval(up: &EndKin, down: &EndKin, lambda: Option<[f64; 3]>, out: &mut Co
                 dpsi,
                 at: ku,
             };
+            if let Some(l) = lo {
+                let w = l * angle.dphi_dpsi(s);
+                down.add_angle_hessian(w, |i, j, v| hess.push((ku + i, ku + j, v)));
+            }
             angle_slope(&angle, (s, ds, 0), jo, lo, hess)
         }
         (Orientation::Slope(..), Orientation::Slope(..)) => {
@@ -92,6 +109,14 @@ struct AngleAt<'a> {
     psi: f64,
     dpsi: &'a [f64],
     at: usize,
+}
+
+impl AngleAt<'_> {
+    /// ∂Φ/∂ψ = −t(ψ)·s of Φ = n(ψ)·s (the weight of ∂²ψ/∂q∂q in ∂²Φ/∂q∂q).
+    fn dphi_dpsi(&self, s: &Vector2<f64>) -> f64 {
+        let (sn, cs) = math::sin_cos(self.psi);
+        -(cs * s[0] + sn * s[1])
+    }
 }
 
 /// Φ = n(ψ)·s with the slope s, ∂s/∂q over local coordinates at the given offset; adds
