@@ -3,6 +3,7 @@
 //! ([`Real`]), so the residual (f64) and the exact tangent (dual numbers) share it.
 
 use super::*;
+use crate::model::vector::scale;
 
 /// Hermite shape functions and their derivatives at ξ, as the planar element.
 pub(super) fn hermite(xi: f64, l: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
@@ -177,26 +178,21 @@ fn add_jacobian<const K: usize, const N: usize, const D: usize>(
     }
 }
 
-/// Gradient of a scalar measure with respect to (r_x, r_xx, r_y, r_yx) at a point.
+/// Gradient of a scalar measure with respect to (r_x, r_xx, r_y) at a point.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Grad<T> {
     pub(super) a: V<T>,
     pub(super) b: V<T>,
     pub(super) c: V<T>,
-    pub(super) d: V<T>,
 }
 
-/// (κ2, κ3, τ) and their gradients with respect to a = r_x, b = r_xx, c = r_y, d = r_yx.
+/// (κ2, κ3) and their gradients with respect to a = r_x, b = r_xx, c = r_y.
 ///
 /// With C = a × c (so d3 = C/|C|, d2 = ((a·a) c − (a·c) a)/(|C| |a|)), w = |C|, n = |a|:
-/// κ2 = −(C·b)/(w n), κ3 = (C·(a × b))/(w n²), τ = (n² C·d − (a·c)(C·b))/(n w²).
+/// κ2 = −(C·b)/(w n), κ3 = (C·(a × b))/(w n²). For equal weights κ2² + κ3² = |a × b|²/|a|⁴, the
+/// cable's curvature, whatever c.
 #[inline(always)]
-pub(super) fn bend_twist<T: Real>(
-    a: &V<T>,
-    b: &V<T>,
-    c: &V<T>,
-    d: &V<T>,
-) -> ([T; 3], [Grad<T>; 3]) {
+pub(super) fn bend<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>) -> ([T; 2], [Grad<T>; 2]) {
     let n2 = dot(a, a);
     let n = n2.sqrt();
     let inv_n = n.recip();
@@ -209,7 +205,6 @@ pub(super) fn bend_twist<T: Real>(
     let inv_w = w2.sqrt().recip();
     let p = dot(&cv, b);
     let q = n2 * bc - ab * g;
-    let s = dot(&cv, d);
     let (inv_n2, inv_w2) = (inv_n * inv_n, inv_w * inv_w);
     // ½∂(w²)/w² and ½∂(n²)/n²
     let hw_a = lin2(cc * inv_w2, a, -g * inv_w2, c);
@@ -217,9 +212,6 @@ pub(super) fn bend_twist<T: Real>(
     let hn_a = [a[0] * inv_n2, a[1] * inv_n2, a[2] * inv_n2];
     let cxb = cross(c, b);
     let bxa = cross(b, a);
-    let cxd = cross(c, d);
-    let dxa = cross(d, a);
-    let zero = [T::from(0.0); 3];
     // κ2
     let h2 = inv_w * inv_n;
     let k2 = -p * h2;
@@ -227,7 +219,6 @@ pub(super) fn bend_twist<T: Real>(
         a: lin3(-h2, &cxb, -k2, &hw_a, -k2, &hn_a),
         b: [-h2 * cv[0], -h2 * cv[1], -h2 * cv[2]],
         c: lin2(-h2, &bxa, -k2, &hw_c),
-        d: zero,
     };
     // κ3
     let h3 = inv_w * inv_n2;
@@ -237,30 +228,56 @@ pub(super) fn bend_twist<T: Real>(
         a: lin3(h3, &dq_a, -k3, &hw_a, k3 * (-2.0), &hn_a),
         b: lin2(h3 * n2, c, -h3 * g, a),
         c: lin3(h3 * n2, b, -h3 * ab, a, -k3, &hw_c),
-        d: zero,
     };
-    // τ = T/(n w²), T = n² s − g p
-    let ht = inv_n * inv_w2;
-    let tau = (n2 * s - g * p) * ht;
-    let dt_a = [
-        a[0] * (s * 2.0) + n2 * cxd[0] - p * c[0] - g * cxb[0],
-        a[1] * (s * 2.0) + n2 * cxd[1] - p * c[1] - g * cxb[1],
-        a[2] * (s * 2.0) + n2 * cxd[2] - p * c[2] - g * cxb[2],
-    ];
-    let dt_c = lin3(n2, &dxa, -p, a, -g, &bxa);
-    let gt = Grad {
-        a: lin3(ht, &dt_a, -tau, &hn_a, tau * (-2.0), &hw_a),
-        b: [-ht * g * cv[0], -ht * g * cv[1], -ht * g * cv[2]],
-        c: lin2(ht, &dt_c, tau * (-2.0), &hw_c),
-        d: [ht * n2 * cv[0], ht * n2 * cv[1], ht * n2 * cv[2]],
-    };
-    ([k2, k3, tau], [g2, g3, gt])
+    ([k2, k3], [g2, g3])
 }
 
-/// Strain measures (ε, κ2, κ3, τ) at a point from r_x, r_xx, r_y, r_yx (see the module doc).
-pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3], ryx: [f64; 3]) -> [f64; 4] {
-    let ([k2, k3, tau], _) = bend_twist(&rx, &rxx, &ry, &ryx);
-    [dot(&rx, &rx).sqrt() - 1.0, k2, k3, tau]
+/// Strain measures (ε, κ2, κ3) at a point from r_x, r_xx, r_y (see the module doc).
+pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3]) -> [f64; 3] {
+    let ([k2, k3], _) = bend(&rx, &rxx, &ry);
+    [dot(&rx, &rx).sqrt() - 1.0, k2, k3]
+}
+
+/// The element's twist angle φ [rad] from its nodal frames (r_x, r_y at node 0, then node 1):
+/// the discrete twist of Bergou et al. 2008 ("Discrete elastic rods", ACM TOG 27(3):63, the
+/// reference twist by parallel transport; docs/references.md §7.1). With t_i = r_x,i/|r_x,i|
+/// and u_i = r_y,i − (t_i·r_y,i) t_i (d2_i unnormalized: the angle does not see the lengths),
+/// P the smallest rotation taking t_0 to t_1 (Rodrigues with k = t_0 × t_1, c = t_0·t_1:
+/// P v = c v + k × v + (k·v) k/(1 + c)), φ is the angle about t_1 from P u_0 to u_1:
+/// φ = atan2((P u_0 × u_1)·t_1, P u_0·u_1) ([`math::atan2_dual`]: exact derivatives of every
+/// order, no std transcendental). Zero for any frames related by parallel transport (a
+/// twist-free rod bent in any plane), Δ for a straight element whose r_y turns by Δ ∈ (−π, π).
+#[inline(always)]
+pub fn twist_angle<T: Real>(u: &[V<T>; 4]) -> T {
+    let [a0, c0, a1, c1] = u;
+    let t0 = scale(a0, dot(a0, a0).sqrt().recip());
+    let t1 = scale(a1, dot(a1, a1).sqrt().recip());
+    let u0 = lin2(T::from(1.0), c0, -dot(&t0, c0), &t0);
+    let u1 = lin2(T::from(1.0), c1, -dot(&t1, c1), &t1);
+    let k = cross(&t0, &t1);
+    let c = dot(&t0, &t1);
+    let ku = cross(&k, &u0);
+    let pu = lin3(c, &u0, T::from(1.0), &ku, dot(&k, &u0) / (c + 1.0), &k);
+    let sin = dot(&cross(&pu, &u1), &t1);
+    let cos = dot(&pu, &u1);
+    math::atan2_dual(sin, cos)
+}
+
+/// φ of [`twist_angle`] and its gradient with respect to the four nodal vectors (r_x,0, r_y,0,
+/// r_x,1, r_y,1), by forward-mode AD nested over the scalar `T` (12 derivatives): the same
+/// function for the residual (T = f64) and inside the tangent's AD.
+#[inline(always)]
+pub(super) fn twist_gradient<T: Real>(u: &[V<T>; 4]) -> (T, [V<T>; 4]) {
+    let x: [V<DualSVec<T, 12>>; 4] = std::array::from_fn(|al| {
+        std::array::from_fn(|ci| DualSVec::<T, 12>::from_re(u[al][ci]).derivative(3 * al + ci))
+    });
+    let phi = twist_angle(&x);
+    let zero = T::from(0.0);
+    let grad = match &phi.eps.0 {
+        Some(g) => std::array::from_fn(|al| std::array::from_fn(|ci| g[3 * al + ci])),
+        None => [[zero; 3]; 4],
+    };
+    (phi.re, grad)
 }
 
 /// Adds the Jacobians of one point's local inertial forces `g(u, u̇, ü)` (K local vectors) to the
