@@ -1,6 +1,7 @@
 //! The element's generic per-point code: Hermite shape values, gathers and scatters of the
-//! 3-vector slots, the bending and twist measures with their gradients. Generic over the scalar
-//! ([`Real`]), so the residual (f64) and the exact tangent (dual numbers) share it.
+//! 3-vector slots, the bending measures with their gradients, the element twist from the nodal
+//! frames. Generic over the scalar ([`Real`]), so the residual (f64) and the exact tangent (dual
+//! numbers) share it.
 
 use super::*;
 use crate::model::vector::scale;
@@ -238,44 +239,62 @@ pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3]) -> [f64; 3] {
     [dot(&rx, &rx).sqrt() - 1.0, k2, k3]
 }
 
-/// The element's twist angle φ [rad] from its nodal frames (r_x, r_y at node 0, then node 1):
-/// the discrete twist of Bergou et al. 2008 ("Discrete elastic rods", ACM TOG 27(3):63, the
-/// reference twist by parallel transport; docs/references.md §7.1). With t_i = r_x,i/|r_x,i|
-/// and u_i = r_y,i − (t_i·r_y,i) t_i (d2_i unnormalized: the angle does not see the lengths),
-/// P the smallest rotation taking t_0 to t_1 (Rodrigues with k = t_0 × t_1, c = t_0·t_1:
-/// P v = c v + k × v + (k·v) k/(1 + c)), φ is the angle about t_1 from P u_0 to u_1:
-/// φ = atan2((P u_0 × u_1)·t_1, P u_0·u_1) ([`math::atan2_dual`]: exact derivatives of every
-/// order, no std transcendental). Zero for any frames related by parallel transport (a
-/// twist-free rod bent in any plane), Δ for a straight element whose r_y turns by Δ ∈ (−π, π).
+/// P v: `v` carried by the smallest rotation P taking the unit `t0` to the unit `t1` (Rodrigues
+/// with the unnormalized axis k = t0 × t1, c = t0·t1: P v = c v + k × v + (k·v) k/(1 + c)).
 #[inline(always)]
-pub fn twist_angle<T: Real>(u: &[V<T>; 4]) -> T {
-    let [a0, c0, a1, c1] = u;
-    let t0 = scale(a0, dot(a0, a0).sqrt().recip());
-    let t1 = scale(a1, dot(a1, a1).sqrt().recip());
-    let u0 = lin2(T::from(1.0), c0, -dot(&t0, c0), &t0);
-    let u1 = lin2(T::from(1.0), c1, -dot(&t1, c1), &t1);
-    let k = cross(&t0, &t1);
-    let c = dot(&t0, &t1);
-    let ku = cross(&k, &u0);
-    let pu = lin3(c, &u0, T::from(1.0), &ku, dot(&k, &u0) / (c + 1.0), &k);
-    let sin = dot(&cross(&pu, &u1), &t1);
-    let cos = dot(&pu, &u1);
-    math::atan2_dual(sin, cos)
+fn transport<T: Real>(t0: &V<T>, t1: &V<T>, v: &V<T>) -> V<T> {
+    let k = cross(t0, t1);
+    let c = dot(t0, t1);
+    let kv = cross(&k, v);
+    lin3(c, v, T::from(1.0), &kv, dot(&k, v) / (c + 1.0), &k)
 }
 
-/// φ of [`twist_angle`] and its gradient with respect to the four nodal vectors (r_x,0, r_y,0,
-/// r_x,1, r_y,1), by forward-mode AD nested over the scalar `T` (12 derivatives): the same
-/// function for the residual (T = f64) and inside the tangent's AD.
+/// The angle about the unit `t` from `u` to `w` (both ⟂ t, any lengths), in (−π, π].
 #[inline(always)]
-pub(super) fn twist_gradient<T: Real>(u: &[V<T>; 4]) -> (T, [V<T>; 4]) {
-    let x: [V<DualSVec<T, 12>>; 4] = std::array::from_fn(|al| {
-        std::array::from_fn(|ci| DualSVec::<T, 12>::from_re(u[al][ci]).derivative(3 * al + ci))
+fn angle_about<T: Real>(t: &V<T>, u: &V<T>, w: &V<T>) -> T {
+    math::atan2_dual(dot(&cross(u, w), t), dot(u, w))
+}
+
+/// The element's twist angle φ [rad] from its nodal frames: `u` = (r_x,0, r_y,0, r_x,1, r_y,1,
+/// r_x at ξ = ½). The discrete twist of Bergou et al. 2008 ("Discrete elastic rods", ACM TOG
+/// 27(3):63, the twist by parallel transport of the frame between consecutive tangents;
+/// docs/references.md §7.1): with t_i = r_x,i/|r_x,i| and u_i = r_y,i − (t_i·r_y,i) t_i (d2_i
+/// unnormalized: the angle does not see the lengths), φ₁ is the angle about t_1 from P u_0 to
+/// u_1, P the smallest rotation taking t_0 to t_1 ([`transport`]). φ₁ differs from the twist
+/// relative to parallel transport along the curve by the holonomy of the tangent's path on the
+/// sphere (the area between the path and its chord), O(l³) for a non-planar centreline; φ₂,
+/// the same through the midpoint tangent t_m (t_0 → t_m → t_1), has a quarter of it, and
+/// φ = (4φ₂ − φ₁)/3 removes the leading term (Richardson). For a planar centreline (any
+/// plane) every transport is a rotation about the plane's normal, so φ₁ = φ₂ = φ: zero for a
+/// twist-free rod bent in any plane, Δ for a straight element whose r_y turns by Δ ∈ (−π, π).
+/// The angles are atan2s ([`math::atan2_dual`]: exact derivatives of every order, no std
+/// transcendental).
+#[inline(always)]
+pub fn twist_angle<T: Real>(u: &[V<T>; 5]) -> T {
+    let [a0, c0, a1, c1, am] = u;
+    let unit = |a: &V<T>| scale(a, dot(a, a).sqrt().recip());
+    let (t0, t1, tm) = (unit(a0), unit(a1), unit(am));
+    let u0 = lin2(T::from(1.0), c0, -dot(&t0, c0), &t0);
+    let u1 = lin2(T::from(1.0), c1, -dot(&t1, c1), &t1);
+    let phi1 = angle_about(&t1, &transport(&t0, &t1, &u0), &u1);
+    let via = transport(&tm, &t1, &transport(&t0, &tm, &u0));
+    let phi2 = angle_about(&t1, &via, &u1);
+    (phi2 * 4.0 - phi1) * (1.0 / 3.0)
+}
+
+/// φ of [`twist_angle`] and its gradient with respect to its five vectors, by forward-mode AD
+/// nested over the scalar `T` (15 derivatives): the same function for the residual (T = f64)
+/// and inside the tangent's AD.
+#[inline(always)]
+pub(super) fn twist_gradient<T: Real>(u: &[V<T>; 5]) -> (T, [V<T>; 5]) {
+    let x: [V<DualSVec<T, 15>>; 5] = std::array::from_fn(|al| {
+        std::array::from_fn(|ci| DualSVec::<T, 15>::from_re(u[al][ci]).derivative(3 * al + ci))
     });
     let phi = twist_angle(&x);
     let zero = T::from(0.0);
     let grad = match &phi.eps.0 {
         Some(g) => std::array::from_fn(|al| std::array::from_fn(|ci| g[3 * al + ci])),
-        None => [[zero; 3]; 4],
+        None => [[zero; 3]; 5],
     };
     (phi.re, grad)
 }

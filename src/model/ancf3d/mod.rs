@@ -10,12 +10,27 @@
 //! Strain measures per unit reference length, on the Gram–Schmidt frame t = r_x/|r_x|,
 //! d2 = normalized r_y ⟂ t (section y axis), d3 = t × d2 (section z axis):
 //! ε = |r_x| − 1, κ2 = −d3·r_xx/|r_x| (bending about d2: x–z plane, E·I_y),
-//! κ3 = d2·r_xx/|r_x| (bending about d3: x–y plane, E·I_z), τ = d2′·d3 (twist, G·J).
-//! Energy ½∫[EA ε² + EI_y κ2² + EI_z κ3² + GJ τ²] dx plus the nodal penalty
+//! κ3 = d2·r_xx/|r_x| (bending about d3: x–y plane, E·I_z); for E·I_y = E·I_z the bending
+//! energy is the cable's, ½EI|r_x × r_xx|²/|r_x|⁴, whatever r_y.
+//!
+//! Twist (G·J): one rate per element, τ_e = φ/l, from the two nodal frames (t_i, d2_i) by
+//! parallel transport, the discrete twist of Bergou, Wardetzky, Robinson, Audoly & Grinspun
+//! 2008 ("Discrete elastic rods", ACM TOG 27(3):63; docs/references.md §7.1): φ is the angle
+//! about t_1 from P d2_0 to d2_1, P the smallest rotation taking t_0 to t_1 ([`twist_angle`]).
+//! It is exactly zero for a twist-free rod bent in any plane, so a round rod deflects alike
+//! under a transverse load in any direction (static spread 1.5e-14 of the peak, 8 elements,
+//! `cargo test --release -j1 -p hybeam --test torsion_isotropy -- --nocapture`; the earlier
+//! Gauss-point twist d2′·d3 of the linear r_y was not zero when the rod bent in a plane oblique
+//! to the director: 2.5e-7), and gives ½GJΔ²/l exactly for a uniform twist Δ ∈ (−π, π) per
+//! element. The angle is an atan2 ([`crate::math::atan2_dual`]: libm for the real part, exact
+//! derivatives of every order for the dual numbers); its gradient by nested forward-mode AD
+//! (12 derivatives) inside the generic code.
+//!
+//! Energy ½∫[EA ε² + EI_y κ2² + EI_z κ3²] dx + ½GJ l τ_e² plus the nodal penalty
 //! Σ_nodes ½(l/2) k [(½(|r_y|² − 1))² + (t·r_y)²], k = [`PENALTY_FACTOR`]·GJ/l², which only
 //! removes the two zero-energy modes of each r_y (its length and its shear angle to r_x).
 //! Without torsion: ½∫[EA ε² + EI |r_x × r_xx|²/|r_x|⁴] dx (round or equal-I sections).
-//! Kelvin–Voigt damping (retardation time τ_d) on ε, κ2, κ3, τ. The cable has no material
+//! Kelvin–Voigt damping (retardation time τ_d) on ε, κ2, κ3, τ_e. The cable has no material
 //! frame, so the rate of its curvature vector κ = r_x × r_xx/|r_x|² is taken relative to the
 //! rotation of the tangent, κ̇ − w × κ with w = t × ṫ (dissipation ½EIτ_d|κ̇ − w × κ|²): exact
 //! for rigid rotations about axes ⟂ t, but a rigid spin Ω about an axis with Ω·t ≠ 0 of a
@@ -30,7 +45,7 @@
 //! terms, d/dt ∂T/∂q̇ − ∂T/∂q) is evaluated at the 3 bending points, its Jacobians (q, q̇, q̈)
 //! by the same AD.
 //!
-//! Quadrature as the planar element: 5 Gauss points axial, 3 bending and twist, penalty at the
+//! Quadrature as the planar element: 5 Gauss points axial, 3 bending, twist and penalty at the
 //! nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
 //! the tangent and damping matrices ([`Ancf3Props::tangent`]) are the exact Jacobians of the
 //! same generic code by forward-mode AD (`num-dual`).
@@ -99,8 +114,10 @@ pub struct Ancf3Props {
 pub struct Tables3 {
     /// Axial points: (w·EA, dS/dx).
     axial: [(f64, [f64; 4]); 5],
-    /// Bending and twist points.
+    /// Bending points (and the director inertia's).
     bending: [BendPoint; 3],
+    /// dS/dx at the midpoint ξ = ½ (the element twist's midpoint tangent).
+    mid: [f64; 4],
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -273,6 +290,7 @@ impl Ancf3Props {
         let mut t = Tables3 {
             axial: [(0.0, [0.0; 4]); 5],
             bending: [BendPoint::default(); 3],
+            mid: hermite(0.5, l).1,
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
             let (_, ds, _) = hermite(0.5 * (xg + 1.0), l);
@@ -304,7 +322,8 @@ impl Ancf3Props {
 
     /// Internal force, tangent stiffness ∂f/∂e and damping matrix ∂f/∂ė (row-major D × D),
     /// exact: forward-mode AD of the same point functions as [`Ancf3Props::internal_force`],
-    /// on each quadrature point's local vectors (r_x; r_x, r_xx, r_y, r_yx; …) and mapped to
+    /// on each quadrature point's local vectors (r_x; r_x, r_xx, r_y; the nodal r_x, r_y of the
+    /// twist; …) and mapped to
     /// the element by the constant shape weights.
     #[allow(clippy::type_complexity)]
     pub fn tangent<const D: usize>(
@@ -364,13 +383,14 @@ impl Ancf3Props {
         if self.torsion {
             let one = [1.0];
             let sl = TWIST_SLOTS.map(|s| [s]);
-            let maps = sl.each_ref().map(|s| Map::new(&one, s));
+            let [m0, m1, m2, m3] = sl.each_ref().map(|s| Map::new(&one, s));
+            let maps = [m0, m1, m2, m3, Map::new(&tab.mid, &rs)];
             if damped {
-                point_tangent::<4, 24, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
+                point_tangent::<5, 30, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
                     self.twist_element(u, Some(ud))
                 });
             } else {
-                point_tangent::<4, 12, D>(&maps, e, ed, mats.0, None, |u, _| {
+                point_tangent::<5, 15, D>(&maps, e, ed, mats.0, None, |u, _| {
                     self.twist_element(u, None)
                 });
             }
@@ -505,14 +525,18 @@ impl Ancf3Props {
             }
         }
         if self.torsion {
-            let nodal = |x: &[T; D]| TWIST_SLOTS.map(|s| [x[s], x[s + 1], x[s + 2]]);
-            let ud = damped.then(|| nodal(ed));
-            let g = self.twist_element(&nodal(e), ud.as_ref());
+            let vecs = |x: &[T; D]| {
+                let [a, b, c, d] = TWIST_SLOTS.map(|s| [x[s], x[s + 1], x[s + 2]]);
+                [a, b, c, d, comb(&tab.mid, &rs, x)]
+            };
+            let ud = damped.then(|| vecs(ed));
+            let g = self.twist_element(&vecs(e), ud.as_ref());
             for (s, gs) in TWIST_SLOTS.iter().zip(&g) {
                 for c in 0..3 {
                     f[s + c] += gs[c];
                 }
             }
+            scatter(&mut f, &tab.mid, &rs, &g[4]);
             for node in 0..2 {
                 let (xs, yslot) = (9 * node + 3, 9 * node + 6);
                 let x = [e[xs], e[xs + 1], e[xs + 2]];
@@ -565,11 +589,11 @@ impl Ancf3Props {
         ]
     }
 
-    /// Local forces on the nodal (r_x,0, r_y,0, r_x,1, r_y,1) of the element twist: energy
+    /// Local forces on (r_x,0, r_y,0, r_x,1, r_y,1, r_x(ξ = ½)) of the element twist: energy
     /// ½GJ l τ_e² with τ_e = φ/l ([`twist_angle`]), i.e. ½(GJ/l) φ², Kelvin–Voigt stress
     /// φ + τ_d φ̇ with the rate `ud` (φ̇ = ∇φ·u̇).
     #[inline(always)]
-    fn twist_element<T: Real>(&self, u: &[V<T>; 4], ud: Option<&[V<T>; 4]>) -> [V<T>; 4] {
+    fn twist_element<T: Real>(&self, u: &[V<T>; 5], ud: Option<&[V<T>; 5]>) -> [V<T>; 5] {
         let (phi, g) = twist_gradient(u);
         let mut s = phi;
         if let Some(ud) = ud {
@@ -584,10 +608,13 @@ impl Ancf3Props {
     }
 
     /// Twist rate of the element τ_e = φ/l [rad/m] at `e` (18 entries): [`twist_angle`] of the
-    /// nodal frames over the element length, constant over the element.
+    /// nodal frames (and the midpoint tangent) over the element length, constant over the
+    /// element.
     pub fn twist_rate(&self, e: &[f64]) -> f64 {
-        let u = TWIST_SLOTS.map(|s| [e[s], e[s + 1], e[s + 2]]);
-        twist_angle(&u) / self.length
+        let [a, b, c, d] = TWIST_SLOTS.map(|s| [e[s], e[s + 1], e[s + 2]]);
+        let (rs, _) = self.slots();
+        let mid = combine(&hermite(0.5, self.length).1, &rs, e);
+        twist_angle(&[a, b, c, d, mid]) / self.length
     }
 
     /// Local forces on (r_x, r_xx) of a cable bending point (weight `w` [m]).
