@@ -282,11 +282,51 @@ pub fn twist_angle<T: Real>(u: &[V<T>; 5]) -> T {
     (phi2 * 4.0 - phi1) * (1.0 / 3.0)
 }
 
-/// φ of [`twist_angle`] and its gradient with respect to its five vectors, by forward-mode AD
-/// nested over the scalar `T` (15 derivatives): the same function for the residual (T = f64)
-/// and inside the tangent's AD.
+/// φ of [`twist_angle`] and its gradient with respect to its five vectors (r_x,0, r_y,0, r_x,1,
+/// r_y,1, r_x(ξ = ½)), the gradient written out (checked against nested AD in the tests). A
+/// variation turns each frame [t_i d2_i d3_i] by ω_i; its part about t_i, ω_i·t_i = e_i·δr_y,i −
+/// (t_i·r_y,i) e_i·δt_i with e_i = d3_i/|u_i| = (t_i × u_i)/|u_i|², changes φ by ω_1·t_1 −
+/// ω_0·t_0; moving the tangents changes each transport step a → b's twist by k_ab·(δt_a + δt_b),
+/// k_ab = t_a × t_b/(1 + t_a·t_b) (half the curvature binormal: Bergou et al. 2008, the
+/// gradient of the reference twist); δt_i = (I − t_i t_iᵀ) δr_x,i/|r_x,i|.
 #[inline(always)]
 pub(super) fn twist_gradient<T: Real>(u: &[V<T>; 5]) -> (T, [V<T>; 5]) {
+    let [a0, c0, a1, c1, am] = u;
+    let inv = |a: &V<T>| dot(a, a).sqrt().recip();
+    let (i0, i1, im) = (inv(a0), inv(a1), inv(am));
+    let (t0, t1, tm) = (scale(a0, i0), scale(a1, i1), scale(am, im));
+    let (g0, g1) = (dot(&t0, c0), dot(&t1, c1));
+    let one = T::from(1.0);
+    let u0 = lin2(one, c0, -g0, &t0);
+    let u1 = lin2(one, c1, -g1, &t1);
+    let phi1 = angle_about(&t1, &transport(&t0, &t1, &u0), &u1);
+    let via = transport(&tm, &t1, &transport(&t0, &tm, &u0));
+    let phi2 = angle_about(&t1, &via, &u1);
+    let phi = (phi2 * 4.0 - phi1) * (1.0 / 3.0);
+    let e0 = scale(cross(&t0, &u0), dot(&u0, &u0).recip());
+    let e1 = scale(cross(&t1, &u1), dot(&u1, &u1).recip());
+    let half_kb = |ta: &V<T>, tb: &V<T>| scale(cross(ta, tb), (dot(ta, tb) + 1.0).recip());
+    let (k01, k0m, km1) = (half_kb(&t0, &t1), half_kb(&t0, &tm), half_kb(&tm, &t1));
+    let (four, third) = (T::from(4.0 / 3.0), T::from(-1.0 / 3.0));
+    // δφ = w_i·δt_i
+    let w0 = lin3(g0, &e0, four, &k0m, third, &k01);
+    let w1 = lin3(-g1, &e1, four, &km1, third, &k01);
+    let wm = lin2(four, &k0m, four, &km1);
+    let proj = |w: &V<T>, t: &V<T>, i: T| lin2(i, w, -dot(t, w) * i, t);
+    let grad = [
+        proj(&w0, &t0, i0),
+        [-e0[0], -e0[1], -e0[2]],
+        proj(&w1, &t1, i1),
+        e1,
+        proj(&wm, &tm, im),
+    ];
+    (phi, grad)
+}
+
+/// [`twist_gradient`] by forward-mode AD nested over the scalar (15 derivatives): the
+/// reference the written-out gradient is checked against.
+#[cfg(test)]
+pub(super) fn twist_gradient_ad<T: Real>(u: &[V<T>; 5]) -> (T, [V<T>; 5]) {
     let x: [V<DualSVec<T, 15>>; 5] = std::array::from_fn(|al| {
         std::array::from_fn(|ci| DualSVec::<T, 15>::from_re(u[al][ci]).derivative(3 * al + ci))
     });

@@ -1355,6 +1355,29 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn written_out_twist_gradient_equals_nested_ad() {
+        // the written-out gradient of the element twist against forward-mode AD of the angle,
+        // on bent, stretched, sheared and twisted elements
+        for (k, p) in [props(true, 0.0, 1.0), balanced(true, 0.0)].iter().enumerate() {
+            for seed in [2, 5, 7, 11] {
+                let (e, _) = deformed::<18>(p, seed + k as u64);
+                let tab = p.tables();
+                let (rs, _) = p.slots();
+                let [a, b, c, d] = TWIST_SLOTS.map(|s| [e[s], e[s + 1], e[s + 2]]);
+                let u = [a, b, c, d, comb(&tab.mid, &rs, &e)];
+                let (phi, g) = twist_gradient(&u);
+                let (phi_ad, g_ad) = twist_gradient_ad(&u);
+                assert_eq!(phi, phi_ad);
+                assert!(phi.abs() > 1e-3, "{phi}");
+                let big = g_ad.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+                for (x, y) in g.iter().flatten().zip(g_ad.iter().flatten()) {
+                    assert!((x - y).abs() <= 1e-13 * big, "{seed}: {x} vs {y}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn twist_is_zero_for_parallel_transported_frames() {
         // an element bent into an arc in any plane, its section turned by any angle about the
         // tangent without twisting: τ_e = 0 to rounding, so a round rod's energy is the same
