@@ -16,15 +16,22 @@
 //! Twist (G·J): one rate per element, τ_e = φ/l, from the two nodal frames (t_i, d2_i) by
 //! parallel transport, the discrete twist of Bergou, Wardetzky, Robinson, Audoly & Grinspun
 //! 2008 ("Discrete elastic rods", ACM TOG 27(3):63; docs/references.md §7.1): φ is the angle
-//! about t_1 from P d2_0 to d2_1, P the smallest rotation taking t_0 to t_1 ([`twist_angle`]).
-//! It is exactly zero for a twist-free rod bent in any plane, so a round rod deflects alike
+//! about t_1 from P d2_0 to d2_1, P the smallest rotation taking t_0 to t_1 ([`twist_angle`]),
+//! taken directly (φ₁) and through the Hermite midpoint tangent (φ₂), φ = (4φ₂ − φ₁)/3: the
+//! Richardson extrapolation of the transport's holonomy, which makes φ₁ alone a second-order
+//! twist for a non-planar centreline (B2 helix, 16 elements: tip 4.9e-4 m with φ₁, 1.7e-7 m with
+//! φ, 4.0e-5 m with the earlier Gauss-point twist; `cargo test --release -j1 -p hybeam --test
+//! spatial_ancf -- --nocapture end_moment`). Both are exactly zero for a twist-free rod bent in
+//! any plane, so a round rod deflects alike
 //! under a transverse load in any direction (static spread 1.5e-14 of the peak, 8 elements,
 //! `cargo test --release -j1 -p hybeam --test torsion_isotropy -- --nocapture`; the earlier
 //! Gauss-point twist d2′·d3 of the linear r_y was not zero when the rod bent in a plane oblique
 //! to the director: 2.5e-7), and gives ½GJΔ²/l exactly for a uniform twist Δ ∈ (−π, π) per
-//! element. The angle is an atan2 ([`crate::math::atan2_dual`]: libm for the real part, exact
-//! derivatives of every order for the dual numbers); its gradient by nested forward-mode AD
-//! (12 derivatives) inside the generic code.
+//! element. The angles are atan2s ([`crate::math::atan2_dual`]: libm for the real part, exact
+//! derivatives of every order for the dual numbers, no std transcendental); the gradient of φ
+//! is written out (kernel `twist_gradient`, checked against nested forward-mode AD), and the
+//! tangent differentiates it by the same AD as the bending points (the twist's local vectors:
+//! the nodal r_x, r_y and r_x at ξ = ½).
 //!
 //! Energy ½∫[EA ε² + EI_y κ2² + EI_z κ3²] dx + ½GJ l τ_e² plus the nodal penalty
 //! Σ_nodes ½(l/2) k [(½(|r_y|² − 1))² + (t·r_y)²], k = [`PENALTY_FACTOR`]·GJ/l², which only
@@ -45,8 +52,8 @@
 //! terms, d/dt ∂T/∂q̇ − ∂T/∂q) is evaluated at the 3 bending points, its Jacobians (q, q̇, q̈)
 //! by the same AD.
 //!
-//! Quadrature as the planar element: 5 Gauss points axial, 3 bending, twist and penalty at the
-//! nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
+//! Quadrature as the planar element: 5 Gauss points axial, 3 bending; the twist from the nodal
+//! frames and the midpoint tangent, the penalty at the nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
 //! the tangent and damping matrices ([`Ancf3Props::tangent`]) are the exact Jacobians of the
 //! same generic code by forward-mode AD (`num-dual`).
 
