@@ -112,9 +112,9 @@ pub fn atan2_dual<T: DualNum<Primitive = f64> + Copy>(y: T, x: T) -> T {
     let mut delta = d;
     let (d2, mut pow, mut coef) = (d * d, d, 1.0);
     let mut k = 1;
-    while 2 * k + 1 <= T::NDERIV {
+    while 2 * k < T::NDERIV {
         coef *= (2 * k - 1) as f64 / (2 * k) as f64;
-        pow = pow * d2;
+        pow *= d2;
         delta += pow * (coef / (2 * k + 1) as f64);
         k += 1;
     }

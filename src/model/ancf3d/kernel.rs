@@ -5,6 +5,8 @@
 
 use super::*;
 use crate::model::vector::scale;
+#[cfg(test)]
+use num_dual::DualSVec;
 
 /// Hermite shape functions and their derivatives at ξ, as the planar element.
 pub(super) fn hermite(xi: f64, l: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {

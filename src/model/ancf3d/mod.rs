@@ -67,13 +67,13 @@ use crate::model::sample::{director_frame, minimal_frame, ShapePoint};
 use crate::model::vector::Real;
 use crate::model::vector::{cross, dot};
 use crate::scene::{Segment, StrainModel};
-use num_dual::{DualSVec, DualSVec64};
+use num_dual::DualSVec64;
 
 mod kernel;
 mod mass;
 
-pub use kernel::{strains, twist_angle};
 use kernel::*;
+pub use kernel::{strains, twist_angle};
 pub use mass::{straight, MassPatterns};
 
 /// Coordinates of an element with torsion (2 nodes × [r, r_x, r_y]).
@@ -1296,7 +1296,11 @@ pub(crate) mod tests {
             let [e, k2, k3] = strains(rx, rxx, ry);
             let want = [eps, st * k * sp, st * k * cp];
             for (g, w) in [e, k2, k3].iter().zip(want) {
-                assert!((g - w).abs() < 1e-13, "s {s}: {:?} vs {want:?}", [e, k2, k3]);
+                assert!(
+                    (g - w).abs() < 1e-13,
+                    "s {s}: {:?} vs {want:?}",
+                    [e, k2, k3]
+                );
             }
         }
     }
@@ -1365,7 +1369,10 @@ pub(crate) mod tests {
     fn written_out_twist_gradient_equals_nested_ad() {
         // the written-out gradient of the element twist against forward-mode AD of the angle,
         // on bent, stretched, sheared and twisted elements
-        for (k, p) in [props(true, 0.0, 1.0), balanced(true, 0.0)].iter().enumerate() {
+        for (k, p) in [props(true, 0.0, 1.0), balanced(true, 0.0)]
+            .iter()
+            .enumerate()
+        {
             for seed in [2, 5, 7, 11] {
                 let (e, _) = deformed::<18>(p, seed + k as u64);
                 let tab = p.tables();
