@@ -727,39 +727,38 @@ impl Ancf3Props {
     }
 
     /// Section-director measures of an element with torsion at `e` (18 entries): the twist
-    /// within the element [rad], the angle about the node-1 tangent between the node-1 section
-    /// axis and the node-0 one carried along by the smallest rotation that takes the node-0
-    /// tangent to the node-1 tangent (π if the tangent turns back), and the smaller of the two
-    /// nodes' sines of the angle between r_x and r_y (0 for a vanishing r_y). Never NaN.
+    /// within the element [rad], |φ| = |τ_e| l ([`twist_angle`]: the angle about the node-1
+    /// tangent between the node-1 section axis and the node-0 one carried along by parallel
+    /// transport; π if a tangent turns back), and the smaller of the two nodes' sines of the
+    /// angle between r_x and r_y (0 for a vanishing r_y). Never NaN.
     pub fn section_measures(&self, e: &[f64]) -> (f64, f64) {
         let v = |i: usize| [e[i], e[i + 1], e[i + 2]];
         let unit = |a: [f64; 3]| {
             let n = dot(&a, &a).sqrt();
             a.map(|x| x / n)
         };
-        let mut frames = [[[0.0; 3]; 2]; 2];
+        let mut tangents = [[0.0; 3]; 2];
         let mut sine = f64::INFINITY;
-        for (node, f) in frames.iter_mut().enumerate() {
-            let t = unit(v(9 * node + 3));
+        for (node, t) in tangents.iter_mut().enumerate() {
+            *t = unit(v(9 * node + 3));
             let y = v(9 * node + 6);
-            let u = cross(&t, &y);
+            let u = cross(&*t, &y);
             let s = (dot(&u, &u) / dot(&y, &y)).sqrt();
             sine = sine.min(if s.is_finite() { s } else { 0.0 });
-            // d2 = normalized r_y ⟂ t = (t × r_y) × t / |t × r_y|
-            *f = [t, unit(cross(&u, &t))];
         }
-        let [[t0, a], [t1, b]] = frames;
-        let w = cross(&t0, &t1);
-        let c = dot(&t0, &t1);
-        if c.is_nan() || 1.0 + c <= 1e-12 || sine == 0.0 {
-            return (std::f64::consts::PI, sine);
-        }
-        // a carried by R = c I + [w]× + w wᵀ/(1 + c)
-        let wa = cross(&w, &a);
-        let f = dot(&w, &a) / (1.0 + c);
-        let a1 = [0, 1, 2].map(|i| c * a[i] + wa[i] + f * w[i]);
-        let twist = math::atan2(dot(&t1, &cross(&a1, &b)), dot(&a1, &b)).abs();
+        let (rs, _) = self.slots();
+        let mid = combine(&hermite(0.5, self.length).1, &rs, e);
+        let [t0, t1] = tangents;
+        let tm = unit(mid);
+        let turns_back = |a: &[f64; 3], b: &[f64; 3]| {
+            let c = dot(a, b);
+            c.is_nan() || 1.0 + c <= 1e-12
+        };
         let worst = std::f64::consts::PI;
+        if turns_back(&t0, &t1) || turns_back(&t0, &tm) || turns_back(&tm, &t1) || sine == 0.0 {
+            return (worst, sine);
+        }
+        let twist = twist_angle(&[v(3), v(6), v(12), v(15), mid]).abs();
         (if twist.is_nan() { worst } else { twist }, sine)
     }
 
