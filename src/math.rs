@@ -93,6 +93,34 @@ pub fn sin_cos_dual<T: DualNum<Primitive = f64> + Copy>(x: T) -> (T, T) {
     )
 }
 
+/// atan2(y, x) in (−π, π] of num-dual numbers (or f64), for code generic over them: the real
+/// part is [`atan2`] of the real parts; with ρ = √(x² + y²) (dual), sin δ = (y cos r − x sin r)/ρ
+/// is the sine of the infinitesimal rest δ = φ − r exactly, and δ = asin(sin δ) by its series
+/// (sin δ less its rounding-level real part, so the series ends at power NDERIV: exact, higher
+/// powers vanish). For f64 the result is bit for bit [`atan2`]. Derivatives are those of the
+/// angle wherever (x, y) ≠ 0.
+pub fn atan2_dual<T: DualNum<Primitive = f64> + Copy>(y: T, x: T) -> T {
+    let r = atan2(y.re(), x.re());
+    if T::NDERIV == 0 {
+        return T::from(r);
+    }
+    let (s, c) = sin_cos(r);
+    let rho = (x * x + y * y).sqrt();
+    let sd = (y * c - x * s) / rho;
+    let d = sd - T::from(sd.re());
+    // asin d = Σ_k (2k)!/(4^k (k!)² (2k + 1)) d^(2k+1)
+    let mut delta = d;
+    let (d2, mut pow, mut coef) = (d * d, d, 1.0);
+    let mut k = 1;
+    while 2 * k < T::NDERIV {
+        coef *= (2 * k - 1) as f64 / (2 * k) as f64;
+        pow *= d2;
+        delta += pow * (coef / (2 * k + 1) as f64);
+        k += 1;
+    }
+    T::from(r) + delta
+}
+
 #[cfg(test)]
 mod tests {
     use num_dual::{Dual2_64, Dual3_64, HyperDual64};
@@ -127,6 +155,47 @@ mod tests {
             let (sh, ch) = super::sin_cos_dual(h);
             assert!(close(sh.eps1, c) && close(sh.eps1eps2, -s));
             assert!(close(ch.eps2, -s) && close(ch.eps1eps2, -c));
+        }
+    }
+
+    /// atan2 of dual numbers: f64 bit for bit [`atan2`], derivatives against the closed forms
+    /// (∂/∂y = x/ρ², ∂/∂x = −y/ρ²; second and third by the chain rule along a line), every
+    /// quadrant.
+    #[test]
+    fn atan2_dual_has_exact_derivatives() {
+        for k in 0..200 {
+            let a = -3.1 + 0.031 * k as f64;
+            let (rho, dy, dx) = (0.7 + 0.01 * k as f64, 0.3, -1.1);
+            let (y, x) = (rho * super::sin(a), rho * super::cos(a));
+            assert_eq!(super::atan2_dual(y, x), super::atan2(y, x));
+            // along the line (x + t dx, y + t dy): φ(t), φ' = (x dy − y dx)/ρ², ...
+            let p = |t: f64| super::atan2(y + t * dy, x + t * dx);
+            let d3 = super::atan2_dual(
+                Dual3_64::new(y, dy, 0.0, 0.0),
+                Dual3_64::new(x, dx, 0.0, 0.0),
+            );
+            let r2 = x * x + y * y;
+            let n = x * dy - y * dx;
+            let m = x * dx + y * dy;
+            let d1 = n / r2;
+            let dd = -2.0 * n * m / (r2 * r2);
+            // third derivative by central differences of the closed second derivative
+            let f2 = |t: f64| {
+                let (xt, yt) = (x + t * dx, y + t * dy);
+                let r2 = xt * xt + yt * yt;
+                -2.0 * (xt * dy - yt * dx) * (xt * dx + yt * dy) / (r2 * r2)
+            };
+            let h = 1e-5;
+            let ddd = (f2(h) - f2(-h)) / (2.0 * h);
+            let close = |a: f64, b: f64, tol: f64| (a - b).abs() <= tol * b.abs().max(1.0);
+            assert!(close(d3.re, p(0.0), 1e-15));
+            assert!(close(d3.v1, d1, 1e-14), "{a}: {} vs {d1}", d3.v1);
+            assert!(close(d3.v2, dd, 1e-13), "{a}: {} vs {dd}", d3.v2);
+            assert!(close(d3.v3, ddd, 1e-7), "{a}: {} vs {ddd}", d3.v3);
+            let h = HyperDual64::new(y, dy, dy, 0.0);
+            let hx = HyperDual64::new(x, dx, dx, 0.0);
+            let g = super::atan2_dual(h, hx);
+            assert!(close(g.eps1, d1, 1e-14) && close(g.eps1eps2, dd, 1e-13));
         }
     }
 

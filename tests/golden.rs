@@ -58,6 +58,14 @@
 //! against the branch's recordings round-off only (tip ≤ 1.0e-7 m `case3_3d_modal`, ≤ 9.3e-9 m
 //! elsewhere), so the changes above hold against commit a3d7c6b too.
 //!
+//! Re-recorded for issue 23's element twist (the torsion element's twist from its nodal frames by
+//! parallel transport, `src/model/ancf3d/`, instead of the Gauss-point twist of the linear r_y):
+//! the scenes whose torsion elements twist or bend out of the director's planes. Largest
+//! tip-position change against the recordings before (the branch base f455578): `strip_3d`
+//! 1.5e-9 m (of a 5.6e-2 m swing), `case1_3d_mounted` 5.8e-11 m, `driven_case1_3d_mounted`
+//! 8.1e-12 m, `driven_case1_3d` 2.9e-14 m; the largest change of any output, the tip's angular
+//! velocity, 2.5e-6 rad/s (`strip_3d`); every other file bit-identical.
+//!
 //! Re-record (only when a physics change is intended and explained), e.g. the spatial ones:
 //! `HYBEAM_RECORD_GOLDEN=1 cargo test --test golden spatial`.
 

@@ -9,10 +9,12 @@ pub const MAX_MODAL_DEFLECTION: f64 = 0.3;
 /// for a metal rod, and the step is refused rather than returning a number.
 pub const MAX_AXIAL_STRAIN: f64 = 0.05;
 
-/// Largest twist within one ANCF element accepted [rad] (45°): the section director r_y is
-/// interpolated linearly, so at a twist φ per element the twist rate at the element's middle
-/// is sin φ/((1 + cos φ)/2) instead of φ (+5.5 % at 45°, +27 % at 90°), and the interpolated
-/// director vanishes at 180°.
+/// Largest twist within one ANCF element accepted [rad] (45°): the twist energy takes the
+/// element's twist from its nodal frames (exact for any angle below 180°, where its atan2 jumps),
+/// but the section director r_y is interpolated linearly for the director inertia and the
+/// sampled section frame, so at a twist φ per element the interpolated director's rate at the
+/// element's middle is sin φ/((1 + cos φ)/2) instead of φ (+5.5 % at 45°, +27 % at 90°), and it
+/// vanishes at 180°.
 pub const MAX_TWIST_PER_ELEMENT: f64 = std::f64::consts::FRAC_PI_4;
 
 /// Smallest sine of the angle between an ANCF node's r_x and r_y accepted [-] (the nodal

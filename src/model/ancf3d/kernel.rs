@@ -1,8 +1,12 @@
 //! The element's generic per-point code: Hermite shape values, gathers and scatters of the
-//! 3-vector slots, the bending and twist measures with their gradients. Generic over the scalar
-//! ([`Real`]), so the residual (f64) and the exact tangent (dual numbers) share it.
+//! 3-vector slots, the bending measures with their gradients, the element twist from the nodal
+//! frames. Generic over the scalar ([`Real`]), so the residual (f64) and the exact tangent (dual
+//! numbers) share it.
 
 use super::*;
+use crate::model::vector::scale;
+#[cfg(test)]
+use num_dual::DualSVec;
 
 /// Hermite shape functions and their derivatives at ξ, as the planar element.
 pub(super) fn hermite(xi: f64, l: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
@@ -177,26 +181,21 @@ fn add_jacobian<const K: usize, const N: usize, const D: usize>(
     }
 }
 
-/// Gradient of a scalar measure with respect to (r_x, r_xx, r_y, r_yx) at a point.
+/// Gradient of a scalar measure with respect to (r_x, r_xx, r_y) at a point.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Grad<T> {
     pub(super) a: V<T>,
     pub(super) b: V<T>,
     pub(super) c: V<T>,
-    pub(super) d: V<T>,
 }
 
-/// (κ2, κ3, τ) and their gradients with respect to a = r_x, b = r_xx, c = r_y, d = r_yx.
+/// (κ2, κ3) and their gradients with respect to a = r_x, b = r_xx, c = r_y.
 ///
 /// With C = a × c (so d3 = C/|C|, d2 = ((a·a) c − (a·c) a)/(|C| |a|)), w = |C|, n = |a|:
-/// κ2 = −(C·b)/(w n), κ3 = (C·(a × b))/(w n²), τ = (n² C·d − (a·c)(C·b))/(n w²).
+/// κ2 = −(C·b)/(w n), κ3 = (C·(a × b))/(w n²). For equal weights κ2² + κ3² = |a × b|²/|a|⁴, the
+/// cable's curvature, whatever c.
 #[inline(always)]
-pub(super) fn bend_twist<T: Real>(
-    a: &V<T>,
-    b: &V<T>,
-    c: &V<T>,
-    d: &V<T>,
-) -> ([T; 3], [Grad<T>; 3]) {
+pub(super) fn bend<T: Real>(a: &V<T>, b: &V<T>, c: &V<T>) -> ([T; 2], [Grad<T>; 2]) {
     let n2 = dot(a, a);
     let n = n2.sqrt();
     let inv_n = n.recip();
@@ -209,7 +208,6 @@ pub(super) fn bend_twist<T: Real>(
     let inv_w = w2.sqrt().recip();
     let p = dot(&cv, b);
     let q = n2 * bc - ab * g;
-    let s = dot(&cv, d);
     let (inv_n2, inv_w2) = (inv_n * inv_n, inv_w * inv_w);
     // ½∂(w²)/w² and ½∂(n²)/n²
     let hw_a = lin2(cc * inv_w2, a, -g * inv_w2, c);
@@ -217,9 +215,6 @@ pub(super) fn bend_twist<T: Real>(
     let hn_a = [a[0] * inv_n2, a[1] * inv_n2, a[2] * inv_n2];
     let cxb = cross(c, b);
     let bxa = cross(b, a);
-    let cxd = cross(c, d);
-    let dxa = cross(d, a);
-    let zero = [T::from(0.0); 3];
     // κ2
     let h2 = inv_w * inv_n;
     let k2 = -p * h2;
@@ -227,7 +222,6 @@ pub(super) fn bend_twist<T: Real>(
         a: lin3(-h2, &cxb, -k2, &hw_a, -k2, &hn_a),
         b: [-h2 * cv[0], -h2 * cv[1], -h2 * cv[2]],
         c: lin2(-h2, &bxa, -k2, &hw_c),
-        d: zero,
     };
     // κ3
     let h3 = inv_w * inv_n2;
@@ -237,30 +231,114 @@ pub(super) fn bend_twist<T: Real>(
         a: lin3(h3, &dq_a, -k3, &hw_a, k3 * (-2.0), &hn_a),
         b: lin2(h3 * n2, c, -h3 * g, a),
         c: lin3(h3 * n2, b, -h3 * ab, a, -k3, &hw_c),
-        d: zero,
     };
-    // τ = T/(n w²), T = n² s − g p
-    let ht = inv_n * inv_w2;
-    let tau = (n2 * s - g * p) * ht;
-    let dt_a = [
-        a[0] * (s * 2.0) + n2 * cxd[0] - p * c[0] - g * cxb[0],
-        a[1] * (s * 2.0) + n2 * cxd[1] - p * c[1] - g * cxb[1],
-        a[2] * (s * 2.0) + n2 * cxd[2] - p * c[2] - g * cxb[2],
-    ];
-    let dt_c = lin3(n2, &dxa, -p, a, -g, &bxa);
-    let gt = Grad {
-        a: lin3(ht, &dt_a, -tau, &hn_a, tau * (-2.0), &hw_a),
-        b: [-ht * g * cv[0], -ht * g * cv[1], -ht * g * cv[2]],
-        c: lin2(ht, &dt_c, tau * (-2.0), &hw_c),
-        d: [ht * n2 * cv[0], ht * n2 * cv[1], ht * n2 * cv[2]],
-    };
-    ([k2, k3, tau], [g2, g3, gt])
+    ([k2, k3], [g2, g3])
 }
 
-/// Strain measures (ε, κ2, κ3, τ) at a point from r_x, r_xx, r_y, r_yx (see the module doc).
-pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3], ryx: [f64; 3]) -> [f64; 4] {
-    let ([k2, k3, tau], _) = bend_twist(&rx, &rxx, &ry, &ryx);
-    [dot(&rx, &rx).sqrt() - 1.0, k2, k3, tau]
+/// Strain measures (ε, κ2, κ3) at a point from r_x, r_xx, r_y (see the module doc).
+pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3]) -> [f64; 3] {
+    let ([k2, k3], _) = bend(&rx, &rxx, &ry);
+    [dot(&rx, &rx).sqrt() - 1.0, k2, k3]
+}
+
+/// P v: `v` carried by the smallest rotation P taking the unit `t0` to the unit `t1` (Rodrigues
+/// with the unnormalized axis k = t0 × t1, c = t0·t1: P v = c v + k × v + (k·v) k/(1 + c)).
+#[inline(always)]
+fn transport<T: Real>(t0: &V<T>, t1: &V<T>, v: &V<T>) -> V<T> {
+    let k = cross(t0, t1);
+    let c = dot(t0, t1);
+    let kv = cross(&k, v);
+    lin3(c, v, T::from(1.0), &kv, dot(&k, v) / (c + 1.0), &k)
+}
+
+/// The angle about the unit `t` from `u` to `w` (both ⟂ t, any lengths), in (−π, π].
+#[inline(always)]
+fn angle_about<T: Real>(t: &V<T>, u: &V<T>, w: &V<T>) -> T {
+    math::atan2_dual(dot(&cross(u, w), t), dot(u, w))
+}
+
+/// The element's twist angle φ [rad] from its nodal frames: `u` = (r_x,0, r_y,0, r_x,1, r_y,1,
+/// r_x at ξ = ½). The discrete twist of Bergou et al. 2008 ("Discrete elastic rods", ACM TOG
+/// 27(3):63, the twist by parallel transport of the frame between consecutive tangents;
+/// docs/references.md §7.1): with t_i = r_x,i/|r_x,i| and u_i = r_y,i − (t_i·r_y,i) t_i (d2_i
+/// unnormalized: the angle does not see the lengths), φ₁ is the angle about t_1 from P u_0 to
+/// u_1, P the smallest rotation taking t_0 to t_1 ([`transport`]). φ₁ differs from the twist
+/// relative to parallel transport along the curve by the holonomy of the tangent's path on the
+/// sphere (the area between the path and its chord), O(l³) for a non-planar centreline; φ₂,
+/// the same through the midpoint tangent t_m (t_0 → t_m → t_1), has a quarter of it, and
+/// φ = (4φ₂ − φ₁)/3 removes the leading term (Richardson). For a planar centreline (any
+/// plane) every transport is a rotation about the plane's normal, so φ₁ = φ₂ = φ: zero for a
+/// twist-free rod bent in any plane, Δ for a straight element whose r_y turns by Δ ∈ (−π, π).
+/// The angles are atan2s ([`math::atan2_dual`]: exact derivatives of every order, no std
+/// transcendental).
+#[inline(always)]
+pub fn twist_angle<T: Real>(u: &[V<T>; 5]) -> T {
+    let [a0, c0, a1, c1, am] = u;
+    let unit = |a: &V<T>| scale(a, dot(a, a).sqrt().recip());
+    let (t0, t1, tm) = (unit(a0), unit(a1), unit(am));
+    let u0 = lin2(T::from(1.0), c0, -dot(&t0, c0), &t0);
+    let u1 = lin2(T::from(1.0), c1, -dot(&t1, c1), &t1);
+    let phi1 = angle_about(&t1, &transport(&t0, &t1, &u0), &u1);
+    let via = transport(&tm, &t1, &transport(&t0, &tm, &u0));
+    let phi2 = angle_about(&t1, &via, &u1);
+    (phi2 * 4.0 - phi1) * (1.0 / 3.0)
+}
+
+/// φ of [`twist_angle`] and its gradient with respect to its five vectors (r_x,0, r_y,0, r_x,1,
+/// r_y,1, r_x(ξ = ½)), the gradient written out (checked against nested AD in the tests). A
+/// variation turns each frame [t_i d2_i d3_i] by ω_i; its part about t_i, ω_i·t_i = e_i·δr_y,i −
+/// (t_i·r_y,i) e_i·δt_i with e_i = d3_i/|u_i| = (t_i × u_i)/|u_i|², changes φ by ω_1·t_1 −
+/// ω_0·t_0; moving the tangents changes each transport step a → b's twist by k_ab·(δt_a + δt_b),
+/// k_ab = t_a × t_b/(1 + t_a·t_b) (half the curvature binormal: Bergou et al. 2008, the
+/// gradient of the reference twist); δt_i = (I − t_i t_iᵀ) δr_x,i/|r_x,i|.
+#[inline(always)]
+pub(super) fn twist_gradient<T: Real>(u: &[V<T>; 5]) -> (T, [V<T>; 5]) {
+    let [a0, c0, a1, c1, am] = u;
+    let inv = |a: &V<T>| dot(a, a).sqrt().recip();
+    let (i0, i1, im) = (inv(a0), inv(a1), inv(am));
+    let (t0, t1, tm) = (scale(a0, i0), scale(a1, i1), scale(am, im));
+    let (g0, g1) = (dot(&t0, c0), dot(&t1, c1));
+    let one = T::from(1.0);
+    let u0 = lin2(one, c0, -g0, &t0);
+    let u1 = lin2(one, c1, -g1, &t1);
+    let phi1 = angle_about(&t1, &transport(&t0, &t1, &u0), &u1);
+    let via = transport(&tm, &t1, &transport(&t0, &tm, &u0));
+    let phi2 = angle_about(&t1, &via, &u1);
+    let phi = (phi2 * 4.0 - phi1) * (1.0 / 3.0);
+    let e0 = scale(cross(&t0, &u0), dot(&u0, &u0).recip());
+    let e1 = scale(cross(&t1, &u1), dot(&u1, &u1).recip());
+    let half_kb = |ta: &V<T>, tb: &V<T>| scale(cross(ta, tb), (dot(ta, tb) + 1.0).recip());
+    let (k01, k0m, km1) = (half_kb(&t0, &t1), half_kb(&t0, &tm), half_kb(&tm, &t1));
+    let (four, third) = (T::from(4.0 / 3.0), T::from(-1.0 / 3.0));
+    // δφ = w_i·δt_i
+    let w0 = lin3(g0, &e0, four, &k0m, third, &k01);
+    let w1 = lin3(-g1, &e1, four, &km1, third, &k01);
+    let wm = lin2(four, &k0m, four, &km1);
+    let proj = |w: &V<T>, t: &V<T>, i: T| lin2(i, w, -dot(t, w) * i, t);
+    let grad = [
+        proj(&w0, &t0, i0),
+        [-e0[0], -e0[1], -e0[2]],
+        proj(&w1, &t1, i1),
+        e1,
+        proj(&wm, &tm, im),
+    ];
+    (phi, grad)
+}
+
+/// [`twist_gradient`] by forward-mode AD nested over the scalar (15 derivatives): the
+/// reference the written-out gradient is checked against.
+#[cfg(test)]
+pub(super) fn twist_gradient_ad<T: Real>(u: &[V<T>; 5]) -> (T, [V<T>; 5]) {
+    let x: [V<DualSVec<T, 15>>; 5] = std::array::from_fn(|al| {
+        std::array::from_fn(|ci| DualSVec::<T, 15>::from_re(u[al][ci]).derivative(3 * al + ci))
+    });
+    let phi = twist_angle(&x);
+    let zero = T::from(0.0);
+    let grad = match &phi.eps.0 {
+        Some(g) => std::array::from_fn(|al| std::array::from_fn(|ci| g[3 * al + ci])),
+        None => [[zero; 3]; 5],
+    };
+    (phi.re, grad)
 }
 
 /// Adds the Jacobians of one point's local inertial forces `g(u, u̇, ü)` (K local vectors) to the

@@ -10,12 +10,34 @@
 //! Strain measures per unit reference length, on the Gram–Schmidt frame t = r_x/|r_x|,
 //! d2 = normalized r_y ⟂ t (section y axis), d3 = t × d2 (section z axis):
 //! ε = |r_x| − 1, κ2 = −d3·r_xx/|r_x| (bending about d2: x–z plane, E·I_y),
-//! κ3 = d2·r_xx/|r_x| (bending about d3: x–y plane, E·I_z), τ = d2′·d3 (twist, G·J).
-//! Energy ½∫[EA ε² + EI_y κ2² + EI_z κ3² + GJ τ²] dx plus the nodal penalty
+//! κ3 = d2·r_xx/|r_x| (bending about d3: x–y plane, E·I_z); for E·I_y = E·I_z the bending
+//! energy is the cable's, ½EI|r_x × r_xx|²/|r_x|⁴, whatever r_y.
+//!
+//! Twist (G·J): one rate per element, τ_e = φ/l, from the two nodal frames (t_i, d2_i) by
+//! parallel transport, the discrete twist of Bergou, Wardetzky, Robinson, Audoly & Grinspun
+//! 2008 ("Discrete elastic rods", ACM TOG 27(3):63; docs/references.md §7.1): φ is the angle
+//! about t_1 from P d2_0 to d2_1, P the smallest rotation taking t_0 to t_1 ([`twist_angle`]),
+//! taken directly (φ₁) and through the Hermite midpoint tangent (φ₂), φ = (4φ₂ − φ₁)/3: the
+//! Richardson extrapolation of the transport's holonomy, which makes φ₁ alone a second-order
+//! twist for a non-planar centreline (B2 helix, 16 elements: tip 4.9e-4 m with φ₁, 1.7e-7 m with
+//! φ, 4.0e-5 m with the earlier Gauss-point twist; `cargo test --release -j1 -p hybeam --test
+//! spatial_ancf -- --nocapture end_moment`). Both are exactly zero for a twist-free rod bent in
+//! any plane, so a round rod deflects alike
+//! under a transverse load in any direction (static spread 1.5e-14 of the peak, 8 elements,
+//! `cargo test --release -j1 -p hybeam --test torsion_isotropy -- --nocapture`; the earlier
+//! Gauss-point twist d2′·d3 of the linear r_y was not zero when the rod bent in a plane oblique
+//! to the director: 2.5e-7), and gives ½GJΔ²/l exactly for a uniform twist Δ ∈ (−π, π) per
+//! element. The angles are atan2s ([`crate::math::atan2_dual`]: libm for the real part, exact
+//! derivatives of every order for the dual numbers, no std transcendental); the gradient of φ
+//! is written out (kernel `twist_gradient`, checked against nested forward-mode AD), and the
+//! tangent differentiates it by the same AD as the bending points (the twist's local vectors:
+//! the nodal r_x, r_y and r_x at ξ = ½).
+//!
+//! Energy ½∫[EA ε² + EI_y κ2² + EI_z κ3²] dx + ½GJ l τ_e² plus the nodal penalty
 //! Σ_nodes ½(l/2) k [(½(|r_y|² − 1))² + (t·r_y)²], k = [`PENALTY_FACTOR`]·GJ/l², which only
 //! removes the two zero-energy modes of each r_y (its length and its shear angle to r_x).
 //! Without torsion: ½∫[EA ε² + EI |r_x × r_xx|²/|r_x|⁴] dx (round or equal-I sections).
-//! Kelvin–Voigt damping (retardation time τ_d) on ε, κ2, κ3, τ. The cable has no material
+//! Kelvin–Voigt damping (retardation time τ_d) on ε, κ2, κ3, τ_e. The cable has no material
 //! frame, so the rate of its curvature vector κ = r_x × r_xx/|r_x|² is taken relative to the
 //! rotation of the tangent, κ̇ − w × κ with w = t × ṫ (dissipation ½EIτ_d|κ̇ − w × κ|²): exact
 //! for rigid rotations about axes ⟂ t, but a rigid spin Ω about an axis with Ω·t ≠ 0 of a
@@ -30,8 +52,8 @@
 //! terms, d/dt ∂T/∂q̇ − ∂T/∂q) is evaluated at the 3 bending points, its Jacobians (q, q̇, q̈)
 //! by the same AD.
 //!
-//! Quadrature as the planar element: 5 Gauss points axial, 3 bending and twist, penalty at the
-//! nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
+//! Quadrature as the planar element: 5 Gauss points axial, 3 bending; the twist from the nodal
+//! frames and the midpoint tangent, the penalty at the nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
 //! the tangent and damping matrices ([`Ancf3Props::tangent`]) are the exact Jacobians of the
 //! same generic code by forward-mode AD (`num-dual`).
 
@@ -50,14 +72,17 @@ use num_dual::DualSVec64;
 mod kernel;
 mod mass;
 
-pub use kernel::strains;
 use kernel::*;
+pub use kernel::{strains, twist_angle};
 pub use mass::{straight, MassPatterns};
 
 /// Coordinates of an element with torsion (2 nodes × [r, r_x, r_y]).
 pub const TORSION_DOFS: usize = 18;
 /// Coordinates of a cable element (2 nodes × [r, r_x]).
 pub const CABLE_DOFS: usize = 12;
+/// Starts of the nodal vectors of the element twist in an element with torsion: r_x,0, r_y,0,
+/// r_x,1, r_y,1.
+const TWIST_SLOTS: [usize; 4] = [3, 6, 12, 15];
 /// Penalty factor c of the nodal r_y penalty k = c·GJ/l_e² [-].
 ///
 /// With c = 1 the penalty's stiffness per node, k·l_e/2 = GJ/(2 l_e), is of the order of the
@@ -96,8 +121,10 @@ pub struct Ancf3Props {
 pub struct Tables3 {
     /// Axial points: (w·EA, dS/dx).
     axial: [(f64, [f64; 4]); 5],
-    /// Bending and twist points.
+    /// Bending points (and the director inertia's).
     bending: [BendPoint; 3],
+    /// dS/dx at the midpoint ξ = ½ (the element twist's midpoint tangent).
+    mid: [f64; 4],
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -106,9 +133,8 @@ struct BendPoint {
     w: f64,
     ds: [f64; 4],
     dds: [f64; 4],
-    /// Linear shape functions of r_y and their x-derivatives.
+    /// Linear shape functions of r_y (the director inertia and the bending frame).
     ny: [f64; 2],
-    nyx: [f64; 2],
 }
 
 impl Ancf3Props {
@@ -271,6 +297,7 @@ impl Ancf3Props {
         let mut t = Tables3 {
             axial: [(0.0, [0.0; 4]); 5],
             bending: [BendPoint::default(); 3],
+            mid: hermite(0.5, l).1,
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
             let (_, ds, _) = hermite(0.5 * (xg + 1.0), l);
@@ -284,7 +311,6 @@ impl Ancf3Props {
                 ds,
                 dds,
                 ny: [1.0 - xi, xi],
-                nyx: [-1.0 / l, 1.0 / l],
             };
         }
         t
@@ -303,7 +329,8 @@ impl Ancf3Props {
 
     /// Internal force, tangent stiffness ∂f/∂e and damping matrix ∂f/∂ė (row-major D × D),
     /// exact: forward-mode AD of the same point functions as [`Ancf3Props::internal_force`],
-    /// on each quadrature point's local vectors (r_x; r_x, r_xx, r_y, r_yx; …) and mapped to
+    /// on each quadrature point's local vectors (r_x; r_x, r_xx, r_y; the nodal r_x, r_y of the
+    /// twist; …) and mapped to
     /// the element by the constant shape weights.
     #[allow(clippy::type_complexity)]
     pub fn tangent<const D: usize>(
@@ -337,14 +364,13 @@ impl Ancf3Props {
                     Map::new(&p.ds, &rs),
                     Map::new(&p.dds, &rs),
                     Map::new(&p.ny, &ys),
-                    Map::new(&p.nyx, &ys),
                 ];
                 if damped {
-                    point_tangent::<4, 24, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
+                    point_tangent::<3, 18, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
                         self.bend_point(p.w, u, Some(ud))
                     });
                 } else {
-                    point_tangent::<4, 12, D>(&maps, e, ed, mats.0, None, |u, _| {
+                    point_tangent::<3, 9, D>(&maps, e, ed, mats.0, None, |u, _| {
                         self.bend_point(p.w, u, None)
                     });
                 }
@@ -362,6 +388,19 @@ impl Ancf3Props {
             }
         }
         if self.torsion {
+            let one = [1.0];
+            let sl = TWIST_SLOTS.map(|s| [s]);
+            let [m0, m1, m2, m3] = sl.each_ref().map(|s| Map::new(&one, s));
+            let maps = [m0, m1, m2, m3, Map::new(&tab.mid, &rs)];
+            if damped {
+                point_tangent::<5, 30, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
+                    self.twist_element(u, Some(ud))
+                });
+            } else {
+                point_tangent::<5, 15, D>(&maps, e, ed, mats.0, None, |u, _| {
+                    self.twist_element(u, None)
+                });
+            }
             for node in 0..2 {
                 let (xs, ysl) = ([9 * node + 3], [9 * node + 6]);
                 let maps = [Map::new(&[1.0], &xs), Map::new(&[1.0], &ysl)];
@@ -479,13 +518,12 @@ impl Ancf3Props {
                 ([T::from(0.0); 3], [T::from(0.0); 3])
             };
             if self.torsion {
-                let (c, d) = (comb(&p.ny, &ys, e), comb(&p.nyx, &ys, e));
-                let ud = damped.then(|| [ad, bd, comb(&p.ny, &ys, ed), comb(&p.nyx, &ys, ed)]);
-                let [ga, gb, gc, gd] = self.bend_point(p.w, &[a, b, c, d], ud.as_ref());
+                let c = comb(&p.ny, &ys, e);
+                let ud = damped.then(|| [ad, bd, comb(&p.ny, &ys, ed)]);
+                let [ga, gb, gc] = self.bend_point(p.w, &[a, b, c], ud.as_ref());
                 scatter(&mut f, &p.ds, &rs, &ga);
                 scatter(&mut f, &p.dds, &rs, &gb);
                 scatter(&mut f, &p.ny, &ys, &gc);
-                scatter(&mut f, &p.nyx, &ys, &gd);
             } else {
                 let ud = damped.then_some([ad, bd]);
                 let [ga, gb] = self.cable_point(p.w, &[a, b], ud.as_ref());
@@ -494,6 +532,18 @@ impl Ancf3Props {
             }
         }
         if self.torsion {
+            let vecs = |x: &[T; D]| {
+                let [a, b, c, d] = TWIST_SLOTS.map(|s| [x[s], x[s + 1], x[s + 2]]);
+                [a, b, c, d, comb(&tab.mid, &rs, x)]
+            };
+            let ud = damped.then(|| vecs(ed));
+            let g = self.twist_element(&vecs(e), ud.as_ref());
+            for (s, gs) in TWIST_SLOTS.iter().zip(&g) {
+                for c in 0..3 {
+                    f[s + c] += gs[c];
+                }
+            }
+            scatter(&mut f, &tab.mid, &rs, &g[4]);
             for node in 0..2 {
                 let (xs, yslot) = (9 * node + 3, 9 * node + 6);
                 let x = [e[xs], e[xs + 1], e[xs + 2]];
@@ -524,27 +574,54 @@ impl Ancf3Props {
         [[g[0] * s, g[1] * s, g[2] * s]]
     }
 
-    /// Local forces on (r_x, r_xx, r_y, r_yx) of a bending/twist point (weight `w` [m]).
+    /// Local forces on (r_x, r_xx, r_y) of a bending point (weight `w` [m]).
     #[inline(always)]
-    fn bend_point<T: Real>(&self, w: f64, u: &[V<T>; 4], ud: Option<&[V<T>; 4]>) -> [V<T>; 4] {
-        let [a, b, c, d] = u;
-        let (m, g) = bend_twist(a, b, c, d);
-        let stiff = [self.ei_y, self.ei_z, self.gj];
+    fn bend_point<T: Real>(&self, w: f64, u: &[V<T>; 3], ud: Option<&[V<T>; 3]>) -> [V<T>; 3] {
+        let [a, b, c] = u;
+        let (m, g) = bend(a, b, c);
+        let stiff = [self.ei_y, self.ei_z];
         let mut s = m;
-        if let Some([ad, bd, cd, dd]) = ud {
-            for i in 0..3 {
+        if let Some([ad, bd, cd]) = ud {
+            for i in 0..2 {
                 let gi = &g[i];
-                let rate = dot(&gi.a, ad) + dot(&gi.b, bd) + dot(&gi.c, cd) + dot(&gi.d, dd);
+                let rate = dot(&gi.a, ad) + dot(&gi.b, bd) + dot(&gi.c, cd);
                 s[i] += rate * self.damping_time;
             }
         }
-        let s = [0, 1, 2].map(|i| s[i] * (w * stiff[i]));
+        let s = [0, 1].map(|i| s[i] * (w * stiff[i]));
         [
-            lin3(s[0], &g[0].a, s[1], &g[1].a, s[2], &g[2].a),
-            lin3(s[0], &g[0].b, s[1], &g[1].b, s[2], &g[2].b),
-            lin3(s[0], &g[0].c, s[1], &g[1].c, s[2], &g[2].c),
-            [s[2] * g[2].d[0], s[2] * g[2].d[1], s[2] * g[2].d[2]],
+            lin2(s[0], &g[0].a, s[1], &g[1].a),
+            lin2(s[0], &g[0].b, s[1], &g[1].b),
+            lin2(s[0], &g[0].c, s[1], &g[1].c),
         ]
+    }
+
+    /// Local forces on (r_x,0, r_y,0, r_x,1, r_y,1, r_x(ξ = ½)) of the element twist: energy
+    /// ½GJ l τ_e² with τ_e = φ/l ([`twist_angle`]), i.e. ½(GJ/l) φ², Kelvin–Voigt stress
+    /// φ + τ_d φ̇ with the rate `ud` (φ̇ = ∇φ·u̇).
+    #[inline(always)]
+    fn twist_element<T: Real>(&self, u: &[V<T>; 5], ud: Option<&[V<T>; 5]>) -> [V<T>; 5] {
+        let (phi, g) = twist_gradient(u);
+        let mut s = phi;
+        if let Some(ud) = ud {
+            let mut rate = T::from(0.0);
+            for (ga, va) in g.iter().zip(ud) {
+                rate += dot(ga, va);
+            }
+            s += rate * self.damping_time;
+        }
+        let s = s * (self.gj / self.length);
+        g.map(|ga| [ga[0] * s, ga[1] * s, ga[2] * s])
+    }
+
+    /// Twist rate of the element τ_e = φ/l [rad/m] at `e` (18 entries): [`twist_angle`] of the
+    /// nodal frames (and the midpoint tangent) over the element length, constant over the
+    /// element.
+    pub fn twist_rate(&self, e: &[f64]) -> f64 {
+        let [a, b, c, d] = TWIST_SLOTS.map(|s| [e[s], e[s + 1], e[s + 2]]);
+        let (rs, _) = self.slots();
+        let mid = combine(&hermite(0.5, self.length).1, &rs, e);
+        twist_angle(&[a, b, c, d, mid]) / self.length
     }
 
     /// Local forces on (r_x, r_xx) of a cable bending point (weight `w` [m]).
@@ -610,9 +687,8 @@ impl Ancf3Props {
             let b = v(&p.dds, &rs);
             if self.torsion {
                 let c = v(&p.ny, &ys);
-                let d = v(&p.nyx, &ys);
-                let [_, k2, k3, tau] = strains(a, b, c, d);
-                u += 0.5 * p.w * (self.ei_y * k2 * k2 + self.ei_z * k3 * k3 + self.gj * tau * tau);
+                let [_, k2, k3] = strains(a, b, c);
+                u += 0.5 * p.w * (self.ei_y * k2 * k2 + self.ei_z * k3 * k3);
             } else {
                 let bv = cross(&a, &b);
                 let n2 = dot(&a, &a);
@@ -620,6 +696,8 @@ impl Ancf3Props {
             }
         }
         if self.torsion {
+            let tau = self.twist_rate(e);
+            u += 0.5 * self.gj * self.length * tau * tau;
             let kp = 0.5 * self.length * self.penalty_stiffness();
             for node in 0..2 {
                 let x = [e[9 * node + 3], e[9 * node + 4], e[9 * node + 5]];
@@ -649,39 +727,38 @@ impl Ancf3Props {
     }
 
     /// Section-director measures of an element with torsion at `e` (18 entries): the twist
-    /// within the element [rad], the angle about the node-1 tangent between the node-1 section
-    /// axis and the node-0 one carried along by the smallest rotation that takes the node-0
-    /// tangent to the node-1 tangent (π if the tangent turns back), and the smaller of the two
-    /// nodes' sines of the angle between r_x and r_y (0 for a vanishing r_y). Never NaN.
+    /// within the element [rad], |φ| = |τ_e| l ([`twist_angle`]: the angle about the node-1
+    /// tangent between the node-1 section axis and the node-0 one carried along by parallel
+    /// transport; π if a tangent turns back), and the smaller of the two nodes' sines of the
+    /// angle between r_x and r_y (0 for a vanishing r_y). Never NaN.
     pub fn section_measures(&self, e: &[f64]) -> (f64, f64) {
         let v = |i: usize| [e[i], e[i + 1], e[i + 2]];
         let unit = |a: [f64; 3]| {
             let n = dot(&a, &a).sqrt();
             a.map(|x| x / n)
         };
-        let mut frames = [[[0.0; 3]; 2]; 2];
+        let mut tangents = [[0.0; 3]; 2];
         let mut sine = f64::INFINITY;
-        for (node, f) in frames.iter_mut().enumerate() {
-            let t = unit(v(9 * node + 3));
+        for (node, t) in tangents.iter_mut().enumerate() {
+            *t = unit(v(9 * node + 3));
             let y = v(9 * node + 6);
-            let u = cross(&t, &y);
+            let u = cross(&*t, &y);
             let s = (dot(&u, &u) / dot(&y, &y)).sqrt();
             sine = sine.min(if s.is_finite() { s } else { 0.0 });
-            // d2 = normalized r_y ⟂ t = (t × r_y) × t / |t × r_y|
-            *f = [t, unit(cross(&u, &t))];
         }
-        let [[t0, a], [t1, b]] = frames;
-        let w = cross(&t0, &t1);
-        let c = dot(&t0, &t1);
-        if c.is_nan() || 1.0 + c <= 1e-12 || sine == 0.0 {
-            return (std::f64::consts::PI, sine);
-        }
-        // a carried by R = c I + [w]× + w wᵀ/(1 + c)
-        let wa = cross(&w, &a);
-        let f = dot(&w, &a) / (1.0 + c);
-        let a1 = [0, 1, 2].map(|i| c * a[i] + wa[i] + f * w[i]);
-        let twist = math::atan2(dot(&t1, &cross(&a1, &b)), dot(&a1, &b)).abs();
+        let (rs, _) = self.slots();
+        let mid = combine(&hermite(0.5, self.length).1, &rs, e);
+        let [t0, t1] = tangents;
+        let tm = unit(mid);
+        let turns_back = |a: &[f64; 3], b: &[f64; 3]| {
+            let c = dot(a, b);
+            c.is_nan() || 1.0 + c <= 1e-12
+        };
         let worst = std::f64::consts::PI;
+        if turns_back(&t0, &t1) || turns_back(&t0, &tm) || turns_back(&tm, &t1) || sine == 0.0 {
+            return (worst, sine);
+        }
+        let twist = twist_angle(&[v(3), v(6), v(12), v(15), mid]).abs();
         (if twist.is_nan() { worst } else { twist }, sine)
     }
 
@@ -703,11 +780,10 @@ impl Ancf3Props {
         };
         if self.torsion {
             let c = combine(&[1.0 - xi, xi], &ys, e);
-            let d = combine(&[-1.0 / l, 1.0 / l], &ys, e);
-            let [_, k2, k3, tau] = strains(a, b, c, d);
+            let [_, k2, k3] = strains(a, b, c);
             p.frame = director_frame(a, c);
             p.curvature = [k2, k3];
-            p.twist = tau;
+            p.twist = self.twist_rate(e);
         } else {
             p.frame = minimal_frame(a);
             let k = cross(&a, &b).map(|c| c / dot(&a, &a));
@@ -716,7 +792,8 @@ impl Ancf3Props {
         p
     }
 
-    /// Strain measures (ε, κ2, κ3, τ) at ξ ∈ [0, 1] of an element with torsion.
+    /// Strain measures (ε, κ2, κ3, τ_e) at ξ ∈ [0, 1] of an element with torsion (τ_e the
+    /// element's twist rate, [`Ancf3Props::twist_rate`]).
     pub fn strains_at(&self, e: &[f64; TORSION_DOFS], xi: f64) -> [f64; 4] {
         let l = self.length;
         let (_, ds, dds) = hermite(xi, l);
@@ -724,8 +801,8 @@ impl Ancf3Props {
         let a = comb(&ds, &rs, e);
         let b = comb(&dds, &rs, e);
         let c = comb(&[1.0 - xi, xi], &ys, e);
-        let d = comb(&[-1.0 / l, 1.0 / l], &ys, e);
-        strains(a, b, c, d)
+        let [eps, k2, k3] = strains(a, b, c);
+        [eps, k2, k3, self.twist_rate(e)]
     }
 }
 
@@ -1189,15 +1266,16 @@ pub(crate) mod tests {
 
     #[test]
     fn strain_measures_of_a_helix_match_the_closed_form() {
-        // Helix of radius ρ, pitch parameter h, arc length s: curvature k = ρ/λ², torsion
-        // τ_g = h/λ² (λ² = ρ² + h²); Frenet frame t, n, b. Director d2 = cos φ n + sin φ b with
+        // Helix of radius ρ, pitch parameter h, arc length s: curvature k = ρ/λ²
+        // (λ² = ρ² + h²); Frenet frame t, n, b. Director d2 = cos φ n + sin φ b with
         // φ = φ0 + φ1 s; the reference arc length x = s/(1 + ε). Then, per reference length,
-        // κ2 = (1+ε) k sin φ, κ3 = (1+ε) k cos φ, τ = (1+ε)(τ_g + φ1). r_y = α d2 + β t (stretched
-        // and sheared director: the measures must not see α, β).
+        // κ2 = (1+ε) k sin φ, κ3 = (1+ε) k cos φ. r_y = α d2 + β t (stretched and sheared
+        // director: the measures must not see α, β). (The twist is the element's, from its
+        // nodal frames: `twist_is_zero_for_parallel_transported_frames`.)
         let (rho, h, eps, phi0, phi1, al, be): (f64, f64, f64, f64, f64, f64, f64) =
             (0.3, 0.12, 0.02, 0.4, 2.0, 1.3, 0.2);
         let lam = (rho * rho + h * h).sqrt();
-        let (k, tg) = (rho / (lam * lam), h / (lam * lam));
+        let k = rho / (lam * lam);
         let st = 1.0 + eps;
         for s in [0.0, 0.37, 1.9] {
             let th = s / lam;
@@ -1205,47 +1283,35 @@ pub(crate) mod tests {
             let t = [-rho * sn / lam, rho * cs / lam, h / lam];
             let n = [-cs, -sn, 0.0];
             let b = cross(&t, &n);
-            // Frenet: t′ = k n, n′ = −k t + τ_g b, b′ = −τ_g n (per s)
+            // Frenet: t′ = k n (per s)
             let phi = phi0 + phi1 * s;
             let (sp, cp) = phi.sin_cos();
             let d2 = lin2(cp, &n, sp, &b);
-            let dn = lin2(-k, &t, tg, &b);
-            let db = [-tg * n[0], -tg * n[1], -tg * n[2]];
-            // d2′ = cos φ n′ + sin φ b′ + φ1 (−sin φ n + cos φ b)
-            let d2s = [0, 1, 2].map(|i| cp * dn[i] + sp * db[i] + phi1 * (-sp * n[i] + cp * b[i]));
             let ts = [k * n[0], k * n[1], k * n[2]];
             // derivatives by the reference length x: d/dx = (1 + ε) d/ds
             let rx = t.map(|v| st * v);
             let rxx = ts.map(|v| st * st * v);
             let ry = lin2(al, &d2, be, &t);
-            let ryx = lin2(al * st, &d2s, be * st, &ts);
-            let [e, k2, k3, tau] = strains(rx, rxx, ry, ryx);
-            let want = [eps, st * k * sp, st * k * cp, st * (tg + phi1)];
-            for (g, w) in [e, k2, k3, tau].iter().zip(want) {
+            let [e, k2, k3] = strains(rx, rxx, ry);
+            let want = [eps, st * k * sp, st * k * cp];
+            for (g, w) in [e, k2, k3].iter().zip(want) {
                 assert!(
                     (g - w).abs() < 1e-13,
                     "s {s}: {:?} vs {want:?}",
-                    [e, k2, k3, tau]
+                    [e, k2, k3]
                 );
             }
         }
     }
 
     #[test]
-    fn uniformly_twisted_element_matches_the_chord_closed_form() {
-        // r_y turns by Δ about the axis between the nodes; linear (chord) interpolation gives
-        // φ(ξ) = atan2(ξ sin Δ, 1 − ξ + ξ cos Δ), τ = φ′ = sin Δ/(l((1 − ξ + ξ cos Δ)² + ξ² sin² Δ)).
-        // Energy factor over ½GJΔ²/l with 3-point Gauss (docs/references.md §7.1): 30° 1.0005,
-        // 90° 1.072.
+    fn uniformly_twisted_element_has_the_twist_of_its_nodes() {
+        // r_y turns by Δ about the axis between the nodes: τ_e = Δ/l and the twist energy is
+        // ½GJΔ²/l exactly for any Δ ∈ (−π, π) (the linear r_y's pointwise twist at 3 Gauss
+        // points was too stiff by 1.0005 at 30°, 1.072 at 90°: docs/references.md §7.1).
         let p = props(true, 0.0, 1.0);
         let l = p.length;
-        // (degrees, table factor, half a unit of its last digit)
-        for (deg, factor, half) in [
-            (10.0, 1.00001, 5e-6),
-            (30.0, 1.0005, 5e-5),
-            (45.0, 1.0026, 5e-5),
-            (90.0, 1.072, 5e-4),
-        ] {
+        for deg in [-170.0, -45.0, 10.0, 30.0, 45.0, 90.0, 150.0, 179.0] {
             let delta: f64 = deg * PI / 180.0;
             let n3 = 1.0 / 3f64.sqrt();
             let f0 = frame([n3, n3, n3], 0.4);
@@ -1257,21 +1323,98 @@ pub(crate) mod tests {
             let mut e: [f64; 18] = straight([0.0; 3], f0, l, true).try_into().unwrap();
             e[15..18].copy_from_slice(&y1);
             for xi in [0.0, 0.2, 0.5, 0.9] {
-                let x = 1.0 - xi + xi * delta.cos();
-                let y = xi * delta.sin();
-                let want = delta.sin() / (l * (x * x + y * y));
                 let [eps, k2, k3, tau] = p.strains_at(&e, xi);
                 assert!(eps.abs() < 1e-15 && k2.abs() < 1e-12 && k3.abs() < 1e-12);
-                assert!(
-                    (tau - want).abs() < 1e-12 * want,
-                    "{deg}° ξ {xi}: {tau} vs {want}"
-                );
+                assert!((tau * l - delta).abs() < 1e-14, "{deg}° ξ {xi}: {tau}");
             }
             let u = p.strain_energy(&e);
             let got = u / (0.5 * p.gj * delta * delta / l);
-            eprintln!("twist {deg}° per element: energy factor {got:.6} (spatial.md: {factor})");
-            // equal to the table's rounding (+1e-9 for the rounding of this computation)
-            assert!((got - factor).abs() <= half + 1e-9, "{deg}: {got}");
+            assert!((got - 1.0).abs() < 1e-12, "{deg}: {got}");
+        }
+    }
+
+    /// Nodal frames of an element bent in the plane ⟂ `normal` (arc of angle `bend`), the
+    /// section directors turned by `theta` about the tangents from the in-plane normal
+    /// (twist-free: d2 at node 1 is d2 at node 0 carried along the arc), node 1 turned by
+    /// `extra` more about its tangent.
+    fn arc_element(
+        p: &Ancf3Props,
+        f: [[f64; 3]; 3],
+        bend: f64,
+        theta: f64,
+        extra: f64,
+    ) -> [f64; 18] {
+        let l = p.length;
+        let (x, y, z) = (f[0], f[1], f[2]);
+        let mut e = [0.0; 18];
+        for node in 0..2 {
+            let a = bend * node as f64;
+            let (sa, ca) = a.sin_cos();
+            let rad = l / bend;
+            let r = lin2(rad * sa, &x, rad * (1.0 - ca), &y);
+            let t = lin2(ca, &x, sa, &y);
+            let nrm = lin2(-sa, &x, ca, &y);
+            let th = theta + extra * node as f64;
+            let (st, ct) = th.sin_cos();
+            let d2 = lin2(ct, &nrm, st, &z);
+            e[9 * node..9 * node + 3].copy_from_slice(&r);
+            e[9 * node + 3..9 * node + 6].copy_from_slice(&t);
+            e[9 * node + 6..9 * node + 9].copy_from_slice(&d2);
+        }
+        e
+    }
+
+    #[test]
+    fn written_out_twist_gradient_equals_nested_ad() {
+        // the written-out gradient of the element twist against forward-mode AD of the angle,
+        // on bent, stretched, sheared and twisted elements
+        for (k, p) in [props(true, 0.0, 1.0), balanced(true, 0.0)]
+            .iter()
+            .enumerate()
+        {
+            for seed in [2, 5, 7, 11] {
+                let (e, _) = deformed::<18>(p, seed + k as u64);
+                let tab = p.tables();
+                let (rs, _) = p.slots();
+                let [a, b, c, d] = TWIST_SLOTS.map(|s| [e[s], e[s + 1], e[s + 2]]);
+                let u = [a, b, c, d, comb(&tab.mid, &rs, &e)];
+                let (phi, g) = twist_gradient(&u);
+                let (phi_ad, g_ad) = twist_gradient_ad(&u);
+                assert_eq!(phi, phi_ad);
+                assert!(phi.abs() > 1e-3, "{phi}");
+                let big = g_ad.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+                for (x, y) in g.iter().flatten().zip(g_ad.iter().flatten()) {
+                    assert!((x - y).abs() <= 1e-13 * big, "{seed}: {x} vs {y}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn twist_is_zero_for_parallel_transported_frames() {
+        // an element bent into an arc in any plane, its section turned by any angle about the
+        // tangent without twisting: τ_e = 0 to rounding, so a round rod's energy is the same
+        // whatever the bending plane relative to the section (the issue-23 isotropy); an
+        // extra turn Δ of node 1 gives τ_e = Δ/l
+        let p = props(true, 0.0, 1.0);
+        let n3 = 1.0 / 3f64.sqrt();
+        for (axis, ang) in [([0.0, 0.0, 1.0], 0.0), ([n3, -n3, n3], 1.3)] {
+            let f = frame(axis, ang);
+            for bend in [0.05, 0.4, 1.2] {
+                let u0 = p.strain_energy(&arc_element(&p, f, bend, 0.0, 0.0));
+                for theta in [0.3, 1.0, 2.5, -2.0] {
+                    let e = arc_element(&p, f, bend, theta, 0.0);
+                    let tau = p.twist_rate(&e);
+                    assert!(tau.abs() * p.length < 1e-15, "{bend} {theta}: {tau:e}");
+                    let u = p.strain_energy(&e);
+                    assert!((u - u0).abs() <= 1e-13 * u0, "{bend} {theta}: {u} vs {u0}");
+                    for extra in [0.2, -1.0] {
+                        let e = arc_element(&p, f, bend, theta, extra);
+                        let tau = p.twist_rate(&e);
+                        assert!((tau * p.length - extra).abs() < 1e-14, "{tau}");
+                    }
+                }
+            }
         }
     }
 
