@@ -500,6 +500,7 @@ elements = 4
         assert!(err_of(&[("solver.rho_inf", "1.0")]).contains("solver.rho_inf"));
         assert!(err_of(&[("segments", "[]")]).contains("empty"));
         assert!(err_of(&[("segments.0.lenght", "1.0")]).contains("lenght"));
+        assert!(err_of(&[("segments.0.linear", "true")]).contains("segments[0].linear = true"));
     }
 
     #[test]

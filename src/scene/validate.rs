@@ -251,9 +251,14 @@ impl Scene {
                             "{p}.elements = {n}: must be in 1..={MAX_ELEMENTS}"
                         )));
                     }
-                    if seg.modes.is_some() || seg.interface_modes || seg.linear {
+                    if seg.modes.is_some() || seg.interface_modes {
                         return Err(SceneError(format!(
                             "{p}.modes: an ancf segment has no modes; use elements, or kind = \"modal\""
+                        )));
+                    }
+                    if seg.linear {
+                        return Err(SceneError(format!(
+                            "{p}.linear = true: only a modal segment has a linear variant (an ancf segment is nonlinear by construction); remove the key, or use kind = \"modal\""
                         )));
                     }
                     if seg.damping_ratio != 0.0 {
