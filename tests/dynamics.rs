@@ -31,7 +31,7 @@ fn max_diff(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
 }
 
 #[test]
-fn hybrid_all_ancf_and_all_modal_agree_within_1_percent_of_peak() {
+fn hybrid_all_ancf_and_all_modal_agree_within_0_05_percent_of_peak() {
     let h = 1e-4;
     let hy = tip_history(hybrid(h, 4, 8), 2.0, 1e-3);
     let an = tip_history(
@@ -49,9 +49,11 @@ fn hybrid_all_ancf_and_all_modal_agree_within_1_percent_of_peak() {
     assert!(peak > 9.0e-3 && peak < 9.8e-3, "peak {peak}");
     let (da, dm) = (max_diff(&hy, &an), max_diff(&hy, &mo));
     eprintln!("Case 1 peak {peak:.4e} m; max |hybrid - all-ANCF| {da:.2e} m, max |hybrid - all-modal| {dm:.2e} m");
-    assert!(da < 0.01 * peak, "hybrid vs all-ANCF: {da:e} m of {peak:e}");
+    // measured 3.02e-6 m and 1.62e-6 m (0.032 %, 0.017 %); 3.85e-5 m and 1.06e-5 m with the
+    // linear modal frames, which this bound fails
+    assert!(da < 5e-4 * peak, "hybrid vs all-ANCF: {da:e} m of {peak:e}");
     assert!(
-        dm < 0.01 * peak,
+        dm < 5e-4 * peak,
         "hybrid vs all-modal: {dm:e} m of {peak:e}"
     );
 }
