@@ -102,10 +102,20 @@ class Family:
     # tip, the hybeam --set key of its ANCF element count ("" for a modal segment) and its share
     # of the length; a grid point's n elements are split by split_elements.
     segments: tuple[tuple[str, float], ...] = ()
+    # A modal family: the hybeam --set key of its mode count, which the grid's n sets
+    # (Family.modes); its runs have no ANCF elements.
+    modes_key: str = ""
+
+    def modes(self, n: int) -> int:
+        """Modes of a modal family for a grid point of n elements: round(12 n / 32) in 1..=12
+        (n = 4, 8, 16, 32: 2, 3, 6, 12 modes); 0 for the other families."""
+        return min(12, max(1, round(12 * n / 32))) if self.modes_key else 0
 
     def segment_elements(self, n: int) -> list[tuple[str, int]]:
         """(--set key, ANCF elements) of each ANCF segment for a grid point of n elements over
         the whole rod."""
+        if self.modes_key:
+            return []
         if not self.segments:
             return [(self.elements_key, max(1, round(n * self.element_fraction)))]
         counts = split_elements(n, tuple(share for _, share in self.segments))
@@ -164,10 +174,17 @@ PROBLEMS = {
                 "segments.1.elements",
                 element_fraction=0.5,
             ),
+            Family(
+                "hybeam",
+                "hybeam all-modal",
+                "scenes/case1_modal.toml",
+                modes_key="segments.0.modes",
+            ),
         ],
         HYBEAM_PLANAR,
         EXUDYN_PLANAR,
-        note="the hybrid's ANCF half gets half of the grid's elements",
+        note="the hybrid's ANCF half gets half of the grid's elements; the all-modal rod (one "
+        "modal segment, scenes/case1_modal.toml) gets round(12 n / 32) modes: 2, 3, 6, 12",
     ),
     "spatial": Problem(
         "spatial",
@@ -232,6 +249,7 @@ class Run:
     family: Family
     elements: int
     step: float
+    modes: int = 0  # modal families: the mode count (Family.modes)
     times_s: list[float] = field(default_factory=list)
     status: str = "ok"
     error_m: float = math.nan
@@ -255,6 +273,7 @@ def run_hybeam(
         out = Path(tmp) / "tip.csv"
         sets = [
             *(f"{key}={k}" for key, k in fam.segment_elements(n)),
+            *([f"{fam.modes_key}={fam.modes(n)}"] if fam.modes_key else []),
             f"solver.max_step={h!r}",
             f"simulation.t_end={t_end!r}",
             f"simulation.output_step={OUTPUT_STEP!r}",
@@ -429,7 +448,7 @@ def reference(binary: Path, prob: Problem, grid: Grid, cache: Path, log) -> dict
 def sweep(binary: Path, prob: Problem, grid: Grid, ref: np.ndarray, log) -> list[Run]:
     """Every family at every grid point, the codes alternating; median of grid.repeats."""
     runs = {
-        (fam, n, h): Run(prob.name, fam, fam.elements(n), h)
+        (fam, n, h): Run(prob.name, fam, fam.elements(n), h, fam.modes(n))
         for n in grid.elements
         for h in grid.steps
         for fam in prob.families
@@ -469,14 +488,14 @@ def write_csv(path: Path, runs: list[Run], repeats: int) -> None:
     with path.open("w", newline="") as f:
         w = csv.writer(f, lineterminator="\n")
         w.writerow(
-            ["problem", "code", "family", "elements", "step_s", "error_m", "time_s"]
+            ["problem", "code", "family", "elements", "modes", "step_s", "error_m", "time_s"]
             + [f"time_{k + 1}_s" for k in range(repeats)]
             + ["status"]
         )
         for r in runs:
             times = [f"{x:.6g}" for x in r.times_s] + [""] * (repeats - len(r.times_s))
             w.writerow(
-                [r.problem, r.family.code, r.family.name, r.elements, f"{r.step:g}"]
+                [r.problem, r.family.code, r.family.name, r.elements, r.modes, f"{r.step:g}"]
                 + [f"{r.error_m:.6e}", f"{r.time_s:.6g}"]
                 + times
                 + [r.status]
@@ -502,12 +521,15 @@ def cheapest(runs: list[Run], tol: float) -> Run | None:
     return min(hits, key=lambda r: r.time_s) if hits else None
 
 
+def size(r: Run) -> str:
+    """The run's mesh: "n = 8" (ANCF elements) or "6 modes" (a modal family)."""
+    return f"{r.modes} modes" if r.family.modes_key else f"n = {r.elements}"
+
+
 def describe(r: Run | None) -> str:
     if r is None:
         return "none reaches it"
-    return (
-        f"{r.family.name}, n = {r.elements}, h = {r.step:g} s: {r.time_s:.3g} s, {r.error_m:.2e} m"
-    )
+    return f"{r.family.name}, {size(r)}, h = {r.step:g} s: {r.time_s:.3g} s, {r.error_m:.2e} m"
 
 
 def ratio_table(runs: list[Run]) -> str:
@@ -534,9 +556,7 @@ def family_table(runs: list[Run], families: list[Family]) -> str:
         cells = []
         for fam in families:
             r = cheapest([x for x in runs if x.family == fam], tol)
-            cells.append(
-                "-" if r is None else f"{r.time_s:.3g} s (n = {r.elements}, h = {r.step:g})"
-            )
+            cells.append("-" if r is None else f"{r.time_s:.3g} s ({size(r)}, h = {r.step:g})")
         lines.append(f"| {tol:g} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
@@ -545,7 +565,7 @@ def xy(runs: list[Run]) -> tuple[list[float], list[float]]:
     return [r.time_s for r in runs], [r.error_m for r in runs]
 
 
-STYLE = {0: ("tab:blue", "o"), 1: ("tab:red", "s"), 2: ("tab:green", "^")}
+STYLE = {0: ("tab:blue", "o"), 1: ("tab:red", "s"), 2: ("tab:green", "^"), 3: ("tab:purple", "D")}
 
 
 def figure(path: Path, prob: Problem, runs: list[Run], title: str) -> None:
