@@ -77,22 +77,22 @@ def _symmetric_car(tmp_path):
 
 
 def test_rolling_symmetric_case_equals_the_planar_system(fmus, planar_fmus, tmp_path):
-    """Bump across the road, no lateral offset, the axles' masses and tires those of the
-    pitch-plane car: the spatial pair (car3d + boom_3d) and the planar pair (examples/vehicle:
-    car + boom) at 1 ms, implicit, over the bump (0.8 s), agree: heave, pitch (planar = −3D),
-    the boom tip's x and height (3D z, planar y, as changes from t = 0: the two booms' mounts
-    sit at different static heights), the root force (3D z = planar y, x = x) and moment (3D
-    y = −planar z). The cars agree to rounding (tests/car3d.rs) and the spatial boom in its
-    plane is the planar boom's discretization (the planar boom's modal segment built with
-    linear = true by run.sh --test: the spatial modal body is a linear frame; the planar
-    nonlinear body differs from it by 7.4e-9 of the pitch range, more than the bound); what separates the runs is the coupling
-    tolerance: each accepts a step's reaction (the iterated unknowns) within rtol = 1e-5 of
-    the largest reaction component (~280 N m: ~3e-3 N, N m), so the reactions may differ by
-    twice that (measured: force x 5.7e-3 N, force z 3.0e-4 N, moment y 5.1e-5 N m; bound
-    4 rtol max|reaction|), and the motions by its effect, tiny on the 1.2 t car (measured:
-    heave, pitch, tip x and height ≤ 1.3e-8 of their ranges; bound 1e-6). Roll and every
-    out-of-plane value (tip y, root force y, root moments x and z) stay at rounding level
-    (measured exactly 0; bound 1e-9 m, rad, N, N m: the symmetric problem stays symmetric)."""
+    """Bump across the road, no lateral offset, the axles' masses and tires those of the pitch-plane
+    car: the spatial pair (car3d + boom_3d) and the planar pair (examples/vehicle: car + boom)
+    at 1 ms, implicit, over the bump (0.8 s), agree: heave, pitch (planar = −3D), the boom tip's
+    x and height (3D z, planar y, as changes from t = 0: the two booms' mounts sit at different
+    static heights), the root force (3D z = planar y, x = x) and moment (3D y = −planar z). The
+    cars agree to rounding (tests/car3d.rs) and the spatial boom in its plane is the planar
+    boom's discretization (the planar boom's modal segment built with linear = true by run.sh
+    --test: the spatial modal body is a linear frame; the planar nonlinear body differs from it
+    by 7.4e-9 of the pitch range, more than the bound); what separates the runs is the coupling
+    tolerance: each accepts a step's reaction (the iterated unknowns) within rtol = 1e-5 of the
+    largest reaction component (~280 N m: ~3e-3 N, N m), so the reactions may differ by twice
+    that (measured: force x 5.7e-3 N, force z 3.0e-4 N, moment y 5.1e-5 N m; bound 4 rtol
+    max|reaction|), and the motions by its effect, tiny on the 1.2 t car (measured: heave,
+    pitch, tip x and height ≤ 1.3e-8 of their ranges; bound 1e-6). Roll and every out-of-plane
+    value (tip y, root force y, root moments x and z) stay at rounding level (measured exactly
+    0; bound 1e-9 m, rad, N, N m: the symmetric problem stays symmetric)."""
     sym = _symmetric_car(tmp_path)
     t_end = 0.8
     spatial = cosim(
