@@ -144,6 +144,27 @@ fn panels(n: usize) -> usize {
     n.div_ceil(4).max(2)
 }
 
+/// Quantities of one state shared by [`ModalBody::eval`]'s linear residual and its matrices:
+/// modes n, mass μ = ρAL [kg], s0 = ½ρAL² [kg m], j0 = ρAL³/3 [kg m²], θ̇, θ̈, A(θ), sᵀa,
+/// sᵀȧ, sᵀä (s = `s_f`), aᵀa, aᵀȧ, z = R̈ − g and Aᵀz.
+#[derive(Debug, Clone, Copy)]
+struct LinearTerms {
+    n: usize,
+    mu: f64,
+    s0: f64,
+    j0: f64,
+    thd: f64,
+    thdd: f64,
+    rot_a: Matrix2<f64>,
+    sfa: f64,
+    sfv: f64,
+    sfacc: f64,
+    a2: f64,
+    av: f64,
+    z: Vector2<f64>,
+    zl: Vector2<f64>,
+}
+
 /// Residual and derivatives of one body at one state (local coordinates).
 #[derive(Debug, Clone)]
 pub struct BodyOut {
@@ -258,21 +279,8 @@ impl ModalBody {
         self.k.iter().map(|k| (k / self.mass()).sqrt()).collect()
     }
 
-    fn dot_sf(&self, x: &[f64]) -> f64 {
-        self.s_f.iter().zip(x).map(|(a, b)| a * b).sum()
-    }
-
-    /// Residual and its derivatives at (q, q̇, q̈) for gravity g. With `matrices` false only
-    /// `res` is filled.
-    pub fn eval(
-        &self,
-        q: &[f64],
-        v: &[f64],
-        a: &[f64],
-        g: [f64; 2],
-        matrices: bool,
-        out: &mut BodyOut,
-    ) {
+    /// The state's quantities shared by the linear residual and its matrices.
+    fn linear_terms(&self, q: &[f64], v: &[f64], a: &[f64], g: [f64; 2]) -> LinearTerms {
         let n = self.modes();
         let mu = self.mass();
         let s0 = 0.5 * self.rho_a * self.length * self.length;
@@ -289,6 +297,58 @@ impl ModalBody {
         let av: f64 = am.iter().zip(vm).map(|(x, y)| x * y).sum();
         let z = Vector2::new(a[0] - g[0], a[1] - g[1]);
         let zl = rot_a.transpose() * z;
+        LinearTerms {
+            n,
+            mu,
+            s0,
+            j0,
+            thd,
+            thdd,
+            rot_a,
+            sfa,
+            sfv,
+            sfacc,
+            a2,
+            av,
+            z,
+            zl,
+        }
+    }
+
+    fn dot_sf(&self, x: &[f64]) -> f64 {
+        self.s_f.iter().zip(x).map(|(a, b)| a * b).sum()
+    }
+
+    /// Residual and its derivatives at (q, q̇, q̈) for gravity g. With `matrices` false only
+    /// `res` is filled.
+    pub fn eval(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        a: &[f64],
+        g: [f64; 2],
+        matrices: bool,
+        out: &mut BodyOut,
+    ) {
+        let lt = self.linear_terms(q, v, a, g);
+        let LinearTerms {
+            n,
+            mu,
+            s0,
+            j0,
+            thd,
+            thdd,
+            rot_a,
+            sfa,
+            sfv,
+            sfacc,
+            a2,
+            av,
+            z,
+            zl,
+            ..
+        } = lt;
+        let (am, vm, acc) = (&q[3..], &v[3..], &a[3..]);
         // local part w of F_R = m(R̈ − g) + A w
         let w = Vector2::new(
             -thdd * sfa - 2.0 * thd * sfv - thd * thd * s0,
@@ -318,30 +378,31 @@ impl ModalBody {
         if !matrices {
             return;
         }
-        self.linear_matrices(q, v, a, g, out);
+        self.linear_matrices(q, v, &lt, out);
         if self.nonlinear {
             self.add_nonlinear_matrices(q, v, a, g, out);
         }
     }
 
     /// The partial derivatives of the linear part of the residual into `out.m`, `out.c`, `out.k`.
-    fn linear_matrices(&self, q: &[f64], v: &[f64], a: &[f64], g: [f64; 2], out: &mut BodyOut) {
-        let n = self.modes();
-        let mu = self.mass();
-        let s0 = 0.5 * self.rho_a * self.length * self.length;
-        let j0 = self.rho_a * self.length.powi(3) / 3.0;
-        let (th, thd, thdd) = (q[2], v[2], a[2]);
-        let am = &q[3..];
-        let vm = &v[3..];
-        let acc = &a[3..];
-        let rot_a = rot(th);
-        let sfa = self.dot_sf(am);
-        let sfv = self.dot_sf(vm);
-        let sfacc = self.dot_sf(acc);
-        let a2: f64 = am.iter().map(|x| x * x).sum();
-        let av: f64 = am.iter().zip(vm).map(|(x, y)| x * y).sum();
-        let z = Vector2::new(a[0] - g[0], a[1] - g[1]);
-        let zl = rot_a.transpose() * z;
+    fn linear_matrices(&self, q: &[f64], v: &[f64], lt: &LinearTerms, out: &mut BodyOut) {
+        let LinearTerms {
+            n,
+            mu,
+            s0,
+            j0,
+            thd,
+            thdd,
+            rot_a,
+            sfa,
+            sfv,
+            sfacc,
+            a2,
+            av,
+            zl,
+            ..
+        } = *lt;
+        let (am, vm) = (&q[3..], &v[3..]);
         let w = Vector2::new(
             -thdd * sfa - 2.0 * thd * sfv - thd * thd * s0,
             thdd * s0 + sfacc - thd * thd * sfa,
