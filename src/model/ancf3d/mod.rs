@@ -47,10 +47,14 @@
 //! inertia ½ρI_p ∫|v|² dx with v = ṙ_y − w × r_y, w = (r_x × ṙ_x)/|r_x|² the rotation rate of
 //! the tangent: for a rigid rotation Ω of the section v = (Ω·t) t × r_y, so bending in either
 //! plane carries no director inertia (as the cable: no rotary inertia) and twist keeps ρI_p.
-//! Its ṙ_y·ṙ_y part is the constant ρI_p ∫N_jN_k ⊗ I₃ ([`MassPatterns`]); the rest
-//! ([`Ancf3Props::director_inertia`]: the r_x–r_y mass blocks and the velocity-quadratic
-//! terms, d/dt ∂T/∂q̇ − ∂T/∂q) is evaluated at the 3 bending points, its Jacobians (q, q̇, q̈)
-//! by the same AD.
+//! The integral is lumped at the two nodes (2-point Lobatto, weights l/2), where r_x and r_y
+//! are both nodal coordinates: between the nodes the linear r_y lags the Hermite tangent's
+//! rotation, and at Gauss points that lag gave a bending rotary inertia in one plane only (a
+//! round rod's dynamic response then depended on the load direction by 1.07e-5 of the peak;
+//! 3.0e-8 lumped, `tests/torsion_isotropy.rs`). Its ṙ_y·ṙ_y part is the constant
+//! ρI_p l/2 I₃ per node ([`MassPatterns`]); the rest ([`Ancf3Props::director_inertia`]: the
+//! r_x–r_y mass blocks and the velocity-quadratic terms, d/dt ∂T/∂q̇ − ∂T/∂q) its Jacobians
+//! (q, q̇, q̈) by the same AD.
 //!
 //! Quadrature as the planar element: 5 Gauss points axial, 3 bending; the twist from the nodal
 //! frames and the midpoint tangent, the penalty at the nodes. The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays;
@@ -121,8 +125,11 @@ pub struct Ancf3Props {
 pub struct Tables3 {
     /// Axial points: (w·EA, dS/dx).
     axial: [(f64, [f64; 4]); 5],
-    /// Bending points (and the director inertia's).
+    /// Bending points (Gauss).
     bending: [BendPoint; 3],
+    /// The director inertia's points: the two nodes (2-point Lobatto, weights l/2), where
+    /// r_x and r_y are both nodal coordinates.
+    director: [BendPoint; 2],
     /// dS/dx at the midpoint ξ = ½ (the element twist's midpoint tangent).
     mid: [f64; 4],
 }
@@ -212,7 +219,7 @@ impl Ancf3Props {
     }
 
     /// Constant part of the consistent mass matrix, row-major d × d (d = [`Ancf3Props::dofs`])
-    /// [kg, kg m, kg m²]: ρA ∫SᵀS dx ⊗ I₃ on the r-blocks plus ρI_p l/6 [2 1; 1 2] ⊗ I₃ on the
+    /// [kg, kg m, kg m²]: ρA ∫SᵀS dx ⊗ I₃ on the r-blocks plus ρI_p l/2 I₃ per node (lumped) on the
     /// r_y blocks (with torsion the configuration-dependent rest is
     /// [`Ancf3Props::director_tangent`]'s).
     pub fn mass_matrix(&self) -> Vec<f64> {
@@ -253,10 +260,11 @@ impl Ancf3Props {
         .map(|r| r.map(|x| c * x))
     }
 
-    /// The 2×2 r_y mass pattern ρI_p l/6 [2 1; 1 2].
+    /// The 2×2 r_y mass pattern ρI_p l/2 [1 0; 0 1] (lumped at the nodes, as the director
+    /// inertia's points).
     fn twist_mass(&self) -> [[f64; 2]; 2] {
-        let c = self.rho_ip * self.length / 6.0;
-        [[2.0 * c, c], [c, 2.0 * c]]
+        let h = 0.5 * self.rho_ip * self.length;
+        [[h, 0.0], [0.0, h]]
     }
 
     /// The mass matrix's scalar patterns (Hermite 4×4 on the r-blocks, 2×2 on the r_y blocks)
@@ -297,6 +305,15 @@ impl Ancf3Props {
         let mut t = Tables3 {
             axial: [(0.0, [0.0; 4]); 5],
             bending: [BendPoint::default(); 3],
+            director: [0.0, 1.0].map(|xi: f64| {
+                let (_, ds, dds) = hermite(xi, l);
+                BendPoint {
+                    w: 0.5 * l,
+                    ds,
+                    dds,
+                    ny: [1.0 - xi, xi],
+                }
+            }),
             mid: hermite(0.5, l).1,
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
@@ -411,7 +428,7 @@ impl Ancf3Props {
     }
 
     /// The director inertia beyond the constant mass pattern at (e, ė, ë), with torsion (zero
-    /// without) [N, N m]: at each bending point (weight w) the kinetic energy ½wρI_p|v|² of the
+    /// without) [N, N m]: at each node (weight w = l/2) the kinetic energy ½wρI_p|v|² of the
     /// director rate relative to the tangent's rotation, v = ṙ_y − w_t × r_y, w_t = (r_x ×
     /// ṙ_x)/|r_x|² (twist only, see the module doc), less ½wρI_p|ṙ_y|² (the pattern's).
     pub fn director_inertia<const D: usize>(
@@ -426,7 +443,7 @@ impl Ancf3Props {
             return f;
         }
         let (rs, ys) = self.slots();
-        for p in &tab.bending {
+        for p in &tab.director {
             let loc = |x: &[f64; D]| [comb(&p.ds, &rs, x), comb(&p.ny, &ys, x)];
             let [fa, fc] = director_point(p.w * self.rho_ip, &loc(e), &loc(ed), &loc(ea));
             scatter(&mut f, &p.ds, &rs, &fa);
@@ -452,7 +469,7 @@ impl Ancf3Props {
             return (f, m);
         }
         let (rs, ys) = self.slots();
-        for p in &tab.bending {
+        for p in &tab.director {
             let maps = [Map::new(&p.ds, &rs), Map::new(&p.ny, &ys)];
             let kw = p.w * self.rho_ip;
             let [fa, fc] = point_tangent_acc::<2, 18, D>(&maps, x, k, c, &mut m, |u, ud, ua| {
@@ -477,7 +494,7 @@ impl Ancf3Props {
     }
 
     /// The director's kinetic energy beyond the constant pattern's ½ρI_p∫|ṙ_y|² [J]: Σ over the
-    /// bending points of ½wρI_p(|v|² − |ṙ_y|²) ([`Ancf3Props::director_inertia`]); 0 without
+    /// nodes of ½wρI_p(|v|² − |ṙ_y|²) ([`Ancf3Props::director_inertia`]); 0 without
     /// torsion.
     pub fn director_kinetic(&self, tab: &Tables3, e: &[f64], ed: &[f64]) -> f64 {
         if !self.torsion {
@@ -485,7 +502,7 @@ impl Ancf3Props {
         }
         let (rs, ys) = self.slots();
         let mut t = 0.0;
-        for p in &tab.bending {
+        for p in &tab.director {
             let u = [combine(&p.ds, &rs, e), combine(&p.ny, &ys, e)];
             let ud = [combine(&p.ds, &rs, ed), combine(&p.ny, &ys, ed)];
             let (dv, _) = director_rate(&u, &ud);
@@ -1020,19 +1037,19 @@ pub(crate) mod tests {
         }
     }
 
-    /// ½ρI_p Σ_points w|v|² with v = ṙ_y − w_t × r_y written out here with the cross product
-    /// (w_t = r_x × ṙ_x/|r_x|²), independent of the kernel's expanded form.
+    /// ½ρI_p (l/2) Σ_nodes |v|² with v = ṙ_y − w_t × r_y written out here with the cross
+    /// product (w_t = r_x × ṙ_x/|r_x|²) on the nodal slopes and directors, independent of the
+    /// kernel's expanded form and of its tables.
     fn director_energy(p: &Ancf3Props, e: &[f64; 18], ed: &[f64; 18]) -> f64 {
-        let tab = p.tables();
-        let (rs, ys) = p.slots();
         let mut t = 0.0;
-        for q in &tab.bending {
-            let (a, c) = (comb(&q.ds, &rs, e), comb(&q.ny, &ys, e));
-            let (ad, cd) = (comb(&q.ds, &rs, ed), comb(&q.ny, &ys, ed));
+        for (x, y) in [(3, 6), (12, 15)] {
+            let v3 = |v: &[f64; 18], s: usize| [v[s], v[s + 1], v[s + 2]];
+            let (a, c) = (v3(e, x), v3(e, y));
+            let (ad, cd) = (v3(ed, x), v3(ed, y));
             let w = cross(&a, &ad).map(|x| x / dot(&a, &a));
             let wc = cross(&w, &c);
             let v = [0, 1, 2].map(|i| cd[i] - wc[i]);
-            t += 0.5 * q.w * p.rho_ip * dot(&v, &v);
+            t += 0.5 * (0.5 * p.length) * p.rho_ip * dot(&v, &v);
         }
         t
     }
@@ -1129,6 +1146,7 @@ pub(crate) mod tests {
     #[test]
     fn rigid_rotation_carries_director_inertia_for_the_twist_only() {
         // a bent, sheared, stretched element turning rigidly about Ω: T_y = ½ρI_p Σ w (Ω·t)²|t × r_y|²
+        // over the nodes (w = l/2)
         let p = props(true, 0.0, 1.0);
         let (e, _) = deformed::<18>(&p, 2);
         let tab = p.tables();
@@ -1141,7 +1159,7 @@ pub(crate) mod tests {
                 ed[s..s + 3].copy_from_slice(&cross(&om, &x));
             }
             let mut want = 0.0;
-            for q in &tab.bending {
+            for q in &tab.director {
                 let (a, c) = (comb(&q.ds, &rs, &e), comb(&q.ny, &ys, &e));
                 let t = a.map(|x| x / dot(&a, &a).sqrt());
                 let tc = cross(&t, &c);
@@ -1506,7 +1524,7 @@ pub(crate) mod tests {
 
     #[test]
     fn mass_and_gravity_match_quadrature() {
-        // independent: ρA ∫SᵀS and ρI_p ∫NᵀN by 5-point Gauss (exact for these degrees); total
+        // independent: ρA ∫SᵀS by 5-point Gauss (exact for this degree), ρI_p ∫NᵀN lumped; total
         // translational mass ρA l
         let p = props(true, 0.0, 1.0);
         let l = p.length;
@@ -1521,16 +1539,19 @@ pub(crate) mod tests {
         for (xg, wg) in GAUSS5 {
             let xi = 0.5 * (xg + 1.0);
             let (s, _, _) = hermite(xi, l);
-            let n = [1.0 - xi, xi];
             for j in 0..4 {
                 gi[j] += wg * 0.5 * l * p.rho_a * s[j];
                 for k in 0..4 {
                     mi[j][k] += wg * 0.5 * l * p.rho_a * s[j] * s[k];
                 }
             }
+        }
+        // the director's ρI_p∫NᵀN lumped at the nodes (2-point Lobatto: the trapezoid rule)
+        for (xi, wl) in [(0.0, 0.5 * l), (1.0, 0.5 * l)] {
+            let n = [1.0 - xi, xi];
             for j in 0..2 {
                 for k in 0..2 {
-                    yi[j][k] += wg * 0.5 * l * p.rho_ip * n[j] * n[k];
+                    yi[j][k] += wl * p.rho_ip * n[j] * n[k];
                 }
             }
         }

@@ -445,8 +445,11 @@ mod tests {
             // the cable's damping is not frame-indifferent for spin about its tangent (see
             // ancf3d), so its damping force may carry a net moment: undamped here
             let tau = if torsion { 7e-4 } else { 0.0 };
-            let p =
+            let mut p =
                 crate::model::ancf3d::tests::props(torsion, tau, if torsion { 0.5 } else { 1.0 });
+            // a director inertia 1e4 × the thin rod's, so that its moment dJ/dt (~ρI_p l |ė|²,
+            // at the nodes only) stands well above the balance's tolerance
+            p.rho_ip *= 1e4;
             let f = reference();
             let cols = [0, 1, 2].map(|c| [f[(0, c)], f[(1, c)], f[(2, c)]]);
             let mut e = crate::model::ancf3d::straight([0.1, 0.0, 0.2], cols, p.length, torsion);
@@ -513,7 +516,7 @@ mod tests {
             let em: Vec<f64> = e.iter().zip(&ed).map(|(x, y)| x - h * y).collect();
             let jd = (ang(&ep) - ang(&em)) / (2.0 * h);
             if torsion {
-                assert!(jd.amax() > 1e-12 * scale, "{jd}");
+                assert!(jd.amax() > 1e-10 * scale, "{jd} vs {scale}");
             }
             assert!(
                 (Vector3::from(mr) + m1 - jd).amax() < 1e-12 * scale,
