@@ -207,6 +207,17 @@ impl Ancf3Props {
         0.5 * (self.ei_y + self.ei_z)
     }
 
+    /// Whether the bending points take the cable's measure ½EI|r_x × r_xx|²/|r_x|⁴: without
+    /// torsion, and with torsion for an undamped section with E·I_y = E·I_z (relative 1e-12),
+    /// where the material frame's ½(EI_y κ₂² + EI_z κ₃²) is that energy exactly (κ₂² + κ₃² =
+    /// |t × r_xx|²/|r_x|², whatever r_y) at about half the operations. The damped torsion
+    /// element keeps the frame: its curvature rates are taken in the material frame, which
+    /// turns with the twist (the cable's do not).
+    pub fn cable_bending(&self) -> bool {
+        let round = (self.ei_y - self.ei_z).abs() <= 1e-12 * self.ei_y.abs().max(self.ei_z.abs());
+        !self.torsion || (round && self.damping_time == 0.0)
+    }
+
     /// Stiffness k of the nodal r_y penalty [N]: [`PENALTY_FACTOR`]·GJ/l².
     pub fn penalty_stiffness(&self) -> f64 {
         PENALTY_FACTOR * self.gj / (self.length * self.length)
@@ -375,8 +386,9 @@ impl Ancf3Props {
                 });
             }
         }
+        let cable = self.cable_bending();
         for p in &tab.bending {
-            if self.torsion {
+            if !cable {
                 let maps = [
                     Map::new(&p.ds, &rs),
                     Map::new(&p.dds, &rs),
@@ -442,12 +454,17 @@ impl Ancf3Props {
         if !self.torsion {
             return f;
         }
+        // at the nodes the point's r_x and r_y are the nodal slots themselves (the tables'
+        // director points: unit weights, read here directly)
         let (rs, ys) = self.slots();
-        for p in &tab.director {
-            let loc = |x: &[f64; D]| [comb(&p.ds, &rs, x), comb(&p.ny, &ys, x)];
+        for (p, (xs, yl)) in tab.director.iter().zip([(rs[1], ys[0]), (rs[3], ys[1])]) {
+            let v3 = |x: &[f64; D], s: usize| [x[s], x[s + 1], x[s + 2]];
+            let loc = |x: &[f64; D]| [v3(x, xs), v3(x, yl)];
             let [fa, fc] = director_point(p.w * self.rho_ip, &loc(e), &loc(ed), &loc(ea));
-            scatter(&mut f, &p.ds, &rs, &fa);
-            scatter(&mut f, &p.ny, &ys, &fc);
+            for c in 0..3 {
+                f[xs + c] += fa[c];
+                f[yl + c] += fc[c];
+            }
         }
         f
     }
@@ -527,6 +544,7 @@ impl Ancf3Props {
             let [g] = self.axial_point(*w, &[comb(ds, &rs, e)], ud.as_ref());
             scatter(&mut f, ds, &rs, &g);
         }
+        let cable = self.cable_bending();
         for p in &tab.bending {
             let (a, b) = (comb(&p.ds, &rs, e), comb(&p.dds, &rs, e));
             let (ad, bd) = if damped {
@@ -534,7 +552,7 @@ impl Ancf3Props {
             } else {
                 ([T::from(0.0); 3], [T::from(0.0); 3])
             };
-            if self.torsion {
+            if !cable {
                 let c = comb(&p.ny, &ys, e);
                 let ud = damped.then(|| [ad, bd, comb(&p.ny, &ys, ed)]);
                 let [ga, gb, gc] = self.bend_point(p.w, &[a, b, c], ud.as_ref());
