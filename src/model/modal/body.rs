@@ -725,11 +725,18 @@ impl ModalBody {
 
     /// (G a)_k / L: gradient of the tip foreshortening ½ aᵀ G a / L with respect to a_k [-].
     pub fn foreshortening_gradient(&self, q: &[f64]) -> Vec<f64> {
+        let mut g = vec![0.0; self.modes()];
+        self.foreshortening_gradient_into(q, &mut g);
+        g
+    }
+
+    /// [`ModalBody::foreshortening_gradient`] into `g` (n values; no allocation).
+    pub fn foreshortening_gradient_into(&self, q: &[f64], g: &mut [f64]) {
         let n = self.modes();
-        let a = &q[3..];
-        (0..n)
-            .map(|k| (0..n).map(|j| self.gram[k * n + j] * a[j]).sum::<f64>() / self.length)
-            .collect()
+        let a = &q[3..3 + n];
+        for (gk, row) in g.iter_mut().zip(self.gram.chunks_exact(n)) {
+            *gk = row.iter().zip(a).map(|(x, y)| x * y).sum::<f64>() / self.length;
+        }
     }
 
     /// Local position of the tip in the body frame: [L − ½ aᵀ G a / L; Σ φ_k(1) a_k], with
@@ -742,10 +749,17 @@ impl ModalBody {
 
     /// [`ModalBody::tip_local`] and [`ModalBody::foreshortening_gradient`] in one pass.
     pub fn tip_local_and_gradient(&self, q: &[f64]) -> (Vector2<f64>, Vec<f64>) {
+        let mut g = vec![0.0; self.modes()];
+        (self.tip_local_into(q, &mut g), g)
+    }
+
+    /// [`ModalBody::tip_local`], with the [`ModalBody::foreshortening_gradient`] into `g`
+    /// (n values; no allocation).
+    pub fn tip_local_into(&self, q: &[f64], g: &mut [f64]) -> Vector2<f64> {
         let w: f64 = self.basis.tip.iter().zip(&q[3..]).map(|(p, a)| p * a).sum();
-        let g = self.foreshortening_gradient(q);
+        self.foreshortening_gradient_into(q, g);
         let short: f64 = 0.5 * g.iter().zip(&q[3..]).map(|(g, a)| g * a).sum::<f64>();
-        (Vector2::new(self.length - short, w), g)
+        Vector2::new(self.length - short, w)
     }
 
     /// Elastic slope angle at the tip θ_J = Σ φ_k′(1) a_k / L [rad].
