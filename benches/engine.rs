@@ -1,4 +1,5 @@
-//! Engine kernels: one ANCF element (forces + tangent; planar and spatial), one Newton iteration (assembly +
+//! Engine kernels: one ANCF element (forces + tangent; planar and spatial), the planar modal
+//! body of the hybrid Case 1 (residual; residual + matrices), one Newton iteration (assembly +
 //! factorization + solve), one full step of Case 1 (planar and spatial) and the spatial cost per
 //! element (all-ANCF rods of 8 to 512 elements, with a fit printed to stderr).
 #![allow(missing_docs)] // criterion's macros generate undocumented items
@@ -8,6 +9,7 @@ use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::linalg::{LuMethod, INVERSE_MAX_DIM};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
 use hybeam::model::ancf3d::Ancf3Props;
+use hybeam::model::modal::{BodyOut, ModalBasis, ModalBody};
 use hybeam::model::{Model, Planar, Space, Spatial};
 use hybeam::scene::{Scene, StrainModel};
 use hybeam::simulator::Simulator;
@@ -42,6 +44,29 @@ fn element(c: &mut Criterion) {
     c.bench_function("ancf element: forces only", |b| {
         b.iter(|| black_box(p.elastic(black_box(&e), &ed, false)))
     });
+}
+
+/// The planar nonlinear modal body of the hybrid Case 1 (scenes/case1.toml: 0.2 m of the
+/// d = 2 mm steel rod, 4 clamped-free modes + 2 interface shapes) at a bent, moving state: its
+/// residual (every Newton iteration) and residual + matrices (every refactorization).
+fn modal_body(c: &mut Criterion) {
+    let d: f64 = 0.002;
+    let area = std::f64::consts::PI * d * d / 4.0;
+    let ei = 2.1e11 * area * d * d / 16.0;
+    let body = ModalBody::new(ModalBasis::new(4, true), 0.2, 7850.0 * area, ei, 0.0, 0.0);
+    let dim = body.dim();
+    let q: Vec<f64> = (0..dim).map(|i| 1e-3 * (1.0 + i as f64).sin()).collect();
+    let v: Vec<f64> = (0..dim).map(|i| 1e-2 * (0.5 + i as f64).cos()).collect();
+    let a: Vec<f64> = (0..dim).map(|i| 0.3 * (0.2 + i as f64).sin()).collect();
+    let mut out = BodyOut::new(dim);
+    let g = [0.0, -9.81];
+    c.bench_function("modal body case 1 (4 + 2 shapes): residual", |b| {
+        b.iter(|| body.eval(black_box(&q), &v, &a, g, false, &mut out))
+    });
+    c.bench_function(
+        "modal body case 1 (4 + 2 shapes): residual + matrices",
+        |b| b.iter(|| body.eval(black_box(&q), &v, &a, g, true, &mut out)),
+    );
 }
 
 fn newton(c: &mut Criterion) {
@@ -370,6 +395,7 @@ criterion_group!(
     benches,
     element,
     spatial_element,
+    modal_body,
     newton,
     step,
     spatial_step,

@@ -246,6 +246,13 @@ pub trait Port<S: Space>: Debug + Send + Sync + 'static {
         self.kinematics(q)
     }
 
+    /// [`Port::kinematics_first`] into `out`, which a port whose kinematics hold vectors
+    /// refills in place (no allocation once `out` has grown). Default:
+    /// `*out = self.kinematics_first(q)`.
+    fn kinematics_first_into(&self, q: &[f64], out: &mut S::PortKin) {
+        *out = self.kinematics_first(q);
+    }
+
     /// Stiffness of a dead moment `m` [N m] (global axes) at the port: adds
     /// `−m·∂²θ/∂q_i∂q_j` (the derivative of the residual `−m·∂θ/∂q_i` with respect to q_j, see
     /// [`super::PortKin::rotation_jacobian`]) through `add(i, j, value)` (local indices).

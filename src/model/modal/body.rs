@@ -16,7 +16,7 @@
 //! 1978). The linear floating frame (ū = [x; w], exact invariants, the damping D ȧ) is kept
 //! and the rest — every term of the foreshortening c(x) = −½∫₀ˣ w′²dx and the quartic strain
 //! energy ½EI∫w″²(w′² + ¼w′⁴)dx — is added on a composite 5-point Gauss rule
-//! (`ModalBody::add_nonlinear`), c at each point being the cumulative integral of w′² on the
+//! (`ModalBody::add_nonlinear_fields`), c at each point being the cumulative integral of w′² on the
 //! rule's own points. The tip (joints, tip loads) is the x = L case: [L − ½aᵀGa/L; w(L)] with
 //! G the rule's ∫φ′φ′ᵀdξ ([`ModalBody::tip_local`]), its angle the tangent's, θ +
 //! atan2(w′, 1 − ½w′²) ([`crate::model::planar::ModalTipPort`]). This carries the axial force
@@ -89,6 +89,11 @@ struct Nonlinear {
     w: Vec<f64>,
     /// (φ_k, φ_k′/L, φ_k″/L²)(ξ_p) at `[p * n + k]` (x-derivatives, once the body scales them).
     phi: Vec<[f64; 3]>,
+    /// The same values for pairs of points: for the pair (2b, 2b + 1) and shape k, the six
+    /// values (φ_k, φ_k′/L, φ_k″/L²) at both points (d-th at both, then the next) at
+    /// `[(b * n + k) * 6..]`, an odd count's last pair padded with zeros; for
+    /// [`ModalBody::fields_f64`]'s two-lane sums.
+    phi_pairs: Vec<f64>,
     /// ∫ from the start of a panel to its i-th point of the degree-4 interpolant through its
     /// five points, weight of the j-th: `s[i][j]` (× the panel half-width): with the full
     /// panels before, the cumulative integral ∫₀^ξ_q f dξ ≈ Σ_p V_qp f_p.
@@ -128,7 +133,22 @@ impl Nonlinear {
             xi: quad.iter().map(|p| p.0).collect(),
             w: quad.iter().map(|p| p.1).collect(),
             phi,
+            phi_pairs: Vec::new(),
             s,
+        }
+    }
+
+    /// Fills [`Nonlinear::phi_pairs`] from `phi` (after its scaling) for n shapes.
+    fn pair_up(&mut self, n: usize) {
+        let np = self.w.len();
+        self.phi_pairs = vec![0.0; np.div_ceil(2) * n * 6];
+        for (p, row) in self.phi.chunks_exact(n).enumerate() {
+            let (b, lane) = (p / 2, p % 2);
+            for (k, f) in row.iter().enumerate() {
+                for (d, &x) in f.iter().enumerate() {
+                    self.phi_pairs[(b * n + k) * 6 + 2 * d + lane] = x;
+                }
+            }
         }
     }
 }
@@ -178,6 +198,21 @@ pub struct BodyOut {
     pub k: DMatrix<f64>,
     /// Scratch of the nonlinear terms.
     buf: Vec<f64>,
+    /// Scratch of [`ModalBody::add_nonlinear_matrices`].
+    ad: AdScratch,
+}
+
+/// The dual-number buffers of [`ModalBody::add_nonlinear_matrices`], kept between calls.
+#[derive(Debug, Clone, Default)]
+struct AdScratch {
+    /// q, q̇, q̈ lifted.
+    x: [Vec<Dual64>; 3],
+    /// The nonlinear residual.
+    r: Vec<Dual64>,
+    /// The per-point fields.
+    buf: Vec<Dual64>,
+    /// The fields' values.
+    base: Vec<f64>,
 }
 
 impl BodyOut {
@@ -189,6 +224,7 @@ impl BodyOut {
             c: DMatrix::zeros(dim, dim),
             k: DMatrix::zeros(dim, dim),
             buf: Vec::new(),
+            ad: AdScratch::default(),
         }
     }
 }
@@ -234,6 +270,7 @@ impl ModalBody {
             f[1] /= length;
             f[2] /= length * length;
         }
+        nl.pair_up(n);
         Self {
             basis,
             length,
@@ -373,7 +410,8 @@ impl ModalBody {
         }
         if self.nonlinear {
             let sc = (rot_a[(1, 0)], rot_a[(0, 0)]);
-            self.add_nonlinear(q, v, a, g, sc, out.res.as_mut_slice(), &mut out.buf);
+            self.fields_f64(q, v, a, &mut out.buf);
+            self.add_nonlinear_fields(v, a, g, sc, out.res.as_mut_slice(), &mut out.buf);
         }
         if !matrices {
             return;
@@ -467,7 +505,6 @@ impl ModalBody {
         let n = self.modes();
         let nl = &self.nl;
         let np = nl.w.len();
-        let l = self.length;
         buf.clear();
         buf.resize(FIELDS * np, T::zero());
         let (qa, va, aa) = (&q[3..3 + n], &v[3..3 + n], &a[3..3 + n]);
@@ -484,6 +521,46 @@ impl ModalBody {
             }
             f[..7].copy_from_slice(&acc);
         }
+        self.foreshortening_fields(buf);
+    }
+
+    /// [`ModalBody::fields`] on f64: the same values (the same operations in the same order
+    /// for each point), two points at a time from [`Nonlinear::phi_pairs`] (the pair's
+    /// fourteen sums held in registers).
+    fn fields_f64(&self, q: &[f64], v: &[f64], a: &[f64], buf: &mut Vec<f64>) {
+        let n = self.modes();
+        let nl = &self.nl;
+        let np = nl.w.len();
+        buf.clear();
+        buf.resize(FIELDS * np, 0.0);
+        let (qa, va, aa) = (&q[3..3 + n], &v[3..3 + n], &a[3..3 + n]);
+        for (b, tab) in nl.phi_pairs.chunks_exact(6 * n).enumerate() {
+            let mut acc = [[0.0f64; 2]; 7];
+            for (((t, &x), &y), &z) in tab.chunks_exact(6).zip(qa).zip(va).zip(aa) {
+                for i in 0..2 {
+                    acc[0][i] += x * t[i];
+                    acc[1][i] += y * t[i];
+                    acc[2][i] += z * t[i];
+                    acc[3][i] += x * t[2 + i];
+                    acc[4][i] += y * t[2 + i];
+                    acc[5][i] += z * t[2 + i];
+                    acc[6][i] += x * t[4 + i];
+                }
+            }
+            for i in 0..2.min(np - 2 * b) {
+                let f = &mut buf[FIELDS * (2 * b + i)..FIELDS * (2 * b + i) + 7];
+                for (slot, sum) in f.iter_mut().zip(&acc) {
+                    *slot = sum[i];
+                }
+            }
+        }
+        self.foreshortening_fields(buf);
+    }
+
+    /// The foreshortening slots 7–9 of [`ModalBody::fields`] from the slopes in slots 3–5.
+    fn foreshortening_fields<T: Real>(&self, buf: &mut [T]) {
+        let nl = &self.nl;
+        let l = self.length;
         // ∫₀^ξ (w′², w′ẇ′, ẇ′² + w′ẅ′) dξ over the panels before
         let mut done = [T::zero(); 3];
         for (panel, pts) in buf.chunks_exact_mut(5 * FIELDS).enumerate() {
@@ -520,22 +597,19 @@ impl ModalBody {
     /// ΔF_a = Σ m [φ αᶜ_y − s (Z + α⁰ + αᶜ)_x] + ∂U_nl/∂a, s = ∂(−c)/∂a, summed as
     /// Σ_p φ′_p w′_p N_p with the axial force N_p = Σ_q m_q (Z + α⁰ + αᶜ)_x,q V_qp.
     /// Generic over the scalar (f64 residuals, [`Dual64`] for the exact Jacobians); `(sn, cs)`
-    /// = (sin θ, cos θ).
-    #[allow(clippy::too_many_arguments)]
-    fn add_nonlinear<T: Real>(
+    /// = (sin θ, cos θ); the state's [`ModalBody::fields`] in `buf` (which it overwrites).
+    fn add_nonlinear_fields<T: Real>(
         &self,
-        q: &[T],
         v: &[T],
         a: &[T],
         g: [f64; 2],
         (sn, cs): (T, T),
         out: &mut [T],
-        buf: &mut Vec<T>,
+        buf: &mut [T],
     ) {
         let n = self.modes();
         let nl = &self.nl;
         let l = self.length;
-        self.fields(q, v, a, buf);
         let (thd, thdd) = (v[2], a[2]);
         let thd2 = thd * thd;
         let (gx, gy) = (a[0] - g[0], a[1] - g[1]);
@@ -597,9 +671,12 @@ impl ModalBody {
         }
     }
 
-    /// Adds the exact partial derivatives of [`ModalBody::add_nonlinear`] to `out.m`, `out.c`,
-    /// `out.k`, column by column by forward-mode automatic differentiation (R and Ṙ do not
-    /// appear). Allocates; the Newton matrix is rebuilt rarely.
+    /// Adds the exact partial derivatives of [`ModalBody::add_nonlinear_fields`] to `out.m`,
+    /// `out.c`, `out.k`, column by column by forward-mode automatic differentiation (R and Ṙ do
+    /// not appear), in the scratch of `out`. The per-point fields' first seven slots are linear
+    /// in the modal coordinates: their values are computed once and a modal column's
+    /// derivatives are the shapes' values (what the dual sums of [`ModalBody::fields`] give,
+    /// bit for bit); only the foreshortening and the forces run on dual numbers.
     #[inline(never)]
     fn add_nonlinear_matrices(
         &self,
@@ -610,29 +687,48 @@ impl ModalBody {
         out: &mut BodyOut,
     ) {
         let d = self.dim();
-        let lift = |x: &[f64]| -> Vec<Dual64> { x.iter().map(|&x| Dual64::from_re(x)).collect() };
-        let mut x = [lift(q), lift(v), lift(a)];
-        let mut r = vec![Dual64::from_re(0.0); d];
-        let mut buf = Vec::new();
+        let n = self.modes();
+        let zero = Dual64::from_re(0.0);
+        let ad = &mut out.ad;
+        for (x, y) in ad.x.iter_mut().zip([q, v, a]) {
+            x.clear();
+            x.extend(y.iter().map(|&y| Dual64::from_re(y)));
+        }
+        ad.r.clear();
+        ad.r.resize(d, zero);
+        self.fields_f64(q, v, a, &mut ad.base);
         for j in 0..d {
             for which in 0..3 {
                 if which < 2 && j < 2 {
                     continue;
                 }
-                x[which][j].eps = 1.0;
-                r.fill(Dual64::from_re(0.0));
-                let [xq, xv, xa] = &x;
+                ad.x[which][j].eps = 1.0;
+                ad.r.fill(zero);
+                ad.buf.clear();
+                ad.buf.extend(ad.base.iter().map(|&f| Dual64::from_re(f)));
+                if j >= 3 {
+                    // ∂/∂ of the modal coordinate k: its shape in the slots it enters
+                    let slots = [[0, 3, 6], [1, 4, 7], [2, 5, 8]][which];
+                    let phis = self.nl.phi[j - 3..].iter().step_by(n);
+                    for (f, ph) in ad.buf.chunks_exact_mut(FIELDS).zip(phis) {
+                        for (&s, &p) in slots.iter().zip(ph).take(3 - usize::from(which > 0)) {
+                            f[s].eps = p;
+                        }
+                    }
+                }
+                self.foreshortening_fields(&mut ad.buf);
+                let [xq, xv, xa] = &ad.x;
                 let sc = math::sin_cos_dual(xq[2]);
-                self.add_nonlinear(xq, xv, xa, g, sc, &mut r, &mut buf);
+                self.add_nonlinear_fields(xv, xa, g, sc, &mut ad.r, &mut ad.buf);
                 let mat = match which {
                     0 => &mut out.k,
                     1 => &mut out.c,
                     _ => &mut out.m,
                 };
-                for (i, ri) in r.iter().enumerate() {
+                for (i, ri) in ad.r.iter().enumerate() {
                     mat[(i, j)] += ri.eps;
                 }
-                x[which][j].eps = 0.0;
+                ad.x[which][j].eps = 0.0;
             }
         }
     }
@@ -725,11 +821,18 @@ impl ModalBody {
 
     /// (G a)_k / L: gradient of the tip foreshortening ½ aᵀ G a / L with respect to a_k [-].
     pub fn foreshortening_gradient(&self, q: &[f64]) -> Vec<f64> {
+        let mut g = vec![0.0; self.modes()];
+        self.foreshortening_gradient_into(q, &mut g);
+        g
+    }
+
+    /// [`ModalBody::foreshortening_gradient`] into `g` (n values; no allocation).
+    pub fn foreshortening_gradient_into(&self, q: &[f64], g: &mut [f64]) {
         let n = self.modes();
-        let a = &q[3..];
-        (0..n)
-            .map(|k| (0..n).map(|j| self.gram[k * n + j] * a[j]).sum::<f64>() / self.length)
-            .collect()
+        let a = &q[3..3 + n];
+        for (gk, row) in g.iter_mut().zip(self.gram.chunks_exact(n)) {
+            *gk = row.iter().zip(a).map(|(x, y)| x * y).sum::<f64>() / self.length;
+        }
     }
 
     /// Local position of the tip in the body frame: [L − ½ aᵀ G a / L; Σ φ_k(1) a_k], with
@@ -742,10 +845,17 @@ impl ModalBody {
 
     /// [`ModalBody::tip_local`] and [`ModalBody::foreshortening_gradient`] in one pass.
     pub fn tip_local_and_gradient(&self, q: &[f64]) -> (Vector2<f64>, Vec<f64>) {
+        let mut g = vec![0.0; self.modes()];
+        (self.tip_local_into(q, &mut g), g)
+    }
+
+    /// [`ModalBody::tip_local`], with the [`ModalBody::foreshortening_gradient`] into `g`
+    /// (n values; no allocation).
+    pub fn tip_local_into(&self, q: &[f64], g: &mut [f64]) -> Vector2<f64> {
         let w: f64 = self.basis.tip.iter().zip(&q[3..]).map(|(p, a)| p * a).sum();
-        let g = self.foreshortening_gradient(q);
+        self.foreshortening_gradient_into(q, g);
         let short: f64 = 0.5 * g.iter().zip(&q[3..]).map(|(g, a)| g * a).sum::<f64>();
-        (Vector2::new(self.length - short, w), g)
+        Vector2::new(self.length - short, w)
     }
 
     /// Elastic slope angle at the tip θ_J = Σ φ_k′(1) a_k / L [rad].

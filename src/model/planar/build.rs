@@ -149,11 +149,7 @@ impl SegmentParts<Planar> for PlanarParts {
         _length: f64,
     ) -> Result<(LocalDofs, Box<dyn Constraint>), SceneError> {
         let dofs = LocalDofs::concat(&[&up.dofs, &down.dofs]);
-        let joint = RigidJoint {
-            up: up.port,
-            down: down.port,
-            up_len: up.dofs.len(),
-        };
+        let joint = RigidJoint::new(up.port, down.port, up.dofs.len());
         Ok((dofs, Box::new(joint)))
     }
 }

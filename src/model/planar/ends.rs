@@ -144,16 +144,24 @@ pub struct NodePort;
 
 impl Port<Planar> for NodePort {
     fn kinematics(&self, q: &[f64]) -> EndKin {
+        let mut out = EndKin::default();
+        self.kinematics_first_into(q, &mut out);
+        out
+    }
+
+    fn kinematics_first_into(&self, q: &[f64], out: &mut EndKin) {
         let z = Vector2::zeros();
-        EndKin {
-            p: Vector2::new(q[0], q[1]),
-            dp: vec![Vector2::x(), Vector2::y(), z, z],
-            orient: Orientation::Slope(
-                Vector2::new(q[2], q[3]),
-                vec![z, z, Vector2::x(), Vector2::y()],
-            ),
-            curv: None,
-        }
+        out.p = Vector2::new(q[0], q[1]);
+        out.dp.clear();
+        out.dp.extend([Vector2::x(), Vector2::y(), z, z]);
+        let mut ds = match std::mem::take(&mut out.orient) {
+            Orientation::Slope(_, v) => v,
+            Orientation::Angle(..) => Vec::new(),
+        };
+        ds.clear();
+        ds.extend([z, z, Vector2::x(), Vector2::y()]);
+        out.orient = Orientation::Slope(Vector2::new(q[2], q[3]), ds);
+        out.curv = None;
     }
 
     /// ψ = atan2(s_y, s_x): ∂²ψ/∂s∂s = [[2 s_x s_y, s_y² − s_x²], [s_y² − s_x², −2 s_x s_y]]/|s|⁴.
@@ -195,8 +203,9 @@ impl ModalTipPort {
 }
 
 impl ModalTipPort {
-    /// The kinematics, with the second derivatives if `curvature`.
-    fn kinematics_with(&self, ql: &[f64], curvature: bool) -> EndKin {
+    /// The kinematics into `out` (its vectors refilled in place), with the second derivatives
+    /// if `curvature`.
+    fn kinematics_with(&self, ql: &[f64], curvature: bool, out: &mut EndKin) {
         let b = &*self.0;
         let n = b.modes();
         let t = b.tip_slope(ql);
@@ -205,18 +214,22 @@ impl ModalTipPort {
         } else {
             [t, 1.0, 0.0]
         };
-        let mut dpsi = vec![0.0; 3 + n];
+        let mut dpsi = angle_storage(&mut out.orient);
+        dpsi.clear();
+        dpsi.resize(3 + n, 0.0);
         dpsi[2] = 1.0;
         let a = rot(ql[2]);
-        let (tip, gk) = b.tip_local_and_gradient(ql);
+        // the foreshortening gradient g_k in dpsi[3 + k] until ∂ψ/∂a_k replaces it
+        let tip = b.tip_local_into(ql, &mut dpsi[3..]);
         let au = a * tip;
-        let mut dp = Vec::with_capacity(3 + n);
+        let dp = &mut out.dp;
+        dp.clear();
         dp.extend([Vector2::x(), Vector2::y(), Vector2::new(-au[1], au[0])]);
         for k in 0..n {
-            dp.push(a * Vector2::new(-gk[k], b.basis.tip[k]));
+            dp.push(a * Vector2::new(-dpsi[3 + k], b.basis.tip[k]));
             dpsi[3 + k] = f1 * b.basis.tip_slope[k] / b.length;
         }
-        let curv = curvature.then(|| TipCurvature {
+        out.curv = curvature.then(|| TipCurvature {
             theta: 2,
             au,
             j_dp_da: dp[3..].iter().map(|c| Vector2::new(-c[1], c[0])).collect(),
@@ -224,23 +237,35 @@ impl ModalTipPort {
             gram: b.gram.clone(),
             angle: (f2, self.slope_gradient()),
         });
-        EndKin {
-            p: Vector2::new(ql[0], ql[1]) + au,
-            dp,
-            orient: Orientation::Angle(ql[2] + f, dpsi),
-            curv,
-        }
+        out.p = Vector2::new(ql[0], ql[1]) + au;
+        out.orient = Orientation::Angle(ql[2] + f, dpsi);
+    }
+}
+
+/// The ∂ψ/∂q storage of an angle orientation, taken for reuse (empty for a slope).
+fn angle_storage(o: &mut Orientation) -> Vec<f64> {
+    match std::mem::take(o) {
+        Orientation::Angle(_, v) => v,
+        Orientation::Slope(..) => Vec::new(),
     }
 }
 
 impl Port<Planar> for ModalTipPort {
     fn kinematics(&self, ql: &[f64]) -> EndKin {
-        self.kinematics_with(ql, true)
+        let mut out = EndKin::default();
+        self.kinematics_with(ql, true, &mut out);
+        out
     }
 
     /// Without [`EndKin::curv`] (the residual paths).
     fn kinematics_first(&self, ql: &[f64]) -> EndKin {
-        self.kinematics_with(ql, false)
+        let mut out = EndKin::default();
+        self.kinematics_with(ql, false, &mut out);
+        out
+    }
+
+    fn kinematics_first_into(&self, ql: &[f64], out: &mut EndKin) {
+        self.kinematics_with(ql, false, out);
     }
 
     /// −m·∂²ψ/∂a_j∂a_k = −m f″(t) u_j u_k (ψ is linear in θ; in a for a linear body).
@@ -267,18 +292,24 @@ pub struct ModalRootPort(pub Arc<ModalBody>);
 
 impl Port<Planar> for ModalRootPort {
     fn kinematics(&self, ql: &[f64]) -> EndKin {
+        let mut out = EndKin::default();
+        self.kinematics_first_into(ql, &mut out);
+        out
+    }
+
+    fn kinematics_first_into(&self, ql: &[f64], out: &mut EndKin) {
         let d = self.0.dim();
-        let mut dp = vec![Vector2::zeros(); d];
-        dp[0] = Vector2::x();
-        dp[1] = Vector2::y();
-        let mut dpsi = vec![0.0; d];
+        out.dp.clear();
+        out.dp.resize(d, Vector2::zeros());
+        out.dp[0] = Vector2::x();
+        out.dp[1] = Vector2::y();
+        let mut dpsi = angle_storage(&mut out.orient);
+        dpsi.clear();
+        dpsi.resize(d, 0.0);
         dpsi[2] = 1.0;
-        EndKin {
-            p: Vector2::new(ql[0], ql[1]),
-            dp,
-            orient: Orientation::Angle(ql[2], dpsi),
-            curv: None,
-        }
+        out.p = Vector2::new(ql[0], ql[1]);
+        out.orient = Orientation::Angle(ql[2], dpsi);
+        out.curv = None;
     }
 
     /// The angle θ is a coordinate: no stiffness.

@@ -8,6 +8,7 @@ use super::Planar;
 use crate::math;
 use crate::model::component::{Constraint, ConstraintOut, Port};
 use nalgebra::Vector2;
+use std::sync::{Mutex, PoisonError};
 
 /// A rigid joint over the local coordinates [up ; down] of its two ends.
 #[derive(Debug)]
@@ -18,6 +19,21 @@ pub struct RigidJoint {
     pub down: Box<dyn Port<Planar>>,
     /// Number of local coordinates of the upstream end.
     pub up_len: usize,
+    /// The ends' first-order kinematics of the residual path, refilled in place
+    /// ([`Port::kinematics_first_into`]): no allocation per evaluation.
+    scratch: Mutex<[EndKin; 2]>,
+}
+
+impl RigidJoint {
+    /// The joint between `up` (its `up_len` local coordinates first) and `down`.
+    pub fn new(up: Box<dyn Port<Planar>>, down: Box<dyn Port<Planar>>, up_len: usize) -> Self {
+        Self {
+            up,
+            down,
+            up_len,
+            scratch: Mutex::default(),
+        }
+    }
 }
 
 impl Constraint for RigidJoint {
@@ -28,12 +44,16 @@ impl Constraint for RigidJoint {
     fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut) {
         // the second derivatives only for the λ-Hessian
         let (qu, qd) = q.split_at(self.up_len);
-        let (up, down) = if lambda.is_some() {
-            (self.up.kinematics(qu), self.down.kinematics(qd))
+        if let Some(l) = lambda {
+            let (up, down) = (self.up.kinematics(qu), self.down.kinematics(qd));
+            joint_eval(&up, &down, Some([l[0], l[1], l[2]]), out);
         } else {
-            (self.up.kinematics_first(qu), self.down.kinematics_first(qd))
-        };
-        joint_eval(&up, &down, lambda.map(|l| [l[0], l[1], l[2]]), out);
+            let mut kin = self.scratch.lock().unwrap_or_else(PoisonError::into_inner);
+            let [up, down] = &mut *kin;
+            self.up.kinematics_first_into(qu, up);
+            self.down.kinematics_first_into(qd, down);
+            joint_eval(up, down, None, out);
+        }
     }
 }
 
