@@ -172,7 +172,8 @@ PROBLEMS = {
                 "hybeam hybrid modal+ANCF",
                 "scenes/case1.toml",
                 "segments.1.elements",
-                element_fraction=0.5,
+                ("segments.0.modes=2",),
+                element_fraction=0.375,
             ),
             Family(
                 "hybeam",
@@ -183,7 +184,8 @@ PROBLEMS = {
         ],
         HYBEAM_PLANAR,
         EXUDYN_PLANAR,
-        note="the hybrid's ANCF half gets half of the grid's elements; the all-modal rod (one "
+        note="the hybrid (2 modes on its modal half) meshes its ANCF half with round(3 n / 8) "
+        "elements: 2, 3, 6, 12; the all-modal rod (one "
         "modal segment, scenes/case1_modal.toml) gets round(12 n / 32) modes: 2, 3, 6, 12",
     ),
     "spatial": Problem(
@@ -199,10 +201,28 @@ PROBLEMS = {
                 "segments.0.elements",
                 (_tip_force_set(),),
             ),
+            Family(
+                "hybeam",
+                "hybeam hybrid modal+cable",
+                "scenes/case1_3d.toml",
+                "segments.1.elements",
+                ("torsion=false", "segments.0.modes=2", _tip_force_set()),
+                element_fraction=0.375,
+            ),
+            Family(
+                "hybeam",
+                "hybeam all-modal",
+                "scenes/case1_3d_modal.toml",
+                sets=(_tip_force_set(),),
+                modes_key="segments.0.modes",
+            ),
         ],
         HYBEAM_CABLE3D,
         EXUDYN_SPATIAL,
-        note="every family meshes the whole rod with the grid's elements",
+        note="the ANCF families mesh the whole rod with the grid's elements; the hybrid (2 modes "
+        "per plane) meshes its ANCF half (3D cable) with round(3 n / 8): 2, 3, 6, 12; the "
+        "all-modal rod (scenes/case1_3d_modal.toml) gets round(12 n / 32) modes per bending "
+        "plane: 2, 3, 6, 12",
     ),
     "case3": Problem(
         "case3",
