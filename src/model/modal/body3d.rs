@@ -250,21 +250,7 @@ impl ModalBody3 {
         let s_f = basis.i1.iter().map(|v| mu * v).collect();
         let s_x = basis.ix.iter().map(|v| mu * l * v).collect();
         let (g1, g2) = basis.stiffening_grams();
-        let nb = basis.len();
-        let mut nl = Nonlinear::new(&basis, panels(nb));
-        let mut gram = vec![0.0; nb * nb];
-        for (p, w) in nl.w.iter().enumerate() {
-            let phi = &nl.phi[p * nb..(p + 1) * nb];
-            for i in 0..nb {
-                for j in 0..nb {
-                    gram[i * nb + j] += w * phi[i][1] * phi[j][1];
-                }
-            }
-        }
-        for f in &mut nl.phi {
-            f[1] /= l;
-            f[2] /= l * l;
-        }
+        let (nl, gram) = Self::rule(&basis, l, panels(basis.len()));
         Self {
             basis,
             props,
@@ -287,6 +273,39 @@ impl ModalBody3 {
             nl,
             damped,
         }
+    }
+
+    /// The nonlinear terms' quadrature (composite 5-point Gauss on `panels` panels, shapes
+    /// scaled to x-derivatives) and its G = Σ_p W_p φ′φ′ᵀ (ξ-derivatives).
+    fn rule(basis: &ModalBasis, l: f64, panels: usize) -> (Nonlinear, Vec<f64>) {
+        let nb = basis.len();
+        let mut nl = Nonlinear::new(basis, panels);
+        let mut gram = vec![0.0; nb * nb];
+        for (p, w) in nl.w.iter().enumerate() {
+            let phi = &nl.phi[p * nb..(p + 1) * nb];
+            for i in 0..nb {
+                for j in 0..nb {
+                    gram[i * nb + j] += w * phi[i][1] * phi[j][1];
+                }
+            }
+        }
+        for f in &mut nl.phi {
+            f[1] /= l;
+            f[2] /= l * l;
+        }
+        (nl, gram)
+    }
+
+    /// The same body with the nonlinear terms on `panels` (≥ 1) panels of its composite rule
+    /// instead of the default max(2, ⌈nb/4⌉) (for convergence checks; no effect on a linear
+    /// body).
+    pub fn with_panels(mut self, panels: usize) -> Self {
+        let (nl, gram) = Self::rule(&self.basis, self.props.length, panels.max(1));
+        self.nl = nl;
+        if self.nonlinear {
+            self.gram = gram;
+        }
+        self
     }
 
     /// The linear floating frame instead (the body before the nonlinear terms): ū = (x, v, w)
