@@ -72,7 +72,14 @@ fn spatial_modal_root_with_ancf_tip_nonlinear_and_linear() {
         let s = scene(
             "space = \"spatial\"\ntorsion = true\ngravity = [0.0, 1.0, -9.81]",
             &[
-                modal("m1", 0.2, rect, 3, true, &format!("damping_ratio = 0.05\n{lin}")),
+                modal(
+                    "m1",
+                    0.2,
+                    rect,
+                    3,
+                    true,
+                    &format!("damping_ratio = 0.05\n{lin}"),
+                ),
                 ancf("a", 0.2, rect, 2, "damping_time = 1e-3"),
                 modal("m2", 0.2, rect, 2, false, lin),
             ],

@@ -425,58 +425,58 @@ fn velocity_terms_match_lagranges_equations() {
     // undamped, no gravity: r(q, q̇, 0) − r(q, 0, 0) = d/dt(∂T/∂q̇)|_{q̈=0} − ∂T/∂q with T by
     // quadrature, differentiated by central differences (error O(h²))
     for nonlinear in [true, false] {
-    let mut b = test_body(3, true).with_panels(24);
-    if !nonlinear {
-        b = b.linear();
-    }
-    b.d_y.iter_mut().for_each(|x| *x = 0.0);
-    b.d_z.iter_mut().for_each(|x| *x = 0.0);
-    b.d_t = [[0.0; 2]; 2];
-    let d = b.dim();
-    let (q, v, _) = smooth_state(&b, 0.25, 3.0, 0.5);
-    let z = vec![0.0; d];
-    let r1 = residual(&b, &q, &v, &z, [0.0; 3]);
-    let r0 = residual(&b, &q, &z, &z, [0.0; 3]);
-    let rv: Vec<f64> = r1.iter().zip(&r0).map(|(a, b)| a - b).collect();
-    let t = |q: &[f64], v: &[f64]| quadrature_kinetic_energy(&b, q, v);
-    let dt_dv = |q: &[f64], k: usize| {
-        let hv = 1e-3;
-        let (mut vp, mut vm) = (v.clone(), v.clone());
-        vp[k] += hv;
-        vm[k] -= hv;
-        (t(q, &vp) - t(q, &vm)) / (2.0 * hv)
-    };
-    let mut errs = Vec::new();
-    for h in [1e-3, 5e-4] {
-        let mut lag = vec![0.0; d];
-        for k in 0..d {
-            let qp: Vec<f64> = q.iter().zip(&v).map(|(q, v)| q + h * v).collect();
-            let qm: Vec<f64> = q.iter().zip(&v).map(|(q, v)| q - h * v).collect();
-            let ddt = (dt_dv(&qp, k) - dt_dv(&qm, k)) / (2.0 * h);
-            let (mut qkp, mut qkm) = (q.clone(), q.clone());
-            qkp[k] += h;
-            qkm[k] -= h;
-            let dtq = (t(&qkp, &v) - t(&qkm, &v)) / (2.0 * h);
-            lag[k] = ddt - dtq;
+        let mut b = test_body(3, true).with_panels(24);
+        if !nonlinear {
+            b = b.linear();
         }
-        // the p rows are defined up to a multiple of p (absorbed by the normalization
-        // multiplier): compare their parts ⟂ p
-        let mut diff: Vec<f64> = rv.iter().zip(&lag).map(|(a, b)| a - b).collect();
-        let along: f64 = (3..7).map(|k| diff[k] * q[k]).sum();
-        for k in 3..7 {
-            diff[k] -= along * q[k];
-        }
-        eprintln!("  p-rows difference along p: {along:.3e}");
-        let scale = lag.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let err = diff.iter().fold(0.0f64, |m, x| m.max(x.abs())) / scale;
-        eprintln!(
+        b.d_y.iter_mut().for_each(|x| *x = 0.0);
+        b.d_z.iter_mut().for_each(|x| *x = 0.0);
+        b.d_t = [[0.0; 2]; 2];
+        let d = b.dim();
+        let (q, v, _) = smooth_state(&b, 0.25, 3.0, 0.5);
+        let z = vec![0.0; d];
+        let r1 = residual(&b, &q, &v, &z, [0.0; 3]);
+        let r0 = residual(&b, &q, &z, &z, [0.0; 3]);
+        let rv: Vec<f64> = r1.iter().zip(&r0).map(|(a, b)| a - b).collect();
+        let t = |q: &[f64], v: &[f64]| quadrature_kinetic_energy(&b, q, v);
+        let dt_dv = |q: &[f64], k: usize| {
+            let hv = 1e-3;
+            let (mut vp, mut vm) = (v.clone(), v.clone());
+            vp[k] += hv;
+            vm[k] -= hv;
+            (t(q, &vp) - t(q, &vm)) / (2.0 * hv)
+        };
+        let mut errs = Vec::new();
+        for h in [1e-3, 5e-4] {
+            let mut lag = vec![0.0; d];
+            for k in 0..d {
+                let qp: Vec<f64> = q.iter().zip(&v).map(|(q, v)| q + h * v).collect();
+                let qm: Vec<f64> = q.iter().zip(&v).map(|(q, v)| q - h * v).collect();
+                let ddt = (dt_dv(&qp, k) - dt_dv(&qm, k)) / (2.0 * h);
+                let (mut qkp, mut qkm) = (q.clone(), q.clone());
+                qkp[k] += h;
+                qkm[k] -= h;
+                let dtq = (t(&qkp, &v) - t(&qkm, &v)) / (2.0 * h);
+                lag[k] = ddt - dtq;
+            }
+            // the p rows are defined up to a multiple of p (absorbed by the normalization
+            // multiplier): compare their parts ⟂ p
+            let mut diff: Vec<f64> = rv.iter().zip(&lag).map(|(a, b)| a - b).collect();
+            let along: f64 = (3..7).map(|k| diff[k] * q[k]).sum();
+            for k in 3..7 {
+                diff[k] -= along * q[k];
+            }
+            eprintln!("  p-rows difference along p: {along:.3e}");
+            let scale = lag.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let err = diff.iter().fold(0.0f64, |m, x| m.max(x.abs())) / scale;
+            eprintln!(
             "nonlinear {nonlinear}: Q_v vs Lagrange (FD of quadrature T), h = {h:e}: max error / max term = {err:.2e}"
         );
-        errs.push(err);
-    }
-    // O(h²): halving h quarters the error (until round-off)
-    assert!(errs[1] < 1e-5, "{errs:?}");
-    assert!(errs[1] < 0.4 * errs[0] || errs[1] < 1e-8, "{errs:?}");
+            errs.push(err);
+        }
+        // O(h²): halving h quarters the error (until round-off)
+        assert!(errs[1] < 1e-5, "{errs:?}");
+        assert!(errs[1] < 0.4 * errs[0] || errs[1] < 1e-8, "{errs:?}");
     }
 }
 
@@ -1058,7 +1058,11 @@ fn undamped_body_conserves_energy_along_its_motion() {
                 .map(|n| 0.5 * (b.k_y[n] * q[7 + n].powi(2) + b.k_z[n] * q[7 + nb + n].powi(2)))
                 .sum::<f64>()
                 + (0..2)
-                    .map(|i| (0..2).map(|j| 0.5 * at[i] * b.k_t[i][j] * at[j]).sum::<f64>())
+                    .map(|i| {
+                        (0..2)
+                            .map(|j| 0.5 * at[i] * b.k_t[i][j] * at[j])
+                            .sum::<f64>()
+                    })
                     .sum::<f64>()
         };
         let unl = |s: f64| {

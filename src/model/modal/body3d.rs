@@ -649,14 +649,14 @@ impl ModalBody3 {
             );
             let ac = add(
                 add(cross(wd, ce), cross(w, cross(w, ce))),
-                add(scale(cross(w, [f[15], zero, zero]), T::from(2.0)), [f[16], zero, zero]),
+                add(
+                    scale(cross(w, [f[15], zero, zero]), T::from(2.0)),
+                    [f[16], zero, zero],
+                ),
             );
             let al = add(a0, ac);
             df = add(df, scale(ac, T::from(m)));
-            dm = add(
-                dm,
-                scale(add(cross(u0, ac), cross(ce, al)), T::from(m)),
-            );
+            dm = add(dm, scale(add(cross(u0, ac), cross(ce, al)), T::from(m)));
             f[17] = al[0] * m;
             f[18] = ac[1] * m;
             f[19] = ac[2] * m;
@@ -856,12 +856,7 @@ impl ModalBody3 {
     pub fn foreshortening_gradient(&self, a: &[f64]) -> Vec<f64> {
         let nb = self.modes();
         (0..nb)
-            .map(|k| {
-                (0..nb)
-                    .map(|j| self.gram[k * nb + j] * a[j])
-                    .sum::<f64>()
-                    / self.props.length
-            })
+            .map(|k| (0..nb).map(|j| self.gram[k * nb + j] * a[j]).sum::<f64>() / self.props.length)
             .collect()
     }
 

@@ -394,7 +394,10 @@ impl TipDirectors {
             let mut y = x.map(HyperDual64::from_re);
             y[i].eps1 = 1.0;
             y[j].eps2 = 1.0;
-            for (n, r) in tip_directors(y[0], y[1], y[2], nonlinear).iter().enumerate() {
+            for (n, r) in tip_directors(y[0], y[1], y[2], nonlinear)
+                .iter()
+                .enumerate()
+            {
                 out.v[n] = Vector3::new(r[0].re, r[1].re, r[2].re);
                 out.g[n][i] = Vector3::new(r[0].eps1, r[1].eps1, r[2].eps1);
                 out.h[n][pi] = Vector3::new(r[0].eps1eps2, r[1].eps1eps2, r[2].eps1eps2);
