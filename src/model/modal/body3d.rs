@@ -7,10 +7,17 @@
 //! and a_z (x–z plane, E·i_y) [m] on the shapes of a [`ModalBasis`] (∫φ_iφ_j dξ = δ_ij), and
 //! torsion amplitudes a_t [rad] on χ₁ = ξ (static twist shape) and χ₂ = √2 sin πξ.
 //!
-//! A centerline point at x = ξL is at r = R + A ū, ū = (x, φᵀa_y, φᵀa_z); the section turns
-//! about the body x axis by θ(ξ) = χᵀa_t and is treated as a spinning rigid disk (kinetic energy
-//! ½∫ρI_p(ω̄_x + θ̇)²dx). Linear FFRF: no geometric stiffening (the tip foreshortening is in the
-//! tip port only, [`ModalBody3::tip_local`]). Body angular velocity ω̄ = 2Ēṗ (Ē̇ṗ = 0).
+//! A centerline point at x = ξL is at r = R + A ū, ū = (x − ½∫₀ˣ(v′² + w′²)dx, v, w), v = φᵀa_y,
+//! w = φᵀa_z; the section turns about the body x axis by θ(ξ) = χᵀa_t and is treated as a
+//! spinning rigid disk (kinetic energy ½∫ρI_p(ω̄_x + θ̇)²dx). Geometrically nonlinear as the
+//! planar body ([`super::ModalBody`]; docs/references.md §7.6): the foreshortening of every
+//! point in the inertia and gravity forces, the inextensible curvatures κ_z = v″(1 + ½v′²) +
+//! v′w′w″ and κ_y = w″(1 + ½w′²) (Crespo da Silva & Glynn 1978) in the strain energy, both on
+//! the planar body's composite 5-point Gauss rule, added to the linear floating frame's exact
+//! terms (`ModalBody3::add_nonlinear`); torsion as before. [`ModalBody3::linear`] is the linear
+//! FFRF instead (the foreshortening in the tip port only, [`ModalBody3::tip_local`]; the
+//! geometric stiffness K_G of a held frame by [`ModalBody3::with_stiffening`]).
+//! Body angular velocity ω̄ = 2Ēṗ (Ē̇ṗ = 0).
 //!
 //! The residual is `r = M q̈ − Q_v(q, q̇) − Q_g(q) + K a + D ȧ` in Exudyn's form (the p rows are
 //! Ḡᵀ = 2Ēᵀ times the body-frame moment balance about the frame origin; they are defined up to a
