@@ -58,6 +58,20 @@
 //! against the branch's recordings round-off only (tip ≤ 1.0e-7 m `case3_3d_modal`, ≤ 9.3e-9 m
 //! elsewhere), so the changes above hold against commit a3d7c6b too.
 //!
+//! Re-recorded for the geometrically nonlinear spatial modal body (branch modal3d-nl,
+//! `src/model/modal/body3d.rs`: the foreshortening of every point ū = (x − ½∫(v′² + w′²), v, w)
+//! in the inertia and gravity forces, the inextensible curvatures κ_z = v″(1 + ½v′²) + v′w′w″,
+//! κ_y = w″(1 + ½w′²), the tip directors turned by the field's tangent angle atan2(σ,
+//! 1 − ½σ²)): every spatial scene with a modal segment. Largest tip-position change against the
+//! recordings before (commit 45c36b2): `strip_3d` 1.80e-3 m of a 5.6e-2 m swing,
+//! `case3_3d_modal` 1.39e-3 m of 4.8e-2 m, `case1_3d_mounted` 8.3e-5 m (of its 6.0 m carried
+//! motion), `case1_3d_modal` 4.4e-5 m and `case1_3d` 3.7e-5 m of 9.5e-3 m (the planar twins'
+//! changes: the spatial hybrid's floor against the all-ANCF beam falls from 8.8e-5 to 2.3e-7 m,
+//! docs/engine-findings.md), `driven_case1_3d_mounted` 1.5e-5 m, `case2_3d_modal` 7.8e-6 m,
+//! `driven_case1_3d` 7.3e-6 m, `case2_3d` 5.6e-6 m, `case3_3d` 4.0e-6 m, `boom_3d` 2.4e-8 m
+//! (at rest: the static sag); root forces by ≤ 2.3e-3 N. Every planar and all-ANCF recording
+//! bit-identical.
+//!
 //! Re-recorded for issue 23's element twist (the torsion element's twist from its nodal frames by
 //! parallel transport, `src/model/ancf3d/`, instead of the Gauss-point twist of the linear r_y):
 //! the scenes whose torsion elements twist or bend out of the director's planes. Largest
@@ -83,6 +97,11 @@
 //! tip-position change against the recordings before (commit 99ed2f8): `case1_3d_mounted`
 //! 4.3e-10 m, `case1_3d` 2.3e-10 m, the others ≤ 4.3e-14 m; the root forces (Newton
 //! tolerance) ≤ 3.2e-6 N.
+//!
+//! Both branches merged (the nonlinear spatial modal body with the nodal director inertia and
+//! the cable bending measure) and re-recorded: against the modal3d-nl branch's recordings the
+//! changes are the torsion element's above (tip ≤ 1.2e-8 m `case1_3d_mounted`, ≤ 9.7e-9 m
+//! elsewhere; the driven twist rate's phase as above).
 //!
 //! Re-record (only when a physics change is intended and explained), e.g. the spatial ones:
 //! `HYBEAM_RECORD_GOLDEN=1 cargo test --test golden spatial`.

@@ -60,3 +60,33 @@ fn spatial_ancf_with_twist_director_and_its_inertia() {
         eprintln!("{extra:?}: worst error {worst:.2e} of the tolerance");
     }
 }
+
+#[test]
+fn spatial_modal_root_with_ancf_tip_nonlinear_and_linear() {
+    // the spatial modal body (its nonlinear foreshortening and curvature terms, or the linear
+    // frame) with the tip port's directors into an ANCF segment with twist, a modal tip segment
+    // (free frame) after it; unequal bending stiffnesses (rectangle) tell the planes apart
+    use hybeam::model::Spatial;
+    let rect = "section = \"rectangle\"\nwidth = 4e-3\nheight = 6e-3";
+    for lin in ["", "linear = true"] {
+        let s = scene(
+            "space = \"spatial\"\ntorsion = true\ngravity = [0.0, 1.0, -9.81]",
+            &[
+                modal(
+                    "m1",
+                    0.2,
+                    rect,
+                    3,
+                    true,
+                    &format!("damping_ratio = 0.05\n{lin}"),
+                ),
+                ancf("a", 0.2, rect, 2, "damping_time = 1e-3"),
+                modal("m2", 0.2, rect, 2, false, lin),
+            ],
+        );
+        let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+        model.set_tip_force([0.3, -0.7, 0.2]);
+        let worst = check_newton_matrix(&mut model);
+        eprintln!("{lin:?}: worst error {worst:.2e} of the tolerance");
+    }
+}

@@ -8,8 +8,8 @@
 #   bash examples/vehicle3d/run.sh          the coupled run (implicit coupling, h = 1 ms)
 #   bash examples/vehicle3d/run.sh --test   the example's pytest checks (test_cosim3d.py; the
 #                                           symmetric case compares with the planar system:
-#                                           out/car.fmu and the planar boom with a linear modal
-#                                           segment, as the spatial modal body is)
+#                                           out/car.fmu and the planar boom, both modal bodies
+#                                           geometrically nonlinear)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 [ -x .venv/bin/hybeam-cosim ] || bash scripts/setup.sh
@@ -23,13 +23,10 @@ case "${1:-}" in
         # the planar pair of the symmetric comparison (as examples/vehicle/run.sh builds it)
         cargo build --release -p hybeam-vehicle --lib --bin car-fmu --features export
         target/release/car-fmu target/release/libhybeam_vehicle.so examples/vehicle/vehicle.toml out/car.fmu
-        # its modal segment as the linear floating frame (linear = true), like the spatial
-        # modal body of boom_3d: the comparison is then one model in two codes
-        mkdir -p out/vehicle3d/linear
-        sed 's/^interface_modes = true$/interface_modes = true\nlinear = true/' scenes/boom.toml \
-            > out/vehicle3d/linear/boom.toml
-        grep -q '^linear = true$' out/vehicle3d/linear/boom.toml
-        planar_boom=$(cargo fmu-build out/vehicle3d/linear/boom.toml --out out/vehicle3d/linear \
+        # its modal segment nonlinear, as the spatial modal body of boom_3d: the comparison is
+        # then one model in two codes
+        mkdir -p out/vehicle3d/planar
+        planar_boom=$(cargo fmu-build scenes/boom.toml --out out/vehicle3d/planar \
             --platforms linux64 | tail -n 1)
         .venv/bin/python -m pytest -q examples/vehicle3d/test_cosim3d.py --car out/car3d.fmu \
             --boom "$boom" --planar-car out/car.fmu --planar-boom "$planar_boom"

@@ -83,9 +83,9 @@ def test_rolling_symmetric_case_equals_the_planar_system(fmus, planar_fmus, tmp_
     x and height (3D z, planar y, as changes from t = 0: the two booms' mounts sit at different
     static heights), the root force (3D z = planar y, x = x) and moment (3D y = −planar z). The
     cars agree to rounding (tests/car3d.rs) and the spatial boom in its plane is the planar
-    boom's discretization (the planar boom's modal segment built with linear = true by run.sh
-    --test: the spatial modal body is a linear frame; the planar nonlinear body differs from it
-    by 7.4e-9 of the pitch range, more than the bound); what separates the runs is the coupling
+    boom's discretization (both modal bodies geometrically nonlinear: with the planar one
+    nonlinear and the spatial one linear, as before, they differed by 7.4e-9 of the pitch range,
+    more than the bound); what separates the runs is the coupling
     tolerance: each accepts a step's reaction (the iterated unknowns) within rtol = 1e-5 of the
     largest reaction component (~280 N m: ~3e-3 N, N m), so the reactions may differ by twice
     that (measured: force x 5.7e-3 N, force z 3.0e-4 N, moment y 5.1e-5 N m; bound 4 rtol

@@ -891,10 +891,9 @@ distance of the tip from the reference over all samples, *end error* the distanc
 the spatial scenes).\n\
 - **Own-formulation reference:** the same scene file with 12 modes per modal segment, the \
 refined mesh and step 1e-5 s. The error against it is the discretization error of a run; the \
-distance between it and the physical reference is the model error of the formulation (a planar \
-modal segment carries the foreshortening of every point and the inextensible curvature to third \
-order; a spatial one is a linear floating frame: its tip carries the second-order foreshortening, \
-but its own mass has no foreshortening and no distributed geometric stiffening).\n\
+distance between it and the physical reference is the model error of the formulation (a modal \
+segment, planar or spatial, carries the foreshortening of every point and the inextensible \
+curvature to third order).\n\
 - Families: `step` (solver.max_step), `elements` (ANCF elements of the swept scene, spread over \
 its ANCF segments by length), `modes+interface` and `modes (no interface)` (every modal segment), \
 `rho_inf`, one step sweep per twin formulation, and a small `combined` grid.\n\

@@ -530,9 +530,8 @@ pub fn run() -> Result<(), String> {
          Over the 2 s runs, against the all-ANCF run of the same case (shipped settings):\n\n\
          | case | ANCF peak \\|y\\| [mm] | max \\|y_hybrid − y_ANCF\\| [m] | max \\|y_modal − y_ANCF\\| [m] | \
          max \\|x_hybrid − x_ANCF\\| [m] | max \\|x_modal − x_ANCF\\| [m] |\n|---|---|---|---|---|---|\n{summary}\n\
-         The x columns compare the inward motion of the tip; a planar modal segment carries the \
-         foreshortening of every point and the inextensible curvature, a spatial one is a linear \
-         frame whose tip carries the second-order foreshortening ½aᵀGa/L \
+         The x columns compare the inward motion of the tip; a modal segment, planar or spatial, \
+         carries the foreshortening of every point and the inextensible curvature \
          (docs/engine-findings.md); the spectra tables per case give the frequency agreement.\n\n"
     );
     let md = md.replacen("## Case 1", &format!("{table}## Case 1"), 1);

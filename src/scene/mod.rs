@@ -189,10 +189,11 @@ pub struct Segment {
     /// Add the two static interface (Craig–Bampton constraint) modes at the tip end.
     #[serde(default)]
     pub interface_modes: bool,
-    /// A planar modal segment as the linear floating frame (ū = [x; w] inside the segment,
-    /// strain energy ½EI∫w″²dx, tip angle θ + w′(L), the held frame's geometric stiffness
-    /// added), instead of the geometrically nonlinear body (modal segments only; the spatial
-    /// modal body is linear either way). For comparisons with linear theory and the spatial body.
+    /// A modal segment as the linear floating frame (ū = [x; w] inside the segment, strain
+    /// energy ½EI∫w″²dx, tip angle θ + w′(L), the held frame's geometric stiffness added;
+    /// spatial: ū = (x, v, w), the tip directors turned by the rotation vector (0, −w′, v′)),
+    /// instead of the geometrically nonlinear body (modal segments only). For comparisons with
+    /// linear theory and with the linear bodies of earlier versions.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub linear: bool,
     /// Number of ANCF elements (ANCF segments only).

@@ -82,13 +82,13 @@ pub struct ModalBody {
 /// Tables of the nonlinear (foreshortening and curvature) terms: a composite 5-point
 /// Gauss–Legendre rule on [0, 1] and the shapes at its points.
 #[derive(Debug, Clone)]
-struct Nonlinear {
+pub(super) struct Nonlinear {
     /// Points ξ_p, panel by panel.
-    xi: Vec<f64>,
+    pub(super) xi: Vec<f64>,
     /// Weights W_p (Σ W_p = 1).
-    w: Vec<f64>,
+    pub(super) w: Vec<f64>,
     /// (φ_k, φ_k′/L, φ_k″/L²)(ξ_p) at `[p * n + k]` (x-derivatives, once the body scales them).
-    phi: Vec<[f64; 3]>,
+    pub(super) phi: Vec<[f64; 3]>,
     /// The same values for pairs of points: for the pair (2b, 2b + 1) and shape k, the six
     /// values (φ_k, φ_k′/L, φ_k″/L²) at both points (d-th at both, then the next) at
     /// `[(b * n + k) * 6..]`, an odd count's last pair padded with zeros; for
@@ -97,11 +97,11 @@ struct Nonlinear {
     /// ∫ from the start of a panel to its i-th point of the degree-4 interpolant through its
     /// five points, weight of the j-th: `s[i][j]` (× the panel half-width): with the full
     /// panels before, the cumulative integral ∫₀^ξ_q f dξ ≈ Σ_p V_qp f_p.
-    s: [[f64; 5]; 5],
+    pub(super) s: [[f64; 5]; 5],
 }
 
 impl Nonlinear {
-    fn new(basis: &ModalBasis, panels: usize) -> Self {
+    pub(super) fn new(basis: &ModalBasis, panels: usize) -> Self {
         let quad = super::basis::quadrature(panels);
         let mut phi = Vec::with_capacity(quad.len() * basis.len());
         let mut buf = Vec::new();
@@ -160,7 +160,7 @@ const FIELDS: usize = 10;
 /// nonlinear terms are a small part of the forces, dominated by the lowest modes: on Case 1
 /// (12 modes + 2 interface shapes) 2 and 14 panels give the same tip history to 1e-8 m, and
 /// on the γ = 2 elastica (8 modes) to 5e-7 m of 0.096 m.
-fn panels(n: usize) -> usize {
+pub(super) fn panels(n: usize) -> usize {
     n.div_ceil(4).max(2)
 }
 

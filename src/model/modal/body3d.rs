@@ -7,10 +7,17 @@
 //! and a_z (x–z plane, E·i_y) [m] on the shapes of a [`ModalBasis`] (∫φ_iφ_j dξ = δ_ij), and
 //! torsion amplitudes a_t [rad] on χ₁ = ξ (static twist shape) and χ₂ = √2 sin πξ.
 //!
-//! A centerline point at x = ξL is at r = R + A ū, ū = (x, φᵀa_y, φᵀa_z); the section turns
-//! about the body x axis by θ(ξ) = χᵀa_t and is treated as a spinning rigid disk (kinetic energy
-//! ½∫ρI_p(ω̄_x + θ̇)²dx). Linear FFRF: no geometric stiffening (the tip foreshortening is in the
-//! tip port only, [`ModalBody3::tip_local`]). Body angular velocity ω̄ = 2Ēṗ (Ē̇ṗ = 0).
+//! A centerline point at x = ξL is at r = R + A ū, ū = (x − ½∫₀ˣ(v′² + w′²)dx, v, w), v = φᵀa_y,
+//! w = φᵀa_z; the section turns about the body x axis by θ(ξ) = χᵀa_t and is treated as a
+//! spinning rigid disk (kinetic energy ½∫ρI_p(ω̄_x + θ̇)²dx). Geometrically nonlinear as the
+//! planar body ([`super::ModalBody`]; docs/references.md §7.6): the foreshortening of every
+//! point in the inertia and gravity forces, the inextensible curvatures κ_z = v″(1 + ½v′²) +
+//! v′w′w″ and κ_y = w″(1 + ½w′²) (Crespo da Silva & Glynn 1978) in the strain energy, both on
+//! the planar body's composite 5-point Gauss rule, added to the linear floating frame's exact
+//! terms (`ModalBody3::add_nonlinear`); torsion as before. [`ModalBody3::linear`] is the linear
+//! FFRF instead (the foreshortening in the tip port only, [`ModalBody3::tip_local`]; the
+//! geometric stiffness K_G of a held frame by [`ModalBody3::with_stiffening`]).
+//! Body angular velocity ω̄ = 2Ēṗ (Ē̇ṗ = 0).
 //!
 //! The residual is `r = M q̈ − Q_v(q, q̇) − Q_g(q) + K a + D ȧ` in Exudyn's form (the p rows are
 //! Ḡᵀ = 2Ēᵀ times the body-frame moment balance about the frame origin; they are defined up to a
@@ -19,6 +26,7 @@
 //! Newton block ([`ModalBody3::newton_block`]).
 
 use super::basis::ModalBasis;
+use super::body::{panels, Nonlinear};
 use crate::math;
 use crate::model::sample::{minimal_frame, ShapePoint};
 use crate::model::vector::{add, cross, dot, scale, Real, V3};
@@ -182,8 +190,20 @@ pub struct ModalBody3 {
     /// ρA ā_x G1 (ā = Aᵀ(R̈ − g)): on for a frame held by a support (a clamped or mounted root
     /// segment), where ω̄ and ā are the support's.
     pub stiffening: bool,
+    /// G = Σ_p W_p φ′(ξ_p)φ′(ξ_p)ᵀ (row-major nb × nb): the tip foreshortening of each plane
+    /// is ½aᵀGa/L. The nonlinear body's quadrature (the ξ = 1 case of the foreshortening of the
+    /// points inside); the basis's [`ModalBasis::slope_gram`] for the linear body.
+    pub gram: Vec<f64>,
+    /// The geometrically nonlinear body (true unless built [`ModalBody3::linear`]).
+    pub nonlinear: bool,
+    nl: Nonlinear,
     damped: bool,
 }
+
+/// Slots per quadrature point of [`ModalBody3::fields`]: v, v̇, v̈, v′, v̇′, v̈′, v″ (0..7), the
+/// same of w (7..14), the foreshortening c, ċ, c̈ (14..17), then scratch of
+/// [`ModalBody3::add_nonlinear`] (17..24).
+const FIELDS3: usize = 24;
 
 impl ModalBody3 {
     /// Builds the body from its bending basis and properties.
@@ -237,6 +257,7 @@ impl ModalBody3 {
         let s_f = basis.i1.iter().map(|v| mu * v).collect();
         let s_x = basis.ix.iter().map(|v| mu * l * v).collect();
         let (g1, g2) = basis.stiffening_grams();
+        let (nl, gram) = Self::rule(&basis, l, panels(basis.len()));
         Self {
             basis,
             props,
@@ -254,8 +275,54 @@ impl ModalBody3 {
             g1,
             g2,
             stiffening: false,
+            gram,
+            nonlinear: true,
+            nl,
             damped,
         }
+    }
+
+    /// The nonlinear terms' quadrature (composite 5-point Gauss on `panels` panels, shapes
+    /// scaled to x-derivatives) and its G = Σ_p W_p φ′φ′ᵀ (ξ-derivatives).
+    fn rule(basis: &ModalBasis, l: f64, panels: usize) -> (Nonlinear, Vec<f64>) {
+        let nb = basis.len();
+        let mut nl = Nonlinear::new(basis, panels);
+        let mut gram = vec![0.0; nb * nb];
+        for (p, w) in nl.w.iter().enumerate() {
+            let phi = &nl.phi[p * nb..(p + 1) * nb];
+            for i in 0..nb {
+                for j in 0..nb {
+                    gram[i * nb + j] += w * phi[i][1] * phi[j][1];
+                }
+            }
+        }
+        for f in &mut nl.phi {
+            f[1] /= l;
+            f[2] /= l * l;
+        }
+        (nl, gram)
+    }
+
+    /// The same body with the nonlinear terms on `panels` (≥ 1) panels of its composite rule
+    /// instead of the default max(2, ⌈nb/4⌉) (for convergence checks; no effect on a linear
+    /// body).
+    pub fn with_panels(mut self, panels: usize) -> Self {
+        let (nl, gram) = Self::rule(&self.basis, self.props.length, panels.max(1));
+        self.nl = nl;
+        if self.nonlinear {
+            self.gram = gram;
+        }
+        self
+    }
+
+    /// The linear floating frame instead (the body before the nonlinear terms): ū = (x, v, w)
+    /// inside the segment, strain energy ½aᵀKa, the tip's foreshortening with the basis's G
+    /// ([`ModalBasis::slope_gram`]) and its directors turned by the rotation vector
+    /// (0, −w′, v′) (scene key `linear = true`).
+    pub fn linear(mut self) -> Self {
+        self.nonlinear = false;
+        self.gram.clone_from(&self.basis.slope_gram);
+        self
     }
 
     /// The same body with the geometric stiffness of a held frame (see
@@ -393,17 +460,23 @@ impl ModalBody3 {
         let hv = [iw[0] + ht_v, iw[1], iw[2]];
         let wxh = cross(w, hv);
         let cz = cross(cbar, z);
-        let mbar = [
+        let mut mbar = [
             cz[0] + iwd[0] + usa[0] + ht_a + wxh[0] + uws[0] * 2.0,
             cz[1] + iwd[1] + usa[1] + wxh[1] + uws[1] * 2.0,
             cz[2] + iwd[2] + usa[2] + wxh[2] + uws[2] * 2.0,
         ];
         // translation: m(R̈ − g) + A[ω̄̇ × c̄ + S̄ä + ω̄ × (ω̄ × c̄) + 2 ω̄ × S̄ȧ]
         let wc = cross(w, cbar);
-        let fl = add(
+        let mut fl = add(
             add(cross(wd, cbar), sa),
             add(cross(w, wc), scale(cross(w, sv), T::from(2.0))),
         );
+        let mut buf = Vec::new();
+        if self.nonlinear {
+            let (dfl, dm) = self.add_nonlinear(q, v, a, (w, wd, z), out, &mut buf);
+            fl = add(fl, dfl);
+            mbar = add(mbar, dm);
+        }
         let fw = mul(&rot, fl);
         for i in 0..3 {
             out[i] = (a[i] - g[i]) * mu + fw[i];
@@ -448,8 +521,13 @@ impl ModalBody3 {
                     fz += k * az[m];
                 }
             }
-            out[7 + n] = fy;
-            out[7 + nb + n] = fz;
+            if self.nonlinear {
+                out[7 + n] += fy;
+                out[7 + nb + n] += fz;
+            } else {
+                out[7 + n] = fy;
+                out[7 + nb + n] = fz;
+            }
         }
         for m in 0..2 {
             let mut f = wd[0] * self.c_t[m]
@@ -462,6 +540,201 @@ impl ModalBody3 {
             }
             out[7 + 2 * nb + m] = f;
         }
+    }
+
+    /// The per-point fields of the nonlinear terms into `buf` ([`FIELDS3`] slots per point of
+    /// the body's quadrature): v, v̇, v̈, v′, v̇′, v̈′, v″ and the same of w (x-derivatives), and
+    /// the foreshortening c = −½∫₀ˣ(v′² + w′²)dx with its rates ċ, c̈ (the cumulative integral
+    /// on the quadrature's own points, as the planar body).
+    fn fields<T: Real>(&self, q: &[T], v: &[T], a: &[T], buf: &mut Vec<T>) {
+        let nb = self.modes();
+        let nl = &self.nl;
+        let np = nl.w.len();
+        let l = self.props.length;
+        buf.clear();
+        buf.resize(FIELDS3 * np, T::zero());
+        for (f, phi) in buf.chunks_exact_mut(FIELDS3).zip(nl.phi.chunks_exact(nb)) {
+            for (plane, off) in [(0, 7), (1, 7 + nb)] {
+                let (qa, va, aa) = (&q[off..off + nb], &v[off..off + nb], &a[off..off + nb]);
+                let mut acc = [T::zero(); 7];
+                for (((ph, &x), &y), &z) in phi.iter().zip(qa).zip(va).zip(aa) {
+                    acc[0] += x * ph[0];
+                    acc[1] += y * ph[0];
+                    acc[2] += z * ph[0];
+                    acc[3] += x * ph[1];
+                    acc[4] += y * ph[1];
+                    acc[5] += z * ph[1];
+                    acc[6] += x * ph[2];
+                }
+                f[7 * plane..7 * plane + 7].copy_from_slice(&acc);
+            }
+        }
+        let mut done = [T::zero(); 3];
+        for (panel, pts) in buf.chunks_exact_mut(5 * FIELDS3).enumerate() {
+            let mut sq = [[T::zero(); 3]; 5];
+            for (j, f) in pts.chunks_exact(FIELDS3).enumerate() {
+                sq[j] = [
+                    f[3] * f[3] + f[10] * f[10],
+                    f[3] * f[4] + f[10] * f[11],
+                    f[4] * f[4] + f[3] * f[5] + f[11] * f[11] + f[10] * f[12],
+                ];
+            }
+            for (i, f) in pts.chunks_exact_mut(FIELDS3).enumerate() {
+                let mut cum = done;
+                for (j, sqj) in sq.iter().enumerate() {
+                    for r in 0..3 {
+                        cum[r] += sqj[r] * nl.s[i][j];
+                    }
+                }
+                f[14] = cum[0] * (-0.5 * l);
+                f[15] = cum[1] * -l;
+                f[16] = cum[2] * -l;
+            }
+            for (j, sqj) in sq.iter().enumerate() {
+                for r in 0..3 {
+                    done[r] += sqj[r] * nl.w[5 * panel + j];
+                }
+            }
+        }
+    }
+
+    /// The nonlinear part of the strain energy density at one point (x-derivatives s = v′,
+    /// t = w′, V = v″, W = w″): with the inextensible curvatures to third order (Crespo da
+    /// Silva & Glynn 1978, the Euler angles ψ = atan(v′/(1 + u′)), θ = asin w′ of the tangent,
+    /// no twist), κ_z = ψ′cos θ = V(1 + ½s²) + stW and κ_y = θ′ = W(1 + ½t²), the density
+    /// ½EI_z(κ_z² − V²) + ½EI_y(κ_y² − W²) and its partial derivatives by (s, V, t, W).
+    #[inline]
+    fn strain_density<T: Real>(&self, s: T, vv: T, t: T, ww: T) -> (T, [T; 4]) {
+        let (ez, ey) = (self.props.ei_z, self.props.ei_y);
+        let kz = vv * (T::one() + s * s * 0.5) + s * t * ww;
+        let ky = ww * (T::one() + t * t * 0.5);
+        let e = (kz * kz - vv * vv) * (0.5 * ez) + (ky * ky - ww * ww) * (0.5 * ey);
+        let d = [
+            kz * (vv * s + t * ww) * ez,
+            (kz * (T::one() + s * s * 0.5) - vv) * ez,
+            kz * s * ww * ez + ky * ww * t * ey,
+            kz * s * t * ez + (ky * (T::one() + t * t * 0.5) - ww) * ey,
+        ];
+        (e, d)
+    }
+
+    /// Adds to the elastic rows of `out` (zeroing them first) the part of the residual that the
+    /// linear floating frame leaves out, and returns its additions to the body-frame force and
+    /// moment about the frame origin: the foreshortening c(x) = −½∫₀ˣ(v′² + w′²)dx of every
+    /// point (ū = ū⁰ + c x̄, ū⁰ = (x, v, w)) in the inertia and gravity forces, and the elastic
+    /// force of the inextensible curvatures ([`ModalBody3::strain_density`]), on the body's
+    /// quadrature (m_p = ρAL W_p). With α⁰ = Z + ω̄̇×ū⁰ + ω̄×(ω̄×ū⁰) + 2ω̄×u̇̄⁰ + ǖ⁰ (Z =
+    /// Aᵀ(R̈ − g)), αᶜ = ω̄̇×cx̄ + ω̄×(ω̄×cx̄) + 2ω̄×ċx̄ + c̈x̄ and α = α⁰ + αᶜ (the body-frame
+    /// acceleration of the point less gravity): ΔF = Σ m αᶜ, ΔM = Σ m (ū⁰×αᶜ + cx̄×α),
+    /// ΔF_a = Σ m φ αᶜ_(y,z) − Σ_p φ′_p (v′, w′)_p N_p L + ∂U_nl/∂a with the axial force
+    /// N_p = Σ_q m_q α_x,q V_qp (V the cumulative rule). Generic over the scalar.
+    #[allow(clippy::type_complexity)]
+    fn add_nonlinear<T: Real>(
+        &self,
+        q: &[T],
+        v: &[T],
+        a: &[T],
+        (w, wd, z): (V3<T>, V3<T>, V3<T>),
+        out: &mut [T],
+        buf: &mut Vec<T>,
+    ) -> (V3<T>, V3<T>) {
+        let nb = self.modes();
+        let nl = &self.nl;
+        let l = self.props.length;
+        let ml = self.props.rho_a * l;
+        let zero = T::zero();
+        self.fields(q, v, a, buf);
+        let (mut df, mut dm) = ([zero; 3], [zero; 3]);
+        for (p, f) in buf.chunks_exact_mut(FIELDS3).enumerate() {
+            let m = ml * nl.w[p];
+            let u0 = [T::from(nl.xi[p] * l), f[0], f[7]];
+            let ud0 = [zero, f[1], f[8]];
+            let ce = [f[14], zero, zero];
+            let a0 = add(
+                add(add(z, cross(wd, u0)), cross(w, cross(w, u0))),
+                add(scale(cross(w, ud0), T::from(2.0)), [zero, f[2], f[9]]),
+            );
+            let ac = add(
+                add(cross(wd, ce), cross(w, cross(w, ce))),
+                add(
+                    scale(cross(w, [f[15], zero, zero]), T::from(2.0)),
+                    [f[16], zero, zero],
+                ),
+            );
+            let al = add(a0, ac);
+            df = add(df, scale(ac, T::from(m)));
+            dm = add(dm, scale(add(cross(u0, ac), cross(ce, al)), T::from(m)));
+            f[17] = al[0] * m;
+            f[18] = ac[1] * m;
+            f[19] = ac[2] * m;
+        }
+        // N_p from the panels after and the own panel; coefficients of φ′_p/L, φ″_p/L² of
+        // both planes into slots 20..24
+        let np = nl.w.len();
+        let mut later = zero;
+        for p0 in (0..np).step_by(5).rev() {
+            let mut mf = [zero; 5];
+            for (i, m) in mf.iter_mut().enumerate() {
+                *m = buf[FIELDS3 * (p0 + i) + 17];
+            }
+            for j in 0..5 {
+                let p = p0 + j;
+                let mut axial = later * nl.w[p];
+                for (i, m) in mf.iter().enumerate() {
+                    axial += *m * nl.s[i][j];
+                }
+                let f = &mut buf[FIELDS3 * p..FIELDS3 * (p + 1)];
+                let (_, d) = self.strain_density(f[3], f[6], f[10], f[13]);
+                let e = l * nl.w[p];
+                f[20] = d[0] * e - f[3] * axial * l;
+                f[21] = d[1] * e;
+                f[22] = d[2] * e - f[10] * axial * l;
+                f[23] = d[3] * e;
+            }
+            for m in mf {
+                later += m;
+            }
+        }
+        for o in out[7..7 + 2 * nb].iter_mut() {
+            *o = zero;
+        }
+        for (f, phi) in buf.chunks_exact(FIELDS3).zip(nl.phi.chunks_exact(nb)) {
+            for (k, ph) in phi.iter().enumerate() {
+                out[7 + k] += f[18] * ph[0] + f[20] * ph[1] + f[21] * ph[2];
+                out[7 + nb + k] += f[19] * ph[0] + f[22] * ph[1] + f[23] * ph[2];
+            }
+        }
+        (df, dm)
+    }
+
+    /// The nonlinear parts of the energies on the body's quadrature at (q, q̇) for gravity g:
+    /// kinetic ½Σm(2V⁰·Vᶜ + |Vᶜ|²) (V⁰ = AᵀṘ + ω̄×ū⁰ + u̇̄⁰ the linear frame's point velocity,
+    /// Vᶜ = ω̄×cx̄ + ċx̄), strain Σ L W_p (density of [`ModalBody3::strain_density`]) and
+    /// gravity −gᵀA Σ m c x̄; zero for the linear body.
+    fn nonlinear_energies(&self, q: &[f64], v: &[f64], g: [f64; 3]) -> [f64; 3] {
+        if !self.nonlinear {
+            return [0.0; 3];
+        }
+        let l = self.props.length;
+        let ml = self.props.rho_a * l;
+        let mut buf = Vec::new();
+        self.fields(q, v, &vec![0.0; q.len()], &mut buf);
+        let p = [q[3], q[4], q[5], q[6]];
+        let rot = euler_rotation(p);
+        let w = g_mul(&e_bar(p), &v[3..7]);
+        let rl = mul_t(&rot, [v[0], v[1], v[2]]);
+        let gl = mul_t(&rot, g);
+        let (mut t, mut u, mut c) = (0.0, 0.0, 0.0);
+        for (pi, f) in buf.chunks_exact(FIELDS3).enumerate() {
+            let m = ml * self.nl.w[pi];
+            let u0 = [self.nl.xi[pi] * l, f[0], f[7]];
+            let v0 = add(add(rl, cross(w, u0)), [0.0, f[1], f[8]]);
+            let vc = add(cross(w, [f[14], 0.0, 0.0]), [f[15], 0.0, 0.0]);
+            t += 0.5 * m * (2.0 * dot(v0, vc) + dot(vc, vc));
+            u += l * self.nl.w[pi] * self.strain_density(f[3], f[6], f[10], f[13]).0;
+            c += m * f[14];
+        }
+        [t, u, -gl[0] * c]
     }
 
     /// The Newton block `c_a ∂r/∂q̈ + c_v ∂r/∂q̇ + c_x ∂r/∂q` (row-major d × d) by forward-mode
@@ -526,7 +799,8 @@ impl ModalBody3 {
         let mt = &self.m_t;
         let tors = vt[0] * (mt[0][0] * vt[0] + mt[0][1] * vt[1])
             + vt[1] * (mt[1][0] * vt[0] + mt[1][1] * vt[1]);
-        0.5 * mu * dot(rd, rd)
+        self.nonlinear_energies(q, v, [0.0; 3])[0]
+            + 0.5 * mu * dot(rd, rd)
             + dot(rd, mul(&rot, add(cross(w, cbar), sv)))
             + 0.5 * dot(w, mul(&ibar, w))
             + dot(w, us)
@@ -548,7 +822,7 @@ impl ModalBody3 {
                 u += at[i] * self.k_t[i][j] * at[j];
             }
         }
-        0.5 * u
+        0.5 * u + self.nonlinear_energies(q, &vec![0.0; q.len()], [0.0; 3])[1]
     }
 
     /// Gravity potential −gᵀ∫ρA r dx = −gᵀ(m R + A c̄) [J].
@@ -565,7 +839,7 @@ impl ModalBody3 {
             scale([q[0], q[1], q[2]], self.mass()),
             mul(&euler_rotation([q[3], q[4], q[5], q[6]]), cbar),
         );
-        -dot(g, first)
+        -dot(g, first) + self.nonlinear_energies(q, &vec![0.0; q.len()], g)[2]
     }
 
     /// Tip deflections (φ(1)ᵀa_y, φ(1)ᵀa_z) [m], tip slopes (v′, w′) = φ′(1)ᵀ(a_y, a_z)/L [-]
@@ -589,12 +863,7 @@ impl ModalBody3 {
     pub fn foreshortening_gradient(&self, a: &[f64]) -> Vec<f64> {
         let nb = self.modes();
         (0..nb)
-            .map(|k| {
-                (0..nb)
-                    .map(|j| self.basis.slope_gram[k * nb + j] * a[j])
-                    .sum::<f64>()
-                    / self.props.length
-            })
+            .map(|k| (0..nb).map(|j| self.gram[k * nb + j] * a[j]).sum::<f64>() / self.props.length)
             .collect()
     }
 
@@ -672,7 +941,23 @@ impl ModalBody3 {
             let au = mul(&a, u);
             let wxu = cross(omega, au);
             let aud = mul(&a, ud);
-            let [t, d2, d3] = minimal_frame([1.0, v1 / l, w1 / l]);
+            let (sv, sw) = (v1 / l, w1 / l);
+            // the field's tangent (1 − ½(v′² + w′²), v′, w′) for the nonlinear body
+            let tx = if self.nonlinear {
+                1.0 - 0.5 * (sv * sv + sw * sw)
+            } else {
+                1.0
+            };
+            let [t, d2, d3] = minimal_frame([tx, sv, sw]);
+            let (kz, ky) = if self.nonlinear {
+                let (vv, ww) = (v2 / (l * l), w2 / (l * l));
+                (
+                    vv * (1.0 + 0.5 * sv * sv) + sv * sw * ww,
+                    ww * (1.0 + 0.5 * sw * sw),
+                )
+            } else {
+                (v2 / (l * l), w2 / (l * l))
+            };
             let (sn, cs) = math::sin_cos(th);
             let d2t: [f64; 3] = std::array::from_fn(|i| cs * d2[i] + sn * d3[i]);
             let d3t: [f64; 3] = std::array::from_fn(|i| -sn * d2[i] + cs * d3[i]);
@@ -680,7 +965,7 @@ impl ModalBody3 {
                 position: std::array::from_fn(|i| q[i] + au[i]),
                 velocity: std::array::from_fn(|i| qd[i] + wxu[i] + aud[i]),
                 frame: [mul(&a, t), mul(&a, d2t), mul(&a, d3t)],
-                curvature: [-w2 / (l * l), v2 / (l * l)],
+                curvature: [-ky, kz],
                 twist: (dchi[0] * at[0] + dchi[1] * at[1]) / l,
                 ..ShapePoint::default()
             });

@@ -343,8 +343,21 @@ fn rotation_coefficients<T: Real>(x: T) -> (T, T) {
 /// the x–z plane likewise n̄2 = (−sin w′, 0, cos w′). Isotropic (a bending plane turned about x̄
 /// turns the directors with it); to first order t̂ = x̄ + v′ȳ + w′z̄, n̄1 = ȳ − v′x̄,
 /// n̄2 = z̄ − w′x̄, s̄ = ȳ + θz̄ − v′x̄, n̄3 = z̄ − θȳ − w′x̄.
-fn tip_directors<T: Real>(vs: T, ws: T, th: T) -> [V3<T>; 5] {
-    let (a, b) = rotation_coefficients(vs * vs + ws * ws);
+///
+/// With `nonlinear` (the geometrically nonlinear body, whose centreline is ū = (x − ½∫(v′² +
+/// w′²), v, w)) the angle is that of the field's tangent (1 − ½σ², v′, w′) instead, σ̃ =
+/// atan2(σ, 1 − ½σ²) = σ + σ³/6 + …, about the same axis: with D = √(1 + σ⁴/4), sin σ̃ = σ/D and
+/// cos σ̃ = (1 − ½σ²)/D, so the coefficients of ψ, sin σ̃/σ = 1/D and (1 − cos σ̃)/σ² =
+/// (½ + σ²/(4(D + 1)))/D, are smooth in σ² (t̂ is the unit tangent of the field, as the planar
+/// port's θ + atan2(w′, 1 − ½w′²)).
+fn tip_directors<T: Real>(vs: T, ws: T, th: T, nonlinear: bool) -> [V3<T>; 5] {
+    let x = vs * vs + ws * ws;
+    let (a, b) = if nonlinear {
+        let d = (T::one() + x * x * 0.25).sqrt();
+        (d.recip(), (x / ((d + 1.0) * 4.0) + 0.5) / d)
+    } else {
+        rotation_coefficients(x)
+    };
     let one = T::one();
     let t = [one - b * (vs * vs + ws * ws), a * vs, a * ws];
     let n1 = [-(a * vs), one - b * vs * vs, -(b * vs * ws)];
@@ -371,7 +384,7 @@ struct TipDirectors {
 }
 
 impl TipDirectors {
-    fn new(x: [f64; 3], second: bool) -> Self {
+    fn new(x: [f64; 3], second: bool, nonlinear: bool) -> Self {
         let mut out = Self {
             v: [Vector3::zeros(); 5],
             g: [[Vector3::zeros(); 3]; 5],
@@ -381,7 +394,10 @@ impl TipDirectors {
             let mut y = x.map(HyperDual64::from_re);
             y[i].eps1 = 1.0;
             y[j].eps2 = 1.0;
-            for (n, r) in tip_directors(y[0], y[1], y[2]).iter().enumerate() {
+            for (n, r) in tip_directors(y[0], y[1], y[2], nonlinear)
+                .iter()
+                .enumerate()
+            {
                 out.v[n] = Vector3::new(r[0].re, r[1].re, r[2].re);
                 out.g[n][i] = Vector3::new(r[0].eps1, r[1].eps1, r[2].eps1);
                 out.h[n][pi] = Vector3::new(r[0].eps1eps2, r[1].eps1eps2, r[2].eps1eps2);
@@ -412,7 +428,7 @@ impl ModalTipPort3 {
         }
         let th = q[b.it(0)] * b.chi_tip[0] + q[b.it(1)] * b.chi_tip[1];
         let a = euler_rotation([q[P0], q[P0 + 1], q[P0 + 2], q[P0 + 3]]);
-        let [t, s, ..] = tip_directors(vs, ws, th);
+        let [t, s, ..] = tip_directors(vs, ws, th, b.nonlinear);
         (body3d::mul(&a, t), body3d::mul(&a, s))
     }
 
@@ -436,7 +452,7 @@ impl ModalTipPort3 {
                 continue;
             }
             for m in n..nb {
-                let g = b.basis.slope_gram[n * nb + m];
+                let g = b.gram[n * nb + m];
                 if g != 0.0 {
                     let h = Vector3::new(-g / l, 0.0, 0.0);
                     ddv.push((b.iy(n), b.iy(m), h));
@@ -448,7 +464,7 @@ impl ModalTipPort3 {
         // directors: functions of (v′, w′, θ), each linear in its amplitudes with the
         // coefficients (local index, ∂x/∂q_k) of `coef`
         let (_, slope, th) = b.tip_elastic(q);
-        let dirs = TipDirectors::new([slope[0], slope[1], th], second);
+        let dirs = TipDirectors::new([slope[0], slope[1], th], second, b.nonlinear);
         let coef = |i: usize| -> Vec<(usize, f64)> {
             match i {
                 0 => (0..nb)

@@ -54,10 +54,14 @@ impl SegmentParts<Spatial> for SpatialParts {
         let root_pt = s * self.ax;
         let basis = ModalBasis::new(seg.modes.unwrap_or(1), seg.interface_modes);
         let mut body = ModalBody3::new(basis, ModalProps3::of_segment(seg));
-        if held {
-            // a held frame: its motion is the support's, so the axial inertia and centrifugal
-            // forces of the segment stiffen its bending (K_G)
-            body = body.with_stiffening();
+        if seg.linear {
+            body = body.linear();
+            if held {
+                // a held linear frame: its motion is the support's, so the axial inertia and
+                // centrifugal forces of the segment stiffen its bending (K_G); the nonlinear
+                // body's foreshortening carries the axial force field, held or free
+                body = body.with_stiffening();
+            }
         }
         let body = Arc::new(body);
         let free_p = !held;
