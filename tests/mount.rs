@@ -87,10 +87,11 @@ const STEPS: usize = 100;
 const DT: f64 = 1e-3;
 
 /// The tip relative to the mount of `moving` equals the tip of `fixed` to 1e-9 of the
-/// deflection over 0.1 s.
+/// deflection over 0.1 s, both at Newton tolerance 1e-14 (at the shipped 1e-11 the two
+/// iteration paths of the spatial hybrid `case1_3d` end 5.5e-10 m apart; 1.1e-15 m here).
 fn same_relative_motion<S: Space>(label: &str, moving: Scene, fixed: Scene) {
-    let mut a = Simulator::<S>::start_at(moving, 0.0).unwrap();
-    let mut b = Simulator::<S>::start_at(fixed, 0.0).unwrap();
+    let mut a = Simulator::<S>::start_at(tight(moving), 0.0).unwrap();
+    let mut b = Simulator::<S>::start_at(tight(fixed), 0.0).unwrap();
     let (diff, defl) = compare(
         &relative_tip(&mut a, STEPS, DT),
         &fixed_tip(&mut b, STEPS, DT),
