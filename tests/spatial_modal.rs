@@ -40,6 +40,17 @@ fn test_body(modes: usize, interface: bool) -> ModalBody3 {
     )
 }
 
+/// `b` without damping, the nonlinear body or (`nonlinear = false`) the linear one.
+fn undamped(mut b: ModalBody3, nonlinear: bool) -> ModalBody3 {
+    if !nonlinear {
+        b = b.linear();
+    }
+    b.d_y.iter_mut().for_each(|x| *x = 0.0);
+    b.d_z.iter_mut().for_each(|x| *x = 0.0);
+    b.d_t = [[0.0; 2]; 2];
+    b
+}
+
 /// Deterministic pseudo-random numbers in [−1, 1].
 fn noise(seed: f64, n: usize) -> Vec<f64> {
     (0..n)
@@ -425,13 +436,7 @@ fn velocity_terms_match_lagranges_equations() {
     // undamped, no gravity: r(q, q̇, 0) − r(q, 0, 0) = d/dt(∂T/∂q̇)|_{q̈=0} − ∂T/∂q with T by
     // quadrature, differentiated by central differences (error O(h²))
     for nonlinear in [true, false] {
-        let mut b = test_body(3, true).with_panels(24);
-        if !nonlinear {
-            b = b.linear();
-        }
-        b.d_y.iter_mut().for_each(|x| *x = 0.0);
-        b.d_z.iter_mut().for_each(|x| *x = 0.0);
-        b.d_t = [[0.0; 2]; 2];
+        let b = undamped(test_body(3, true).with_panels(24), nonlinear);
         let d = b.dim();
         let (q, v, _) = smooth_state(&b, 0.25, 3.0, 0.5);
         let z = vec![0.0; d];
@@ -1005,13 +1010,7 @@ fn undamped_body_conserves_energy_along_its_motion() {
         (true, 2, false, 2.3, 4.0),
         (false, 3, true, 1.1, 4.0),
     ] {
-        let mut b = test_body(modes, interface);
-        if !nonlinear {
-            b = b.linear();
-        }
-        b.d_y.iter_mut().for_each(|x| *x = 0.0);
-        b.d_z.iter_mut().for_each(|x| *x = 0.0);
-        b.d_t = [[0.0; 2]; 2];
+        let b = undamped(test_body(modes, interface), nonlinear);
         let d = b.dim();
         let (q, v, _) = smooth_state(&b, seed, amp, 0.5);
         // q̈: [M p̂; p̂ᵀ 0] (q̈, λ) = (−r(q, q̇, 0), −|ṗ|²), p̂ in the p rows

@@ -101,6 +101,38 @@ pub(super) struct Nonlinear {
 }
 
 impl Nonlinear {
+    /// The foreshortening's axial force at every point, N_p = Σ_q m_q V_qp (V the cumulative
+    /// rule: the panels after p whole, p's own panel by `s`), m_q the point's axial inertia
+    /// force in slot `slot` of its `stride` fields in `buf`. Calls `visit(p, p's fields, N_p)`
+    /// panel by panel from the tip, after the panel's m_q are read (so `visit` may overwrite
+    /// that slot).
+    pub(super) fn for_each_axial_force<T: Real>(
+        &self,
+        buf: &mut [T],
+        stride: usize,
+        slot: usize,
+        mut visit: impl FnMut(usize, &mut [T], T),
+    ) {
+        let mut later = T::zero();
+        for p0 in (0..self.w.len()).step_by(5).rev() {
+            let mut mf = [T::zero(); 5];
+            for (i, m) in mf.iter_mut().enumerate() {
+                *m = buf[stride * (p0 + i) + slot];
+            }
+            for j in 0..5 {
+                let p = p0 + j;
+                let mut axial = later * self.w[p];
+                for (i, m) in mf.iter().enumerate() {
+                    axial += *m * self.s[i][j];
+                }
+                visit(p, &mut buf[stride * p..stride * (p + 1)], axial);
+            }
+            for m in mf {
+                later += m;
+            }
+        }
+    }
+
     pub(super) fn new(basis: &ModalBasis, panels: usize) -> Self {
         let quad = super::basis::quadrature(panels);
         let mut phi = Vec::with_capacity(quad.len() * basis.len());
@@ -636,32 +668,15 @@ impl ModalBody {
         out[1] += sn * frx + cs * fry;
         out[2] += fth;
         // N_p from the panels after and the own panel; coefficients of φ′_p/L, φ″_p/L²
-        let np = nl.w.len();
-        let mut later = T::zero();
-        for p0 in (0..np).step_by(5).rev() {
-            let mut mf = [T::zero(); 5];
-            for (i, m) in mf.iter_mut().enumerate() {
-                *m = buf[FIELDS * (p0 + i) + 8];
-            }
-            for j in 0..5 {
-                let p = p0 + j;
-                let mut axial = later * nl.w[p];
-                for (i, m) in mf.iter().enumerate() {
-                    axial += *m * nl.s[i][j];
-                }
-                let f = &mut buf[FIELDS * p..FIELDS * (p + 1)];
-                let (sg, kap) = (f[3], f[6]);
-                let e = self.ei * l * nl.w[p];
-                let s2 = sg * sg;
-                // U_nl = ½EI∫w″²(w′² + ¼w′⁴)dx
-                // ∂c_q/∂a = −L Σ_p V_qp w′_p φ′_p/L
-                f[7] = kap * kap * (sg + s2 * sg * 0.5) * e - sg * axial * l;
-                f[8] = kap * (s2 + s2 * s2 * 0.25) * e;
-            }
-            for m in mf {
-                later += m;
-            }
-        }
+        nl.for_each_axial_force(buf, FIELDS, 8, |p, f, axial| {
+            let (sg, kap) = (f[3], f[6]);
+            let e = self.ei * l * nl.w[p];
+            let s2 = sg * sg;
+            // U_nl = ½EI∫w″²(w′² + ¼w′⁴)dx
+            // ∂c_q/∂a = −L Σ_p V_qp w′_p φ′_p/L
+            f[7] = kap * kap * (sg + s2 * sg * 0.5) * e - sg * axial * l;
+            f[8] = kap * (s2 + s2 * s2 * 0.25) * e;
+        });
         let fa = &mut out[3..3 + n];
         for (f, phi) in buf.chunks_exact(FIELDS).zip(nl.phi.chunks_exact(n)) {
             let (c0, c1, c2) = (f[9], f[7], f[8]);

@@ -670,31 +670,14 @@ impl ModalBody3 {
         }
         // N_p from the panels after and the own panel; coefficients of φ′_p/L, φ″_p/L² of
         // both planes into slots 20..24
-        let np = nl.w.len();
-        let mut later = zero;
-        for p0 in (0..np).step_by(5).rev() {
-            let mut mf = [zero; 5];
-            for (i, m) in mf.iter_mut().enumerate() {
-                *m = buf[FIELDS3 * (p0 + i) + 17];
-            }
-            for j in 0..5 {
-                let p = p0 + j;
-                let mut axial = later * nl.w[p];
-                for (i, m) in mf.iter().enumerate() {
-                    axial += *m * nl.s[i][j];
-                }
-                let f = &mut buf[FIELDS3 * p..FIELDS3 * (p + 1)];
-                let (_, d) = self.strain_density(f[3], f[6], f[10], f[13]);
-                let e = l * nl.w[p];
-                f[20] = d[0] * e - f[3] * axial * l;
-                f[21] = d[1] * e;
-                f[22] = d[2] * e - f[10] * axial * l;
-                f[23] = d[3] * e;
-            }
-            for m in mf {
-                later += m;
-            }
-        }
+        nl.for_each_axial_force(buf, FIELDS3, 17, |p, f, axial| {
+            let (_, d) = self.strain_density(f[3], f[6], f[10], f[13]);
+            let e = l * nl.w[p];
+            f[20] = d[0] * e - f[3] * axial * l;
+            f[21] = d[1] * e;
+            f[22] = d[2] * e - f[10] * axial * l;
+            f[23] = d[3] * e;
+        });
         for o in out[7..7 + 2 * nb].iter_mut() {
             *o = zero;
         }
