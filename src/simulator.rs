@@ -23,7 +23,7 @@ pub use step::StepControl;
 
 use crate::error::{Refusal, SimError, SnapshotError, StepLimit};
 use crate::integrator::{
-    solve_static, Counters, GeneralizedAlpha, Integrable, IntegratorMemory, State,
+    solve_static, Counters, Integrable, Integrator, IntegratorMemory, Method, State,
     CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
 };
 use crate::model::{Model, ModelValidity, Motion, Outputs, Space};
@@ -35,7 +35,7 @@ use serde::{Deserialize, Serialize};
 pub struct Simulator<S: Space> {
     scene: Scene,
     model: Model<S>,
-    integ: GeneralizedAlpha,
+    integ: Integrator,
     state: State,
     step: StepControl,
     /// Inputs the state's q̈ and λ are consistent with (see [`Memory::applied`]): the ones
@@ -79,7 +79,20 @@ impl<S: Space> Simulator<S> {
         let n = model.coordinates();
         let m = model.constraints();
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
-        let mut integ = GeneralizedAlpha::new(&scene.solver, n, m);
+        if scene.solver.method == Method::Sdirk4
+            && m > 0
+            && (!model.linear_constraints() || model.is_driven())
+        {
+            return Err(crate::scene::SceneError(format!(
+                "solver.method = \"sdirk4\": this scene's model has {m} constraint rows that are \
+                 not fixed linear ones (a joint between segments, or a mounted ANCF root's \
+                 slope clamp); on such index-3 systems the SDIRK converges at first order only \
+                 (its stage order is 1), so it is refused: use solver.method = \
+                 \"generalized_alpha\" (the default), or one segment with a fixed root"
+            ))
+            .into());
+        }
+        let mut integ = Integrator::new(&scene.solver, n, m);
         let mount = MountState::<S>::of_scene(&scene, 0.0);
         let static_start = initialize && scene.initial.state == InitialState::Static;
         // a spinning mount's static state is relative: solved after the carry, below

@@ -198,41 +198,8 @@ impl GeneralizedAlpha {
         model: &mut M,
         s: &mut State,
     ) -> Result<(), StepFailure> {
-        let n = model.coordinates();
-        let m = model.constraints();
-        let zeros_n = vec![0.0; n];
-        let zeros_m = vec![0.0; m];
-        let req = EvalRequest {
-            sd: 1.0,
-            matrix: Some((1.0, 0.0, 0.0)),
-            lambda_hessian: false,
-        };
-        let x = StateRef::new(&s.q, &s.v, &zeros_n, &zeros_m);
-        model.eval(x, req, &mut self.res);
-        let mut rhs: Vec<f64> = self.res.iter().map(|r| -r).collect();
-        // acceleration-level constraint: Φ_q q̈ = −d²Φ/dt² at q̈ = 0 (second difference along q̇
-        // and the held coordinates' motion)
-        if let Some(c) = constraint_drift(model, &s.q, &s.v) {
-            for i in 0..m {
-                rhs[n + i] = -c[i];
-            }
-        } else {
-            for r in rhs.iter_mut().skip(n) {
-                *r = 0.0;
-            }
-        }
-        model
-            .factorize()
-            .map_err(|_| StepFailure::Singular { h: 0.0 })?;
-        self.counters.factorizations += 1;
         self.factored_h = None;
-        if !model.solve(&mut rhs) {
-            return Err(StepFailure::Singular { h: 0.0 });
-        }
-        s.acc.copy_from_slice(&rhs[..n]);
-        s.aux.copy_from_slice(&rhs[..n]);
-        s.lambda.copy_from_slice(&rhs[n..]);
-        Ok(())
+        initialize(model, s, &mut self.res, &mut self.counters)
     }
 
     /// Inputs change at the current time t_n (a load held constant over the coming steps, e.g.
@@ -255,71 +222,8 @@ impl GeneralizedAlpha {
         s: &mut State,
         change: impl FnOnce(&mut M),
     ) -> Result<(), StepFailure> {
-        let n = model.coordinates();
-        let m = model.constraints();
-        let zeros_n = vec![0.0; n];
-        let zeros_m = vec![0.0; m];
-        let x = StateRef::new(&s.q, &s.v, &zeros_n, &zeros_m);
-        let mut before = vec![0.0; n + m];
-        let req = EvalRequest {
-            sd: 1.0,
-            matrix: None,
-            lambda_hessian: false,
-        };
-        model.eval(x, req, &mut before);
-        // a driven support: the acceleration-level constraint before and after, with the same
-        // difference step so that the velocity terms cancel
-        let driven = model.is_driven();
-        let eps = drift_step(model, &s.v);
-        let drift_before = if driven {
-            constraint_drift_with(model, &s.q, &s.v, eps)
-        } else {
-            None
-        };
-        change(model);
-        let drift_after = if driven {
-            constraint_drift_with(model, &s.q, &s.v, eps)
-        } else {
-            None
-        };
-        let req = EvalRequest {
-            sd: 1.0,
-            matrix: Some((1.0, 0.0, 0.0)),
-            lambda_hessian: false,
-        };
-        model.eval(x, req, &mut self.res);
         self.invalidate();
-        model
-            .factorize()
-            .map_err(|_| StepFailure::Singular { h: 0.0 })?;
-        self.counters.factorizations += 1;
-        for (r, b) in self.res.iter_mut().zip(&before).take(n) {
-            *r = b - *r;
-        }
-        // Φ(q_n) is the same both times; a moving support changes the acceleration-level
-        // constraint by Φ_h Δḧ: Φ_q Δq̈ = −(d²Φ/dt²⁺ − d²Φ/dt²⁻)
-        self.res[n..].fill(0.0);
-        if drift_before.is_some() || drift_after.is_some() {
-            let zero = vec![0.0; m];
-            let (b, a) = (
-                drift_before.as_deref().unwrap_or(&zero),
-                drift_after.as_deref().unwrap_or(&zero),
-            );
-            for j in 0..m {
-                self.res[n + j] = b[j] - a[j];
-            }
-        }
-        if !model.solve(&mut self.res) || self.res.iter().any(|x| !x.is_finite()) {
-            return Err(StepFailure::Singular { h: 0.0 });
-        }
-        for i in 0..n {
-            s.acc[i] += self.res[i];
-            s.aux[i] += self.res[i];
-        }
-        for j in 0..m {
-            s.lambda[j] += self.res[n + j];
-        }
-        Ok(())
+        change_inputs(model, s, &mut self.res, &mut self.counters, change)
     }
 
     /// One step of size `h` from `s`. On success `s` holds the new state; on failure `s` is
@@ -443,6 +347,126 @@ impl GeneralizedAlpha {
         self.eta = 1.0;
         Err(StepFailure::NoConvergence { h, last_norm: last })
     }
+}
+
+/// Consistent initial accelerations and multipliers at `s` (q, q̇ given): sets q̈, the
+/// algorithmic acceleration a = q̈ and λ. The model's matrix storage is used (a held Newton
+/// matrix is gone).
+pub(super) fn initialize<M: Integrable + ?Sized>(
+    model: &mut M,
+    s: &mut State,
+    res: &mut [f64],
+    counters: &mut Counters,
+) -> Result<(), StepFailure> {
+    let n = model.coordinates();
+    let m = model.constraints();
+    let zeros_n = vec![0.0; n];
+    let zeros_m = vec![0.0; m];
+    let req = EvalRequest {
+        sd: 1.0,
+        matrix: Some((1.0, 0.0, 0.0)),
+        lambda_hessian: false,
+    };
+    let x = StateRef::new(&s.q, &s.v, &zeros_n, &zeros_m);
+    model.eval(x, req, res);
+    let mut rhs: Vec<f64> = res.iter().map(|r| -r).collect();
+    // acceleration-level constraint: Φ_q q̈ = −d²Φ/dt² at q̈ = 0 (second difference along q̇
+    // and the held coordinates' motion)
+    if let Some(c) = constraint_drift(model, &s.q, &s.v) {
+        for i in 0..m {
+            rhs[n + i] = -c[i];
+        }
+    } else {
+        for r in rhs.iter_mut().skip(n) {
+            *r = 0.0;
+        }
+    }
+    model
+        .factorize()
+        .map_err(|_| StepFailure::Singular { h: 0.0 })?;
+    counters.factorizations += 1;
+    if !model.solve(&mut rhs) {
+        return Err(StepFailure::Singular { h: 0.0 });
+    }
+    s.acc.copy_from_slice(&rhs[..n]);
+    s.aux.copy_from_slice(&rhs[..n]);
+    s.lambda.copy_from_slice(&rhs[n..]);
+    Ok(())
+}
+
+/// The jump of q̈ and λ when inputs change at t_n (see [`GeneralizedAlpha::change_inputs`]);
+/// the model's matrix storage is used (a held Newton matrix is gone).
+pub(super) fn change_inputs<M: Integrable + ?Sized>(
+    model: &mut M,
+    s: &mut State,
+    res: &mut [f64],
+    counters: &mut Counters,
+    change: impl FnOnce(&mut M),
+) -> Result<(), StepFailure> {
+    let n = model.coordinates();
+    let m = model.constraints();
+    let zeros_n = vec![0.0; n];
+    let zeros_m = vec![0.0; m];
+    let x = StateRef::new(&s.q, &s.v, &zeros_n, &zeros_m);
+    let mut before = vec![0.0; n + m];
+    let req = EvalRequest {
+        sd: 1.0,
+        matrix: None,
+        lambda_hessian: false,
+    };
+    model.eval(x, req, &mut before);
+    // a driven support: the acceleration-level constraint before and after, with the same
+    // difference step so that the velocity terms cancel
+    let driven = model.is_driven();
+    let eps = drift_step(model, &s.v);
+    let drift_before = if driven {
+        constraint_drift_with(model, &s.q, &s.v, eps)
+    } else {
+        None
+    };
+    change(model);
+    let drift_after = if driven {
+        constraint_drift_with(model, &s.q, &s.v, eps)
+    } else {
+        None
+    };
+    let req = EvalRequest {
+        sd: 1.0,
+        matrix: Some((1.0, 0.0, 0.0)),
+        lambda_hessian: false,
+    };
+    model.eval(x, req, res);
+    model
+        .factorize()
+        .map_err(|_| StepFailure::Singular { h: 0.0 })?;
+    counters.factorizations += 1;
+    for (r, b) in res.iter_mut().zip(&before).take(n) {
+        *r = b - *r;
+    }
+    // Φ(q_n) is the same both times; a moving support changes the acceleration-level
+    // constraint by Φ_h Δḧ: Φ_q Δq̈ = −(d²Φ/dt²⁺ − d²Φ/dt²⁻)
+    res[n..].fill(0.0);
+    if drift_before.is_some() || drift_after.is_some() {
+        let zero = vec![0.0; m];
+        let (b, a) = (
+            drift_before.as_deref().unwrap_or(&zero),
+            drift_after.as_deref().unwrap_or(&zero),
+        );
+        for j in 0..m {
+            res[n + j] = b[j] - a[j];
+        }
+    }
+    if !model.solve(res) || res.iter().any(|x| !x.is_finite()) {
+        return Err(StepFailure::Singular { h: 0.0 });
+    }
+    for i in 0..n {
+        s.acc[i] += res[i];
+        s.aux[i] += res[i];
+    }
+    for j in 0..m {
+        s.lambda[j] += res[n + j];
+    }
+    Ok(())
 }
 
 /// d²Φ/dt² at q̈ = 0 along (q̇, the held coordinates' motion), by a central second

@@ -4,6 +4,7 @@
 
 mod generalized_alpha;
 mod parameters;
+mod sdirk;
 mod seam;
 mod statics;
 
@@ -11,6 +12,7 @@ pub use generalized_alpha::{
     AlphaParams, GeneralizedAlpha, IntegratorMemory, JacobianPoint, StepFailure,
 };
 pub use parameters::*;
+pub use sdirk::Sdirk;
 pub use seam::{constraint_rows, EvalRequest, Integrable, StateRef};
 pub use statics::{solve_relative_static, solve_static, StaticFailure};
 
@@ -43,6 +45,126 @@ impl State {
             acc: vec![0.0; n],
             aux: vec![0.0; n],
             lambda: vec![0.0; m],
+        }
+    }
+}
+
+/// The integrator a scene asks for ([`Method`]), behind one interface.
+#[derive(Debug, Clone)]
+pub enum Integrator {
+    /// Generalized-α.
+    Alpha(GeneralizedAlpha),
+    /// The order-4 SDIRK.
+    Sdirk(Sdirk),
+}
+
+impl Integrator {
+    /// The integrator of `params.method` for `n` coordinates and `m` constraints.
+    pub fn new(params: &IntegrationParameters, n: usize, m: usize) -> Self {
+        match params.method {
+            Method::GeneralizedAlpha => Self::Alpha(GeneralizedAlpha::new(params, n, m)),
+            Method::Sdirk4 => Self::Sdirk(Sdirk::new(params, n, m)),
+        }
+    }
+
+    /// Work counters.
+    pub fn counters(&self) -> &Counters {
+        match self {
+            Self::Alpha(g) => &g.counters,
+            Self::Sdirk(s) => &s.counters,
+        }
+    }
+
+    /// Work counters, to count rejections.
+    pub fn counters_mut(&mut self) -> &mut Counters {
+        match self {
+            Self::Alpha(g) => &mut g.counters,
+            Self::Sdirk(s) => &mut s.counters,
+        }
+    }
+
+    /// Forgets the held Jacobian.
+    pub fn invalidate(&mut self) {
+        match self {
+            Self::Alpha(g) => g.invalidate(),
+            Self::Sdirk(s) => s.invalidate(),
+        }
+    }
+
+    /// The memory a snapshot must carry.
+    pub fn memory(&self) -> IntegratorMemory {
+        match self {
+            Self::Alpha(g) => g.memory(),
+            Self::Sdirk(s) => s.memory(),
+        }
+    }
+
+    /// Restores memory (the held Newton matrix rebuilt where it was evaluated).
+    pub fn restore_memory<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        mem: &IntegratorMemory,
+    ) -> Result<(), StepFailure> {
+        match self {
+            Self::Alpha(g) => g.restore_memory(model, mem),
+            Self::Sdirk(s) => s.restore_memory(model, mem),
+        }
+    }
+
+    /// Consistent initial accelerations and multipliers ([`GeneralizedAlpha::initialize`]).
+    pub fn initialize<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+    ) -> Result<(), StepFailure> {
+        match self {
+            Self::Alpha(g) => g.initialize(model, s),
+            Self::Sdirk(k) => {
+                k.invalidate();
+                generalized_alpha::initialize(
+                    model,
+                    s,
+                    &mut vec![0.0; s.q.len() + s.lambda.len()],
+                    &mut k.counters,
+                )
+            }
+        }
+    }
+
+    /// A jump of the inputs at t_n ([`GeneralizedAlpha::change_inputs`]; for the SDIRK, a
+    /// one-step method, only q̈ and λ at t_n follow, the next step's first guess).
+    pub fn change_inputs<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+        change: impl FnOnce(&mut M),
+    ) -> Result<(), StepFailure> {
+        match self {
+            Self::Alpha(g) => g.change_inputs(model, s, change),
+            Self::Sdirk(k) => {
+                k.invalidate();
+                let mut res = vec![0.0; s.q.len() + s.lambda.len()];
+                generalized_alpha::change_inputs(model, s, &mut res, &mut k.counters, change)
+            }
+        }
+    }
+
+    /// One step of size `h` from `s`; `at(model, dt)` sets the model's time-dependent inputs
+    /// at t_n + dt: once at dt = h for generalized-α, before each stage for the SDIRK (the last
+    /// at dt = h). On failure `s` is untouched.
+    pub fn step<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+        h: f64,
+        mut at: impl FnMut(&mut M, f64),
+    ) -> Result<usize, StepFailure> {
+        match self {
+            Self::Alpha(g) => {
+                at(model, h);
+                g.step(model, s, h)
+            }
+            Self::Sdirk(k) => k.step(model, s, h, at),
         }
     }
 }

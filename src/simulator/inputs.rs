@@ -92,7 +92,7 @@ impl<S: Space> Simulator<S> {
 
     /// Work counters.
     pub fn counters(&self) -> Counters {
-        self.integ.counters
+        *self.integ.counters()
     }
 
     /// Sets the total tip force [N], global axes (replaces the scene's; takes effect at the

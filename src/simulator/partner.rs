@@ -243,24 +243,43 @@ impl<S: Space> Simulator<S> {
         &mut self,
         p: &PartnerStep,
         dev: &mut Deviation,
-        t_next: f64,
-        h: f64,
+        (t0, t_next, h): (f64, f64, f64),
+        inputs: &Inputs<S>,
     ) -> Result<(), crate::integrator::StepFailure> {
-        let Some(path) = self.mount.as_deref().map(|ms| ms.at(t_next)) else {
-            return self
-                .integ
-                .step(&mut self.model, &mut self.state, h)
-                .map(|_| ());
-        };
+        let varying = self.load_rates.any();
+        let t_start = self.state.t;
         let n = p.n;
         let start = self.state.clone();
         let mut a1 = dev.a;
         for it in 0..PARTNER_ITERATIONS {
             let next = dev.advanced(&a1, h);
-            self.model.set_mount(&next.applied(&path));
-            if let Err(e) = self.integ.step(&mut self.model, &mut self.state, h) {
+            // the loads and the deviated mount at the step's end (each stage time of a
+            // multi-stage method: the deviation's acceleration linear over the step)
+            let (mount, rates, d0) = (self.mount.as_deref(), &self.load_rates, &*dev);
+            let at = |m: &mut Model<S>, dt: f64| {
+                let t = if dt == h { t_next } else { t_start + dt };
+                if varying {
+                    rates.advanced(inputs, t - t0).apply(m);
+                }
+                if let Some(ms) = mount {
+                    let d = if dt == h {
+                        next.clone()
+                    } else {
+                        let f = dt / h;
+                        let a: [f64; PARTNER_COMPONENTS] =
+                            std::array::from_fn(|i| d0.a[i] + f * (a1[i] - d0.a[i]));
+                        d0.advanced(&a, dt)
+                    };
+                    m.set_mount(&d.applied(&ms.at(t)));
+                }
+            };
+            if let Err(e) = self.integ.step(&mut self.model, &mut self.state, h, at) {
                 self.state = start;
                 return Err(e);
+            }
+            if self.mount.is_none() {
+                *dev = next;
+                return Ok(());
             }
             let answer = p.answer(&self.reaction_now());
             let res = nalgebra::DVector::from_fn(n, |i, _| a1[i] - answer[i]);

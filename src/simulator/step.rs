@@ -156,20 +156,24 @@ impl<S: Space> Simulator<S> {
             } else {
                 t0 + span * ((done + 1) as f64 / steps as f64)
             };
-            if let Some(ms) = &self.mount {
-                self.model.set_mount(&ms.at(t_next));
-            }
-            if varying {
-                // the loads at the step's end, where its equations hold
-                self.load_rates
-                    .advanced(inputs, t_next - t0)
-                    .apply(&mut self.model);
-            }
+            // the time-dependent inputs where the step's equations hold (its end; each stage
+            // time of a multi-stage method)
+            let t_start = self.state.t;
+            let (mount, rates) = (self.mount.as_deref(), &self.load_rates);
+            let at = |m: &mut Model<S>, dt: f64| {
+                let t = if dt == h { t_next } else { t_start + dt };
+                if let Some(ms) = mount {
+                    m.set_mount(&ms.at(t));
+                }
+                if varying {
+                    rates.advanced(inputs, t - t0).apply(m);
+                }
+            };
             let stepped = match &partner {
-                Some(p) => self.step_with_partner(p, &mut dev, t_next, h),
+                Some(p) => self.step_with_partner(p, &mut dev, (t0, t_next, h), inputs),
                 None => self
                     .integ
-                    .step(&mut self.model, &mut self.state, h)
+                    .step(&mut self.model, &mut self.state, h, at)
                     .map(|_| ()),
             };
             match stepped {
@@ -179,7 +183,7 @@ impl<S: Space> Simulator<S> {
                     self.state.t = t0 + span * (done as f64 / steps as f64);
                 }
                 Err(e) => {
-                    self.integ.counters.rejected += 1;
+                    self.integ.counters_mut().rejected += 1;
                     halvings += 1;
                     // a halving doubles the steps still to go
                     let limit = if halvings > MAX_HALVINGS {
