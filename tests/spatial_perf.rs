@@ -30,7 +30,7 @@ fn run_fixed_steps<S: Space>(
             .step(model, state, h)
             .unwrap_or_else(|e| panic!("step {k}: {e}"));
     }
-    let c = &integ.counters;
+    let c = integ.counters();
     (c.steps, c.iterations, c.factorizations)
 }
 

@@ -8,9 +8,9 @@
 //! while Newton contracts well (modified Newton), refreshed otherwise. A step that does not
 //! converge is rejected with the state untouched; it is never accepted.
 
+use super::newton::{Newton, Rates};
 use super::{
     scaled_norm, Counters, EvalRequest, Integrable, IntegrationParameters, State, StateRef,
-    REFRESH_RATE,
 };
 use crate::math;
 
@@ -81,20 +81,11 @@ impl std::error::Error for StepFailure {}
 pub struct GeneralizedAlpha {
     /// Coefficients.
     pub p: AlphaParams,
-    /// Relative Newton tolerance on scaled increments.
-    pub tol: f64,
-    /// Newton iteration limit per step.
-    pub max_iter: usize,
-    /// Work counters.
-    pub counters: Counters,
-    /// Step size of the held factorization (None = must refactor).
-    factored_h: Option<f64>,
-    /// Where the held Jacobian was evaluated, so that a restored snapshot can rebuild the very
-    /// same factorization and continue bit for bit.
-    jac_at: Option<JacobianPoint>,
+    /// The Newton loop with its held matrix (Newton tolerance and iteration limit) and the
+    /// work counters.
+    newton: Newton,
     /// Newton convergence-rate estimate η = ρ/(1 − ρ) carried across steps.
     eta: f64,
-    res: Vec<f64>,
     trial: State,
 }
 
@@ -128,29 +119,33 @@ impl GeneralizedAlpha {
     pub fn new(params: &IntegrationParameters, n: usize, m: usize) -> Self {
         Self {
             p: AlphaParams::from_rho_inf(params.rho_inf),
-            tol: params.tolerance,
-            max_iter: params.max_iterations,
-            counters: Counters::default(),
-            factored_h: None,
-            jac_at: None,
+            newton: Newton::new(params.tolerance, params.max_iterations, n + m),
             eta: 1.0,
-            res: vec![0.0; n + m],
             trial: State::at_rest(0.0, vec![0.0; n], m),
         }
     }
 
+    /// Work counters.
+    pub fn counters(&self) -> &Counters {
+        &self.newton.counters
+    }
+
+    /// Work counters, to count rejections.
+    pub fn counters_mut(&mut self) -> &mut Counters {
+        &mut self.newton.counters
+    }
+
     /// Forgets the held Jacobian (after the model or its parameters changed).
     pub fn invalidate(&mut self) {
-        self.factored_h = None;
-        self.jac_at = None;
+        self.newton.invalidate();
     }
 
     /// The memory a snapshot must carry.
     pub fn memory(&self) -> IntegratorMemory {
         IntegratorMemory {
             eta: self.eta,
-            jacobian: if self.factored_h.is_some() {
-                self.jac_at.clone()
+            jacobian: if self.newton.factored_h.is_some() {
+                self.newton.jac_at.clone()
             } else {
                 None
             },
@@ -183,10 +178,10 @@ impl GeneralizedAlpha {
                 lambda_hessian: true,
             };
             let x = StateRef::new(&jp.q, &jp.v, &jp.acc, &jp.lam);
-            model.eval(x, req, &mut self.res);
+            model.eval(x, req, &mut self.newton.res);
             model.factorize().map_err(|_| StepFailure::Singular { h })?;
-            self.factored_h = Some(h);
-            self.jac_at = Some(jp.clone());
+            self.newton.factored_h = Some(h);
+            self.newton.jac_at = Some(jp.clone());
         }
         Ok(())
     }
@@ -198,8 +193,9 @@ impl GeneralizedAlpha {
         model: &mut M,
         s: &mut State,
     ) -> Result<(), StepFailure> {
-        self.factored_h = None;
-        initialize(model, s, &mut self.res, &mut self.counters)
+        self.newton.factored_h = None;
+        let nw = &mut self.newton;
+        initialize(model, s, &mut nw.res, &mut nw.counters)
     }
 
     /// Inputs change at the current time t_n (a load held constant over the coming steps, e.g.
@@ -223,7 +219,8 @@ impl GeneralizedAlpha {
         change: impl FnOnce(&mut M),
     ) -> Result<(), StepFailure> {
         self.invalidate();
-        change_inputs(model, s, &mut self.res, &mut self.counters, change)
+        let nw = &mut self.newton;
+        change_inputs(model, s, &mut nw.res, &mut nw.counters, change)
     }
 
     /// One step of size `h` from `s`. On success `s` holds the new state; on failure `s` is
@@ -259,93 +256,35 @@ impl GeneralizedAlpha {
             t.lambda[j] = bh2 * s.lambda[j];
         }
         let coeffs = ((1.0 - am) / (1.0 - af), ga * h, bh2);
-        let mut fresh = false;
-        let mut last = f64::INFINITY;
+        let request = |matrix: bool| EvalRequest {
+            sd: bh2,
+            matrix: matrix.then_some(coeffs),
+            lambda_hessian: true,
+        };
+        let rates = Rates {
+            dv: gamma_p,
+            da: beta_p,
+            aux_div: Some(bh2),
+        };
         // the rate estimate of earlier steps is trusted less as steps go by (Hairer & Wanner)
-        let mut eta = math::pow(self.eta.max(f64::EPSILON), 0.8);
-        for it in 0..self.max_iter {
-            // the held matrix steers modified Newton only: a step size that differs in its last
-            // bits (t_end − t0 of consecutive communication steps) does not call for a new one
-            let refresh = !self.factored_h.is_some_and(|hf| (hf - h).abs() <= 1e-9 * h);
-            let req = EvalRequest {
-                sd: bh2,
-                matrix: if refresh { Some(coeffs) } else { None },
-                lambda_hessian: true,
-            };
-            model.eval(
-                StateRef::new(&t.q, &t.v, &t.acc, &t.lambda),
-                req,
-                &mut self.res,
-            );
-            self.counters.iterations += 1;
-            if refresh {
-                if model.factorize().is_err() {
-                    self.factored_h = None;
-                    return Err(StepFailure::Singular { h });
-                }
-                self.counters.factorizations += 1;
-                self.factored_h = Some(h);
-                self.jac_at = Some(JacobianPoint {
-                    h,
-                    q: t.q.clone(),
-                    v: t.v.clone(),
-                    acc: t.acc.clone(),
-                    lam: t.lambda.clone(),
-                });
-                fresh = true;
-            }
-            for r in self.res.iter_mut() {
-                *r = -*r;
-            }
-            if !model.solve(&mut self.res) {
-                self.factored_h = None;
-                return Err(StepFailure::Singular { h });
-            }
-            model.increment(&mut t.q, &self.res[..n]);
-            for i in 0..n {
-                let d = self.res[i];
-                t.v[i] += gamma_p * d;
-                t.acc[i] += beta_p * d;
-                t.aux[i] += d / bh2;
-            }
-            for j in 0..m {
-                t.lambda[j] += self.res[n + j];
-            }
-            let norm = scaled_norm(&self.res[..n], model.scales()) / self.tol;
-            if !norm.is_finite() {
-                self.factored_h = None;
-                return Err(StepFailure::Singular { h });
-            }
-            if it > 0 {
-                let rate = norm / last;
-                eta = if rate < 1.0 {
-                    rate / (1.0 - rate)
-                } else {
-                    f64::INFINITY
-                };
-            }
-            // converged when the estimated remaining error η‖Δq‖ is within tolerance
-            if eta * norm <= 1.0 || norm <= 1e-3 {
+        let eta = math::pow(self.eta.max(f64::EPSILON), 0.8);
+        match self.newton.iterate(model, t, h, request, rates, eta) {
+            Ok((iterations, eta)) => {
                 self.eta = eta;
                 for j in 0..m {
                     t.lambda[j] /= bh2;
                 }
                 std::mem::swap(s, t);
-                self.counters.steps += 1;
-                return Ok(it + 1);
+                self.newton.counters.steps += 1;
+                Ok(iterations)
             }
-            let rate = norm / last;
-            last = norm;
-            if it > 0 && rate > REFRESH_RATE && !fresh {
-                // stale Jacobian contracts poorly: refresh at the current iterate
-                self.factored_h = None;
-            } else if it > 0 && rate > 1.0 && fresh {
-                break; // diverging with a fresh Jacobian
+            Err(e) => {
+                if matches!(e, StepFailure::NoConvergence { .. }) {
+                    self.eta = 1.0;
+                }
+                Err(e)
             }
         }
-        self.invalidate();
-        self.eta = 1.0;
-        Err(StepFailure::NoConvergence { h, last_norm: last })
     }
 }
 

@@ -3,6 +3,7 @@
 //! the coordinate update. Nothing here imports the model.
 
 mod generalized_alpha;
+mod newton;
 mod parameters;
 mod sdirk;
 mod seam;
@@ -70,16 +71,16 @@ impl Integrator {
     /// Work counters.
     pub fn counters(&self) -> &Counters {
         match self {
-            Self::Alpha(g) => &g.counters,
-            Self::Sdirk(s) => &s.counters,
+            Self::Alpha(g) => g.counters(),
+            Self::Sdirk(s) => s.counters(),
         }
     }
 
     /// Work counters, to count rejections.
     pub fn counters_mut(&mut self) -> &mut Counters {
         match self {
-            Self::Alpha(g) => &mut g.counters,
-            Self::Sdirk(s) => &mut s.counters,
+            Self::Alpha(g) => g.counters_mut(),
+            Self::Sdirk(s) => s.counters_mut(),
         }
     }
 
@@ -125,7 +126,7 @@ impl Integrator {
                     model,
                     s,
                     &mut vec![0.0; s.q.len() + s.lambda.len()],
-                    &mut k.counters,
+                    k.counters_mut(),
                 )
             }
         }
@@ -144,7 +145,7 @@ impl Integrator {
             Self::Sdirk(k) => {
                 k.invalidate();
                 let mut res = vec![0.0; s.q.len() + s.lambda.len()];
-                generalized_alpha::change_inputs(model, s, &mut res, &mut k.counters, change)
+                generalized_alpha::change_inputs(model, s, &mut res, k.counters_mut(), change)
             }
         }
     }

@@ -14,9 +14,10 @@
 //! accuracy at common steps (its 3rd bending mode at 160 Hz drifts by 1.6 rad over 2 s at
 //! h = 1e-4 s); this method's is of order (ωh)⁴, at five solves per step with one matrix.
 
+use super::newton::{Newton, Rates};
 use super::{
-    scaled_norm, Counters, EvalRequest, Integrable, IntegrationParameters, IntegratorMemory,
-    JacobianPoint, State, StateRef, StepFailure, REFRESH_RATE,
+    Counters, EvalRequest, Integrable, IntegrationParameters, IntegratorMemory, State, StateRef,
+    StepFailure,
 };
 use crate::math;
 
@@ -52,17 +53,11 @@ fn a_squared() -> [[f64; STAGES]; STAGES] {
 /// The integrator with its work arrays and Jacobian policy.
 #[derive(Debug, Clone)]
 pub struct Sdirk {
-    /// Relative Newton tolerance on scaled increments.
-    pub tol: f64,
-    /// Newton iteration limit per stage.
-    pub max_iter: usize,
-    /// Work counters (an accepted step counts once, its Newton iterations over all stages).
-    pub counters: Counters,
     a2: [[f64; STAGES]; STAGES],
-    factored_h: Option<f64>,
-    jac_at: Option<JacobianPoint>,
+    /// The Newton loop with its held matrix (tolerance and iteration limit per stage) and the
+    /// work counters (an accepted step counts once, its Newton iterations over all stages).
+    newton: Newton,
     eta: f64,
-    res: Vec<f64>,
     /// Stage accelerations A_j (n each).
     stage_acc: Vec<Vec<f64>>,
     trial: State,
@@ -73,30 +68,34 @@ impl Sdirk {
     /// iteration limit of `params`.
     pub fn new(params: &IntegrationParameters, n: usize, m: usize) -> Self {
         Self {
-            tol: params.tolerance,
-            max_iter: params.max_iterations,
-            counters: Counters::default(),
             a2: a_squared(),
-            factored_h: None,
-            jac_at: None,
+            newton: Newton::new(params.tolerance, params.max_iterations, n + m),
             eta: 1.0,
-            res: vec![0.0; n + m],
             stage_acc: vec![vec![0.0; n]; STAGES],
             trial: State::at_rest(0.0, vec![0.0; n], m),
         }
     }
 
+    /// Work counters.
+    pub fn counters(&self) -> &Counters {
+        &self.newton.counters
+    }
+
+    /// Work counters, to count rejections.
+    pub fn counters_mut(&mut self) -> &mut Counters {
+        &mut self.newton.counters
+    }
+
     /// Forgets the held Jacobian.
     pub fn invalidate(&mut self) {
-        self.factored_h = None;
-        self.jac_at = None;
+        self.newton.invalidate();
     }
 
     /// The memory a snapshot must carry.
     pub fn memory(&self) -> IntegratorMemory {
         IntegratorMemory {
             eta: self.eta,
-            jacobian: self.factored_h.and(self.jac_at.clone()),
+            jacobian: self.newton.factored_h.and(self.newton.jac_at.clone()),
         }
     }
 
@@ -118,10 +117,10 @@ impl Sdirk {
             let h = jp.h;
             let req = request(h, true);
             let x = StateRef::new(&jp.q, &jp.v, &jp.acc, &jp.lam);
-            model.eval(x, req, &mut self.res);
+            model.eval(x, req, &mut self.newton.res);
             model.factorize().map_err(|_| StepFailure::Singular { h })?;
-            self.factored_h = Some(h);
-            self.jac_at = Some(jp.clone());
+            self.newton.factored_h = Some(h);
+            self.newton.jac_at = Some(jp.clone());
         }
         Ok(())
     }
@@ -182,7 +181,7 @@ impl Sdirk {
         }
         std::mem::swap(s, t);
         // the next step's first guess of the scaled multipliers
-        self.counters.steps += 1;
+        self.newton.counters.steps += 1;
         Ok(iterations)
     }
 
@@ -192,82 +191,26 @@ impl Sdirk {
         &mut self,
         model: &mut M,
         h: f64,
-        mut eta: f64,
+        eta: f64,
     ) -> Result<(usize, f64), StepFailure> {
-        let n = self.trial.q.len();
-        let m = self.trial.lambda.len();
         let g = GAMMA * h;
-        let g2 = g * g;
-        let mut fresh = false;
-        let mut last = f64::INFINITY;
-        for it in 0..self.max_iter {
-            let refresh = !self.factored_h.is_some_and(|hf| (hf - h).abs() <= 1e-9 * h);
-            let t = &mut self.trial;
-            model.eval(
-                StateRef::new(&t.q, &t.v, &t.acc, &t.lambda),
-                request(h, refresh),
-                &mut self.res,
-            );
-            self.counters.iterations += 1;
-            if refresh {
-                if model.factorize().is_err() {
-                    self.factored_h = None;
-                    return Err(StepFailure::Singular { h });
-                }
-                self.counters.factorizations += 1;
-                self.factored_h = Some(h);
-                self.jac_at = Some(JacobianPoint {
-                    h,
-                    q: t.q.clone(),
-                    v: t.v.clone(),
-                    acc: t.acc.clone(),
-                    lam: t.lambda.clone(),
-                });
-                fresh = true;
-            }
-            for r in self.res.iter_mut() {
-                *r = -*r;
-            }
-            if !model.solve(&mut self.res) {
-                self.factored_h = None;
-                return Err(StepFailure::Singular { h });
-            }
-            model.increment(&mut t.q, &self.res[..n]);
-            for k in 0..n {
-                let d = self.res[k];
-                t.v[k] += d / g;
-                t.acc[k] += d / g2;
-            }
-            for j in 0..m {
-                t.lambda[j] += self.res[n + j];
-            }
-            let norm = scaled_norm(&self.res[..n], model.scales()) / self.tol;
-            if !norm.is_finite() {
-                self.factored_h = None;
-                return Err(StepFailure::Singular { h });
-            }
-            if it > 0 {
-                let rate = norm / last;
-                eta = if rate < 1.0 {
-                    rate / (1.0 - rate)
-                } else {
-                    f64::INFINITY
-                };
-            }
-            if eta * norm <= 1.0 || norm <= 1e-3 {
-                return Ok((it + 1, eta));
-            }
-            let rate = norm / last;
-            last = norm;
-            if it > 0 && rate > REFRESH_RATE && !fresh {
-                self.factored_h = None;
-            } else if it > 0 && rate > 1.0 && fresh {
-                break;
-            }
+        let rates = Rates {
+            dv: 1.0 / g,
+            da: 1.0 / (g * g),
+            aux_div: None,
+        };
+        let done = self.newton.iterate(
+            model,
+            &mut self.trial,
+            h,
+            |matrix| request(h, matrix),
+            rates,
+            eta,
+        );
+        if matches!(done, Err(StepFailure::NoConvergence { .. })) {
+            self.eta = 1.0;
         }
-        self.invalidate();
-        self.eta = 1.0;
-        Err(StepFailure::NoConvergence { h, last_norm: last })
+        done
     }
 }
 

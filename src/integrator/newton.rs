@@ -1,0 +1,147 @@
+//! The modified-Newton loop both integrators share: one implicit solve for the coordinates of
+//! a trial state, with the Newton matrix held across iterations, stages and steps while it
+//! contracts well (refreshed at the current iterate otherwise).
+
+use super::{
+    scaled_norm, Counters, EvalRequest, Integrable, JacobianPoint, State, StateRef, StepFailure,
+    REFRESH_RATE,
+};
+
+/// The held Newton matrix, its evaluation point and the residual work array.
+#[derive(Debug, Clone)]
+pub(super) struct Newton {
+    /// Relative tolerance on scaled increments.
+    pub(super) tol: f64,
+    /// Iteration limit per solve.
+    pub(super) max_iter: usize,
+    /// Step size of the held factorization (None = must refactor).
+    pub(super) factored_h: Option<f64>,
+    /// Where the held Jacobian was evaluated (for a snapshot's bit-identical restart).
+    pub(super) jac_at: Option<JacobianPoint>,
+    /// Residual and increment (n + m).
+    pub(super) res: Vec<f64>,
+    /// Work counters.
+    pub(super) counters: Counters,
+}
+
+/// How an increment Δq of the coordinates moves the trial's other unknowns: q̇ += dv·Δq,
+/// q̈ += da·Δq and, with `aux_div`, the algorithmic acceleration += Δq / aux_div.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Rates {
+    pub(super) dv: f64,
+    pub(super) da: f64,
+    pub(super) aux_div: Option<f64>,
+}
+
+impl Newton {
+    pub(super) fn new(tol: f64, max_iter: usize, rows: usize) -> Self {
+        Self {
+            tol,
+            max_iter,
+            factored_h: None,
+            jac_at: None,
+            res: vec![0.0; rows],
+            counters: Counters::default(),
+        }
+    }
+
+    /// Forgets the held matrix.
+    pub(super) fn invalidate(&mut self) {
+        self.factored_h = None;
+        self.jac_at = None;
+    }
+
+    /// Iterates on `t` (its coordinates, rates, accelerations and scaled multipliers) at step
+    /// size `h` until the estimated remaining error η‖Δq‖ is within tolerance; `request(m)`
+    /// is the evaluation request, with the Newton matrix if `m`. `eta` is the contraction
+    /// estimate to start from; returns the iterations and the final estimate. On failure the
+    /// held matrix is dropped (`t` is then a failed iterate).
+    pub(super) fn iterate<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        t: &mut State,
+        h: f64,
+        request: impl Fn(bool) -> EvalRequest,
+        rates: Rates,
+        mut eta: f64,
+    ) -> Result<(usize, f64), StepFailure> {
+        let counters = &mut self.counters;
+        let n = t.q.len();
+        let m = t.lambda.len();
+        let mut fresh = false;
+        let mut last = f64::INFINITY;
+        for it in 0..self.max_iter {
+            // the held matrix steers modified Newton only: a step size that differs in its last
+            // bits (t_end − t0 of consecutive communication steps) does not call for a new one
+            let refresh = !self.factored_h.is_some_and(|hf| (hf - h).abs() <= 1e-9 * h);
+            model.eval(
+                StateRef::new(&t.q, &t.v, &t.acc, &t.lambda),
+                request(refresh),
+                &mut self.res,
+            );
+            counters.iterations += 1;
+            if refresh {
+                if model.factorize().is_err() {
+                    self.factored_h = None;
+                    return Err(StepFailure::Singular { h });
+                }
+                counters.factorizations += 1;
+                self.factored_h = Some(h);
+                self.jac_at = Some(JacobianPoint {
+                    h,
+                    q: t.q.clone(),
+                    v: t.v.clone(),
+                    acc: t.acc.clone(),
+                    lam: t.lambda.clone(),
+                });
+                fresh = true;
+            }
+            for r in self.res.iter_mut() {
+                *r = -*r;
+            }
+            if !model.solve(&mut self.res) {
+                self.factored_h = None;
+                return Err(StepFailure::Singular { h });
+            }
+            model.increment(&mut t.q, &self.res[..n]);
+            for i in 0..n {
+                let d = self.res[i];
+                t.v[i] += rates.dv * d;
+                t.acc[i] += rates.da * d;
+                if let Some(div) = rates.aux_div {
+                    t.aux[i] += d / div;
+                }
+            }
+            for j in 0..m {
+                t.lambda[j] += self.res[n + j];
+            }
+            let norm = scaled_norm(&self.res[..n], model.scales()) / self.tol;
+            if !norm.is_finite() {
+                self.factored_h = None;
+                return Err(StepFailure::Singular { h });
+            }
+            if it > 0 {
+                let rate = norm / last;
+                eta = if rate < 1.0 {
+                    rate / (1.0 - rate)
+                } else {
+                    f64::INFINITY
+                };
+            }
+            // converged when the estimated remaining error η‖Δq‖ is within tolerance
+            if eta * norm <= 1.0 || norm <= 1e-3 {
+                return Ok((it + 1, eta));
+            }
+            let rate = norm / last;
+            last = norm;
+            if it > 0 && rate > REFRESH_RATE && !fresh {
+                // stale Jacobian contracts poorly: refresh at the current iterate
+                self.factored_h = None;
+            } else if it > 0 && rate > 1.0 && fresh {
+                break; // diverging with a fresh Jacobian
+            }
+        }
+        self.invalidate();
+        Err(StepFailure::NoConvergence { h, last_norm: last })
+    }
+}
