@@ -37,6 +37,9 @@ struct Spec {
     refine: usize,
     /// Element counts of the `combined` grids, as factors of the scene's own count.
     grid: &'static [f64],
+    /// (formulation, file) of the twins also swept in step with `solver.method = "sdirk4"`
+    /// (those without joint rows: hybeam refuses the SDIRK on them).
+    sdirk: &'static [(&'static str, &'static str)],
 }
 
 const SPECS: &[Spec] = &[
@@ -48,6 +51,7 @@ const SPECS: &[Spec] = &[
         ancf: "case1_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
+        sdirk: &[("all-ANCF", "case1_ancf"), ("all-modal", "case1_modal")],
     },
     Spec {
         key: "case2",
@@ -57,6 +61,7 @@ const SPECS: &[Spec] = &[
         ancf: "case2_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
+        sdirk: &[("all-ANCF", "case2_ancf"), ("all-modal", "case2_modal")],
     },
     Spec {
         key: "case3",
@@ -66,6 +71,7 @@ const SPECS: &[Spec] = &[
         ancf: "case3_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
+        sdirk: &[("all-ANCF", "case3_ancf")],
     },
     Spec {
         key: "case1_3d",
@@ -78,6 +84,10 @@ const SPECS: &[Spec] = &[
         ancf: "case1_3d_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
+        sdirk: &[
+            ("all-ANCF", "case1_3d_ancf"),
+            ("all-modal", "case1_3d_modal"),
+        ],
     },
     Spec {
         key: "soft_rod",
@@ -90,6 +100,7 @@ const SPECS: &[Spec] = &[
         ancf: "soft_rod",
         refine: 8,
         grid: &[1.0, 2.0, 4.0],
+        sdirk: &[("all-ANCF", "soft_rod"), ("all-modal", "soft_rod_modal")],
     },
 ];
 
@@ -273,6 +284,20 @@ fn plan(spec: &Spec, main: &Scene, quick: bool) -> Result<Vec<Point>, String> {
                 file,
                 format!("h={h:e}"),
                 vec![format!("solver.max_step={h:e}")],
+            );
+        }
+    }
+    for (form, file) in spec.sdirk {
+        for &h in steps {
+            push(
+                &format!("{form} SDIRK4 step"),
+                form,
+                file,
+                format!("h={h:e} sdirk4"),
+                vec![
+                    format!("solver.max_step={h:e}"),
+                    "solver.method=sdirk4".into(),
+                ],
             );
         }
     }
