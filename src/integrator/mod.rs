@@ -2,6 +2,7 @@
 //! (Chrono's `ChIntegrableIIorder` seam): residual and Newton matrix at a state, LU solve, and
 //! the coordinate update. Nothing here imports the model.
 
+mod consistent;
 mod generalized_alpha;
 mod newton;
 mod parameters;
@@ -120,15 +121,7 @@ impl Integrator {
     ) -> Result<(), StepFailure> {
         match self {
             Self::Alpha(g) => g.initialize(model, s),
-            Self::Sdirk(k) => {
-                k.invalidate();
-                generalized_alpha::initialize(
-                    model,
-                    s,
-                    &mut vec![0.0; s.q.len() + s.lambda.len()],
-                    k.counters_mut(),
-                )
-            }
+            Self::Sdirk(k) => k.initialize(model, s),
         }
     }
 
@@ -142,11 +135,7 @@ impl Integrator {
     ) -> Result<(), StepFailure> {
         match self {
             Self::Alpha(g) => g.change_inputs(model, s, change),
-            Self::Sdirk(k) => {
-                k.invalidate();
-                let mut res = vec![0.0; s.q.len() + s.lambda.len()];
-                generalized_alpha::change_inputs(model, s, &mut res, k.counters_mut(), change)
-            }
+            Self::Sdirk(k) => k.change_inputs(model, s, change),
         }
     }
 

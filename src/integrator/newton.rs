@@ -2,9 +2,10 @@
 //! a trial state, with the Newton matrix held across iterations, stages and steps while it
 //! contracts well (refreshed at the current iterate otherwise).
 
+use super::consistent::{change_inputs, initialize};
 use super::{
-    scaled_norm, Counters, EvalRequest, Integrable, JacobianPoint, State, StateRef, StepFailure,
-    REFRESH_RATE,
+    scaled_norm, Counters, EvalRequest, Integrable, IntegratorMemory, JacobianPoint, State,
+    StateRef, StepFailure, REFRESH_RATE,
 };
 
 /// The held Newton matrix, its evaluation point and the residual work array.
@@ -49,6 +50,61 @@ impl Newton {
     pub(super) fn invalidate(&mut self) {
         self.factored_h = None;
         self.jac_at = None;
+    }
+
+    /// The memory a snapshot must carry: `eta` and the held matrix's evaluation point.
+    pub(super) fn memory(&self, eta: f64) -> IntegratorMemory {
+        IntegratorMemory {
+            eta,
+            jacobian: self.factored_h.and(self.jac_at.clone()),
+        }
+    }
+
+    /// Rebuilds the held matrix of `mem` (evaluated with `request(true)` at its step size),
+    /// so that the next steps are bit-identical to those of the original run.
+    pub(super) fn restore<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        mem: &IntegratorMemory,
+        request: impl Fn(f64) -> EvalRequest,
+    ) -> Result<(), StepFailure> {
+        self.invalidate();
+        if let Some(jp) = &mem.jacobian {
+            let (n, m) = (model.coordinates(), model.constraints());
+            if [&jp.q, &jp.v, &jp.acc].iter().any(|x| x.len() != n) || jp.lam.len() != m {
+                return Err(StepFailure::Singular { h: jp.h });
+            }
+            let h = jp.h;
+            let x = StateRef::new(&jp.q, &jp.v, &jp.acc, &jp.lam);
+            model.eval(x, request(h), &mut self.res);
+            model.factorize().map_err(|_| StepFailure::Singular { h })?;
+            self.factored_h = Some(h);
+            self.jac_at = Some(jp.clone());
+        }
+        Ok(())
+    }
+
+    /// Consistent accelerations and multipliers at `s` (its algorithmic acceleration = q̈),
+    /// in the model's matrix storage: the held matrix is dropped.
+    pub(super) fn consistent<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+    ) -> Result<(), StepFailure> {
+        self.invalidate();
+        initialize(model, s, &mut self.res, &mut self.counters)
+    }
+
+    /// The jump of q̈ and λ when `change` alters the inputs at t_n
+    /// ([`super::GeneralizedAlpha::change_inputs`]); the held matrix is dropped.
+    pub(super) fn jump<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+        change: impl FnOnce(&mut M),
+    ) -> Result<(), StepFailure> {
+        self.invalidate();
+        change_inputs(model, s, &mut self.res, &mut self.counters, change)
     }
 
     /// Iterates on `t` (its coordinates, rates, accelerations and scaled multipliers) at step

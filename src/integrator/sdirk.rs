@@ -16,8 +16,8 @@
 
 use super::newton::{Newton, Rates};
 use super::{
-    Counters, EvalRequest, Integrable, IntegrationParameters, IntegratorMemory, State, StateRef,
-    StepFailure, MIN_TOLERANCE,
+    Counters, EvalRequest, Integrable, IntegrationParameters, IntegratorMemory, State, StepFailure,
+    MIN_TOLERANCE,
 };
 use crate::math;
 
@@ -105,10 +105,7 @@ impl Sdirk {
 
     /// The memory a snapshot must carry.
     pub fn memory(&self) -> IntegratorMemory {
-        IntegratorMemory {
-            eta: self.eta,
-            jacobian: self.newton.factored_h.and(self.newton.jac_at.clone()),
-        }
+        self.newton.memory(self.eta)
     }
 
     /// Restores memory: re-evaluates and factorizes the Newton matrix at its recorded point.
@@ -117,24 +114,28 @@ impl Sdirk {
         model: &mut M,
         mem: &IntegratorMemory,
     ) -> Result<(), StepFailure> {
-        self.invalidate();
         self.eta = mem.eta;
-        if let Some(jp) = &mem.jacobian {
-            let n = self.trial.q.len();
-            if [&jp.q, &jp.v, &jp.acc].iter().any(|x| x.len() != n)
-                || jp.lam.len() != self.trial.lambda.len()
-            {
-                return Err(StepFailure::Singular { h: jp.h });
-            }
-            let h = jp.h;
-            let req = request(h, true);
-            let x = StateRef::new(&jp.q, &jp.v, &jp.acc, &jp.lam);
-            model.eval(x, req, &mut self.newton.res);
-            model.factorize().map_err(|_| StepFailure::Singular { h })?;
-            self.newton.factored_h = Some(h);
-            self.newton.jac_at = Some(jp.clone());
-        }
-        Ok(())
+        self.newton.restore(model, mem, |h| request(h, true))
+    }
+
+    /// Consistent initial accelerations and multipliers at `s` (q, q̇ given).
+    pub fn initialize<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+    ) -> Result<(), StepFailure> {
+        self.newton.consistent(model, s)
+    }
+
+    /// Inputs change at t_n: q̈ and λ there follow (a one-step method keeps no other memory;
+    /// they are the next step's first guess).
+    pub fn change_inputs<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        s: &mut State,
+        change: impl FnOnce(&mut M),
+    ) -> Result<(), StepFailure> {
+        self.newton.jump(model, s, change)
     }
 
     /// One step of size `h` from `s`; `at(model, dt)` sets the model's time-dependent inputs
@@ -266,7 +267,7 @@ fn request(h: f64, matrix: bool) -> EvalRequest {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{GeneralizedAlpha, Integrator};
+    use super::super::{GeneralizedAlpha, Integrator, StateRef};
     use super::*;
 
     /// A swinging pendulum in its angle θ (no constraint rows): m L² θ̈ = −m g L sin θ +

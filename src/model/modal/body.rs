@@ -100,6 +100,23 @@ pub(super) struct Nonlinear {
     pub(super) s: [[f64; 5]; 5],
 }
 
+/// One point's modal fields of one plane from its shape values `phi` (φ_k, φ_k′, φ_k″) and the
+/// amplitudes `q`, their rates `v` and accelerations `a`: (w, ẇ, ẅ, w′, ẇ′, ẅ′, w″).
+#[inline]
+pub(super) fn point_fields<T: Real>(phi: &[[f64; 3]], q: &[T], v: &[T], a: &[T]) -> [T; 7] {
+    let mut acc = [T::zero(); 7];
+    for (((ph, &x), &y), &z) in phi.iter().zip(q).zip(v).zip(a) {
+        acc[0] += x * ph[0];
+        acc[1] += y * ph[0];
+        acc[2] += z * ph[0];
+        acc[3] += x * ph[1];
+        acc[4] += y * ph[1];
+        acc[5] += z * ph[1];
+        acc[6] += x * ph[2];
+    }
+    acc
+}
+
 impl Nonlinear {
     /// The foreshortening's axial force at every point, N_p = Σ_q m_q V_qp (V the cumulative
     /// rule: the panels after p whole, p's own panel by `s`), m_q the point's axial inertia
@@ -541,17 +558,7 @@ impl ModalBody {
         buf.resize(FIELDS * np, T::zero());
         let (qa, va, aa) = (&q[3..3 + n], &v[3..3 + n], &a[3..3 + n]);
         for (f, phi) in buf.chunks_exact_mut(FIELDS).zip(nl.phi.chunks_exact(n)) {
-            let mut acc = [T::zero(); 7];
-            for (((ph, &x), &y), &z) in phi.iter().zip(qa).zip(va).zip(aa) {
-                acc[0] += x * ph[0];
-                acc[1] += y * ph[0];
-                acc[2] += z * ph[0];
-                acc[3] += x * ph[1];
-                acc[4] += y * ph[1];
-                acc[5] += z * ph[1];
-                acc[6] += x * ph[2];
-            }
-            f[..7].copy_from_slice(&acc);
+            f[..7].copy_from_slice(&point_fields(phi, qa, va, aa));
         }
         self.foreshortening_fields(buf);
     }

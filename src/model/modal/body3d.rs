@@ -26,7 +26,7 @@
 //! Newton block ([`ModalBody3::newton_block`]).
 
 use super::basis::ModalBasis;
-use super::body::{panels, Nonlinear};
+use super::body::{panels, point_fields, Nonlinear};
 use crate::math;
 use crate::model::sample::{minimal_frame, ShapePoint};
 use crate::model::vector::{add, cross, dot, scale, Real, V3};
@@ -556,17 +556,7 @@ impl ModalBody3 {
         for (f, phi) in buf.chunks_exact_mut(FIELDS3).zip(nl.phi.chunks_exact(nb)) {
             for (plane, off) in [(0, 7), (1, 7 + nb)] {
                 let (qa, va, aa) = (&q[off..off + nb], &v[off..off + nb], &a[off..off + nb]);
-                let mut acc = [T::zero(); 7];
-                for (((ph, &x), &y), &z) in phi.iter().zip(qa).zip(va).zip(aa) {
-                    acc[0] += x * ph[0];
-                    acc[1] += y * ph[0];
-                    acc[2] += z * ph[0];
-                    acc[3] += x * ph[1];
-                    acc[4] += y * ph[1];
-                    acc[5] += z * ph[1];
-                    acc[6] += x * ph[2];
-                }
-                f[7 * plane..7 * plane + 7].copy_from_slice(&acc);
+                f[7 * plane..7 * plane + 7].copy_from_slice(&point_fields(phi, qa, va, aa));
             }
         }
         let mut done = [T::zero(); 3];
