@@ -23,8 +23,8 @@ pub use step::StepControl;
 
 use crate::error::{Refusal, SimError, SnapshotError, StepLimit};
 use crate::integrator::{
-    solve_static, Counters, Integrable, Integrator, IntegratorMemory, Method, State,
-    CALM_BEFORE_GROWTH, MAX_HALVINGS, MIN_STEP,
+    solve_static, Counters, Integrable, Integrator, IntegratorMemory, State, CALM_BEFORE_GROWTH,
+    MAX_HALVINGS, MIN_STEP,
 };
 use crate::model::{Model, ModelValidity, Motion, Outputs, Space};
 use crate::scene::{InitialState, Scene};
@@ -79,19 +79,6 @@ impl<S: Space> Simulator<S> {
         let n = model.coordinates();
         let m = model.constraints();
         let mut state = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
-        if scene.solver.method == Method::Sdirk4
-            && m > 0
-            && (!model.linear_constraints() || model.is_driven())
-        {
-            return Err(crate::scene::SceneError(format!(
-                "solver.method = \"sdirk4\": this scene's model has {m} constraint rows that are \
-                 not fixed linear ones (a joint between segments, or a mounted ANCF root's \
-                 slope clamp); on such index-3 systems the SDIRK converges at first order only \
-                 (its stage order is 1), so it is refused: use solver.method = \
-                 \"generalized_alpha\" (the default), or one segment with a fixed root"
-            ))
-            .into());
-        }
         let mut integ = Integrator::new(&scene.solver, n, m);
         let mount = MountState::<S>::of_scene(&scene, 0.0);
         let static_start = initialize && scene.initial.state == InitialState::Static;

@@ -105,7 +105,7 @@ class Family:
     # A modal family: the hybeam --set key of its mode count, which the grid's n sets
     # (Family.modes); its runs have no ANCF elements.
     modes_key: str = ""
-    # Grid steps below this are not run (the SDIRK families: five solves per step, and at the
+    # Grid steps below this are not run (the ESDIRK families: five solves per step, and at the
     # grid's finest steps their error is already the mesh's).
     min_step: float = 0.0
 
@@ -163,14 +163,34 @@ HYBEAM_CABLE3D = Family(
     ("torsion=false", _tip_force_set()),
 )
 
-SDIRK = ("solver.method=sdirk4",)  # hybeam's order-4 SDIRK instead of generalized-alpha
-SDIRK_MIN_STEP = 1e-4
+ESDIRK = ("solver.method=esdirk4",)  # hybeam's order-4 ESDIRK instead of generalized-alpha
+ESDIRK_MIN_STEP = 1e-4
 
 
-def sdirk(fam: Family) -> Family:
-    """The family integrated by hybeam's SDIRK4 (`solver.method = "sdirk4"`), at steps from
-    SDIRK_MIN_STEP up."""
-    return replace(fam, name=f"{fam.name}, SDIRK4", sets=fam.sets + SDIRK, min_step=SDIRK_MIN_STEP)
+def esdirk(fam: Family) -> Family:
+    """The family integrated by hybeam's ESDIRK4 (`solver.method = "esdirk4"`), at steps from
+    ESDIRK_MIN_STEP up."""
+    return replace(
+        fam, name=f"{fam.name}, ESDIRK4", sets=fam.sets + ESDIRK, min_step=ESDIRK_MIN_STEP
+    )
+
+
+HYBEAM_HYBRID = Family(
+    "hybeam",
+    "hybeam hybrid modal+ANCF",
+    "scenes/case1.toml",
+    "segments.1.elements",
+    ("segments.0.modes=2",),
+    element_fraction=0.375,
+)
+HYBEAM_HYBRID3D = Family(
+    "hybeam",
+    "hybeam hybrid modal+cable",
+    "scenes/case1_3d.toml",
+    "segments.1.elements",
+    ("torsion=false", "segments.0.modes=2", _tip_force_set()),
+    element_fraction=0.375,
+)
 
 
 HYBEAM_MODAL = Family(
@@ -190,6 +210,12 @@ HYBEAM_MODAL3D = Family(
     sets=(_tip_force_set(),),
     modes_key="segments.0.modes",
 )
+HYBEAM_HYBRID_CASE3 = Family(
+    "hybeam",
+    "hybeam hybrid modal+ANCF",
+    "scenes/case3.toml",
+    segments=tuple(zip(("", "segments.1.elements"), shares(CASE3_ROD), strict=True)),
+)
 
 PROBLEMS = {
     "planar": Problem(
@@ -198,17 +224,11 @@ PROBLEMS = {
         [
             HYBEAM_PLANAR,
             EXUDYN_PLANAR,
-            Family(
-                "hybeam",
-                "hybeam hybrid modal+ANCF",
-                "scenes/case1.toml",
-                "segments.1.elements",
-                ("segments.0.modes=2",),
-                element_fraction=0.375,
-            ),
+            HYBEAM_HYBRID,
             HYBEAM_MODAL,
-            sdirk(HYBEAM_PLANAR),
-            sdirk(HYBEAM_MODAL),
+            esdirk(HYBEAM_PLANAR),
+            esdirk(HYBEAM_HYBRID),
+            esdirk(HYBEAM_MODAL),
         ],
         HYBEAM_PLANAR,
         EXUDYN_PLANAR,
@@ -223,18 +243,12 @@ PROBLEMS = {
             HYBEAM_CABLE3D,
             EXUDYN_SPATIAL,
             HYBEAM_TORSION,
-            Family(
-                "hybeam",
-                "hybeam hybrid modal+cable",
-                "scenes/case1_3d.toml",
-                "segments.1.elements",
-                ("torsion=false", "segments.0.modes=2", _tip_force_set()),
-                element_fraction=0.375,
-            ),
+            HYBEAM_HYBRID3D,
             HYBEAM_MODAL3D,
-            sdirk(HYBEAM_CABLE3D),
-            sdirk(HYBEAM_TORSION),
-            sdirk(HYBEAM_MODAL3D),
+            esdirk(HYBEAM_CABLE3D),
+            esdirk(HYBEAM_TORSION),
+            esdirk(HYBEAM_HYBRID3D),
+            esdirk(HYBEAM_MODAL3D),
         ],
         HYBEAM_CABLE3D,
         EXUDYN_SPATIAL,
@@ -249,12 +263,9 @@ PROBLEMS = {
         [
             HYBEAM_CASE3,
             EXUDYN_PLANAR,
-            Family(
-                "hybeam",
-                "hybeam hybrid modal+ANCF",
-                "scenes/case3.toml",
-                segments=tuple(zip(("", "segments.1.elements"), shares(CASE3_ROD), strict=True)),
-            ),
+            HYBEAM_HYBRID_CASE3,
+            esdirk(HYBEAM_CASE3),
+            esdirk(HYBEAM_HYBRID_CASE3),
         ],
         HYBEAM_CASE3,
         EXUDYN_PLANAR,

@@ -37,9 +37,8 @@ struct Spec {
     refine: usize,
     /// Element counts of the `combined` grids, as factors of the scene's own count.
     grid: &'static [f64],
-    /// (formulation, file) of the twins also swept in step with `solver.method = "sdirk4"`
-    /// (those without joint rows: hybeam refuses the SDIRK on them).
-    sdirk: &'static [(&'static str, &'static str)],
+    /// (formulation, file) of the twins also swept in step with `solver.method = "esdirk4"`.
+    esdirk: &'static [(&'static str, &'static str)],
 }
 
 const SPECS: &[Spec] = &[
@@ -51,7 +50,11 @@ const SPECS: &[Spec] = &[
         ancf: "case1_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
-        sdirk: &[("all-ANCF", "case1_ancf"), ("all-modal", "case1_modal")],
+        esdirk: &[
+            ("hybrid", "case1"),
+            ("all-ANCF", "case1_ancf"),
+            ("all-modal", "case1_modal"),
+        ],
     },
     Spec {
         key: "case2",
@@ -61,7 +64,11 @@ const SPECS: &[Spec] = &[
         ancf: "case2_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
-        sdirk: &[("all-ANCF", "case2_ancf"), ("all-modal", "case2_modal")],
+        esdirk: &[
+            ("hybrid", "case2"),
+            ("all-ANCF", "case2_ancf"),
+            ("all-modal", "case2_modal"),
+        ],
     },
     Spec {
         key: "case3",
@@ -71,7 +78,11 @@ const SPECS: &[Spec] = &[
         ancf: "case3_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
-        sdirk: &[("all-ANCF", "case3_ancf")],
+        esdirk: &[
+            ("hybrid", "case3"),
+            ("all-ANCF", "case3_ancf"),
+            ("all-modal", "case3_modal"),
+        ],
     },
     Spec {
         key: "case1_3d",
@@ -84,7 +95,8 @@ const SPECS: &[Spec] = &[
         ancf: "case1_3d_ancf",
         refine: 4,
         grid: &[0.25, 0.5, 1.0],
-        sdirk: &[
+        esdirk: &[
+            ("hybrid", "case1_3d"),
             ("all-ANCF", "case1_3d_ancf"),
             ("all-modal", "case1_3d_modal"),
         ],
@@ -100,7 +112,11 @@ const SPECS: &[Spec] = &[
         ancf: "soft_rod",
         refine: 8,
         grid: &[1.0, 2.0, 4.0],
-        sdirk: &[("all-ANCF", "soft_rod"), ("all-modal", "soft_rod_modal")],
+        esdirk: &[
+            ("hybrid", "soft_rod_hybrid"),
+            ("all-ANCF", "soft_rod"),
+            ("all-modal", "soft_rod_modal"),
+        ],
     },
 ];
 
@@ -287,16 +303,16 @@ fn plan(spec: &Spec, main: &Scene, quick: bool) -> Result<Vec<Point>, String> {
             );
         }
     }
-    for (form, file) in spec.sdirk {
+    for (form, file) in spec.esdirk {
         for &h in steps {
             push(
-                &format!("{form} SDIRK4 step"),
+                &format!("{form} ESDIRK4 step"),
                 form,
                 file,
-                format!("h={h:e} sdirk4"),
+                format!("h={h:e} esdirk4"),
                 vec![
                     format!("solver.max_step={h:e}"),
-                    "solver.method=sdirk4".into(),
+                    "solver.method=esdirk4".into(),
                 ],
             );
         }

@@ -14,7 +14,7 @@ pub use generalized_alpha::{
     AlphaParams, GeneralizedAlpha, IntegratorMemory, JacobianPoint, StepFailure,
 };
 pub use parameters::*;
-pub use sdirk::Sdirk;
+pub use sdirk::{Sdirk, Tableau, ESDIRK4};
 pub use seam::{constraint_rows, EvalRequest, Integrable, StateRef};
 pub use statics::{solve_relative_static, solve_static, StaticFailure};
 
@@ -56,7 +56,7 @@ impl State {
 pub enum Integrator {
     /// Generalized-α.
     Alpha(GeneralizedAlpha),
-    /// The order-4 SDIRK.
+    /// The order-4 ESDIRK.
     Sdirk(Sdirk),
 }
 
@@ -65,7 +65,7 @@ impl Integrator {
     pub fn new(params: &IntegrationParameters, n: usize, m: usize) -> Self {
         match params.method {
             Method::GeneralizedAlpha => Self::Alpha(GeneralizedAlpha::new(params, n, m)),
-            Method::Sdirk4 => Self::Sdirk(Sdirk::new(params, n, m)),
+            Method::Esdirk4 => Self::Sdirk(Sdirk::new(params, &ESDIRK4, n, m)),
         }
     }
 
@@ -125,7 +125,7 @@ impl Integrator {
         }
     }
 
-    /// A jump of the inputs at t_n ([`GeneralizedAlpha::change_inputs`]; for the SDIRK, a
+    /// A jump of the inputs at t_n ([`GeneralizedAlpha::change_inputs`]; for the ESDIRK, a
     /// one-step method, only q̈ and λ at t_n follow, the next step's first guess).
     pub fn change_inputs<M: Integrable + ?Sized>(
         &mut self,
@@ -140,7 +140,7 @@ impl Integrator {
     }
 
     /// One step of size `h` from `s`; `at(model, dt)` sets the model's time-dependent inputs
-    /// at t_n + dt: once at dt = h for generalized-α, before each stage for the SDIRK (the last
+    /// at t_n + dt: once at dt = h for generalized-α, before each implicit stage for the ESDIRK (the last
     /// at dt = h). On failure `s` is untouched.
     pub fn step<M: Integrable + ?Sized>(
         &mut self,

@@ -43,9 +43,10 @@ pub enum Method {
     /// implicit solve per step, second order, numerical damping set by `rho_inf`.
     #[default]
     GeneralizedAlpha,
-    /// The five-stage L-stable SDIRK of order 4 (Hairer & Wanner, γ = 1/4): five solves with
-    /// one matrix per step, a phase error of order (ωh)⁴ instead of (ωh)²; `rho_inf` unused.
-    Sdirk4,
+    /// Kennedy & Carpenter's L-stable six-stage ESDIRK of order 4 and stage order 2
+    /// (γ = 1/4, the first stage explicit): five solves with one matrix per step, a phase error
+    /// of order (ωh)⁴ instead of (ωh)²; `rho_inf` unused.
+    Esdirk4,
 }
 
 impl IntegrationParameters {

@@ -80,12 +80,6 @@ pub trait Integrable {
         constraint_rows(self, q, out);
     }
 
-    /// Whether every constraint row is linear in q with a constant Φ_q (an affine subspace;
-    /// default: only without rows). The order-4 SDIRK keeps its order on such systems only.
-    fn linear_constraints(&self) -> bool {
-        self.constraints() == 0
-    }
-
     /// Whether held coordinates follow a prescribed motion (a driven support; default: no).
     fn is_driven(&self) -> bool {
         false

@@ -465,10 +465,6 @@ impl<S: Space> Integrable for Model<S> {
         self.mount.is_some()
     }
 
-    fn linear_constraints(&self) -> bool {
-        self.constraints.iter().all(|c| c.at.part.linear())
-    }
-
     fn held_rate(&self) -> f64 {
         let max = |x: &[f64]| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         max(&self.held_v) + max(&self.held_a).sqrt()

@@ -231,13 +231,6 @@ pub trait Constraint: Debug + Send + Sync + 'static {
     /// Φ and Φ_q at the local coordinates `q` into `out` (after [`ConstraintOut::reset`]);
     /// with `lambda` (one multiplier per row) also Σλ_r ∂²Φ_r.
     fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut);
-
-    /// Whether Φ is linear in the free coordinates with coefficients that only held
-    /// coordinates carry (a plane through fixed normals), so that Φ_q is constant while the
-    /// held coordinates stay (default: no).
-    fn linear(&self) -> bool {
-        false
-    }
 }
 
 /// An attachment point on a component, evaluated from the component's local coordinates.

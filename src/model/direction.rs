@@ -20,11 +20,6 @@ impl Constraint for SlopeDirection {
         self.normals
     }
 
-    /// n_i · r_x with the normals held: linear in r_x.
-    fn linear(&self) -> bool {
-        true
-    }
-
     fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut) {
         let (m, d) = (self.dim, q.len());
         for i in 0..self.normals {
