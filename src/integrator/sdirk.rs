@@ -29,7 +29,7 @@ use crate::math;
 /// Most stages of a tableau here.
 const MAX_STAGES: usize = 6;
 
-/// A stiffly accurate diagonally implicit Runge–Kutta tableau with γ = 1/4 on the diagonal of
+/// A stiffly accurate diagonally implicit Runge–Kutta tableau with one γ on the diagonal of
 /// its implicit stages (the first stage explicit, c₁ = 0, for an ESDIRK).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tableau {
@@ -51,29 +51,25 @@ pub struct Tableau {
 /// as generalized-α's own does; measured on the spatial Case 1 cable (16 elements, h = 5e-4 s),
 /// the tip error against the reference is 9.018e-6 m at stage tolerance 1e-13 and 9.017e-6 m
 /// at 1e-11, with 72 077 and 57 235 Newton iterations.
-pub const ESDIRK4: Tableau = Tableau {
-    stages: 6,
-    a: [
-        [0.0; MAX_STAGES],
-        [0.25, 0.25, 0.0, 0.0, 0.0, 0.0],
-        [8611.0 / 62500.0, -1743.0 / 31250.0, 0.25, 0.0, 0.0, 0.0],
-        [
+pub const ESDIRK4: Tableau = Tableau::from_rows(
+    &[
+        &[],
+        &[0.25, 0.25],
+        &[8611.0 / 62500.0, -1743.0 / 31250.0, 0.25],
+        &[
             5012029.0 / 34652500.0,
             -654441.0 / 2922500.0,
             174375.0 / 388108.0,
             0.25,
-            0.0,
-            0.0,
         ],
-        [
+        &[
             15267082809.0 / 155376265600.0,
             -71443401.0 / 120774400.0,
             730878875.0 / 902184768.0,
             2285395.0 / 8070912.0,
             0.25,
-            0.0,
         ],
-        [
+        &[
             82889.0 / 524892.0,
             0.0,
             15625.0 / 83664.0,
@@ -82,14 +78,36 @@ pub const ESDIRK4: Tableau = Tableau {
             0.25,
         ],
     ],
-    explicit_first: true,
-    tolerance_factor: 1.0,
-};
-
-/// γ, the diagonal of the implicit stages.
-const GAMMA: f64 = 0.25;
+    true,
+    1.0,
+);
 
 impl Tableau {
+    /// The tableau of the lower-triangular rows `rows` (the last is b).
+    const fn from_rows(rows: &[&[f64]], explicit_first: bool, tolerance_factor: f64) -> Self {
+        let mut a = [[0.0; MAX_STAGES]; MAX_STAGES];
+        let mut i = 0;
+        while i < rows.len() {
+            let mut j = 0;
+            while j < rows[i].len() {
+                a[i][j] = rows[i][j];
+                j += 1;
+            }
+            i += 1;
+        }
+        Self {
+            stages: rows.len(),
+            a,
+            explicit_first,
+            tolerance_factor,
+        }
+    }
+
+    /// γ, the diagonal of the implicit stages.
+    pub fn gamma(&self) -> f64 {
+        self.a[self.stages - 1][self.stages - 1]
+    }
+
     /// The stage times c_i = Σ_j 𝔄_ij as fractions of the step.
     pub fn nodes(&self) -> [f64; MAX_STAGES] {
         let mut c = [0.0; MAX_STAGES];
@@ -120,6 +138,8 @@ impl Tableau {
 #[derive(Debug, Clone)]
 pub struct Sdirk {
     tableau: &'static Tableau,
+    /// γ of the tableau.
+    gamma: f64,
     nodes: [f64; MAX_STAGES],
     /// 𝔄² by rows.
     a2: Vec<[f64; MAX_STAGES]>,
@@ -143,6 +163,7 @@ impl Sdirk {
     ) -> Self {
         Self {
             tableau,
+            gamma: tableau.gamma(),
             nodes: tableau.nodes(),
             a2: tableau.a_squared().to_vec(),
             newton: Newton::new(
@@ -183,7 +204,9 @@ impl Sdirk {
         mem: &IntegratorMemory,
     ) -> Result<(), StepFailure> {
         self.eta = mem.eta;
-        self.newton.restore(model, mem, |h| request(h, true))
+        let gamma = self.gamma;
+        self.newton
+            .restore(model, mem, |h| request(gamma * h, true))
     }
 
     /// Consistent initial accelerations and multipliers at `s` (q, q̇ given).
@@ -222,7 +245,7 @@ impl Sdirk {
     ) -> Result<usize, StepFailure> {
         let n = s.q.len();
         let m = s.lambda.len();
-        let g = GAMMA * h;
+        let g = self.gamma * h;
         let g2 = g * g;
         let stages = self.tableau.stages;
         let first = usize::from(self.tableau.explicit_first);
@@ -281,7 +304,7 @@ impl Sdirk {
         h: f64,
         eta: f64,
     ) -> Result<(usize, f64), StepFailure> {
-        let g = GAMMA * h;
+        let g = self.gamma * h;
         let rates = Rates {
             dv: 1.0 / g,
             da: 1.0 / (g * g),
@@ -291,7 +314,7 @@ impl Sdirk {
             model,
             &mut self.trial,
             h,
-            |matrix| request(h, matrix),
+            |matrix| request(g, matrix),
             rates,
             eta,
         );
@@ -329,10 +352,9 @@ fn guess_weights(nodes: &[f64; MAX_STAGES], first: usize, i: usize) -> (f64, [f6
     w
 }
 
-/// The evaluation request of a stage at step `h`: rows scaled by (γh)², the matrix
+/// The evaluation request of a stage with `g` = γh: rows scaled by (γh)², the matrix
 /// M + γh C + (γh)² K if `matrix`.
-fn request(h: f64, matrix: bool) -> EvalRequest {
-    let g = GAMMA * h;
+fn request(g: f64, matrix: bool) -> EvalRequest {
     EvalRequest {
         sd: g * g,
         matrix: matrix.then_some((1.0, g, g * g)),
@@ -349,33 +371,17 @@ mod tests {
     /// II*, §IV.6, Table 6.5), the integrator `solver.method = "sdirk4"` ran before [`ESDIRK4`]
     /// replaced it: kept here to show why. Its stage tolerance had to be 1/100 of `solver.tolerance` (its last row, weights up to
     /// 125/16, carries a stage's coordinate error ε into the step's velocity as ~160 ε/h).
-    const SDIRK4: Tableau = Tableau {
-        stages: 5,
-        a: [
-            [0.25, 0.0, 0.0, 0.0, 0.0, 0.0],
-            [0.5, 0.25, 0.0, 0.0, 0.0, 0.0],
-            [17.0 / 50.0, -1.0 / 25.0, 0.25, 0.0, 0.0, 0.0],
-            [
-                371.0 / 1360.0,
-                -137.0 / 2720.0,
-                15.0 / 544.0,
-                0.25,
-                0.0,
-                0.0,
-            ],
-            [
-                25.0 / 24.0,
-                -49.0 / 48.0,
-                125.0 / 16.0,
-                -85.0 / 12.0,
-                0.25,
-                0.0,
-            ],
-            [0.0; MAX_STAGES],
+    const SDIRK4: Tableau = Tableau::from_rows(
+        &[
+            &[0.25],
+            &[0.5, 0.25],
+            &[17.0 / 50.0, -1.0 / 25.0, 0.25],
+            &[371.0 / 1360.0, -137.0 / 2720.0, 15.0 / 544.0, 0.25],
+            &[25.0 / 24.0, -49.0 / 48.0, 125.0 / 16.0, -85.0 / 12.0, 0.25],
         ],
-        explicit_first: false,
-        tolerance_factor: 0.01,
-    };
+        false,
+        0.01,
+    );
 
     /// A swinging pendulum in its angle θ (no constraint rows): m L² θ̈ = −m g L sin θ +
     /// F(t) L cos θ, with F a smooth 3 Hz sine.
@@ -647,7 +653,11 @@ mod tests {
             );
             for i in 0..tab.stages {
                 let first = i == 0 && tab.explicit_first;
-                assert_eq!(tab.a[i][i], if first { 0.0 } else { GAMMA }, "diagonal {i}");
+                assert_eq!(
+                    tab.a[i][i],
+                    if first { 0.0 } else { tab.gamma() },
+                    "diagonal {i}"
+                );
                 assert!(tab.a[i][i + 1..].iter().all(|x| *x == 0.0), "row {i}");
             }
             order_conditions(&tab, &tab.b(), 4);
