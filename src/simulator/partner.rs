@@ -257,7 +257,7 @@ impl<S: Space> Simulator<S> {
             // multi-stage method: the deviation's acceleration linear over the step)
             let (mount, rates, d0) = (self.mount.as_deref(), &self.load_rates, &*dev);
             let at = |m: &mut Model<S>, dt: f64| {
-                let t = if dt == h { t_next } else { t_start + dt };
+                let t = super::step::stage_time(t_start, t_next, h, dt);
                 if varying {
                     rates.advanced(inputs, t - t0).apply(m);
                 }
