@@ -431,9 +431,9 @@ fn reactions_follow_the_momentum_balance_of_a_shaken_beam() {
 /// `solver.method = "esdirk4"` on the shaken mounted hybrid (joint rows, a driven root whose
 /// motion the stages see at their own times): the centre of mass and the support force at h =
 /// 0.25 ms meet generalized-α converged (h = 10 µs) closer than generalized-α itself at 0.1 ms
-/// (3.5e-8 vs 2.2e-7 m, 3.1e-3 vs 8.6e-3 N here; the centre of mass's error falls at about
-/// second order, 1.5e-6 → 3.7e-7 → 3.5e-8 → 4.7e-9 m from 1 ms to 0.1 ms, the force's at
-/// about first: 9.0e-3 → 6.0e-3 → 3.1e-3 → 6.8e-4 N).
+/// (1.0e-8 vs 2.2e-7 m, 3.1e-3 vs 8.7e-3 N here; the centre of mass's error falls at about
+/// second order, 2.1e-7 → 4.8e-8 → 1.0e-8 → 4.4e-9 m from 1 ms to 0.1 ms, the force's at
+/// about first: 8.4e-3 → 6.2e-3 → 3.1e-3 → 6.9e-4 N).
 #[test]
 fn esdirk_on_a_shaken_mounted_hybrid_meets_generalized_alpha_converged() {
     use hybeam::integrator::Method;

@@ -110,8 +110,10 @@ impl Newton {
     /// Iterates on `t` (its coordinates, rates, accelerations and scaled multipliers) at step
     /// size `h` until the estimated remaining error η‖Δq‖ is within tolerance; `request(m)`
     /// is the evaluation request, with the Newton matrix if `m`. `eta` is the contraction
-    /// estimate to start from; returns the iterations and the final estimate. On failure the
-    /// held matrix is dropped (`t` is then a failed iterate).
+    /// estimate to start from; returns the iterations and the estimate for the next solve (the
+    /// last measured rate, not below `eta` if the matrix was refreshed here: see
+    /// docs/engine-findings.md, the damped Case 3). On failure the held matrix is dropped (`t`
+    /// is then a failed iterate).
     pub(super) fn iterate<M: Integrable + ?Sized>(
         &mut self,
         model: &mut M,
@@ -121,6 +123,7 @@ impl Newton {
         rates: Rates,
         mut eta: f64,
     ) -> Result<(usize, f64), StepFailure> {
+        let eta_start = eta;
         let counters = &mut self.counters;
         let n = t.q.len();
         let m = t.lambda.len();
@@ -186,7 +189,11 @@ impl Newton {
             }
             // converged when the estimated remaining error η‖Δq‖ is within tolerance
             if eta * norm <= 1.0 || norm <= 1e-3 {
-                return Ok((it + 1, eta));
+                // a matrix refreshed in this solve converges quadratically: its rate says
+                // nothing of the held matrix the next solves iterate with, so the estimate
+                // handed on is not below the one this solve started from
+                let handed = if fresh { eta.max(eta_start) } else { eta };
+                return Ok((it + 1, handed));
             }
             let rate = norm / last;
             last = norm;
