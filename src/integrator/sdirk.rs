@@ -127,22 +127,17 @@ impl Tableau {
         }
         a2
     }
-
-    /// The weights b (the last row of 𝔄).
-    pub fn b(&self) -> [f64; MAX_STAGES] {
-        self.a[self.stages - 1]
-    }
 }
 
 /// The integrator with its work arrays and Jacobian policy.
 #[derive(Debug, Clone)]
 pub struct Sdirk {
     tableau: &'static Tableau,
-    /// γ of the tableau.
-    gamma: f64,
     nodes: [f64; MAX_STAGES],
     /// 𝔄² by rows.
     a2: Vec<[f64; MAX_STAGES]>,
+    /// Per stage, the weights of its acceleration's first guess ([`guess_weights`]).
+    guesses: Vec<(f64, [f64; MAX_STAGES])>,
     /// The Newton loop with its held matrix (tolerance and iteration limit per stage) and the
     /// work counters (an accepted step counts once, its Newton iterations over all stages).
     newton: Newton,
@@ -163,9 +158,11 @@ impl Sdirk {
     ) -> Self {
         Self {
             tableau,
-            gamma: tableau.gamma(),
             nodes: tableau.nodes(),
             a2: tableau.a_squared().to_vec(),
+            guesses: (0..tableau.stages)
+                .map(|i| guess_weights(&tableau.nodes(), usize::from(tableau.explicit_first), i))
+                .collect(),
             newton: Newton::new(
                 (params.tolerance * tableau.tolerance_factor).max(MIN_TOLERANCE),
                 params.max_iterations,
@@ -204,7 +201,7 @@ impl Sdirk {
         mem: &IntegratorMemory,
     ) -> Result<(), StepFailure> {
         self.eta = mem.eta;
-        let gamma = self.gamma;
+        let gamma = self.tableau.gamma();
         self.newton
             .restore(model, mem, |h| request(gamma * h, true))
     }
@@ -245,7 +242,7 @@ impl Sdirk {
     ) -> Result<usize, StepFailure> {
         let n = s.q.len();
         let m = s.lambda.len();
-        let g = self.gamma * h;
+        let g = self.tableau.gamma() * h;
         let g2 = g * g;
         let stages = self.tableau.stages;
         let first = usize::from(self.tableau.explicit_first);
@@ -263,7 +260,7 @@ impl Sdirk {
             at(model, c * h);
             // the stage's predictors without its own acceleration, then with the guess: the
             // accelerations known in this step (q̈_n at 0, the stages before) interpolated at c_i
-            let guess = guess_weights(&self.nodes, first, i);
+            let guess = &self.guesses[i];
             let t = &mut self.trial;
             for k in 0..n {
                 let (mut dq, mut dv) = (0.0, 0.0);
@@ -304,7 +301,7 @@ impl Sdirk {
         h: f64,
         eta: f64,
     ) -> Result<(usize, f64), StepFailure> {
-        let g = self.gamma * h;
+        let g = self.tableau.gamma() * h;
         let rates = Rates {
             dv: 1.0 / g,
             da: 1.0 / (g * g),
@@ -660,7 +657,7 @@ mod tests {
                 );
                 assert!(tab.a[i][i + 1..].iter().all(|x| *x == 0.0), "row {i}");
             }
-            order_conditions(&tab, &tab.b(), 4);
+            order_conditions(&tab, &tab.a[tab.stages - 1], 4);
         }
         // ESDIRK4 has stage order 2: Σ_j a_ij c_j = c_i²/2 at every stage
         let c = ESDIRK4.nodes();
