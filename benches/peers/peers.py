@@ -216,6 +216,9 @@ HYBEAM_HYBRID_CASE3 = Family(
     "scenes/case3.toml",
     segments=tuple(zip(("", "segments.1.elements"), shares(CASE3_ROD), strict=True)),
 )
+HYBEAM_MODAL_CASE3 = Family(
+    "hybeam", "hybeam all-modal", "scenes/case3_modal.toml", modes_key="segments.1.modes"
+)
 
 PROBLEMS = {
     "planar": Problem(
@@ -264,15 +267,20 @@ PROBLEMS = {
             HYBEAM_CASE3,
             EXUDYN_PLANAR,
             HYBEAM_HYBRID_CASE3,
+            HYBEAM_MODAL_CASE3,
             esdirk(HYBEAM_CASE3),
             esdirk(HYBEAM_HYBRID_CASE3),
+            esdirk(HYBEAM_MODAL_CASE3),
         ],
         HYBEAM_CASE3,
         EXUDYN_PLANAR,
         CASE3_ROD,
         note="n is split by length: the thick 0.2 m segment gets max(1, round(n/3)) elements, the "
         "thin 0.4 m one the rest (all-ANCF and Exudyn: n = 8 is 3 + 5, n = 64 is 21 + 43); the "
-        "hybrid's modal thick segment has none, its ANCF thin segment the rest (n = 8: 5)",
+        "hybrid's modal thick segment has none, its ANCF thin segment the rest (n = 8: 5); the "
+        "all-modal rod (scenes/case3_modal.toml: the thick segment with 4 modes + 2 interface "
+        "shapes, the thin one modal too) gets round(12 n / 32) modes on its thin segment: 2, 3, "
+        "6, 12",
     ),
 }
 

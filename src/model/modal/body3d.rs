@@ -122,7 +122,8 @@ pub struct ModalProps3 {
     pub gj: f64,
     /// Modal damping ratio ζ of every mode [-].
     pub damping_ratio: f64,
-    /// Kelvin–Voigt retardation time τ [s] (D += τK).
+    /// Kelvin–Voigt retardation time τ [s] of the curvatures: D += τK, and the nonlinear body
+    /// adds the rest of τ∫(EI_z κ̇_z ∂κ_z/∂a + EI_y κ̇_y ∂κ_y/∂a)dx.
     pub damping_time: f64,
 }
 
@@ -201,9 +202,9 @@ pub struct ModalBody3 {
 }
 
 /// Slots per quadrature point of [`ModalBody3::fields`]: v, v̇, v̈, v′, v̇′, v̈′, v″ (0..7), the
-/// same of w (7..14), the foreshortening c, ċ, c̈ (14..17), then scratch of
-/// [`ModalBody3::add_nonlinear`] (17..24).
-const FIELDS3: usize = 24;
+/// same of w (7..14), the foreshortening c, ċ, c̈ (14..17), scratch of
+/// [`ModalBody3::add_nonlinear`] (17..24), v̇″ and ẇ″ (24, 25).
+const FIELDS3: usize = 26;
 
 impl ModalBody3 {
     /// Builds the body from its bending basis and properties.
@@ -545,7 +546,7 @@ impl ModalBody3 {
     /// The per-point fields of the nonlinear terms into `buf` ([`FIELDS3`] slots per point of
     /// the body's quadrature): v, v̇, v̈, v′, v̇′, v̈′, v″ and the same of w (x-derivatives), and
     /// the foreshortening c = −½∫₀ˣ(v′² + w′²)dx with its rates ċ, c̈ (the cumulative integral
-    /// on the quadrature's own points, as the planar body).
+    /// on the quadrature's own points, as the planar body), then v̇″, ẇ″ in slots 24, 25.
     fn fields<T: Real>(&self, q: &[T], v: &[T], a: &[T], buf: &mut Vec<T>) {
         let nb = self.modes();
         let nl = &self.nl;
@@ -557,6 +558,11 @@ impl ModalBody3 {
             for (plane, off) in [(0, 7), (1, 7 + nb)] {
                 let (qa, va, aa) = (&q[off..off + nb], &v[off..off + nb], &a[off..off + nb]);
                 f[7 * plane..7 * plane + 7].copy_from_slice(&point_fields(phi, qa, va, aa));
+                let mut kd = T::zero();
+                for (ph, &y) in phi.iter().zip(va) {
+                    kd += y * ph[2];
+                }
+                f[24 + plane] = kd;
             }
         }
         let mut done = [T::zero(); 3];
@@ -606,6 +612,28 @@ impl ModalBody3 {
             kz * s * t * ez + (ky * (T::one() + t * t * 0.5) - ww) * ey,
         ];
         (e, d)
+    }
+
+    /// The nonlinear part of the Kelvin–Voigt damping density's partial derivatives by
+    /// (s, V, t, W) at the rates (ṡ, V̇, ṫ, Ẇ) = `r`, per unit retardation time:
+    /// EI_z κ̇_z ∂κ_z + EI_y κ̇_y ∂κ_y less the linear EI_z V̇ ∂V + EI_y Ẇ ∂W (which the modal
+    /// damping τK carries), κ as in [`ModalBody3::strain_density`].
+    #[inline]
+    fn damping_density<T: Real>(&self, s: T, vv: T, t: T, ww: T, r: [T; 4]) -> [T; 4] {
+        let (ez, ey) = (self.props.ei_z, self.props.ei_y);
+        let hz = T::one() + s * s * 0.5;
+        let hy = T::one() + t * t * 0.5;
+        let gz = [vv * s + t * ww, hz, s * ww, s * t];
+        let gy = [T::zero(), T::zero(), ww * t, hy];
+        let kz_dot = gz[0] * r[0] + gz[1] * r[1] + gz[2] * r[2] + gz[3] * r[3];
+        let ky_dot = gy[2] * r[2] + gy[3] * r[3];
+        let (kz, ky) = (kz_dot * ez, ky_dot * ey);
+        [
+            kz * gz[0],
+            kz * gz[1] - r[1] * ez,
+            kz * gz[2] + ky * gy[2],
+            kz * gz[3] + ky * gy[3] - r[3] * ey,
+        ]
     }
 
     /// Adds to the elastic rows of `out` (zeroing them first) the part of the residual that the
@@ -660,8 +688,16 @@ impl ModalBody3 {
         }
         // N_p from the panels after and the own panel; coefficients of φ′_p/L, φ″_p/L² of
         // both planes into slots 20..24
+        let tau = self.props.damping_time;
         nl.for_each_axial_force(buf, FIELDS3, 17, |p, f, axial| {
-            let (_, d) = self.strain_density(f[3], f[6], f[10], f[13]);
+            let (_, mut d) = self.strain_density(f[3], f[6], f[10], f[13]);
+            if tau > 0.0 {
+                let r = [f[4], f[24], f[11], f[25]];
+                let dd = self.damping_density(f[3], f[6], f[10], f[13], r);
+                for (x, y) in d.iter_mut().zip(dd) {
+                    *x += y * tau;
+                }
+            }
             let e = l * nl.w[p];
             f[20] = d[0] * e - f[3] * axial * l;
             f[21] = d[1] * e;
