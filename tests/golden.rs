@@ -103,6 +103,13 @@
 //! changes are the torsion element's above (tip ≤ 1.2e-8 m `case1_3d_mounted`, ≤ 9.7e-9 m
 //! elsewhere; the driven twist rate's phase as above).
 //!
+//! Re-recorded for the modal segments' Kelvin–Voigt damping of the whole inextensible curvature
+//! (session 17, `src/model/modal/body.rs`, `body3d.rs`; docs/engine-findings.md): every scene
+//! with a damped modal segment. Largest tip-position change against the recordings before
+//! (commit ae0a690): `strip_3d` 2.2e-5 m, `case3_modal` and `case3_3d_modal` 1.83e-5 m each
+//! (the planar and spatial twins alike), `case2_modal`, `case2_3d_modal` 3.3e-7 m, `case2`,
+//! `case2_3d` 2.7e-7 m, `case3`, `case3_3d` 1.6e-7 m; every other file bit-identical.
+//!
 //! Re-record (only when a physics change is intended and explained), e.g. the spatial ones:
 //! `HYBEAM_RECORD_GOLDEN=1 cargo test --test golden spatial`.
 
