@@ -169,7 +169,8 @@ fn damping_is_kelvin_voigt_on_the_nonlinear_curvatures() {
         residual(&plain, &q, &v, &a, g),
     );
     let nb = damped.modes();
-    let (l, pr) = (0.4, test_props(0.0, tau));
+    let pr = test_props(0.0, tau);
+    let l = pr.length;
     // (κ_z, κ_y) at ξ of the amplitudes (a_y, a_z)
     let kappa = |ay: &[f64], az: &[f64], xi: f64| {
         let mut phi = Vec::new();

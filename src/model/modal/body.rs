@@ -105,10 +105,10 @@ pub(super) struct Nonlinear {
 }
 
 /// One point's modal fields of one plane from its shape values `phi` (φ_k, φ_k′, φ_k″) and the
-/// amplitudes `q`, their rates `v` and accelerations `a`: (w, ẇ, ẅ, w′, ẇ′, ẅ′, w″).
+/// amplitudes `q`, their rates `v` and accelerations `a`: (w, ẇ, ẅ, w′, ẇ′, ẅ′, w″, ẇ″).
 #[inline]
-pub(super) fn point_fields<T: Real>(phi: &[[f64; 3]], q: &[T], v: &[T], a: &[T]) -> [T; 7] {
-    let mut acc = [T::zero(); 7];
+pub(super) fn point_fields<T: Real>(phi: &[[f64; 3]], q: &[T], v: &[T], a: &[T]) -> [T; 8] {
+    let mut acc = [T::zero(); 8];
     for (((ph, &x), &y), &z) in phi.iter().zip(q).zip(v).zip(a) {
         acc[0] += x * ph[0];
         acc[1] += y * ph[0];
@@ -117,6 +117,7 @@ pub(super) fn point_fields<T: Real>(phi: &[[f64; 3]], q: &[T], v: &[T], a: &[T])
         acc[4] += y * ph[1];
         acc[5] += z * ph[1];
         acc[6] += x * ph[2];
+        acc[7] += y * ph[2];
     }
     acc
 }
@@ -568,12 +569,9 @@ impl ModalBody {
         buf.resize(FIELDS * np, T::zero());
         let (qa, va, aa) = (&q[3..3 + n], &v[3..3 + n], &a[3..3 + n]);
         for (f, phi) in buf.chunks_exact_mut(FIELDS).zip(nl.phi.chunks_exact(n)) {
-            f[..7].copy_from_slice(&point_fields(phi, qa, va, aa));
-            let mut kd = T::zero();
-            for (ph, &y) in phi.iter().zip(va) {
-                kd += y * ph[2];
-            }
-            f[10] = kd;
+            let pf = point_fields(phi, qa, va, aa);
+            f[..7].copy_from_slice(&pf[..7]);
+            f[10] = pf[7];
         }
         self.foreshortening_fields(buf);
     }

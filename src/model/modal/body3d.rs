@@ -557,12 +557,9 @@ impl ModalBody3 {
         for (f, phi) in buf.chunks_exact_mut(FIELDS3).zip(nl.phi.chunks_exact(nb)) {
             for (plane, off) in [(0, 7), (1, 7 + nb)] {
                 let (qa, va, aa) = (&q[off..off + nb], &v[off..off + nb], &a[off..off + nb]);
-                f[7 * plane..7 * plane + 7].copy_from_slice(&point_fields(phi, qa, va, aa));
-                let mut kd = T::zero();
-                for (ph, &y) in phi.iter().zip(va) {
-                    kd += y * ph[2];
-                }
-                f[24 + plane] = kd;
+                let pf = point_fields(phi, qa, va, aa);
+                f[7 * plane..7 * plane + 7].copy_from_slice(&pf[..7]);
+                f[24 + plane] = pf[7];
             }
         }
         let mut done = [T::zero(); 3];
