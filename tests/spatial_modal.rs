@@ -17,6 +17,7 @@ use hybeam::model::modal::body3d::{euler_rotation, torsion_shapes};
 use hybeam::model::modal::{ModalBasis, ModalBody3, ModalProps3};
 use hybeam::model::spatial::{
     EndKin3, EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3,
+    NodePort3,
 };
 use hybeam::model::{Constraint, Dof, LocalDofs, Model, Numbering, Parts, Port, Spatial};
 use nalgebra::{DMatrix, Matrix3, Vector3};
@@ -352,26 +353,53 @@ fn check_port(port: &dyn Port<Spatial>, b: &ModalBody3, seed: f64, name: &str) {
             );
         }
     }
-    // the rotation's second derivative along a direction (the angular acceleration's velocity
-    // term) = the moment stiffness contracted with it, component by component
-    let dir: Vec<f64> = (0..d)
-        .map(|i| 0.3 + 0.17 * i as f64 - 0.05 * (i * i) as f64)
-        .collect();
-    let along = port.rotation_second_derivative_along(&q, &dir);
-    for (c, got) in along.iter().enumerate() {
-        let mut unit = [0.0; 3];
-        unit[c] = 1.0;
-        let mut want = 0.0;
-        port.add_moment_stiffness(&q, &unit, &mut |i, j, v| want -= v * dir[i] * dir[j]);
-        assert!(
-            (got - want).abs() <= 1e-12 * (1.0 + want.abs()),
-            "{name} along [{c}]: {got} vs {want}"
-        );
-    }
+    check_along(port, &q, name);
     eprintln!(
         "{name}: worst relative FD error d {:.1e}, dd {:.1e}, rotation {:.1e}, moment stiffness {:.1e}",
         worst[0], worst[1], worst[2], worst[3]
     );
+}
+
+/// The rotation's second derivative along a direction (the angular acceleration's velocity
+/// term) = the moment stiffness contracted with it, component by component.
+fn check_along(port: &dyn Port<Spatial>, q: &[f64], name: &str) {
+    let d = q.len();
+    let dir: Vec<f64> = (0..d)
+        .map(|i| 0.3 + 0.17 * i as f64 - 0.05 * (i * i) as f64)
+        .collect();
+    let along = port.rotation_second_derivative_along(q, &dir);
+    for (c, got) in along.iter().enumerate() {
+        let mut unit = [0.0; 3];
+        unit[c] = 1.0;
+        let mut want = 0.0;
+        port.add_moment_stiffness(q, &unit, &mut |i, j, v| want -= v * dir[i] * dir[j]);
+        assert!(
+            (got - want).abs() <= 1e-12 * (1.0 + want.abs()) && want.abs() > 1e-3,
+            "{name} along [{c}]: {got} vs {want}"
+        );
+    }
+}
+
+/// The ANCF node's port (with and without the section director r_y) overrides the default
+/// with one directional evaluation: the same contraction of its moment stiffness.
+#[test]
+fn ancf_node_rotation_second_derivative_is_the_contracted_moment_stiffness() {
+    let reference = Matrix3::from_columns(&[
+        Vector3::new(0.6, 0.8, 0.0),
+        Vector3::new(-0.8, 0.6, 0.0),
+        Vector3::z(),
+    ]);
+    for torsion in [true, false] {
+        let mut q = vec![0.1, -0.2, 0.05, 0.7, 0.6, 0.3];
+        if torsion {
+            q.extend([-0.5, 0.6, 0.2]);
+        }
+        check_along(
+            &NodePort3::new(torsion, reference),
+            &q,
+            &format!("node, torsion {torsion}"),
+        );
+    }
 }
 
 #[test]

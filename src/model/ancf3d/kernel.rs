@@ -241,14 +241,35 @@ pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3]) -> [f64; 3] {
     [dot(&rx, &rx).sqrt() - 1.0, k2, k3]
 }
 
-/// P v: `v` carried by the smallest rotation P taking the unit `t0` to the unit `t1` (Rodrigues
-/// with the unnormalized axis k = t0 × t1, c = t0·t1: P v = c v + k × v + (k·v) k/(1 + c)).
-#[inline(always)]
-fn transport<T: Real>(t0: &V<T>, t1: &V<T>, v: &V<T>) -> V<T> {
-    let k = cross(t0, t1);
-    let c = dot(t0, t1);
-    let kv = cross(&k, v);
-    lin3(c, v, T::from(1.0), &kv, dot(&k, v) / (c + 1.0), &k)
+/// The smallest rotation P taking the unit `t0` to the unit `t1`, by its unnormalized axis
+/// k = t0 × t1 and c = t0·t1 (Rodrigues: P v = c v + k × v + (k·v) k/(1 + c)).
+struct Turn<T> {
+    k: V<T>,
+    c: T,
+}
+
+impl<T: Real> Turn<T> {
+    #[inline(always)]
+    fn new(t0: &V<T>, t1: &V<T>) -> Self {
+        Self {
+            k: cross(t0, t1),
+            c: dot(t0, t1),
+        }
+    }
+
+    /// P v.
+    #[inline(always)]
+    fn apply(&self, v: &V<T>) -> V<T> {
+        let k = &self.k;
+        let kv = cross(k, v);
+        lin3(self.c, v, T::from(1.0), &kv, dot(k, v) / (self.c + 1.0), k)
+    }
+
+    /// k/(1 + c) = t0 × t1/(1 + t0·t1): half the curvature binormal of the turn.
+    #[inline(always)]
+    fn half_binormal(&self) -> V<T> {
+        scale(&self.k, (self.c + 1.0).recip())
+    }
 }
 
 /// The angle about the unit `t` from `u` to `w` (both ⟂ t, any lengths), in (−π, π].
@@ -262,7 +283,7 @@ fn angle_about<T: Real>(t: &V<T>, u: &V<T>, w: &V<T>) -> T {
 /// 27(3):63, the twist by parallel transport of the frame between consecutive tangents;
 /// docs/references.md §7.1): with t_i = r_x,i/|r_x,i| and u_i = r_y,i − (t_i·r_y,i) t_i (d2_i
 /// unnormalized: the angle does not see the lengths), φ₁ is the angle about t_1 from P u_0 to
-/// u_1, P the smallest rotation taking t_0 to t_1 ([`transport`]). φ₁ differs from the twist
+/// u_1, P the smallest rotation taking t_0 to t_1 ([`Turn`]). φ₁ differs from the twist
 /// relative to parallel transport along the curve by the holonomy of the tangent's path on the
 /// sphere (the area between the path and its chord), O(l³) for a non-planar centreline; φ₂,
 /// the same through the midpoint tangent t_m (t_0 → t_m → t_1), has a quarter of it, and
@@ -278,8 +299,8 @@ pub fn twist_angle<T: Real>(u: &[V<T>; 5]) -> T {
     let (t0, t1, tm) = (unit(a0), unit(a1), unit(am));
     let u0 = lin2(T::from(1.0), c0, -dot(&t0, c0), &t0);
     let u1 = lin2(T::from(1.0), c1, -dot(&t1, c1), &t1);
-    let phi1 = angle_about(&t1, &transport(&t0, &t1, &u0), &u1);
-    let via = transport(&tm, &t1, &transport(&t0, &tm, &u0));
+    let phi1 = angle_about(&t1, &Turn::new(&t0, &t1).apply(&u0), &u1);
+    let via = Turn::new(&tm, &t1).apply(&Turn::new(&t0, &tm).apply(&u0));
     let phi2 = angle_about(&t1, &via, &u1);
     (phi2 * 4.0 - phi1) * (1.0 / 3.0)
 }
@@ -301,14 +322,23 @@ pub(super) fn twist_gradient<T: Real>(u: &[V<T>; 5]) -> (T, [V<T>; 5]) {
     let one = T::from(1.0);
     let u0 = lin2(one, c0, -g0, &t0);
     let u1 = lin2(one, c1, -g1, &t1);
-    let phi1 = angle_about(&t1, &transport(&t0, &t1, &u0), &u1);
-    let via = transport(&tm, &t1, &transport(&t0, &tm, &u0));
+    // the three turns, shared by φ and its gradient
+    let (p01, p0m, pm1) = (
+        Turn::new(&t0, &t1),
+        Turn::new(&t0, &tm),
+        Turn::new(&tm, &t1),
+    );
+    let phi1 = angle_about(&t1, &p01.apply(&u0), &u1);
+    let via = pm1.apply(&p0m.apply(&u0));
     let phi2 = angle_about(&t1, &via, &u1);
     let phi = (phi2 * 4.0 - phi1) * (1.0 / 3.0);
     let e0 = scale(cross(&t0, &u0), dot(&u0, &u0).recip());
     let e1 = scale(cross(&t1, &u1), dot(&u1, &u1).recip());
-    let half_kb = |ta: &V<T>, tb: &V<T>| scale(cross(ta, tb), (dot(ta, tb) + 1.0).recip());
-    let (k01, k0m, km1) = (half_kb(&t0, &t1), half_kb(&t0, &tm), half_kb(&tm, &t1));
+    let (k01, k0m, km1) = (
+        p01.half_binormal(),
+        p0m.half_binormal(),
+        pm1.half_binormal(),
+    );
     let (four, third) = (T::from(4.0 / 3.0), T::from(-1.0 / 3.0));
     // δφ = w_i·δt_i
     let w0 = lin3(g0, &e0, four, &k0m, third, &k01);

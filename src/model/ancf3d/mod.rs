@@ -485,15 +485,20 @@ impl Ancf3Props {
         if !self.torsion {
             return (f, m);
         }
+        // at the nodes the point's r_x and r_y are the nodal slots themselves (as in
+        // `director_inertia`): one-slot maps, no products with the zero shape weights
         let (rs, ys) = self.slots();
-        for p in &tab.director {
-            let maps = [Map::new(&p.ds, &rs), Map::new(&p.ny, &ys)];
+        for (p, (xs, yl)) in tab.director.iter().zip([(rs[1], ys[0]), (rs[3], ys[1])]) {
+            let (xs, yl) = ([xs], [yl]);
+            let maps = [Map::new(&[1.0], &xs), Map::new(&[1.0], &yl)];
             let kw = p.w * self.rho_ip;
             let [fa, fc] = point_tangent_acc::<2, 18, D>(&maps, x, k, c, &mut m, |u, ud, ua| {
                 director_point(kw, u, ud, ua)
             });
-            scatter(&mut f, &p.ds, &rs, &fa);
-            scatter(&mut f, &p.ny, &ys, &fc);
+            for c in 0..3 {
+                f[xs[0] + c] += fa[c];
+                f[yl[0] + c] += fc[c];
+            }
         }
         (f, m)
     }
@@ -706,9 +711,9 @@ impl Ancf3Props {
         ]
     }
 
-    /// Strain energy [J] at the element coordinates `e` (d entries).
-    pub fn strain_energy(&self, e: &[f64]) -> f64 {
-        let tab = self.tables();
+    /// Strain energy [J] at the element coordinates `e` (d entries), with the element's
+    /// quadrature tables `tab` ([`Ancf3Props::tables`]).
+    pub fn strain_energy(&self, tab: &Tables3, e: &[f64]) -> f64 {
         let (rs, ys) = self.slots();
         let v = |w: &[f64], slots: &[usize]| combine(w, slots, e);
         let mut u = 0.0;
@@ -1004,7 +1009,8 @@ pub(crate) mod tests {
             let (mut ep, mut em) = (e, e);
             ep[j] += h;
             em[j] -= h;
-            let fd = (p.strain_energy(&ep) - p.strain_energy(&em)) / (2.0 * h);
+            let fd =
+                (p.strain_energy(&p.tables(), &ep) - p.strain_energy(&p.tables(), &em)) / (2.0 * h);
             assert!((fd - f[j]).abs() <= 1e-6 * fmax, "{j}: {fd} vs {}", f[j]);
         }
     }
@@ -1050,7 +1056,7 @@ pub(crate) mod tests {
             let force = p.internal_force(&tab, &e, &ed);
             let fmax = force.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             assert!(fmax < 1e-14 * p.ea, "{axis:?} {angle}: {fmax:e}");
-            let u = p.strain_energy(&e);
+            let u = p.strain_energy(&p.tables(), &e);
             assert!(u < 1e-25, "{u:e}");
         }
     }
@@ -1363,7 +1369,7 @@ pub(crate) mod tests {
                 assert!(eps.abs() < 1e-15 && k2.abs() < 1e-12 && k3.abs() < 1e-12);
                 assert!((tau * l - delta).abs() < 1e-14, "{deg}° ξ {xi}: {tau}");
             }
-            let u = p.strain_energy(&e);
+            let u = p.strain_energy(&p.tables(), &e);
             let got = u / (0.5 * p.gj * delta * delta / l);
             assert!((got - 1.0).abs() < 1e-12, "{deg}: {got}");
         }
@@ -1437,12 +1443,12 @@ pub(crate) mod tests {
         for (axis, ang) in [([0.0, 0.0, 1.0], 0.0), ([n3, -n3, n3], 1.3)] {
             let f = frame(axis, ang);
             for bend in [0.05, 0.4, 1.2] {
-                let u0 = p.strain_energy(&arc_element(&p, f, bend, 0.0, 0.0));
+                let u0 = p.strain_energy(&p.tables(), &arc_element(&p, f, bend, 0.0, 0.0));
                 for theta in [0.3, 1.0, 2.5, -2.0] {
                     let e = arc_element(&p, f, bend, theta, 0.0);
                     let tau = p.twist_rate(&e);
                     assert!(tau.abs() * p.length < 1e-15, "{bend} {theta}: {tau:e}");
-                    let u = p.strain_energy(&e);
+                    let u = p.strain_energy(&p.tables(), &e);
                     assert!((u - u0).abs() <= 1e-13 * u0, "{bend} {theta}: {u} vs {u0}");
                     for extra in [0.2, -1.0] {
                         let e = arc_element(&p, f, bend, theta, extra);
@@ -1487,7 +1493,7 @@ pub(crate) mod tests {
                     e3[b + 6..b + 9].copy_from_slice(&[-sy / n, sx / n, 0.0]);
                 }
             }
-            let (u2, u3) = (p2.strain_energy(&e2), p.strain_energy(&e3));
+            let (u2, u3) = (p2.strain_energy(&e2), p.strain_energy(&p.tables(), &e3));
             assert!((u2 - u3).abs() <= 1e-14 * u2, "{torsion}: {u2} vs {u3}");
             let f2 = p2.elastic(&e2, &Vec8::zeros(), false).force;
             let tab = p.tables();

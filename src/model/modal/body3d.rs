@@ -388,7 +388,8 @@ impl ModalBody3 {
     }
 
     /// Residual `r = M q̈ − Q_v − Q_g + K a + D ȧ` at (q, q̇, q̈) for gravity g [m/s²] (world)
-    /// into `out` (length [`ModalBody3::dim`]). Generic over the scalar; no allocation.
+    /// into `out` (length [`ModalBody3::dim`]). Generic over the scalar; a nonlinear body
+    /// allocates its per-point fields ([`FIELDS3`] per quadrature point) once per call.
     pub fn residual<T: Real>(&self, q: &[T], v: &[T], a: &[T], g: [f64; 3], out: &mut [T]) {
         let nb = self.modes();
         let l = self.props.length;

@@ -11,7 +11,7 @@ use crate::model::component::{
 use crate::model::sample::ShapePoint;
 use crate::model::vector::Real;
 use nalgebra::{Matrix3, Vector3};
-use num_dual::{Dual2Vec, DualSVec64};
+use num_dual::{Dual2Vec, DualSVec64, HyperDual64};
 use std::any::Any;
 
 /// A spatial ANCF element, local coordinates node 0 then node 1, each `[r, r_x, r_y]` (18) with
@@ -127,7 +127,7 @@ impl Element<Spatial> for AncfElement3 {
         let (e, ed, _) = x.vectors();
         Energies {
             kinetic: self.props.kinetic_energy(&self.mass, &self.tables, &e, &ed),
-            strain: self.props.strain_energy(&e),
+            strain: self.props.strain_energy(&self.tables, &e),
             potential: -e
                 .iter()
                 .zip(&self.gravity_force)
@@ -304,6 +304,26 @@ impl Port<Spatial> for NodePort3 {
         } else {
             self.moment_stiffness::<3>(q, m, add)
         }
+    }
+
+    /// One directional evaluation (hyper-dual numbers along `dir` on the director
+    /// coordinates) instead of the default's three Hessians.
+    fn rotation_second_derivative_along(&self, q: &[f64], dir: &[f64]) -> [f64; 3] {
+        let x: [HyperDual64; 6] = std::array::from_fn(|k| {
+            let mut v = HyperDual64::from_re(q.get(3 + k).copied().unwrap_or(0.0));
+            if k < 3 || self.torsion {
+                v.eps1 = dir[3 + k];
+                v.eps2 = dir[3 + k];
+            }
+            v
+        });
+        let mut h = Vector3::zeros();
+        for d in self.frame(&x) {
+            let re = Vector3::new(d[0].re, d[1].re, d[2].re);
+            let dd = Vector3::new(d[0].eps1eps2, d[1].eps1eps2, d[2].eps1eps2);
+            h += 0.5 * re.cross(&dd);
+        }
+        h.into()
     }
 }
 
