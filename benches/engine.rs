@@ -8,6 +8,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::linalg::{LuMethod, INVERSE_MAX_DIM};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
+use hybeam::model::ancf3d::angle::AngleProps;
 use hybeam::model::ancf3d::Ancf3Props;
 use hybeam::model::modal::{BodyOut, ModalBasis, ModalBody};
 use hybeam::model::{Model, Planar, Space, Spatial};
@@ -277,20 +278,25 @@ fn step_sweep(_c: &mut Criterion) {
 
 /// The spatial ANCF element (with torsion, and the cable) on the planar bench's rod and state
 /// (bent in the x–y plane, r_y = ẑ × r_x): forces only and forces + exact tangent (AD).
+/// A spatial element of a 2 mm steel rod, 25 mm long.
+fn bench_props(torsion: bool) -> Ancf3Props {
+    Ancf3Props {
+        length: 0.025,
+        rho_a: 0.0247,
+        rho_ip: 1.57e-8,
+        ea: 6.6e5,
+        ei_y: 0.165,
+        ei_z: 0.165,
+        gj: 0.127,
+        damping_time: 0.0,
+        torsion,
+    }
+}
+
 fn spatial_element(c: &mut Criterion) {
     let e2 = straight([0.0, 0.0], 0.1, 0.025);
     for torsion in [true, false] {
-        let p = Ancf3Props {
-            length: 0.025,
-            rho_a: 0.0247,
-            rho_ip: 1.57e-8,
-            ea: 6.6e5,
-            ei_y: 0.165,
-            ei_z: 0.165,
-            gj: 0.127,
-            damping_time: 0.0,
-            torsion,
-        };
+        let p = bench_props(torsion);
         let tab = p.tables();
         let mut e = Vec::new();
         for node in 0..2 {
@@ -326,6 +332,38 @@ fn spatial_element(c: &mut Criterion) {
             });
         }
     }
+}
+
+/// The angle element (nodes [r, r_x, θ], `hybeam::model::ancf3d::angle`, not yet in scenes) on
+/// the same bent state as [`spatial_element`]: forces, tangent, and the nodal twist inertia.
+fn angle_element(c: &mut Criterion) {
+    let e2 = straight([0.0, 0.0], 0.1, 0.025);
+    let p = AngleProps::new(bench_props(false), [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]).unwrap();
+    let tab = p.tables();
+    let mut e = [0.0; 14];
+    for node in 0..2 {
+        let (sx, sy) = (e2[4 * node + 2], e2[4 * node + 3] + [0.01, -0.02][node]);
+        e[7 * node..7 * node + 7].copy_from_slice(&[
+            e2[4 * node],
+            e2[4 * node + 1],
+            0.0,
+            sx,
+            sy,
+            0.0,
+            0.1 * node as f64,
+        ]);
+    }
+    let ed = [0.0; 14];
+    c.bench_function("spatial ancf angle element: forces only", |b| {
+        b.iter(|| black_box(p.internal_force(&tab, black_box(&e), &ed)))
+    });
+    c.bench_function("spatial ancf angle element: forces + tangent", |b| {
+        b.iter(|| black_box(p.tangent(&tab, black_box(&e), &ed)))
+    });
+    let ea = [0.3; 14];
+    c.bench_function("spatial ancf angle element: twist inertia", |b| {
+        b.iter(|| black_box(p.twist_inertia(black_box(&e), &ed, &ea)))
+    });
 }
 
 /// The Newton matrix's LU by both methods on the peer comparison's models (planar Case 1 rod of
@@ -395,6 +433,7 @@ criterion_group!(
     benches,
     element,
     spatial_element,
+    angle_element,
     modal_body,
     newton,
     step,

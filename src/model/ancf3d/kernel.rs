@@ -243,14 +243,14 @@ pub fn strains(rx: [f64; 3], rxx: [f64; 3], ry: [f64; 3]) -> [f64; 3] {
 
 /// The smallest rotation P taking the unit `t0` to the unit `t1`, by its unnormalized axis
 /// k = t0 × t1 and c = t0·t1 (Rodrigues: P v = c v + k × v + (k·v) k/(1 + c)).
-struct Turn<T> {
+pub(super) struct Turn<T> {
     k: V<T>,
     c: T,
 }
 
 impl<T: Real> Turn<T> {
     #[inline(always)]
-    fn new(t0: &V<T>, t1: &V<T>) -> Self {
+    pub(super) fn new(t0: &V<T>, t1: &V<T>) -> Self {
         Self {
             k: cross(t0, t1),
             c: dot(t0, t1),
@@ -259,7 +259,7 @@ impl<T: Real> Turn<T> {
 
     /// P v.
     #[inline(always)]
-    fn apply(&self, v: &V<T>) -> V<T> {
+    pub(super) fn apply(&self, v: &V<T>) -> V<T> {
         let k = &self.k;
         let kv = cross(k, v);
         lin3(self.c, v, T::from(1.0), &kv, dot(k, v) / (self.c + 1.0), k)

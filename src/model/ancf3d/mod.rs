@@ -73,6 +73,7 @@ use crate::model::vector::{cross, dot};
 use crate::scene::{Segment, StrainModel};
 use num_dual::DualSVec64;
 
+pub mod angle;
 mod kernel;
 mod mass;
 
@@ -873,7 +874,7 @@ pub(crate) mod tests {
     use std::f64::consts::PI;
 
     /// Deterministic pseudo-random numbers in [−1, 1].
-    fn noise(seed: u64, n: usize) -> Vec<f64> {
+    pub(crate) fn noise(seed: u64, n: usize) -> Vec<f64> {
         let mut s = seed;
         (0..n)
             .map(|_| {
@@ -1145,20 +1146,32 @@ pub(crate) mod tests {
         for i in 0..18 {
             assert!((f[i] - f0[i]).abs() <= 1e-14 * fmax, "force {i}");
         }
-        let h = 1e-6;
-        for (which, mat) in [(0, &k), (1, &c), (2, &m)] {
+        check_jacobians([e, ed, ea], &[(0, &k), (1, &c), (2, &m)], 1e-6, 1e-6, |x| {
+            p.director_inertia(&tab, &x[0], &x[1], &x[2])
+        });
+    }
+
+    /// Central differences (step `h`) of `f` at x = (q, q̇, q̈) against each `(which, matrix)`
+    /// (∂f/∂x[which]), to `tol` of the matrix's largest entry, which must not vanish.
+    pub(crate) fn check_jacobians<const D: usize>(
+        x: [[f64; D]; 3],
+        mats: &[(usize, &[[f64; D]; D])],
+        h: f64,
+        tol: f64,
+        f: impl Fn(&[[f64; D]; 3]) -> [f64; D],
+    ) {
+        for &(which, mat) in mats {
             let big = mat.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
             assert!(big > 0.0, "{which}");
-            for j in 0..18 {
-                let (mut xp, mut xm) = ([e, ed, ea], [e, ed, ea]);
+            for j in 0..D {
+                let (mut xp, mut xm) = (x, x);
                 xp[which][j] += h;
                 xm[which][j] -= h;
-                let fp = p.director_inertia(&tab, &xp[0], &xp[1], &xp[2]);
-                let fm = p.director_inertia(&tab, &xm[0], &xm[1], &xm[2]);
-                for i in 0..18 {
+                let (fp, fm) = (f(&xp), f(&xm));
+                for i in 0..D {
                     let fd = (fp[i] - fm[i]) / (2.0 * h);
                     assert!(
-                        (fd - mat[i][j]).abs() < 1e-6 * big,
+                        (fd - mat[i][j]).abs() < tol * big,
                         "{which} ({i},{j}): {fd} vs {}",
                         mat[i][j]
                     );
