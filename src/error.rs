@@ -5,7 +5,8 @@
 use crate::integrator::{StaticFailure, StepFailure};
 use crate::scene::{SceneError, MIN_STEP};
 use crate::simulator::limits::{
-    MAX_AXIAL_STRAIN, MAX_MODAL_DEFLECTION, MAX_TWIST_PER_ELEMENT, MIN_SECTION_SINE,
+    MAX_AXIAL_STRAIN, MAX_MODAL_DEFLECTION, MAX_TWIST_PER_ELEMENT, MIN_CHART_MARGIN,
+    MIN_SECTION_SINE,
 };
 use thiserror::Error;
 
@@ -154,6 +155,19 @@ pub enum Refusal {
         /// Scene name of the segment.
         segment: String,
         /// Largest twist within one element [rad].
+        value: f64,
+    },
+    /// A node of an element with twist angles turned (nearly) back onto the beam's initial
+    /// axis, where its angle has no reference.
+    #[error(
+        "ANCF segment '{segment}': a node's tangent turned {:.1}° from the beam's initial axis (beyond {:.0}°); torsion_element = \"angle\" measures the twist from the smallest rotation of that axis onto the tangent, which has no meaning near 180°; use torsion_element = \"director\" for a beam that turns this far",
+        crate::math::acos((.value - 1.0).clamp(-1.0, 1.0)).to_degrees(),
+        crate::math::acos(MIN_CHART_MARGIN - 1.0).to_degrees()
+    )]
+    TwistChart {
+        /// Scene name of the segment.
+        segment: String,
+        /// Smallest 1 + t⁰·t of a node [-].
         value: f64,
     },
     /// A node's section director r_y is (nearly) parallel to its slope r_x: no section frame.

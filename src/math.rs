@@ -26,6 +26,12 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     libm::sincos(x)
 }
 
+/// acos x in [0, π] (x in [−1, 1]).
+#[inline]
+pub fn acos(x: f64) -> f64 {
+    libm::acos(x)
+}
+
 /// atan2(y, x) in (−π, π].
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {

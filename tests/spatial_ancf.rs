@@ -102,6 +102,7 @@ fn chain_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Model<Spatial> {
             slope: Some([3, 4, 5]),
             normal: None,
             section: torsion.then_some([6, 7, 8]),
+            twist: None,
         }),
         gravity: [0.0; 3],
         tip_force: [0.0; 3],

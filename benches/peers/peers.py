@@ -203,6 +203,13 @@ HYBEAM_TORSION = Family(
     "segments.0.elements",
     (_tip_force_set(),),
 )
+HYBEAM_ANGLE = Family(
+    "hybeam",
+    "hybeam 3D angle element",
+    "scenes/case1_3d_ancf.toml",
+    "segments.0.elements",
+    ('torsion_element="angle"', _tip_force_set()),
+)
 HYBEAM_MODAL3D = Family(
     "hybeam",
     "hybeam all-modal",
@@ -246,10 +253,12 @@ PROBLEMS = {
             HYBEAM_CABLE3D,
             EXUDYN_SPATIAL,
             HYBEAM_TORSION,
+            HYBEAM_ANGLE,
             HYBEAM_HYBRID3D,
             HYBEAM_MODAL3D,
             esdirk(HYBEAM_CABLE3D),
             esdirk(HYBEAM_TORSION),
+            esdirk(HYBEAM_ANGLE),
             esdirk(HYBEAM_HYBRID3D),
             esdirk(HYBEAM_MODAL3D),
         ],

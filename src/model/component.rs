@@ -161,6 +161,10 @@ pub struct Validity {
     /// [rad], smallest sine of the angle between r_x and r_y at its nodes [-]); `None` for
     /// elements without a director.
     pub section: Option<(f64, f64)>,
+    /// Nodal twist angles: the smallest 1 + t⁰·t over the element's nodes (2 straight along
+    /// the reference axis t⁰, 0 turned back onto −t⁰, where the angles are undefined);
+    /// `None` for other elements.
+    pub chart_margin: Option<f64>,
 }
 
 /// A body of the model: ANCF element, modal body.

@@ -61,6 +61,9 @@ pub struct ModelValidity {
     pub max_twist: Option<(usize, f64)>,
     /// Smallest sine of the angle between r_x and r_y at an ANCF node (segment index, value).
     pub min_section_sine: Option<(usize, f64)>,
+    /// Smallest chart margin 1 + t⁰·t of a node of an element with nodal twist angles
+    /// (segment index, value).
+    pub min_chart_margin: Option<(usize, f64)>,
 }
 
 impl<S: Space> Model<S> {
@@ -269,6 +272,11 @@ impl<S: Space> Model<S> {
             if let Some(d) = v.modal_deflection {
                 if out.modal_deflection.is_none_or(|(_, w)| d > w) {
                     out.modal_deflection = Some((e.segment, d));
+                }
+            }
+            if let Some(m) = v.chart_margin {
+                if out.min_chart_margin.is_none_or(|(_, w)| m < w) {
+                    out.min_chart_margin = Some((e.segment, m));
                 }
             }
             if let Some((twist, sine)) = v.section {

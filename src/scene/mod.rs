@@ -58,6 +58,18 @@ impl SpaceKind {
     }
 }
 
+/// The spatial ANCF element that carries the twist (`torsion = true`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum TorsionElement {
+    /// Nodes [r, r_x, r_y]: a section director vector (any section).
+    #[default]
+    Director,
+    /// Nodes [r, r_x, θ]: a twist angle about the tangent from the smallest rotation of the
+    /// initial axis (round sections; not on a mounted root).
+    Angle,
+}
+
 /// How the beam root is held.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
@@ -296,6 +308,11 @@ pub struct Scene {
     /// coordinates per node) or are 3D cables (r, r_x; 6 per node, no torque about the axis).
     #[serde(default = "Scene::default_torsion")]
     pub torsion: bool,
+    /// Spatial scenes with torsion: the ANCF element that carries the twist, `"director"`
+    /// (default: nodes [r, r_x, r_y], any section) or `"angle"` (nodes [r, r_x, θ], one
+    /// 7 coordinates per node instead of 9; round sections, clamped or ball roots).
+    #[serde(default)]
+    pub torsion_element: TorsionElement,
     /// Gravity vector, global axes [m/s²]: `[x, y]` or `[x, y, z]` (default zero).
     #[serde(default)]
     pub gravity: Vec<f64>,

@@ -81,8 +81,25 @@ impl Scene {
                         "torsion = false: torsion is a switch of spatial scenes; remove it or set space = \"spatial\"".into(),
                     ));
                 }
+                if self.torsion_element != TorsionElement::Director {
+                    return Err(SceneError(
+                        "torsion_element = \"angle\": the twist element is a choice of spatial scenes; remove it or set space = \"spatial\"".into(),
+                    ));
+                }
             }
             SpaceKind::Spatial => {
+                if self.torsion_element == TorsionElement::Angle {
+                    if !self.torsion {
+                        return Err(SceneError(
+                            "torsion_element = \"angle\" with torsion = false: the cable carries no twist; set torsion = true or remove torsion_element".into(),
+                        ));
+                    }
+                    if self.root == Root::Mounted {
+                        return Err(SceneError(
+                            "torsion_element = \"angle\" with root = \"mounted\": the twist angles are taken from the beam's initial axis, which a mount turns; use torsion_element = \"director\" on a mounted root".into(),
+                        ));
+                    }
+                }
                 if self.root == Root::Pinned {
                     return Err(SceneError(
                         "root = \"pinned\": a spatial scene has clamped or ball roots (a ball root holds the position and leaves the orientation free)".into(),

@@ -17,6 +17,12 @@ pub const MAX_AXIAL_STRAIN: f64 = 0.05;
 /// vanishes at 180°.
 pub const MAX_TWIST_PER_ELEMENT: f64 = std::f64::consts::FRAC_PI_4;
 
+/// Smallest chart margin 1 + t⁰·t accepted at a node of an element with twist angles
+/// (`torsion_element = "angle"`): 1 − cos 150°, a tangent turned by at most 150° from the beam's
+/// initial axis t⁰. The angles are measured from the smallest rotation of t⁰ onto the tangent,
+/// which is undefined at 180° (its Jacobians grow as the margin's inverse).
+pub const MIN_CHART_MARGIN: f64 = 0.133_974_596_215_561_35;
+
 /// Smallest sine of the angle between an ANCF node's r_x and r_y accepted [-] (the nodal
 /// penalty keeps them perpendicular, sine 1; at 0 the section frame is undefined).
 pub const MIN_SECTION_SINE: f64 = 0.5;

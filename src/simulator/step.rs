@@ -284,9 +284,16 @@ impl<S: Space> Simulator<S> {
 
     /// The refusal of a configuration whose ANCF section directors the elements cannot
     /// represent: a director (nearly) parallel to its slope ([`MIN_SECTION_SINE`]) and, with
-    /// `twist`, more twist within one element than [`MAX_TWIST_PER_ELEMENT`].
+    /// `twist`, more twist within one element than [`MAX_TWIST_PER_ELEMENT`]; a node of an
+    /// element with twist angles turned too far from the initial axis ([`MIN_CHART_MARGIN`]).
     pub(super) fn section_refusal(&self, v: &ModelValidity, twist: bool) -> Option<Refusal> {
         let name = |si: usize| self.scene.segments[si].name.clone();
+        if let Some((si, value)) = v.min_chart_margin.filter(|&(_, m)| m < MIN_CHART_MARGIN) {
+            return Some(Refusal::TwistChart {
+                segment: name(si),
+                value,
+            });
+        }
         if let Some((si, value)) = v.min_section_sine.filter(|&(_, s)| s < MIN_SECTION_SINE) {
             return Some(Refusal::SectionDirector {
                 segment: name(si),

@@ -1,8 +1,7 @@
 //! The spatial ANCF element with a nodal twist angle ("cable + twist angle", 14 coordinates):
-//! nodes `[r, r_x, θ]` (global axes; [m], [-], [rad]). Pure functions of the element
-//! coordinates, as the director element's ([`super::Ancf3Props`]). **Stage 1 (issue 23): the
-//! kernel and its tests; no scene builds it yet** (docs/engine-findings.md, "The torsion element
-//! costs twice the cable").
+//! nodes `[r, r_x, θ]` (global axes; [m], [-], [rad]), `torsion_element = "angle"`. Pure
+//! functions of the element coordinates, as the director element's ([`super::Ancf3Props`]);
+//! docs/references.md §7.7, docs/spatial.md.
 //!
 //! Why: the director element carries twist by a nodal vector r_y (9 coordinates per node, a
 //! penalty on its length and shear, a 9-wide band); one angle per node gives 7, the cable's 6
@@ -11,10 +10,11 @@
 //! Section director of node i: d2_i = Rot(t_i, θ_i) P(t⁰ → t_i) d⁰, the reference section axis
 //! d⁰ (unit, ⟂ t⁰) carried by the smallest rotation P taking the reference axis t⁰ to the
 //! node's tangent t_i = r_x,i/|r_x,i|, then turned by θ_i about t_i: the smallest-rotation
-//! triad of Meier, Popp & Wall 2014 (CMAME 278:445–478; docs/references.md §7.1). It is
+//! triad of Meier, Popp & Wall 2014 (CMAME 278:445–478; docs/references.md §7.7). It is
 //! defined unless a tangent turns onto −t⁰ ([`AngleProps::chart_margin`]): by the hairy-ball
 //! theorem no map from the tangent alone to a section axis is smooth on the whole sphere, so a
-//! node that must turn that far needs its reference (t⁰, d⁰) moved on (not done here).
+//! node that must turn that far needs its reference (t⁰, d⁰) moved on (not done here: the
+//! simulator refuses such a step, [`crate::simulator::MIN_CHART_MARGIN`]).
 //!
 //! Stretching and bending are the 3D cable's ([`Ancf3Props`] without torsion): for a round
 //! section (E·I_y = E·I_z, required) the bending energy does not see the section frame. Twist:
@@ -34,8 +34,9 @@
 // The kernels pass dual-number 3-vectors to the `vector` helpers by reference on purpose.
 #![allow(clippy::needless_borrows_for_generic_args)]
 
-use super::kernel::{comb, combine, lin2, scatter, Turn, V};
+use super::kernel::{comb, combine, hermite, lin2, scatter, Turn, V};
 use super::{Ancf3Props, Tables3, CABLE_DOFS};
+use crate::model::sample::{director_frame, ShapePoint};
 use crate::model::vector::{cross, dot, scale, Real};
 use num_dual::DualSVec64;
 
@@ -70,7 +71,14 @@ impl AngleProps {
             torsion: false,
             ..props
         };
-        cable.check()?;
+        if cable.check().is_err() {
+            return Err(format!(
+                "the angle element bends as the 3D cable, with one bending stiffness, but E·I_y = \
+                 {} and E·I_z = {} N m² differ; use a round section or tube, or \
+                 torsion_element = \"director\"",
+                props.ei_y, props.ei_z
+            ));
+        }
         let t = scale(&t0, dot(&t0, &t0).sqrt().recip());
         let u = lin2(1.0, &d0, -dot(&t, &d0), &t);
         let n = dot(&u, &u).sqrt();
@@ -115,10 +123,43 @@ impl AngleProps {
 
     /// The section axis d2 [-] of a node with slope `a` and twist angle `theta` (unit, ⟂ t).
     pub fn director(&self, a: [f64; 3], theta: f64) -> [f64; 3] {
-        let t = unit(&a);
-        let u = reference(&self.t0, &self.d0, &t);
-        let (s, c) = crate::math::sin_cos(theta);
-        lin2(c, &u, s, &cross(&t, &u))
+        section_frame(&self.t0, &self.d0, &a, theta)[1]
+    }
+
+    /// Generalized gravity force (the cable's on its r-blocks) [N, N m].
+    pub fn gravity_force(&self, g: [f64; 3]) -> [f64; 14] {
+        let fc = self.cable.gravity_force(g);
+        let mut f = [0.0; ANGLE_DOFS];
+        for (k, &s) in CABLE_SLOTS.iter().enumerate() {
+            f[s] = fc[k];
+        }
+        f
+    }
+
+    /// Largest |ε| over the axial quadrature points of `e` (14 entries).
+    pub fn max_axial_strain(&self, tab: &Tables3, e: &[f64]) -> f64 {
+        let c: [f64; CABLE_DOFS] = CABLE_SLOTS.map(|s| e[s]);
+        self.cable.max_axial_strain(tab, &c)
+    }
+
+    /// The centreline at ξ ∈ [0, 1] of the element at `e`, `ed` (14 entries each): the
+    /// cable's position, velocity and axial strain; the section frame from r_x(ξ) and the
+    /// nodal section axes interpolated linearly (d2 = (1 − ξ) d2₀ + ξ d2₁ made ⟂ t); the
+    /// curvature vector r_x × r_xx/|r_x|² on that frame; the twist rate φ/l.
+    pub fn sample(&self, tab: &Tables3, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
+        let (c, cd): ([f64; CABLE_DOFS], [f64; CABLE_DOFS]) =
+            (CABLE_SLOTS.map(|s| e[s]), CABLE_SLOTS.map(|s| ed[s]));
+        let mut p = self.cable.sample(&c, &cd, xi);
+        let (_, ds, dds) = hermite(xi, self.cable.length);
+        let (a, b) = (combine(&ds, &R_SLOTS, e), combine(&dds, &R_SLOTS, e));
+        let v = |s: usize| [e[s], e[s + 1], e[s + 2]];
+        let d0 = self.director(v(SLOPE[0]), e[THETA[0]]);
+        let d1 = self.director(v(SLOPE[1]), e[THETA[1]]);
+        p.frame = director_frame(a, lin2(1.0 - xi, &d0, xi, &d1));
+        let k = scale(&cross(&a, &b), dot(&a, &a).recip());
+        p.curvature = [dot(&k, &p.frame[1]), dot(&k, &p.frame[2])];
+        p.twist = self.twist(tab, e) / self.cable.length;
+        p
     }
 
     /// The element twist φ [rad] at `e` (14 entries): θ₁ − θ₀ + φ_ref (module doc).
@@ -398,6 +439,19 @@ fn solid_angle<T: Real>(r: &V<T>, b: &V<T>, c: &V<T>) -> (T, [V<T>; 2]) {
     let gb = lin2(sd, &cross(c, r), sn, &lin2(one, r, one, c));
     let gc = lin2(sd, &cross(r, b), sn, &lin2(one, r, one, b));
     (w, [gb, gc])
+}
+
+/// The section frame [t, d2, d3] (columns, global axes) of a node with slope `a` and twist
+/// angle `theta` for the reference axes `t0`, `d0` (module doc): t = a/|a|, d2 =
+/// Rot(t, θ) P(t⁰ → t) d⁰, d3 = t × d2. Generic over the scalar (the node port's Jacobians).
+#[inline(always)]
+pub fn section_frame<T: Real>(t0: &[f64; 3], d0: &[f64; 3], a: &V<T>, theta: T) -> [V<T>; 3] {
+    let t = unit(a);
+    let u = reference(&t0.map(T::from), &d0.map(T::from), &t);
+    let (s, c) = crate::math::sin_cos_dual(theta);
+    let d2 = lin2(c, &u, s, &cross(&t, &u));
+    let d3 = cross(&t, &d2);
+    [t, d2, d3]
 }
 
 /// The reference section axis P(t⁰ → t) d⁰ of a node with unit tangent `t`.

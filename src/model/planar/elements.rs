@@ -128,6 +128,7 @@ impl Element<Planar> for AncfElement {
             axial_strain: worst,
             modal_deflection: None,
             section: None,
+            chart_margin: None,
         }
     }
 
@@ -269,6 +270,7 @@ impl Element<Planar> for ModalElement {
             axial_strain: 0.0,
             modal_deflection: Some(w.max(b.tip_slope(q).abs())),
             section: None,
+            chart_margin: None,
         }
     }
 

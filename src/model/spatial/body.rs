@@ -304,6 +304,7 @@ impl Element<Spatial> for ModalElement3 {
             axial_strain: 0.0,
             modal_deflection: Some(self.body.deflection(q)),
             section: None,
+            chart_margin: None,
         }
     }
 

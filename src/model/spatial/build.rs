@@ -9,9 +9,10 @@
 
 use super::joint::RigidJoint3;
 use super::{
-    AncfElement3, EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3,
-    NodePort3, NodeSupport3, Spatial,
+    AncfElement3, AngleElement3, AnglePort3, EulerNormalization, FrameSupport3, ModalElement3,
+    ModalRootPort3, ModalTipPort3, NodePort3, NodeSupport3, Spatial,
 };
+use crate::model::ancf3d::angle::AngleProps;
 use crate::model::ancf3d::Ancf3Props;
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
@@ -19,7 +20,7 @@ use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
 use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentParts};
-use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind};
+use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind, TorsionElement};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use std::sync::Arc;
 
@@ -35,6 +36,8 @@ struct SpatialParts {
     reference: Matrix3<f64>,
     /// Whether ANCF nodes carry the section director r_y.
     torsion: bool,
+    /// Whether they carry a twist angle θ instead (`torsion_element = "angle"`).
+    angle: bool,
     /// Newton scale of positions and bending amplitudes: the total length [m].
     lref: f64,
 }
@@ -103,12 +106,30 @@ impl SegmentParts<Spatial> for SpatialParts {
     }
 
     fn ancf_props(&self, si: usize, seg: &Segment, _le: f64) -> Result<Ancf3Props, SceneError> {
-        Ancf3Props::of_segment(seg, self.torsion)
-            .map_err(|m| SceneError(format!("segments[{si}]: {m}")))
+        let err = |m: String| SceneError(format!("segments[{si}]: {m}"));
+        let props = Ancf3Props::of_segment(seg, self.torsion).map_err(err)?;
+        if self.angle {
+            // the angle element bends as the cable: one bending stiffness
+            AngleProps::new(props, self.ax.into(), self.ay.into())
+                .map_err(|m| err(format!("segment {:?}: {m}", seg.name)))?;
+        }
+        Ok(props)
     }
 
     fn ancf_element(&self, props: &Ancf3Props) -> Box<dyn Element<Spatial>> {
-        Box::new(AncfElement3::new(*props))
+        if self.angle {
+            // the axes of the root frame: unit and perpendicular (checked in `ancf_props`)
+            Box::new(AngleElement3::new(AngleProps {
+                cable: Ancf3Props {
+                    torsion: false,
+                    ..*props
+                },
+                t0: self.ax.into(),
+                d0: self.ay.into(),
+            }))
+        } else {
+            Box::new(AncfElement3::new(*props))
+        }
     }
 
     /// Node coordinates r, r_x (, r_y) at arc length `s`, held as the root asks.
@@ -122,14 +143,18 @@ impl SegmentParts<Spatial> for SpatialParts {
         for k in 0..3 {
             c.push(num, true, self.ax[k], 1.0);
         }
-        if self.torsion {
+        if self.angle {
+            // a clamp holds the twist angle [rad]; not a rigid group (a mount would turn the
+            // reference axis: mounted roots refuse the angle element)
+            c.push(num, hold != Hold::Clamp, 0.0, 1.0);
+        } else if self.torsion {
             // a clamp holds the section director r_y
             for k in 0..3 {
                 c.push(num, hold != Hold::Clamp, self.ay[k], 1.0);
             }
         }
         num.rigid(Rigid::Point, &c.dofs[..3]);
-        for d in c.dofs[3..].chunks(3) {
+        for d in c.dofs[3..].chunks_exact(3) {
             num.rigid(Rigid::Direction, d);
         }
         c
@@ -162,12 +187,20 @@ impl SegmentParts<Spatial> for SpatialParts {
             position: c.held(0),
             slope: normals.map(|n| n.held(0)),
             normal: normals.map(|n| n.held(3)),
-            section: (self.torsion && c.is_held(6)).then(|| c.held(6)),
+            section: (self.torsion && !self.angle && c.is_held(6)).then(|| c.held(6)),
+            twist: (self.angle && c.is_held(6)).then(|| (c.held::<1>(6)[0], self.ax.into())),
         })
     }
 
     fn node_port(&self) -> Box<dyn Port<Spatial>> {
-        Box::new(NodePort3::new(self.torsion, self.reference))
+        if self.angle {
+            Box::new(AnglePort3 {
+                t0: self.ax.into(),
+                d0: self.ay.into(),
+            })
+        } else {
+            Box::new(NodePort3::new(self.torsion, self.reference))
+        }
     }
 
     /// The rigid joint between `up` and `down`, DOT1 rows scaled by `length` [m].
@@ -229,6 +262,7 @@ impl Model<Spatial> {
             ay,
             reference: Matrix3::from_columns(&[ax, ay, az]),
             torsion: scene.torsion,
+            angle: scene.torsion && scene.torsion_element == TorsionElement::Angle,
             lref: scene.total_length(),
         };
         walk(scene, &mut parts)

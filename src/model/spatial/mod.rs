@@ -1,12 +1,13 @@
 //! Space: [`Spatial`], the spatial components and the build of a spatial model from a scene
 //! (`space = "spatial"`). The formulation is `docs/spatial.md`'s: ANCF cable + twist director
-//! (r, r_x, r_y) elements, floating-frame modal bodies oriented by Euler parameters, rigid
+//! (r, r_x, r_y) elements or their twist-angle twin (r, r_x, θ), floating-frame modal bodies oriented by Euler parameters, rigid
 //! joints of a spherical joint plus three DOT1 rows.
 //!
 //! Port kinematics ([`kin`]): every end exposes its position and its directors as [`Field3`]s
 //! (a vector with its first and second derivatives by the local coordinates), so joint rows,
 //! loads and outputs are written once over them.
 
+mod angle;
 mod body;
 mod build;
 mod frame;
@@ -14,6 +15,7 @@ mod joint;
 mod kin;
 mod node;
 
+pub use angle::{AngleElement3, AnglePort3};
 pub use body::{EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3};
 pub use joint::RigidJoint3;
 pub use kin::{EndKin3, Field3};

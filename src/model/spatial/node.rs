@@ -128,11 +128,7 @@ impl Element<Spatial> for AncfElement3 {
         Energies {
             kinetic: self.props.kinetic_energy(&self.mass, &self.tables, &e, &ed),
             strain: self.props.strain_energy(&self.tables, &e),
-            potential: -e
-                .iter()
-                .zip(&self.gravity_force)
-                .map(|(a, b)| a * b)
-                .sum::<f64>(),
+            potential: gravity_potential(&e, &self.gravity_force),
         }
     }
 
@@ -149,12 +145,18 @@ impl Element<Spatial> for AncfElement3 {
             axial_strain: self.props.max_axial_strain(&self.tables, q),
             modal_deflection: None,
             section: self.props.torsion.then(|| self.props.section_measures(q)),
+            chart_margin: None,
         }
     }
 
     fn as_any(&self) -> &dyn Any {
         self
     }
+}
+
+/// The potential of the dead gravity force −eᵀf_g [J] of an element at `e`.
+pub(super) fn gravity_potential(e: &[f64], f_g: &[f64]) -> f64 {
+    -e.iter().zip(f_g).map(|(a, b)| a * b).sum::<f64>()
 }
 
 /// An ANCF node as a port, local coordinates `[r, r_x, r_y]` (torsion) or `[r, r_x]` (cable).
@@ -177,7 +179,16 @@ impl NodePort3 {
     pub fn new(torsion: bool, reference: Matrix3<f64>) -> Self {
         Self { torsion, reference }
     }
+}
 
+/// A node port's section frame [t, d2, d3] as a function of its N director coordinates (local
+/// coordinates 3..3 + N: the slope r_x, then r_y or the twist angle θ), generic over the
+/// scalar: the ports' rotations and moment stiffness are its exact derivatives.
+pub(super) trait NodeFrame {
+    fn frame<T: Real, const N: usize>(&self, x: &[T; N]) -> [[T; 3]; 3];
+}
+
+impl NodeFrame for NodePort3 {
     /// Frame columns [t, d2, d3] from r_x (`x[0..3]`) and, with torsion, r_y (`x[3..6]`).
     fn frame<T: Real, const N: usize>(&self, x: &[T; N]) -> [[T; 3]; 3] {
         let a = [x[0], x[1], x[2]];
@@ -214,60 +225,100 @@ impl NodePort3 {
             [t, rot(col(1)), rot(col(2))]
         }
     }
+}
 
-    /// Frame and rotation per director coordinate (N = 6 with torsion: r_x, r_y; 3 without).
-    fn frame_rotation<const N: usize>(&self, q: &[f64]) -> (Matrix3<f64>, [Vector3<f64>; N]) {
-        let x: [DualSVec64<N>; N] =
-            std::array::from_fn(|k| DualSVec64::<N>::from_re(q[3 + k]).derivative(k));
-        let d = self.frame(&x);
-        let mut frame = Matrix3::zeros();
-        let mut rot = [Vector3::zeros(); N];
-        for (i, di) in d.iter().enumerate() {
-            let v = Vector3::from_fn(|c, _| di[c].re);
-            frame.set_column(i, &v);
-            for (k, rk) in rot.iter_mut().enumerate() {
-                let dv = Vector3::from_fn(|c, _| di[c].eps.0.map_or(0.0, |e| e[k]));
-                *rk += 0.5 * v.cross(&dv);
-            }
-        }
-        (frame, rot)
-    }
+/// The frame's directors as dual numbers over the N director coordinates (offset 3).
+pub(super) fn frame_duals<F: NodeFrame, const N: usize>(
+    port: &F,
+    q: &[f64],
+) -> [[DualSVec64<N>; 3]; 3] {
+    let x: [DualSVec64<N>; N] =
+        std::array::from_fn(|k| DualSVec64::<N>::from_re(q[3 + k]).derivative(k));
+    port.frame(&x)
+}
 
-    /// Adds −m·∂(∂θ/∂q_i)/∂q_j over the N director coordinates (offset 3).
-    fn moment_stiffness<const N: usize>(
-        &self,
-        q: &[f64],
-        m: &[f64; 3],
-        add: &mut dyn FnMut(usize, usize, f64),
-    ) {
-        let x: [Dual2Vec<f64, nalgebra::Const<N>>; N] = std::array::from_fn(|k| {
-            Dual2Vec::<f64, nalgebra::Const<N>>::from_re(q[3 + k]).derivative(k)
-        });
-        let d = self.frame(&x);
-        let m = Vector3::from(*m);
-        // ∂_j θ_k = ½ Σ_i (∂_j d_i × ∂_k d_i + d_i × ∂_j∂_k d_i)
-        let mut h = [[0.0; N]; N];
-        for di in &d {
-            let v = Vector3::from_fn(|c, _| di[c].re);
-            let g = |c: usize, k: usize| di[c].v1.0.map_or(0.0, |e| e[k]);
-            let hh = |c: usize, j: usize, k: usize| di[c].v2.0.map_or(0.0, |e| e[(j, k)]);
-            for k in 0..N {
-                let dk = Vector3::from_fn(|c, _| g(c, k));
-                for j in 0..N {
-                    let dj = Vector3::from_fn(|c, _| g(c, j));
-                    let djk = Vector3::from_fn(|c, _| hh(c, j, k));
-                    h[k][j] += 0.5 * m.dot(&(dj.cross(&dk) + v.cross(&djk)));
-                }
-            }
-        }
-        for (k, row) in h.iter().enumerate() {
-            for (j, x) in row.iter().enumerate() {
-                if *x != 0.0 {
-                    add(3 + k, 3 + j, -x);
-                }
-            }
+/// Frame and rotation per director coordinate, ½ Σ_i d_i × ∂d_i/∂q_k, from the dual directors
+/// `d` ([`frame_duals`]).
+pub(super) fn rotation_of<const N: usize>(
+    d: &[[DualSVec64<N>; 3]; 3],
+) -> (Matrix3<f64>, [Vector3<f64>; N]) {
+    let mut frame = Matrix3::zeros();
+    let mut rot = [Vector3::zeros(); N];
+    for (i, di) in d.iter().enumerate() {
+        let v = Vector3::from_fn(|c, _| di[c].re);
+        frame.set_column(i, &v);
+        for (k, rk) in rot.iter_mut().enumerate() {
+            let dv = Vector3::from_fn(|c, _| di[c].eps.0.map_or(0.0, |e| e[k]));
+            *rk += 0.5 * v.cross(&dv);
         }
     }
+    (frame, rot)
+}
+
+/// Frame and rotation per director coordinate (forward-mode AD).
+pub(super) fn frame_rotation<F: NodeFrame, const N: usize>(
+    port: &F,
+    q: &[f64],
+) -> (Matrix3<f64>, [Vector3<f64>; N]) {
+    rotation_of(&frame_duals::<F, N>(port, q))
+}
+
+/// Adds −m·∂(∂θ/∂q_i)/∂q_j over the N director coordinates (offset 3).
+pub(super) fn moment_stiffness<F: NodeFrame, const N: usize>(
+    port: &F,
+    q: &[f64],
+    m: &[f64; 3],
+    add: &mut dyn FnMut(usize, usize, f64),
+) {
+    let x: [Dual2Vec<f64, nalgebra::Const<N>>; N] = std::array::from_fn(|k| {
+        Dual2Vec::<f64, nalgebra::Const<N>>::from_re(q[3 + k]).derivative(k)
+    });
+    let d = port.frame(&x);
+    let m = Vector3::from(*m);
+    // ∂_j θ_k = ½ Σ_i (∂_j d_i × ∂_k d_i + d_i × ∂_j∂_k d_i)
+    let mut h = [[0.0; N]; N];
+    for di in &d {
+        let v = Vector3::from_fn(|c, _| di[c].re);
+        let g = |c: usize, k: usize| di[c].v1.0.map_or(0.0, |e| e[k]);
+        let hh = |c: usize, j: usize, k: usize| di[c].v2.0.map_or(0.0, |e| e[(j, k)]);
+        for k in 0..N {
+            let dk = Vector3::from_fn(|c, _| g(c, k));
+            for j in 0..N {
+                let dj = Vector3::from_fn(|c, _| g(c, j));
+                let djk = Vector3::from_fn(|c, _| hh(c, j, k));
+                h[k][j] += 0.5 * m.dot(&(dj.cross(&dk) + v.cross(&djk)));
+            }
+        }
+    }
+    for (k, row) in h.iter().enumerate() {
+        for (j, x) in row.iter().enumerate() {
+            if *x != 0.0 {
+                add(3 + k, 3 + j, -x);
+            }
+        }
+    }
+}
+
+/// Σ ∂²θ/∂q_i∂q_j dir_i dir_j over the N director coordinates: one directional evaluation
+/// (hyper-dual numbers along `dir`).
+pub(super) fn rotation_second_along<F: NodeFrame, const N: usize>(
+    port: &F,
+    q: &[f64],
+    dir: &[f64],
+) -> [f64; 3] {
+    let x: [HyperDual64; N] = std::array::from_fn(|k| {
+        let mut v = HyperDual64::from_re(q[3 + k]);
+        v.eps1 = dir[3 + k];
+        v.eps2 = dir[3 + k];
+        v
+    });
+    let mut h = Vector3::zeros();
+    for d in port.frame(&x) {
+        let re = Vector3::new(d[0].re, d[1].re, d[2].re);
+        let dd = Vector3::new(d[0].eps1eps2, d[1].eps1eps2, d[2].eps1eps2);
+        h += 0.5 * re.cross(&dd);
+    }
+    h.into()
 }
 
 impl Port<Spatial> for NodePort3 {
@@ -275,11 +326,11 @@ impl Port<Spatial> for NodePort3 {
         let d = q.len();
         let mut rotation = vec![Vector3::zeros(); d];
         let frame = if self.torsion {
-            let (f, r) = self.frame_rotation::<6>(q);
+            let (f, r) = frame_rotation::<_, 6>(self, q);
             rotation[3..9].copy_from_slice(&r);
             f
         } else {
-            let (f, r) = self.frame_rotation::<3>(q);
+            let (f, r) = frame_rotation::<_, 3>(self, q);
             rotation[3..6].copy_from_slice(&r);
             f
         };
@@ -300,36 +351,26 @@ impl Port<Spatial> for NodePort3 {
         add: &mut dyn FnMut(usize, usize, f64),
     ) {
         if self.torsion {
-            self.moment_stiffness::<6>(q, m, add)
+            moment_stiffness::<_, 6>(self, q, m, add)
         } else {
-            self.moment_stiffness::<3>(q, m, add)
+            moment_stiffness::<_, 3>(self, q, m, add)
         }
     }
 
     /// One directional evaluation (hyper-dual numbers along `dir` on the director
     /// coordinates) instead of the default's three Hessians.
     fn rotation_second_derivative_along(&self, q: &[f64], dir: &[f64]) -> [f64; 3] {
-        let x: [HyperDual64; 6] = std::array::from_fn(|k| {
-            let mut v = HyperDual64::from_re(q.get(3 + k).copied().unwrap_or(0.0));
-            if k < 3 || self.torsion {
-                v.eps1 = dir[3 + k];
-                v.eps2 = dir[3 + k];
-            }
-            v
-        });
-        let mut h = Vector3::zeros();
-        for d in self.frame(&x) {
-            let re = Vector3::new(d[0].re, d[1].re, d[2].re);
-            let dd = Vector3::new(d[0].eps1eps2, d[1].eps1eps2, d[2].eps1eps2);
-            h += 0.5 * re.cross(&dd);
+        if self.torsion {
+            rotation_second_along::<_, 6>(self, q, dir)
+        } else {
+            rotation_second_along::<_, 3>(self, q, dir)
         }
-        h.into()
     }
 }
 
 /// The root support of an ANCF chain: which held coordinates (indices into the held values)
 /// carry its force and moment. Clamped: r0, r0_x (and r0_y with torsion) held; ball: r0 only.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodeSupport3 {
     /// Held x, y, z of the root position r0.
     pub position: [usize; 3],
@@ -339,12 +380,15 @@ pub struct NodeSupport3 {
     pub normal: Option<[usize; 3]>,
     /// Held r0_y (clamped, with torsion).
     pub section: Option<[usize; 3]>,
+    /// Held twist angle θ0 and the clamped axis t⁰ (clamped, with twist angles): its residual
+    /// is the moment about t⁰.
+    pub twist: Option<(usize, [f64; 3])>,
 }
 
 impl Support<Spatial> for NodeSupport3 {
     /// F = r_{r0}, M = Σ d × r_d about r0 over the held directions d (the normals n_1, n_2 of
     /// the clamped slope direction, the section director r0_y): the work of a rotation δθ of
-    /// the held directions δd = δθ × d.
+    /// the held directions δd = δθ × d; plus r_θ t⁰ of a held twist angle.
     fn reaction(&self, r: &[f64], held: &[f64]) -> ([f64; 3], [f64; 3]) {
         let vec = |v: &[f64], i: [usize; 3]| Vector3::new(v[i[0]], v[i[1]], v[i[2]]);
         let mut m = Vector3::zeros();
@@ -354,12 +398,15 @@ impl Support<Spatial> for NodeSupport3 {
         {
             m += vec(held, idx).cross(&vec(r, idx));
         }
+        if let Some((i, axis)) = self.twist {
+            m += r[i] * Vector3::from(axis);
+        }
         (vec(r, self.position).into(), m.into())
     }
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::model::dofs::{LocalDofs, Numbering};
     use crate::model::PortKin;
@@ -386,7 +433,11 @@ mod tests {
 
     /// Axial vector of the skew part of (∂D/∂q_k) Dᵀ by central differences: the rotation of
     /// the frame per unit q_k, independent of the ½Σ d × ∂d formula.
-    fn fd_rotation(port: &NodePort3, q: &[f64], k: usize) -> Vector3<f64> {
+    pub(in crate::model::spatial) fn fd_rotation(
+        port: &dyn Port<Spatial>,
+        q: &[f64],
+        k: usize,
+    ) -> Vector3<f64> {
         let h = 1e-6;
         let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
         qp[k] += h;
@@ -502,6 +553,7 @@ mod tests {
                 slope: Some([3, 4, 5]),
                 normal: None,
                 section: torsion.then_some([6, 7, 8]),
+                twist: None,
             };
             let (fr, mr) = sup.reaction(&r, &e);
             let v = |a: &[f64], i: usize| Vector3::new(a[i], a[i + 1], a[i + 2]);

@@ -326,7 +326,10 @@ fn chart_margin_and_refusals() {
     assert!(p.chart_margin(&back).abs() < 1e-15);
     let oval = props(false, 0.0, 2.0);
     let err = AngleProps::new(oval, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]).unwrap_err();
-    assert!(err.contains("E·I_y"), "{err}");
+    assert!(
+        err.contains("E·I_y") && err.contains("torsion_element"),
+        "{err}"
+    );
     let err = AngleProps::new(props(false, 0.0, 1.0), [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
     assert!(err.unwrap_err().contains("parallel"));
 }

@@ -1,0 +1,239 @@
+//! The spatial ANCF element with nodal twist angles as a component ([`AngleElement3`]) and its
+//! node as a port ([`AnglePort3`]), `torsion_element = "angle"`. Kernel:
+//! [`crate::model::ancf3d::angle`].
+
+use super::kin::{EndKin3, Field3};
+use super::node::{
+    frame_duals, gravity_potential, moment_stiffness, rotation_of, rotation_second_along, NodeFrame,
+};
+use super::Spatial;
+use crate::model::ancf3d::angle::{section_frame, AngleProps, ANGLE_DOFS};
+use crate::model::ancf3d::{MassPatterns, Tables3, CABLE_DOFS};
+use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Port, Validity};
+use crate::model::sample::ShapePoint;
+use crate::model::vector::Real;
+use nalgebra::{Const, Vector3};
+use num_dual::Dual2Vec;
+use std::any::Any;
+
+/// Where the cable's 12 coordinates sit among the element's 14 (node: r, r_x, θ).
+const CABLE_SLOTS: [usize; CABLE_DOFS] = [0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12];
+/// The nodal twist angles.
+const THETA: [usize; 2] = [6, 13];
+
+/// A spatial ANCF element with nodal twist angles, local coordinates node 0 then node 1, each
+/// `[r, r_x, θ]` (global axes; [m], [-], [rad]).
+#[derive(Debug, Clone)]
+pub struct AngleElement3 {
+    /// Element properties.
+    pub props: AngleProps,
+    /// Dense constant mass matrix, row-major 14 × 14 (for the Newton block).
+    mass: Vec<f64>,
+    /// The cable part's mass patterns (the residual's M ë without the dense matrix).
+    patterns: MassPatterns,
+    tables: Tables3,
+    /// ∫ρA S_rᵀ g dx at the current gravity.
+    gravity_force: [f64; ANGLE_DOFS],
+}
+
+impl AngleElement3 {
+    /// Element of the given properties (gravity zero until set).
+    pub fn new(props: AngleProps) -> Self {
+        Self {
+            props,
+            mass: props.mass_matrix(),
+            patterns: props.cable.mass_patterns(),
+            tables: props.tables(),
+            gravity_force: [0.0; ANGLE_DOFS],
+        }
+    }
+
+    /// `res += M ë` with the constant mass matrix.
+    fn add_mass_product(&self, ea: &[f64; 14], res: &mut [f64; 14]) {
+        let a: [f64; CABLE_DOFS] = CABLE_SLOTS.map(|s| ea[s]);
+        let mut r = [0.0; CABLE_DOFS];
+        self.patterns.add_product(&a, &mut r);
+        for (k, &s) in CABLE_SLOTS.iter().enumerate() {
+            res[s] += r[k];
+        }
+        let k = self.props.node_inertia();
+        for s in THETA {
+            res[s] += k * ea[s];
+        }
+    }
+}
+
+impl Element<Spatial> for AngleElement3 {
+    fn eval(&mut self, x: &LocalState<'_>, env: &Env<Spatial>, mut out: ElementOut<'_>) {
+        let (e, ed, ea) = x.arrays::<14>();
+        let p = &self.props;
+        let tab = &self.tables;
+        let (force, matrices) = if out.matrix.is_some() {
+            let (mut f, mut k, mut c) = p.tangent(tab, &e, &ed);
+            let (fi, mi) = p.twist_inertia_tangent((&e, &ed, &ea), &mut k, &mut c);
+            for (f, fi) in f.iter_mut().zip(&fi) {
+                *f += fi;
+            }
+            (f, Some((k, c, mi)))
+        } else {
+            let mut f = p.internal_force(tab, &e, &ed);
+            let fi = p.twist_inertia(&e, &ed, &ea);
+            for (f, fi) in f.iter_mut().zip(&fi) {
+                *f += fi;
+            }
+            (f, None)
+        };
+        // r = M(e) ë + (twist inertia's velocity terms) + f_int − load·f_g
+        let mut res = force;
+        for (r, g) in res.iter_mut().zip(&self.gravity_force) {
+            *r -= env.load * g;
+        }
+        self.add_mass_product(&ea, &mut res);
+        out.add_residual(&res);
+        if let (Some((ca, cv, cx)), Some((k, c, mi))) = (out.matrix, matrices) {
+            let m = &self.mass;
+            out.add_block(|r, col| {
+                ca * (m[r * 14 + col] + mi[r][col]) + cx * k[r][col] + cv * c[r][col]
+            });
+        }
+    }
+
+    fn residual(&self, x: &LocalState<'_>, _env: &Env<Spatial>, res: &mut [f64]) {
+        let (e, ed, ea) = x.arrays::<14>();
+        let mut r = self.props.internal_force(&self.tables, &e, &ed);
+        let fi = self.props.twist_inertia(&e, &ed, &ea);
+        for ((r, g), fi) in r.iter_mut().zip(&self.gravity_force).zip(&fi) {
+            *r += fi - g;
+        }
+        self.add_mass_product(&ea, &mut r);
+        res.copy_from_slice(&r);
+    }
+
+    fn length(&self) -> f64 {
+        self.props.cable.length
+    }
+
+    fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>) {
+        let (e, ed, _) = x.vectors();
+        out.extend(
+            xi.iter()
+                .map(|&s| self.props.sample(&self.tables, &e, &ed, s)),
+        );
+    }
+
+    fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 3]) -> Energies {
+        let (e, ed, _) = x.arrays::<14>();
+        Energies {
+            kinetic: self.props.kinetic_energy(&e, &ed),
+            strain: self.props.strain_energy(&self.tables, &e),
+            potential: gravity_potential(&e, &self.gravity_force),
+        }
+    }
+
+    fn set_gravity(&mut self, g: &[f64; 3]) {
+        self.gravity_force = self.props.gravity_force(*g);
+    }
+
+    fn is_damped(&self) -> bool {
+        self.props.cable.damping_time > 0.0
+    }
+
+    fn validity(&self, q: &[f64]) -> Validity {
+        Validity {
+            axial_strain: self.props.max_axial_strain(&self.tables, q),
+            modal_deflection: None,
+            section: None,
+            chart_margin: Some(self.props.chart_margin(q)),
+        }
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+/// A node of the angle element as a port, local coordinates `[r, r_x, θ]`: frame [t, d2, d3]
+/// of [`section_frame`] (reference axes of the straight initial beam), rotations and the
+/// section axis d2 as a field of (r_x, θ) with its exact first and second derivatives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnglePort3 {
+    /// Reference axis t⁰ (unit, global axes).
+    pub t0: [f64; 3],
+    /// Reference section axis d⁰ (unit, ⟂ t⁰).
+    pub d0: [f64; 3],
+}
+
+impl NodeFrame for AnglePort3 {
+    fn frame<T: Real, const N: usize>(&self, x: &[T; N]) -> [[T; 3]; 3] {
+        section_frame(&self.t0, &self.d0, &[x[0], x[1], x[2]], x[3])
+    }
+}
+
+impl AnglePort3 {
+    /// The kinematics; the section axis's second derivatives only if `second`.
+    fn end(&self, q: &[f64], second: bool) -> EndKin3 {
+        let d = q.len();
+        let duals = frame_duals::<_, 4>(self, q);
+        let (frame, r) = rotation_of(&duals);
+        let mut rotation = vec![Vector3::zeros(); d];
+        rotation[3..7].copy_from_slice(&r);
+        // the section axis d2(r_x, θ): its gradient from the same duals, its Hessian from
+        // second-order duals (joint rows' matrices only)
+        let d2 = &duals[1];
+        let mut section = Field3 {
+            v: Vector3::from_fn(|c, _| d2[c].re),
+            d: vec![Vector3::zeros(); d],
+            dd: Vec::new(),
+        };
+        for k in 0..4 {
+            section.d[3 + k] = Vector3::from_fn(|c, _| d2[c].eps.0.map_or(0.0, |g| g[k]));
+        }
+        if second {
+            let x: [Dual2Vec<f64, Const<4>>; 4] =
+                std::array::from_fn(|k| Dual2Vec::<f64, Const<4>>::from_re(q[3 + k]).derivative(k));
+            let d2 = self.frame(&x)[1];
+            for k in 0..4 {
+                for j in k..4 {
+                    let h = Vector3::from_fn(|c, _| d2[c].v2.0.map_or(0.0, |h| h[(k, j)]));
+                    if h != Vector3::zeros() {
+                        section.dd.push((3 + k, 3 + j, h));
+                    }
+                }
+            }
+        }
+        EndKin3 {
+            p: Field3::coordinates(q, 0, d),
+            frame,
+            rotation,
+            tangent: Field3::coordinates(q, 3, d),
+            section: Some(section),
+            normals: None,
+        }
+    }
+}
+
+impl Port<Spatial> for AnglePort3 {
+    fn kinematics(&self, q: &[f64]) -> EndKin3 {
+        self.end(q, true)
+    }
+
+    fn kinematics_first(&self, q: &[f64]) -> EndKin3 {
+        self.end(q, false)
+    }
+
+    fn add_moment_stiffness(
+        &self,
+        q: &[f64],
+        m: &[f64; 3],
+        add: &mut dyn FnMut(usize, usize, f64),
+    ) {
+        moment_stiffness::<_, 4>(self, q, m, add)
+    }
+
+    fn rotation_second_derivative_along(&self, q: &[f64], dir: &[f64]) -> [f64; 3] {
+        rotation_second_along::<_, 4>(self, q, dir)
+    }
+}
+
+#[cfg(test)]
+mod tests;
