@@ -18,13 +18,14 @@
 //!
 //! Stretching and bending are the 3D cable's ([`Ancf3Props`] without torsion): for a round
 //! section (E·I_y = E·I_z, required) the bending energy does not see the section frame. Twist:
-//! the director element's element twist ([`twist_angle`]: parallel transport of the nodal
-//! frames between the tangents, with the midpoint's Richardson step) of the frames (t_i, d2_i).
-//! Turning d2_i about t_i adds to that angle, so φ = θ₁ − θ₀ + φ_ref(r_x,0, r_x,1, r_x(½)),
-//! φ_ref the twist of the reference frames P(t⁰ → t_i) d⁰: no wrap at ±π per element, no
-//! penalty. Energy ½(GJ/l)φ², Kelvin–Voigt stress φ + τ_d φ̇. Its gradient is the director
-//! element's with respect to the tangents plus ∓σ(r_x,i) (the turn of each reference frame
-//! about its tangent, [`spin`]).
+//! the director element's element twist ([`super::twist_angle`]: parallel transport of the
+//! nodal frames between the tangents, with the midpoint's Richardson step) of the frames (t_i,
+//! d2_i). Turning d2_i about t_i adds to that angle, so φ = θ₁ − θ₀ + φ_ref(r_x,0, r_x,1,
+//! r_x(½)), φ_ref the twist of the reference frames P(t⁰ → t_i) d⁰, taken as the signed solid
+//! angles of the spherical triangles (t⁰, t_a, t_b) (three atan2s, [`solid_angle`]): no wrap at
+//! ±π per element, no penalty. Energy ½(GJ/l)φ², Kelvin–Voigt stress φ + τ_d φ̇. Its gradient
+//! equals the director element's with respect to the tangents plus ∓σ(r_x,i) (the turn of
+//! each reference frame about its tangent, [`spin`]; the tests compare the two).
 //!
 //! Twist inertia lumped at the nodes (weights l/2, as the director element): the section spins
 //! about t_i at ω_i = θ̇_i + σ(r_x,i)·ṙ_x,i, where σ(a) = −(t⁰ × a)/(|a| (|a| + t⁰·a)) is the
@@ -174,8 +175,8 @@ impl AngleProps {
     /// reference frames around the spherical triangles (t⁰, t_a, t_b) turn them by the
     /// triangles' signed solid angles Ω (Gauss–Bonnet), so φ₁ = −Ω(t⁰, t₀, t₁), φ₂ =
     /// −Ω(t⁰, t₀, t_m) − Ω(t⁰, t_m, t₁) and φ_ref = (4φ₂ − φ₁)/3 ([`solid_angle`]; equal to
-    /// [`twist_angle`] of the frames P(t⁰ → t_i) d⁰, which the tests check): three atan2s, no
-    /// frame, d⁰ drops out.
+    /// [`super::twist_angle`] of the frames P(t⁰ → t_i) d⁰, which the tests check): three
+    /// atan2s, no frame, d⁰ drops out.
     #[inline(always)]
     fn reference_twist<T: Real>(&self, a: &[V<T>; 3]) -> (T, [V<T>; 3]) {
         let [a0, a1, am] = a;
