@@ -36,7 +36,7 @@
 #![allow(clippy::needless_borrows_for_generic_args)]
 
 use super::kernel::{comb, combine, hermite, lin2, scatter, Turn, V};
-use super::{Ancf3Props, Tables3, CABLE_DOFS};
+use super::{Ancf3Props, MassPatterns, Tables3, CABLE_DOFS};
 use crate::model::sample::{director_frame, ShapePoint};
 use crate::model::vector::{cross, dot, scale, Real};
 use num_dual::DualSVec64;
@@ -130,17 +130,26 @@ impl AngleProps {
     /// Generalized gravity force (the cable's on its r-blocks) [N, N m].
     pub fn gravity_force(&self, g: [f64; 3]) -> [f64; 14] {
         let fc = self.cable.gravity_force(g);
-        let mut f = [0.0; ANGLE_DOFS];
+        from_cable(&std::array::from_fn(|k| fc[k]))
+    }
+
+    /// `res += M ë` with the constant mass matrix: the cable's patterns `pat`
+    /// ([`Ancf3Props::mass_patterns`] of [`Self::cable`]) on the r-blocks, ρI_p l/2 on each θ.
+    pub fn add_mass_product(&self, pat: &MassPatterns, ea: &[f64; 14], res: &mut [f64; 14]) {
+        let mut r = [0.0; CABLE_DOFS];
+        pat.add_product(&cable_part(ea), &mut r);
         for (k, &s) in CABLE_SLOTS.iter().enumerate() {
-            f[s] = fc[k];
+            res[s] += r[k];
         }
-        f
+        let k = self.node_inertia();
+        for s in THETA {
+            res[s] += k * ea[s];
+        }
     }
 
     /// Largest |ε| over the axial quadrature points of `e` (14 entries).
     pub fn max_axial_strain(&self, tab: &Tables3, e: &[f64]) -> f64 {
-        let c: [f64; CABLE_DOFS] = CABLE_SLOTS.map(|s| e[s]);
-        self.cable.max_axial_strain(tab, &c)
+        self.cable.max_axial_strain(tab, &cable_part(e))
     }
 
     /// The centreline at ξ ∈ [0, 1] of the element at `e`, `ed` (14 entries each): the
@@ -148,19 +157,22 @@ impl AngleProps {
     /// nodal section axes interpolated linearly (d2 = (1 − ξ) d2₀ + ξ d2₁ made ⟂ t); the
     /// curvature vector r_x × r_xx/|r_x|² on that frame; the twist rate φ/l.
     pub fn sample(&self, tab: &Tables3, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
-        let (c, cd): ([f64; CABLE_DOFS], [f64; CABLE_DOFS]) =
-            (CABLE_SLOTS.map(|s| e[s]), CABLE_SLOTS.map(|s| ed[s]));
-        let mut p = self.cable.sample(&c, &cd, xi);
-        let (_, ds, dds) = hermite(xi, self.cable.length);
+        let (sh, ds, dds) = hermite(xi, self.cable.length);
         let (a, b) = (combine(&ds, &R_SLOTS, e), combine(&dds, &R_SLOTS, e));
         let v = |s: usize| [e[s], e[s + 1], e[s + 2]];
         let d0 = self.director(v(SLOPE[0]), e[THETA[0]]);
         let d1 = self.director(v(SLOPE[1]), e[THETA[1]]);
-        p.frame = director_frame(a, lin2(1.0 - xi, &d0, xi, &d1));
+        let frame = director_frame(a, lin2(1.0 - xi, &d0, xi, &d1));
         let k = scale(&cross(&a, &b), dot(&a, &a).recip());
-        p.curvature = [dot(&k, &p.frame[1]), dot(&k, &p.frame[2])];
-        p.twist = self.twist(tab, e) / self.cable.length;
-        p
+        ShapePoint {
+            position: combine(&sh, &R_SLOTS, e),
+            velocity: combine(&sh, &R_SLOTS, ed),
+            axial_strain: dot(&a, &a).sqrt() - 1.0,
+            curvature: [dot(&k, &frame[1]), dot(&k, &frame[2])],
+            frame,
+            twist: self.twist(tab, e) / self.cable.length,
+            ..ShapePoint::default()
+        }
     }
 
     /// The element twist φ [rad] at `e` (14 entries): θ₁ − θ₀ + φ_ref (module doc).
@@ -204,11 +216,7 @@ impl AngleProps {
     /// the cable's on its 12 coordinates plus the twist's.
     pub fn internal_force(&self, tab: &Tables3, e: &[f64; 14], ed: &[f64; 14]) -> [f64; 14] {
         let (c, cd) = (cable_part(e), cable_part(ed));
-        let fc = self.cable.internal_force(tab, &c, &cd);
-        let mut f = [0.0; ANGLE_DOFS];
-        for (k, &s) in CABLE_SLOTS.iter().enumerate() {
-            f[s] = fc[k];
-        }
+        let mut f = from_cable(&self.cable.internal_force(tab, &c, &cd));
         let mid = tab.mid;
         let loc = |x: &[f64; 14]| [v3(x, SLOPE[0]), v3(x, SLOPE[1]), comb(&mid, &R_SLOTS, x)];
         let (phi_ref, g) = self.reference_twist(&loc(e));
@@ -407,15 +415,13 @@ impl AngleProps {
         self.cable.strain_energy(tab, &cable_part(e)) + 0.5 * self.twist_stiffness() * phi * phi
     }
 
-    /// Kinetic energy [J] at (e, ė): the cable's Hermite part plus Σ_nodes ½ρI_p(l/2)ω_i².
+    /// Kinetic energy [J] at (e, ė): the cable's Hermite part ½ėᵀMė (its mass patterns, no
+    /// dense matrix) plus Σ_nodes ½ρI_p(l/2)ω_i².
     pub fn kinetic_energy(&self, e: &[f64; 14], ed: &[f64; 14]) -> f64 {
-        let m = self.cable.mass_matrix();
         let cd = cable_part(ed);
-        let mut t = 0.0;
-        for i in 0..CABLE_DOFS {
-            let mv: f64 = (0..CABLE_DOFS).map(|j| m[i * CABLE_DOFS + j] * cd[j]).sum();
-            t += 0.5 * cd[i] * mv;
-        }
+        let mut mv = [0.0; CABLE_DOFS];
+        self.cable.mass_patterns().add_product(&cd, &mut mv);
+        let mut t = 0.5 * cd.iter().zip(&mv).map(|(v, m)| v * m).sum::<f64>();
         for (&xs, &ts) in SLOPE.iter().zip(&THETA) {
             let w = ed[ts] + dot(&spin(&self.t0, &v3(e, xs)), &v3(ed, xs));
             t += 0.5 * self.node_inertia() * w * w;
@@ -513,8 +519,18 @@ fn unit<T: Real>(a: &V<T>) -> V<T> {
     scale(a, dot(a, a).sqrt().recip())
 }
 
-fn cable_part(x: &[f64; 14]) -> [f64; CABLE_DOFS] {
+/// The cable's 12 coordinates of the element's 14 (`x`: 14 entries).
+fn cable_part(x: &[f64]) -> [f64; CABLE_DOFS] {
     CABLE_SLOTS.map(|s| x[s])
+}
+
+/// The cable's 12 entries `fc` spread onto the element's 14 (zero on the angles).
+fn from_cable(fc: &[f64; CABLE_DOFS]) -> [f64; ANGLE_DOFS] {
+    let mut f = [0.0; ANGLE_DOFS];
+    for (k, &s) in CABLE_SLOTS.iter().enumerate() {
+        f[s] = fc[k];
+    }
+    f
 }
 
 #[cfg(test)]

@@ -8,18 +8,13 @@ use super::node::{
 };
 use super::Spatial;
 use crate::model::ancf3d::angle::{section_frame, AngleProps, ANGLE_DOFS};
-use crate::model::ancf3d::{MassPatterns, Tables3, CABLE_DOFS};
+use crate::model::ancf3d::{MassPatterns, Tables3};
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Port, Validity};
 use crate::model::sample::ShapePoint;
 use crate::model::vector::Real;
 use nalgebra::{Const, Vector3};
 use num_dual::Dual2Vec;
 use std::any::Any;
-
-/// Where the cable's 12 coordinates sit among the element's 14 (node: r, r_x, θ).
-const CABLE_SLOTS: [usize; CABLE_DOFS] = [0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12];
-/// The nodal twist angles.
-const THETA: [usize; 2] = [6, 13];
 
 /// A spatial ANCF element with nodal twist angles, local coordinates node 0 then node 1, each
 /// `[r, r_x, θ]` (global axes; [m], [-], [rad]).
@@ -50,16 +45,7 @@ impl AngleElement3 {
 
     /// `res += M ë` with the constant mass matrix.
     fn add_mass_product(&self, ea: &[f64; 14], res: &mut [f64; 14]) {
-        let a: [f64; CABLE_DOFS] = CABLE_SLOTS.map(|s| ea[s]);
-        let mut r = [0.0; CABLE_DOFS];
-        self.patterns.add_product(&a, &mut r);
-        for (k, &s) in CABLE_SLOTS.iter().enumerate() {
-            res[s] += r[k];
-        }
-        let k = self.props.node_inertia();
-        for s in THETA {
-            res[s] += k * ea[s];
-        }
+        self.props.add_mass_product(&self.patterns, ea, res);
     }
 }
 
