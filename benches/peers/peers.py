@@ -48,6 +48,12 @@ TOLERANCES = (1e-4, 3e-5, 1e-5)  # m
 # (residual-based, relative 1e-8) stalls near 1e-7 at 32 elements and h = 5e-5 s (round-off of
 # the axial stiffness) and the step adaptivity then stops at the minimum step; see README.md.
 EXUDYN_NEWTON_TOL = 1e-10
+# hybeam's Newton tolerance in the grid runs (`solver.tolerance`: the largest increment of a
+# coordinate relative to its scale, the rod's length for positions): Exudyn's, so that both
+# codes stop their iterations at the same tolerance on the increments. The scenes' own 1e-11
+# (`--hybeam-tolerance scene`) costs hybeam 12-17 % more Newton iterations and 40 % more
+# factorizations at the same error (README.md). The shared reference keeps the scene's.
+HYBEAM_NEWTON_TOL = EXUDYN_NEWTON_TOL
 
 
 @dataclass(frozen=True)
@@ -332,10 +338,17 @@ class Run:
 
 
 def run_hybeam(
-    binary: Path, fam: Family, n: int, h: float, t_end: float, spatial: bool
+    binary: Path,
+    fam: Family,
+    n: int,
+    h: float,
+    t_end: float,
+    spatial: bool,
+    tolerance: float | None = None,
 ) -> tuple[float, np.ndarray, np.ndarray]:
-    """Runs the hybeam CLI for a grid point of n elements; returns (its reported wall time,
-    sample times, tip positions)."""
+    """Runs the hybeam CLI for a grid point of n elements, at the Newton tolerance
+    `tolerance` (None: the scene's); returns (its reported wall time, sample times, tip
+    positions)."""
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "tip.csv"
         sets = [
@@ -344,6 +357,7 @@ def run_hybeam(
             f"solver.max_step={h!r}",
             f"simulation.t_end={t_end!r}",
             f"simulation.output_step={OUTPUT_STEP!r}",
+            *([f"solver.tolerance={tolerance!r}"] if tolerance is not None else []),
             *fam.sets,
         ]
         cmd = [str(binary), "run", str(ROOT / fam.scene), "--out", str(out), "--quiet"]
@@ -464,9 +478,18 @@ def run_exudyn(
 # ------------------------------------------------------------------------------- the runs
 
 
-def solve(binary: Path, prob: Problem, fam: Family, n: int, h: float, t_end: float):
+def solve(
+    binary: Path,
+    prob: Problem,
+    fam: Family,
+    n: int,
+    h: float,
+    t_end: float,
+    tolerance: float | None = None,
+):
+    """One run of either code; `tolerance` is hybeam's Newton tolerance (None: the scene's)."""
     if fam.code == "hybeam":
-        return run_hybeam(binary, fam, n, h, t_end, prob.spatial)
+        return run_hybeam(binary, fam, n, h, t_end, prob.spatial, tolerance)
     return run_exudyn(n, h, t_end, prob.spatial, prob.rod)
 
 
@@ -512,8 +535,16 @@ def reference(binary: Path, prob: Problem, grid: Grid, cache: Path, log) -> dict
     return out
 
 
-def sweep(binary: Path, prob: Problem, grid: Grid, ref: np.ndarray, log) -> list[Run]:
-    """Every family at every grid point, the codes alternating; median of grid.repeats."""
+def sweep(
+    binary: Path,
+    prob: Problem,
+    grid: Grid,
+    ref: np.ndarray,
+    log,
+    tolerance: float | None = HYBEAM_NEWTON_TOL,
+) -> list[Run]:
+    """Every family at every grid point, the codes alternating, hybeam at the Newton tolerance
+    `tolerance` (None: the scenes'); median of grid.repeats."""
     runs = {
         (fam, n, h): Run(prob.name, fam, fam.elements(n), h, fam.modes(n))
         for n in grid.elements
@@ -531,7 +562,7 @@ def sweep(binary: Path, prob: Problem, grid: Grid, ref: np.ndarray, log) -> list
                     if run.status != "ok":
                         continue
                     try:
-                        wall, t, tip = solve(binary, prob, fam, n, h, grid.t_end)
+                        wall, t, tip = solve(binary, prob, fam, n, h, grid.t_end, tolerance)
                     except Exception as e:  # a failed run is recorded, not fatal
                         run.status = f"failed: {e}".replace("\n", " ")[:300]
                         log(f"[{prob.name}] {fam.name} n={run.elements} h={h:g}: {run.status}")
@@ -696,7 +727,25 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out-dir", type=Path, help="default docs/report (quick: target/peers-quick)")
     ap.add_argument("--doc", type=Path, help="default docs/performance.md (quick: in --out-dir)")
     ap.add_argument("--shared", default="", help="note on the machine's other load, for the doc")
+    ap.add_argument(
+        "--hybeam-tolerance",
+        default=repr(HYBEAM_NEWTON_TOL),
+        help="hybeam's Newton tolerance in the grid runs (solver.tolerance), or 'scene' for "
+        f"the scenes' own (default {HYBEAM_NEWTON_TOL:g}, Exudyn's)",
+    )
     args = ap.parse_args(argv)
+    if args.hybeam_tolerance == "scene":
+        hybeam_tol = None
+    else:
+        try:
+            hybeam_tol = float(args.hybeam_tolerance)
+        except ValueError:
+            hybeam_tol = math.nan
+        if not (math.isfinite(hybeam_tol) and 1e-15 <= hybeam_tol < 1e-2):
+            ap.error(
+                f"--hybeam-tolerance {args.hybeam_tolerance}: give a number in [1e-15, 0.01) "
+                "(hybeam's solver.tolerance) or 'scene'"
+            )
     names = [x.strip() for x in args.problems.split(",") if x.strip()]
     unknown = [x for x in names if x not in PROBLEMS]
     if unknown or not names:
@@ -740,7 +789,7 @@ def main(argv: list[str] | None = None) -> int:
             f"[{name}] fine runs of the two codes differ by {peer_gap:.3e} m; the reference lies "
             f"{max_distance(refs['ref'], refs['half']):.3e} m from its half-refined run"
         )
-        runs = sweep(args.hybeam, prob, grid, refs["ref"], log)
+        runs = sweep(args.hybeam, prob, grid, refs["ref"], log, hybeam_tol)
         all_runs += runs
         svg = out_dir / f"peers_{name}.svg"
         figure(
@@ -760,7 +809,17 @@ def main(argv: list[str] | None = None) -> int:
         print(f"\n{prob.name}\n{ratio_table(runs)}")
     command = os.environ.get("PEERS_COMMAND") or shlex.join(["python", *sys.argv])
     write_doc(
-        doc, sections, grid, command, csv_path, started, minutes, load_before, load_after, args
+        doc,
+        sections,
+        grid,
+        command,
+        csv_path,
+        started,
+        minutes,
+        load_before,
+        load_after,
+        args,
+        hybeam_tol,
     )
     print(f"\nwrote {csv_path}, {doc} and the SVGs in {out_dir} ({minutes:.1f} min)")
     return 0
@@ -776,7 +835,9 @@ def mesh(fam: Family, n: int) -> str:
     return f"{n}" if len(counts) < 2 else f"{n} ({' + '.join(map(str, counts))})"
 
 
-def write_doc(doc, sections, grid, command, csv_path, started, minutes, before, after, args):
+def write_doc(
+    doc, sections, grid, command, csv_path, started, minutes, before, after, args, hybeam_tol
+):
     import exudyn
 
     m = machine()
@@ -800,6 +861,14 @@ def write_doc(doc, sections, grid, command, csv_path, started, minutes, before, 
         f"problem below), steps {', '.join(f'{h:g}' for h in grid.steps)} s, "
         f"t_end = {grid.t_end:g} s, "
         f"median of {grid.repeats} repeat(s), the codes alternating.",
+        "- Newton: "
+        + (
+            f"both codes stop on the increments at {hybeam_tol:g} (hybeam's `solver.tolerance`, "
+            f"Exudyn's relative and absolute tolerance {EXUDYN_NEWTON_TOL:g}); the references "
+            "at the scenes' own tolerance."
+            if hybeam_tol is not None
+            else f"hybeam at its scenes' own tolerance, Exudyn at {EXUDYN_NEWTON_TOL:g}."
+        ),
         "- Error: max over the 1 ms output grid of |tip - reference| (Euclidean).",
         "- Time: hybeam: the `wall X s` its CLI prints (model build, initial accelerations, "
         "stepping and formatting the CSV rows in memory; no process start, no file write); "
