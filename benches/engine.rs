@@ -12,7 +12,7 @@ use hybeam::model::ancf3d::angle::AngleProps;
 use hybeam::model::ancf3d::Ancf3Props;
 use hybeam::model::modal::{BodyOut, ModalBasis, ModalBody};
 use hybeam::model::{Model, Planar, Space, Spatial};
-use hybeam::scene::{Scene, StrainModel};
+use hybeam::scene::{Scene, StrainModel, TorsionElement};
 use hybeam::simulator::Simulator;
 use std::hint::black_box;
 use std::time::Instant;
@@ -211,7 +211,8 @@ fn spatial_sweep(c: &mut Criterion) {
 
 /// Cost per step against the number of elements, for every family of the peer comparison
 /// (issue 23: linear from 8 to 512): Case 1 as planar all-ANCF, hybrid (modal + n ANCF
-/// elements), 3D cable and 3D torsion element, h = 1e-4 s, after 0.05 s of the released fall.
+/// elements), 3D cable and the 3D torsion elements (director and angle), h = 1e-4 s, after
+/// 0.05 s of the released fall.
 /// Prints best-of-7 batches per step and the log–log slope between 8 and 512 elements to stderr.
 fn step_sweep(_c: &mut Criterion) {
     fn per_step<S: Space>(mut sim: Simulator<S>, n: usize) -> f64 {
@@ -238,7 +239,7 @@ fn step_sweep(_c: &mut Criterion) {
         }
         s
     };
-    let families: [(&str, &dyn Fn(usize) -> f64); 4] = [
+    let families: [(&str, &dyn Fn(usize) -> f64); 5] = [
         ("planar all-ANCF", &|n| {
             per_step(
                 Simulator::<Planar>::new(sized("case1_ancf.toml", 0, n, None)).unwrap(),
@@ -257,6 +258,11 @@ fn step_sweep(_c: &mut Criterion) {
         }),
         ("3D torsion element", &|n| {
             let s = sized("case1_3d_ancf.toml", 0, n, Some(true));
+            per_step(Simulator::<Spatial>::start_at(s, 0.0).unwrap(), n)
+        }),
+        ("3D angle element", &|n| {
+            let mut s = sized("case1_3d_ancf.toml", 0, n, Some(true));
+            s.torsion_element = TorsionElement::Angle;
             per_step(Simulator::<Spatial>::start_at(s, 0.0).unwrap(), n)
         }),
     ];
