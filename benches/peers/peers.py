@@ -542,7 +542,7 @@ def sweep(
     grid: Grid,
     ref: np.ndarray,
     log,
-    tolerance: float | None = HYBEAM_NEWTON_TOL,
+    tolerance: float | None,
 ) -> list[Run]:
     """Every family at every grid point, the codes alternating, hybeam at the Newton tolerance
     `tolerance` (None: the scenes'); median of grid.repeats."""

@@ -415,12 +415,13 @@ impl AngleProps {
         self.cable.strain_energy(tab, &cable_part(e)) + 0.5 * self.twist_stiffness() * phi * phi
     }
 
-    /// Kinetic energy [J] at (e, ė): the cable's Hermite part ½ėᵀMė (its mass patterns, no
-    /// dense matrix) plus Σ_nodes ½ρI_p(l/2)ω_i².
-    pub fn kinetic_energy(&self, e: &[f64; 14], ed: &[f64; 14]) -> f64 {
+    /// Kinetic energy [J] at (e, ė): the cable's Hermite part ½ėᵀMė (with its mass patterns
+    /// `pat`, [`Ancf3Props::mass_patterns`] of [`Self::cable`], as [`Self::add_mass_product`])
+    /// plus Σ_nodes ½ρI_p(l/2)ω_i².
+    pub fn kinetic_energy(&self, pat: &MassPatterns, e: &[f64; 14], ed: &[f64; 14]) -> f64 {
         let cd = cable_part(ed);
         let mut mv = [0.0; CABLE_DOFS];
-        self.cable.mass_patterns().add_product(&cd, &mut mv);
+        pat.add_product(&cd, &mut mv);
         let mut t = 0.5 * cd.iter().zip(&mv).map(|(v, m)| v * m).sum::<f64>();
         for (&xs, &ts) in SLOPE.iter().zip(&THETA) {
             let w = ed[ts] + dot(&spin(&self.t0, &v3(e, xs)), &v3(ed, xs));

@@ -110,7 +110,7 @@ impl Element<Spatial> for AngleElement3 {
     fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 3]) -> Energies {
         let (e, ed, _) = x.arrays::<14>();
         Energies {
-            kinetic: self.props.kinetic_energy(&e, &ed),
+            kinetic: self.props.kinetic_energy(&self.patterns, &e, &ed),
             strain: self.props.strain_energy(&self.tables, &e),
             potential: gravity_potential(&e, &self.gravity_force),
         }
