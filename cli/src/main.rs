@@ -227,7 +227,7 @@ fn run(args: &RunArgs) -> Result<(), String> {
     let mut record = |sim: &AnySimulator, out: &mut Vec<u8>| -> Result<(), String> {
         let o = sim.outputs();
         writeln!(out, "{}", row(sim, &o, &columns)).map_err(|e| e.to_string())?;
-        views.record(sim, &o).map_err(|e| e.to_string())
+        views.record(sim, &o).map(drop).map_err(|e| e.to_string())
     };
     record(&sim, &mut out)?;
     let n_out = (t_end / dt - 1e-9).ceil() as u64;

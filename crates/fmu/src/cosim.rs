@@ -7,8 +7,6 @@
 pub mod variables;
 pub mod view;
 
-use std::path::Path;
-
 use fmi2::{CoSimModel, ModelInfo, StepError, StringVariable, Variable};
 
 use hybeam::error::SimError;
@@ -53,66 +51,22 @@ pub struct BeamFmu {
     /// divided by it, the first-order output derivative of the outputs without an exact one
     /// (reactions, energies, inertia); 0 before the first step.
     backward: Vec<f64>,
-    /// `visualization.directory` (empty: no views).
-    vis_dir: String,
-    /// The views of this run, opened at the first state recorded with `vis_dir` set.
-    views: Option<view::Views>,
-    /// A view could not be written in this run: no more views until fmi2Reset (or another
-    /// directory).
-    views_off: bool,
-    /// The file stem of the views: the instance name, sanitized ([`view::stem_of`]).
-    stem: String,
+    /// The views: `visualization.*` and the files written ([`view::ViewState`]).
+    views: view::ViewState,
     /// A warning for the FMI layer to report ([`CoSimModel::take_warning`]).
     warning: Option<String>,
 }
 
 impl BeamFmu {
-    /// Records the current state in the views, if `visualization.directory` is set (opening
-    /// them at the first state). A failure becomes the warning of the call and turns the views
-    /// off for the rest of the run.
+    /// Records the current state in the views ([`view::ViewState::record`]).
     fn record_view(&mut self) {
-        if self.vis_dir.is_empty() || self.views_off {
-            return;
-        }
-        if self.views.is_none() {
-            let dir = Path::new(&self.vis_dir);
-            match view::Views::open(dir, &self.stem, &self.scene, &self.table) {
-                Ok(v) => self.views = Some(v),
-                Err(e) => return self.view_failed(e),
-            }
-        }
-        if let Some(v) = &mut self.views {
-            if let Err(e) = v.record(&self.sim, &self.outputs) {
-                self.view_failed(e);
-            }
-        }
-    }
-
-    /// A view could not be written: the warning, and no more views in this run.
-    fn view_failed(&mut self, e: String) {
-        // dropping the views tries to write the collection and page of what was recorded
-        self.views = None;
-        self.views_off = true;
-        self.warning = Some(format!(
-            "visualization.directory = \"{}\": {e}; visualization is off for the rest of \
-             this run (until fmi2Reset)",
-            self.vis_dir
-        ));
-    }
-
-    /// Writes the views' collection and page (fmi2Terminate; a later step after fmi2SetFMUstate
-    /// reopens them, and the next fmi2Terminate or fmi2FreeInstance rewrites them).
-    fn finish_views(&mut self) {
-        if let Some(v) = &mut self.views {
-            if let Err(e) = v.finish() {
-                self.view_failed(e);
-            }
-        }
+        self.views
+            .record(&self.sim, &self.outputs, &self.scene, &self.table);
     }
 
     /// The `.pvd` collection of the views, if they are open.
     pub fn view_collection(&self) -> Option<std::path::PathBuf> {
-        self.views.as_ref().map(|v| v.collection())
+        self.views.collection()
     }
     /// modelDescription.xml of the FMU of `scene_toml` with this modelIdentifier, from the
     /// scene alone (its variable table and default experiment): no simulator is built.
@@ -340,10 +294,7 @@ impl CoSimModel for BeamFmu {
             pre_start: std::cell::RefCell::new(None),
             last_step: step,
             backward,
-            vis_dir: String::new(),
-            views: None,
-            views_off: false,
-            stem: view::stem_of(""),
+            views: view::ViewState::new(),
             warning: None,
         };
         fmu.refresh_outputs();
@@ -364,37 +315,38 @@ impl CoSimModel for BeamFmu {
 
     fn get_string(&self, index: usize) -> Result<&str, String> {
         match index {
-            VISUALIZATION_DIRECTORY => Ok(&self.vis_dir),
+            VISUALIZATION_DIRECTORY => Ok(self.views.dir()),
             _ => Err(format!("no String variable at index {index}")),
         }
     }
 
-    /// `visualization.directory`: before the start it is only stored. After it (a restored FMU
-    /// state with another directory) the views of the old directory are finished and the next
-    /// state recorded opens the new one.
+    /// `visualization.directory`: stored; the views switch to it at the next state recorded
+    /// (a restored FMU state with another directory: the old directory's views are finished
+    /// then, and kept to continue if a later state comes back to it). A state the model refuses
+    /// after its directory was set therefore changes no file.
     fn set_string(&mut self, index: usize, value: &str) -> Result<(), String> {
         if index != VISUALIZATION_DIRECTORY {
             return Err(format!("no String variable at index {index}"));
         }
-        if value != self.vis_dir {
-            self.finish_views();
-            self.views = None;
-            self.views_off = false;
-            self.vis_dir = value.to_owned();
-        }
+        self.views.set_dir(value);
         Ok(())
     }
 
     fn set_instance_name(&mut self, name: &str) {
-        self.stem = view::stem_of(name);
+        self.views.set_instance_name(name);
     }
 
     fn terminate(&mut self) {
-        self.finish_views();
+        self.views.finish();
     }
 
+    /// The model's warning, and the views' (a piece written in the background that failed).
     fn take_warning(&mut self) -> Option<String> {
-        self.warning.take()
+        let views = self.views.take_warning();
+        match (self.warning.take(), views) {
+            (Some(a), Some(b)) => Some(format!("{a}; {b}")),
+            (a, b) => a.or(b),
+        }
     }
 
     fn get_real(&self, index: usize) -> Result<f64, String> {
@@ -440,6 +392,7 @@ impl CoSimModel for BeamFmu {
             Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
                 access.parameter(&self.scene)
             }
+            Access::View(setting) => Some(self.views.settings().get(setting)),
         };
         value.ok_or_else(|| not_in_space(&self.table.variables()[index].name, &self.sim))
     }
@@ -457,6 +410,7 @@ impl CoSimModel for BeamFmu {
                 }
             }
             Access::Output(_) => return Err(format!("{name} is an output and cannot be set")),
+            Access::View(setting) => return self.views.set(setting, value),
             Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
                 let mut scene = self.scene.clone();
                 access.set_parameter(&mut scene, value);
@@ -490,11 +444,8 @@ impl CoSimModel for BeamFmu {
         self.backward.fill(0.0);
         self.started = true;
         self.pre_start.replace(None);
-        // a new run: a new series (after fmi2Reset the views were discarded)
-        if let Some(v) = &mut self.views {
-            v.discard();
-        }
-        self.views = None;
+        // a new run: a new series
+        self.views.new_run();
         self.record_view();
         Ok(())
     }
@@ -589,12 +540,10 @@ impl CoSimModel for BeamFmu {
     /// `visualization.directory` is back to its start value (empty).
     fn reset(&mut self) -> Result<(), String> {
         let fresh = Self::from_resource(&self.scene_text)?;
-        if let Some(v) = &mut self.views {
-            v.discard();
-        }
-        let stem = std::mem::take(&mut self.stem);
+        self.views.reset();
+        let views = std::mem::take(&mut self.views);
         *self = fresh;
-        self.stem = stem;
+        self.views = views;
         Ok(())
     }
 

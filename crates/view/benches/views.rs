@@ -39,7 +39,9 @@ fn views(c: &mut Criterion) {
     g.bench_function("shape+vtk", |b| {
         b.iter(|| {
             let mut series = Series::create(&dir, "beam", radii.clone()).unwrap();
-            run(&scene, |s| series.write(s.time(), &s.shape(8)).unwrap());
+            run(&scene, |s| {
+                series.write(s.time(), &s.shape(8)).unwrap();
+            });
             series.finish().unwrap();
         })
     });

@@ -231,7 +231,7 @@ impl Recorder {
             .replacen("__VIEWER__", &VIEWER.replace("</script", "<\\/script"), 1)
     }
 
-    /// Writes the page to `path`.
+    /// Writes the page to `path`, whole or not at all ([`crate::vtk::write_atomic`]).
     pub fn write(&self, path: &Path) -> Result<(), ViewError> {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|source| ViewError::Io {
@@ -239,10 +239,7 @@ impl Recorder {
                 source,
             })?;
         }
-        std::fs::write(path, self.page()).map_err(|source| ViewError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
+        crate::vtk::write_atomic(path, self.page().as_bytes())
     }
 }
 

@@ -47,14 +47,17 @@ impl Views {
     }
 
     /// Records the simulator's current state (`outputs` its outputs) as the next piece and
-    /// frame; a time not after the last one (a rollback) first drops the later ones.
-    pub fn record(&mut self, sim: &AnySimulator, outputs: &AnyOutputs) -> Result<(), ViewError> {
+    /// frame; a time not after the last one (a rollback) first drops the later ones. `Ok(false)`:
+    /// the series has reached its byte limit ([`Views::set_limit`]) and no piece was written (the
+    /// page, bounded by its frame count, still records).
+    pub fn record(&mut self, sim: &AnySimulator, outputs: &AnyOutputs) -> Result<bool, ViewError> {
         if self.series.is_none() && self.page.is_none() {
-            return Ok(());
+            return Ok(true);
         }
         let shape = sim.shape(self.samples);
+        let mut written = true;
         if let Some(series) = &mut self.series {
-            series.write(sim.time(), &shape)?;
+            written = series.write(sim.time(), &shape)?;
         }
         if let Some((rec, _)) = &mut self.page {
             let tip: Vec<f64> = self
@@ -64,7 +67,19 @@ impl Views {
                 .collect();
             rec.push(sim.time(), &shape, &tip);
         }
-        Ok(())
+        Ok(written)
+    }
+
+    /// At most `limit` bytes of series pieces on disk, from the next piece on.
+    pub fn set_limit(&mut self, limit: u64) {
+        if let Some(series) = &mut self.series {
+            series.set_limit(limit);
+        }
+    }
+
+    /// The first failure of a piece written in the background since the last call, if any.
+    pub fn poll(&mut self) -> Result<(), ViewError> {
+        self.series.as_mut().map_or(Ok(()), Series::poll)
     }
 
     /// Writes every pending piece, the `.pvd` collection and the page.
@@ -76,6 +91,11 @@ impl Views {
             rec.write(path)?;
         }
         Ok(())
+    }
+
+    /// Bytes of the series' pieces on disk, as far as written (0 without a series).
+    pub fn series_bytes(&self) -> u64 {
+        self.series.as_ref().map_or(0, Series::bytes)
     }
 
     /// The series' `.pvd` collection and its number of pieces, if a series is written.

@@ -1,6 +1,6 @@
 //! The beam's shape over time as a ParaView series: one `.vtu` (VTK XML unstructured grid,
-//! written by `vtkio`) per output time and a `.pvd` collection naming them with their times
-//! (written by `quick-xml`).
+//! encoded by `vtkio`) per output time and a `.pvd` collection naming them with their times
+//! (encoded by `quick-xml`), each file written whole or not at all ([`write_atomic`]).
 //!
 //! Each `.vtu` holds the centreline samples of [`hybeam::model::Shape`] as points, one
 //! `VTK_POLY_LINE` cell per segment, a `VTK_VERTEX` at each joint and one at the root (mount)
@@ -188,26 +188,45 @@ pub fn piece(shape: &Shape, radii: &[f64]) -> Vtk {
 
 /// A ParaView time series being written: `DIR/STEM_000000.vtu`, … and `DIR/STEM.pvd`.
 ///
-/// The pieces are encoded and written by a writer thread of the series (joined by
-/// [`Series::finish`] and on drop), so the simulation goes on while they are written; a write
-/// that failed is reported by the next call. The files are the same as written in line.
+/// Every file is written whole or not at all ([`write_atomic`]: a temporary file renamed into
+/// place, never through a symlink). The first piece is written in line, so that a directory or
+/// name that cannot be written fails at once; the later pieces are encoded and written by a
+/// writer thread of the series (joined by [`Series::finish`] and on drop), so the simulation goes
+/// on while they are written, and a write that failed is reported by the next call
+/// ([`Series::write`] or [`Series::poll`]). With a byte limit ([`Series::with_limit`]) no piece is
+/// started that could take the series' files past it.
 #[derive(Debug)]
 pub struct Series {
     dir: PathBuf,
     stem: String,
     radii: Vec<f64>,
-    /// (time [s], file name) of each piece written.
-    entries: Vec<(f64, String)>,
+    /// The time [s] of each piece listed; piece `k` is `STEM_{k:06}.vtu`.
+    times: Vec<f64>,
     writer: Option<Writer>,
+    /// Size of each piece file on disk [bytes] by number (0: being written), as far as written
+    /// (a rollback's pieces beyond the list stay on disk until written again).
+    sizes: Vec<u64>,
+    /// Their sum [bytes].
+    bytes: u64,
+    /// The largest piece written [bytes]: the estimate of the next.
+    largest: u64,
+    /// At most this many bytes of pieces on disk.
+    limit: u64,
+    /// A piece was refused for the limit: none is written any more.
+    full: bool,
 }
 
-/// The writer thread: pieces in, the first failure out.
+/// The writer thread: (number, path, shape) in, (number, bytes written or the failure) out.
 #[derive(Debug)]
 struct Writer {
-    send: std::sync::mpsc::SyncSender<(PathBuf, Shape)>,
-    failed: std::sync::mpsc::Receiver<ViewError>,
+    send: std::sync::mpsc::SyncSender<(usize, PathBuf, Shape)>,
+    done: std::sync::mpsc::Receiver<(usize, Result<u64, ViewError>)>,
     thread: std::thread::JoinHandle<()>,
 }
+
+/// Pieces queued for the writer thread at most (the memory of a series being written is
+/// bounded by this many shapes).
+const QUEUED_PIECES: usize = 64;
 
 impl Series {
     /// A series in `dir` (created if missing) of files named `stem`, segments of `radii` [m].
@@ -217,9 +236,25 @@ impl Series {
             dir: dir.to_path_buf(),
             stem: stem.to_string(),
             radii,
-            entries: Vec::new(),
+            times: Vec::new(),
             writer: None,
+            sizes: Vec::new(),
+            bytes: 0,
+            largest: 0,
+            limit: u64::MAX,
+            full: false,
         })
+    }
+
+    /// This series with at most `limit` bytes of pieces on disk.
+    pub fn with_limit(mut self, limit: u64) -> Self {
+        self.limit = limit;
+        self
+    }
+
+    /// Sets the byte limit of the pieces on disk (it applies from the next piece on).
+    pub fn set_limit(&mut self, limit: u64) {
+        self.limit = limit;
     }
 
     /// The `.pvd` file's path.
@@ -227,87 +262,142 @@ impl Series {
         self.dir.join(format!("{}.pvd", self.stem))
     }
 
-    /// Number of pieces written.
+    /// Number of pieces listed.
     pub fn len(&self) -> usize {
-        self.entries.len()
+        self.times.len()
     }
 
-    /// Whether no piece was written.
+    /// Whether no piece is listed.
     pub fn is_empty(&self) -> bool {
-        self.entries.is_empty()
+        self.times.is_empty()
     }
 
-    /// Writes the shape at `time` [s] as the next piece. A time not after the last one (a
-    /// host's rollback or reset) first drops the pieces at or after it from the collection.
-    /// An error is this piece's (the writer thread could not be started) or an earlier
-    /// piece's that failed to write.
-    pub fn write(&mut self, time: f64, shape: &Shape) -> Result<(), ViewError> {
-        self.check()?;
-        while self.entries.last().is_some_and(|(t, _)| *t >= time) {
-            self.entries.pop();
+    /// Bytes of the pieces on disk, as far as they are written.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+
+    /// Whether a piece was refused for the byte limit (none is written any more).
+    pub fn is_full(&self) -> bool {
+        self.full
+    }
+
+    /// Writes the shape at `time` [s] as the next piece; `Ok(false)` if it was not written
+    /// because it could take the series past its byte limit (from then on none is). A time not
+    /// after the last one (a host's rollback or reset) first drops the pieces at or after it
+    /// from the collection. An error is this piece's (written in line) or an earlier piece's
+    /// that failed to write.
+    pub fn write(&mut self, time: f64, shape: &Shape) -> Result<bool, ViewError> {
+        self.poll()?;
+        if self.full {
+            return Ok(false);
         }
-        let name = format!("{}_{:06}.vtu", self.stem, self.entries.len());
-        let path = self.dir.join(&name);
-        if self.writer.is_none() {
-            self.writer = Some(self.spawn()?);
+        while self.times.last().is_some_and(|t| *t >= time) {
+            self.times.pop();
         }
-        let w = self.writer.as_ref().expect("started above");
-        if w.send.send((path.clone(), shape.clone())).is_err() {
-            // the thread is gone: write in line
-            write_piece(&path, shape, &self.radii)?;
+        let k = self.times.len();
+        // every piece at most the largest so far: the files after this one
+        let slots = self.sizes.len().max(k + 1) as u64;
+        if slots.saturating_mul(self.largest) > self.limit {
+            self.full = true;
+            return Ok(false);
         }
-        self.entries.push((time, name));
-        Ok(())
+        let path = self.dir.join(format!("{}_{:06}.vtu", self.stem, k));
+        if self.sizes.is_empty() {
+            // the first piece in line: a directory or name that cannot be written fails now
+            // (and it measures the pieces for the limit)
+            let n = write_piece(&path, shape, &self.radii)?;
+            if n > self.limit {
+                let _ = std::fs::remove_file(&path);
+                self.full = true;
+                return Ok(false);
+            }
+            self.sized(k, n);
+        } else {
+            if self.writer.is_none() {
+                self.writer = Some(self.spawn()?);
+            }
+            if k >= self.sizes.len() {
+                self.sizes.resize(k + 1, 0);
+            }
+            let w = self.writer.as_ref().expect("started above");
+            if w.send.send((k, path.clone(), shape.clone())).is_err() {
+                // the thread is gone: write in line
+                let n = write_piece(&path, shape, &self.radii)?;
+                self.sized(k, n);
+            }
+        }
+        self.times.push(time);
+        Ok(true)
+    }
+
+    /// Piece `k` is on disk with `n` bytes.
+    fn sized(&mut self, k: usize, n: u64) {
+        if k >= self.sizes.len() {
+            self.sizes.resize(k + 1, 0);
+        }
+        self.bytes = self.bytes - self.sizes[k] + n;
+        self.sizes[k] = n;
+        self.largest = self.largest.max(n);
     }
 
     fn spawn(&self) -> Result<Writer, ViewError> {
-        let (send, recv) = std::sync::mpsc::sync_channel::<(PathBuf, Shape)>(64);
-        let (fail, failed) = std::sync::mpsc::channel();
+        let (send, recv) = std::sync::mpsc::sync_channel::<(usize, PathBuf, Shape)>(QUEUED_PIECES);
+        let (report, done) = std::sync::mpsc::channel();
         let radii = self.radii.clone();
         let thread = std::thread::Builder::new()
             .name("hybeam-vtk".into())
             .spawn(move || {
-                for (path, shape) in recv {
-                    if let Err(e) = write_piece(&path, &shape, &radii) {
-                        let _ = fail.send(e);
-                    }
+                for (k, path, shape) in recv {
+                    let _ = report.send((k, write_piece(&path, &shape, &radii)));
                 }
             })
             .map_err(ViewError::io(&self.dir))?;
-        Ok(Writer {
-            send,
-            failed,
-            thread,
-        })
+        Ok(Writer { send, done, thread })
     }
 
-    /// The first failure of the writer thread since the last call, if any.
-    fn check(&self) -> Result<(), ViewError> {
-        match self.writer.as_ref().map(|w| w.failed.try_recv()) {
-            Some(Ok(e)) => Err(e),
-            _ => Ok(()),
+    /// Takes the writer thread's reports: the first failure since the last call, if any.
+    pub fn poll(&mut self) -> Result<(), ViewError> {
+        let mut failure = None;
+        while let Some(Ok((k, r))) = self.writer.as_ref().map(|w| w.done.try_recv()) {
+            match r {
+                Ok(n) => self.sized(k, n),
+                Err(e) => {
+                    failure.get_or_insert(e);
+                }
+            }
         }
+        failure.map_or(Ok(()), Err)
     }
 
     /// Waits until every piece is written.
     fn flush(&mut self) -> Result<(), ViewError> {
-        if let Some(w) = self.writer.take() {
-            drop(w.send);
-            let _ = w.thread.join();
-            if let Ok(e) = w.failed.try_recv() {
-                return Err(e);
+        let Some(w) = self.writer.take() else {
+            return Ok(());
+        };
+        drop(w.send);
+        let _ = w.thread.join();
+        let mut failure = None;
+        for (k, r) in w.done.try_iter() {
+            match r {
+                Ok(n) => self.sized(k, n),
+                Err(e) => {
+                    failure.get_or_insert(e);
+                }
             }
         }
-        Ok(())
+        failure.map_or(Ok(()), Err)
     }
 
-    /// Writes every pending piece and (or rewrites) the `.pvd` collection of the pieces written
+    /// Writes every pending piece and (or rewrites) the `.pvd` collection of the pieces listed
     /// so far; the series can go on after it.
     pub fn finish(&mut self) -> Result<PathBuf, ViewError> {
         self.flush()?;
         let path = self.collection();
-        let xml = collection_xml(&self.entries).map_err(ViewError::io(&path))?;
-        std::fs::write(&path, xml).map_err(ViewError::io(&path))?;
+        let names = (0..self.times.len()).map(|k| format!("{}_{:06}.vtu", self.stem, k));
+        let entries: Vec<(f64, String)> = self.times.iter().copied().zip(names).collect();
+        let xml = collection_xml(&entries).map_err(ViewError::io(&path))?;
+        write_atomic(&path, &xml)?;
         Ok(path)
     }
 }
@@ -318,14 +408,47 @@ impl Drop for Series {
     }
 }
 
-/// Writes one piece to `path`.
-fn write_piece(path: &Path, shape: &Shape, radii: &[f64]) -> Result<(), ViewError> {
+/// Writes one piece to `path` ([`write_atomic`]); returns its size [bytes].
+fn write_piece(path: &Path, shape: &Shape, radii: &[f64]) -> Result<u64, ViewError> {
+    let mut bytes = Vec::new();
     piece(shape, radii)
-        .export(path)
+        .write_xml(&mut bytes)
         .map_err(|e| ViewError::Vtk {
             path: path.to_path_buf(),
             message: e.to_string(),
-        })
+        })?;
+    write_atomic(path, &bytes)?;
+    Ok(bytes.len() as u64)
+}
+
+/// Writes `bytes` to `path` whole or not at all: into a new temporary file beside it (created
+/// exclusively, so never through a symlink; readable as a file created by `std::fs::write`),
+/// then renamed over `path` (a symlink there is replaced, not followed). On failure the
+/// temporary file is removed and the error is the operating system's, in words ("No space
+/// left on device").
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ViewError> {
+    use std::io::Write as _;
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".hybeam-").suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt as _;
+        // as std::fs::write creates files (the umask applies)
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut file = builder.tempfile_in(dir).map_err(ViewError::io(path))?;
+    file.write_all(bytes)
+        .and_then(|()| file.flush())
+        .map_err(ViewError::io(path))?;
+    file.persist(path).map_err(|e| ViewError::Io {
+        path: path.to_path_buf(),
+        source: e.error,
+    })?;
+    Ok(())
 }
 
 /// The `.pvd` text of `entries` (time, file name).

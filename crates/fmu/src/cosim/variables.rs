@@ -16,6 +16,8 @@ use fmi2::{Causality, StringVariable, Variability, Variable};
 use hybeam::scene::{MotionInput, Root, Scene, Section, Segment, SegmentKind};
 use hybeam::simulator::{InputId, InputKind, OutputId, Quantity};
 
+use super::view::{Setting, Settings};
+
 /// How the model reads and writes one variable.
 #[derive(Debug, Clone, Copy)]
 pub enum Access {
@@ -29,6 +31,9 @@ pub enum Access {
     Scene(&'static SceneParameter),
     /// A field of the segment with this index (root = 0).
     Segment(usize, &'static SegmentField),
+    /// A Real parameter of the FMU's views (owned by [`super::view::ViewState`], not the
+    /// scene; not part of an FMU state).
+    View(Setting),
 }
 
 impl Access {
@@ -38,7 +43,7 @@ impl Access {
             Access::Gravity(id) => Some(id.scene_value(scene)),
             Access::Scene(p) => Some((p.get)(scene)),
             Access::Segment(i, f) => Some((f.get)(&scene.segments[i])),
-            Access::Input(_) | Access::Output(_) => None,
+            Access::Input(_) | Access::Output(_) | Access::View(_) => None,
         }
     }
 
@@ -48,7 +53,7 @@ impl Access {
             Access::Gravity(id) => id.set_in_scene(scene, x),
             Access::Scene(p) => (p.set)(scene, x),
             Access::Segment(i, f) => (f.set)(&mut scene.segments[i], x),
-            Access::Input(_) | Access::Output(_) => {}
+            Access::Input(_) | Access::Output(_) | Access::View(_) => {}
         }
     }
 }
@@ -423,6 +428,31 @@ pub const STRING_PARAMETERS: [Row; 1] = [(
      series <instance>.pvd and animation page <instance>.html); empty: off",
 )];
 
+/// The Real parameters of the views (tunable; value references 901–902): (name, VR, unit,
+/// description), the setting.
+pub const VIEW_PARAMETERS: [(Row, Setting); 2] = [
+    (
+        (
+            "visualization.interval",
+            901,
+            Some("s"),
+            "the views record a communication point when at least this long after the last one \
+             recorded (0: every one)",
+        ),
+        Setting::Interval,
+    ),
+    (
+        (
+            "visualization.max_bytes",
+            902,
+            None,
+            "the ParaView series' pieces on disk at most [bytes]: the piece that could pass it is \
+             not written, with one warning, nor any after it in the run",
+        ),
+        Setting::MaxBytes,
+    ),
+];
+
 /// The index of `visualization.directory` in [`Table::string_variables`].
 pub const VISUALIZATION_DIRECTORY: usize = 0;
 
@@ -560,6 +590,12 @@ impl Table {
                 Access::Scene(p),
             );
         }
+        let defaults = Settings::default();
+        for (row, setting) in &VIEW_PARAMETERS {
+            let start = Some(defaults.get(*setting));
+            let v = variable(row, Causality::Parameter, Variability::Tunable, start);
+            t.push(v, Access::View(*setting));
+        }
         for (i, seg) in scene.segments.iter().enumerate() {
             for f in SEGMENT_FIELDS.iter().filter(|f| (f.applies)(seg)) {
                 t.push(
@@ -655,6 +691,7 @@ mod tests {
         }
         vrs.extend(SCENE_PARAMETERS.iter().map(|p| p.vr));
         vrs.extend(STRING_PARAMETERS.iter().map(|p| p.1));
+        vrs.extend(VIEW_PARAMETERS.iter().map(|p| p.0 .1));
         vrs.sort();
         let n = vrs.len();
         vrs.dedup();
