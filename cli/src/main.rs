@@ -89,10 +89,17 @@ struct RunArgs {
     /// Also write a self-contained 3D animation page of the run (opens offline in a browser).
     #[arg(long, value_name = "FILE")]
     animate: Option<PathBuf>,
+    /// The most output rows (and --vtk pieces) a run may write: a run that would write more
+    /// (t_end / output_step + 1) is refused before it starts.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_ROWS, value_parser = clap::value_parser!(u64).range(1..))]
+    max_rows: u64,
     /// Centreline samples per element (intervals) for --vtk and --animate.
     #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
     samples: u32,
 }
+
+/// The default of `hybeam run --max-rows`: a million rows (a CSV of ~0.1–0.4 GB).
+const DEFAULT_MAX_ROWS: u64 = 1_000_000;
 
 /// `X,Y,Z`: three finite numbers.
 fn triple(s: &str) -> Result<[f64; 3], String> {
@@ -217,25 +224,44 @@ fn run(args: &RunArgs) -> Result<(), String> {
     }
     let t_end = scene.simulation.t_end;
     let dt = scene.simulation.output_step;
+    let n_out = (t_end / dt - 1e-9).ceil();
+    if !(n_out < args.max_rows as f64) {
+        return Err(format!(
+            "output_step = {dt:e} s over t_end = {t_end} s gives {:.3e} output rows, more than \
+             --max-rows {}: raise --output-step (or simulation.output_step), shorten --t-end, \
+             or raise --max-rows",
+            n_out + 1.0,
+            args.max_rows
+        ));
+    }
+    let n_out = n_out as u64;
     let wall = Instant::now();
     let columns = columns(scene.space, scene.root == Root::Mounted);
     let mut views = views(args, &scene, &columns)?;
     let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
-    let mut out = Vec::with_capacity(64 * 1024);
-    writeln!(out, "{}", header(&columns)).map_err(|e| e.to_string())?;
+    // the rows streamed to the file as they come: a run cut short keeps what it computed
+    let out_path = args.out.display();
+    let cannot = |e: std::io::Error| format!("cannot write {out_path}: {e}");
+    let file = std::fs::File::create(&args.out).map_err(cannot)?;
+    let mut out = std::io::BufWriter::with_capacity(64 * 1024, file);
+    writeln!(out, "{}", header(&columns)).map_err(cannot)?;
     // the outputs once per output time, for the row and the page
-    let mut record = |sim: &AnySimulator, out: &mut Vec<u8>| -> Result<(), String> {
+    let mut record = |sim: &AnySimulator, out: &mut std::io::BufWriter<std::fs::File>| {
         let o = sim.outputs();
-        writeln!(out, "{}", row(sim, &o, &columns)).map_err(|e| e.to_string())?;
+        writeln!(out, "{}", row(sim, &o, &columns)).map_err(cannot)?;
         views.record(sim, &o).map(drop).map_err(|e| e.to_string())
     };
     record(&sim, &mut out)?;
-    let n_out = (t_end / dt - 1e-9).ceil() as u64;
     let mut last_report = Instant::now();
     for k in 1..=n_out {
         let t = (k as f64 * dt).min(t_end);
-        sim.advance(t)
-            .map_err(|e| format!("at t = {:.6} s: {e}", sim.time()))?;
+        if let Err(e) = sim.advance(t) {
+            out.flush().map_err(cannot)?;
+            return Err(format!(
+                "at t = {:.6} s: {e} (the rows up to it are in {out_path})",
+                sim.time()
+            ));
+        }
         record(&sim, &mut out)?;
         if !args.quiet && last_report.elapsed().as_secs_f64() > 1.0 {
             eprint!("\r  t = {t:.4} / {t_end} s ({:.0} %)", 100.0 * t / t_end);
@@ -251,9 +277,8 @@ fn run(args: &RunArgs) -> Result<(), String> {
     if let Some(page) = views.page() {
         written.push_str(&format!(", animation -> {}", page.display()));
     }
+    out.flush().map_err(cannot)?;
     let elapsed = wall.elapsed().as_secs_f64();
-    let out_path = args.out.display();
-    std::fs::write(&args.out, out).map_err(|e| format!("cannot write {out_path}: {e}"))?;
     let c = sim.counters();
     let o = sim.outputs();
     if !args.quiet {
@@ -549,5 +574,78 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `hybeam run` with `args` after `run SCENES/case1.toml --out OUT --quiet`.
+    fn run_case1(out: &Path, args: &[&str]) -> Result<(), String> {
+        let scene = format!("{}/../scenes/case1.toml", env!("CARGO_MANIFEST_DIR"));
+        let mut all = vec!["run", &scene, "--out", out.to_str().unwrap(), "--quiet"];
+        all.extend_from_slice(args);
+        let Command::Run(a) = parse(&all).unwrap().command else {
+            panic!("not run")
+        };
+        run(&a)
+    }
+
+    fn temp(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("hybeam-cli-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    /// T5: a run that would write more rows than `--max-rows` is refused before it starts,
+    /// naming the output step, the row count and the fix (it ran for minutes before, growing
+    /// by ~1 GB a minute).
+    #[test]
+    fn too_many_output_rows_are_refused_up_front() {
+        let out = temp("rows.csv");
+        let e = run_case1(&out, &["--t-end", "0.2", "--output-step", "1e-7"]).unwrap_err();
+        assert!(
+            e.contains("output_step = 1e-7") && e.contains("2.000e6 output rows"),
+            "{e}"
+        );
+        assert!(e.contains("--max-rows 1000000"), "{e}");
+        assert!(!out.exists(), "nothing written");
+        // within a raised bound it runs
+        let args = [
+            "--t-end",
+            "2e-4",
+            "--output-step",
+            "1e-6",
+            "--max-rows",
+            "201",
+        ];
+        run_case1(&out, &args).unwrap();
+        let rows = std::fs::read_to_string(&out).unwrap().lines().count() - 1;
+        assert_eq!(rows, 201);
+    }
+
+    /// T5: the rows are streamed to the file: a run refused half-way keeps the rows up to the
+    /// refusal, the same bytes as a run that ends there.
+    #[test]
+    fn a_run_cut_short_keeps_its_rows() {
+        // an axial tip force whose dynamic overshoot passes the 5 % strain limit at 41 us
+        let (cut, whole) = (temp("cut.csv"), temp("whole.csv"));
+        let force = ["--set", "tip.force=[1.8e4, 0.0]", "--output-step", "1e-6"];
+        let e = run_case1(&cut, &[&force[..], &["--t-end", "1e-3"]].concat()).unwrap_err();
+        assert!(
+            e.contains("axial strain") && e.contains("the rows up to it"),
+            "{e}"
+        );
+        let cut = std::fs::read_to_string(&cut).unwrap();
+        let rows = cut.lines().count() - 1;
+        assert!(rows > 10, "{rows} rows before the refusal");
+        let t_last: f64 = cut
+            .lines()
+            .last()
+            .unwrap()
+            .split(',')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        let t_end = format!("{t_last:e}");
+        run_case1(&whole, &[&force[..], &["--t-end", &t_end]].concat()).unwrap();
+        assert_eq!(cut, std::fs::read_to_string(&whole).unwrap());
     }
 }
