@@ -225,7 +225,7 @@ fn run(args: &RunArgs) -> Result<(), String> {
     let t_end = scene.simulation.t_end;
     let dt = scene.simulation.output_step;
     let n_out = (t_end / dt - 1e-9).ceil();
-    if !(n_out < args.max_rows as f64) {
+    if n_out.is_nan() || n_out >= args.max_rows as f64 {
         return Err(format!(
             "output_step = {dt:e} s over t_end = {t_end} s gives {:.3e} output rows, more than \
              --max-rows {}: raise --output-step (or simulation.output_step), shorten --t-end, \
