@@ -182,7 +182,7 @@ summaries = {{ tip_drop = "range(tip.position.y)" }}
 """
     path = tmp_path / "sample.toml"
     path.write_text(text)
-    assert load(path).variants() == load(path).variants()
+    assert list(load(path).variants()) == list(load(path).variants())
     v = cli.run(path, tmp_path / "out", workers=2, quiet=True)
     assert len(v) == 8 and (v["status"] == "ok").all()
     assert v["tip.length"].between(1.5, 2.5).all()
@@ -324,3 +324,55 @@ def test_a_list_of_csv_files_is_a_dimension_of_the_grid(tmp_path, boom):
     for load_, drop in zip((100, 200), v["tip_drop"], strict=True):
         expected = 2 * load_ * 2.5**3 / (3 * E * inertia)
         assert abs(drop / expected - 1) < 0.02, (load_, drop, expected)
+
+
+def test_an_interrupted_sweep_resumes_where_it_stopped(tmp_path, boom, monkeypatch):
+    """Results are written per chunk: a sweep interrupted after two chunks keeps them
+    (DIR/chunks/), a rerun of the same study runs only the other variants, and the tables it
+    gathers equal an uninterrupted run's, series bit for bit."""
+    from hybeam.sweep import run as run_module
+
+    study = _study(tmp_path, boom, lengths="[1.5, 2.5]", walls="[0.044]", stop=0.05)
+    real = run_module.run_chunk
+    ran = []
+
+    def counted(stop_after=None):
+        def run_chunk(data, digest, st, chunk):
+            if stop_after is not None and len(ran) == stop_after:
+                raise KeyboardInterrupt
+            ran.append(len(chunk))
+            return real(data, digest, st, chunk)
+
+        return run_chunk
+
+    monkeypatch.setattr(run_module, "run_chunk", counted(stop_after=2))
+    with pytest.raises(KeyboardInterrupt):
+        cli.run(study, tmp_path / "out", serial=True, quiet=True)
+    kept = sum(ran)
+    assert 1 <= kept < 4 and list((tmp_path / "out" / "chunks").glob("*.variants.parquet"))
+    ran.clear()
+    monkeypatch.setattr(run_module, "run_chunk", counted())
+    resumed = cli.run(study, tmp_path / "out", serial=True, quiet=True)
+    assert sum(ran) == 4 - kept
+    whole = cli.run(study, tmp_path / "whole", serial=True, quiet=True)
+    assert (resumed["status"] == "ok").all(), resumed["message"].tolist()
+    pd.testing.assert_frame_equal(resumed.drop(columns="wall_s"), whole.drop(columns="wall_s"))
+    s1 = pd.read_parquet(tmp_path / "out" / "series.parquet")
+    s2 = pd.read_parquet(tmp_path / "whole" / "series.parquet")
+    pd.testing.assert_frame_equal(s1, s2, check_exact=True)
+
+
+def test_the_study_is_checked_against_the_fmus_variables(tmp_path, boom):
+    """A misspelt parameter, an unknown input and an unknown output are refused from the
+    FMU's modelDescription.xml before anything runs, each with the closest name."""
+    study = _study(tmp_path, boom, lengths="[1.5]", walls="[0.044]")
+    text = study.read_text()
+    for old, new, pattern in [
+        ('"tip.length" =', '"tip.lenght" =', r"\[parameters\] 'tip.lenght'.*'tip.length'"),
+        ('"tip.force.y" =', '"tip.force.q" =', r"\[inputs\] 'tip.force.q'.*'tip.force.y'"),
+        ('"root.moment.z"]', '"root.momnt.z"]', r"\[outputs\] series.*'root.moment.z'"),
+    ]:
+        study.write_text(text.replace(old, new, 1))
+        with pytest.raises(StudyError, match=pattern):
+            cli.run(study, tmp_path / "out", serial=True, quiet=True)
+        assert not (tmp_path / "out").exists()

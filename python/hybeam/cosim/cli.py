@@ -9,6 +9,13 @@ iterations (per step), wall_s, steps, scheme, step, t_end (reached), message.
 boom.mass_factor=100 multiplies the boom's densities); --set FMU.PARAMETER=V sets a
 String parameter to the text V (e.g. boom.visualization.directory=out/view) or a
 parameter's start value.
+
+Everything is checked before an FMU is instantiated (the system file, the options, the
+variables named against the FMUs' modelDescription.xml); a bad input ends with one line naming
+the field, the value and the fix, exit code 2. The FMUs' warnings are printed as they come
+(once each); a run whose energy ledger saw too little energy exchanged to judge its stability
+says "stability not judged" (exit code 0; "stable": null in the JSON record); NOT stable: exit
+code 1.
 """
 
 from __future__ import annotations
@@ -16,16 +23,19 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import math
 import pathlib
 import sys
 
 from .master import Settings, run
-from .subsystem import FmuSubsystem
-from .system import System, SystemFileError, load
+from .subsystem import FmuError, FmuSubsystem
+from .system import System, SystemFileError, Variables, _like, check, load, variables
 
 
-def parameters(system: System, subs: dict[str, FmuSubsystem], sets: list[str]):
-    """Start values per FMU: the system file's, then `--set` (knobs scale start values)."""
+def parameters(system: System, subs: dict[str, Variables | FmuSubsystem], sets: list[str]):
+    """Start values per FMU: the system file's, then `--set` (knobs scale start values by a
+    positive finite factor; a Real parameter takes a finite number, a String one the text).
+    `subs`: each FMU's variables (`Variables`, or the instantiated `FmuSubsystem`)."""
     params = {n: dict(f.parameters) for n, f in system.fmus.items()}
     for item in sets:
         key, sep, value = item.partition("=")
@@ -39,46 +49,59 @@ def parameters(system: System, subs: dict[str, FmuSubsystem], sets: list[str]):
         if var is not None and var.type == "String" and var.causality == "parameter":
             params[fmu][name] = value  # a String parameter takes the text as it is
             continue
+        knobs = system.fmus[fmu].knobs
+        if name not in knobs and not (var is not None and var.causality == "parameter"):
+            names = sorted(knobs) + [n for n, v in s.vars.items() if v.causality == "parameter"]
+            raise SystemFileError(
+                f"--set {item!r}: {name!r} is neither a knob of {fmu} ({sorted(knobs)}) nor "
+                f"one of its parameters{_like(name, names)}"
+            )
         try:
             x = float(value)
         except ValueError:
             raise SystemFileError(f"--set {item!r}: {value!r} is not a number") from None
-        if name in system.fmus[fmu].knobs:
-            names = [v for p in system.fmus[fmu].knobs[name] for v in s.parameters(p)]
+        if name in knobs:
+            if not (math.isfinite(x) and x > 0):
+                raise SystemFileError(
+                    f"--set {item!r}: the knob {name} scales parameters of {fmu}; give a "
+                    f"positive finite factor, e.g. {fmu}.{name}=10"
+                )
+            names = [v for p in knobs[name] for v in s.parameters(p)]
             if not names:
                 raise SystemFileError(
                     f"--set {item!r}: knob {name} matches no parameter of "
-                    f"{fmu} ({system.fmus[fmu].knobs[name]})"
+                    f"{fmu} ({knobs[name]}); fix fmus.{fmu}.knobs.{name}"
                 )
             for v in names:
                 params[fmu][v] = x * float(params[fmu].get(v, s.vars[v].start))
-        elif name in s.vars and s.vars[name].causality == "parameter":
-            params[fmu][name] = x
         else:
-            knobs = sorted(system.fmus[fmu].knobs)
-            raise SystemFileError(
-                f"--set {item!r}: {name!r} is neither a knob of {fmu} "
-                f"({knobs}) nor one of its parameters"
-            )
+            if not math.isfinite(x):
+                raise SystemFileError(
+                    f"--set {item!r}: {fmu}.{name} takes a finite number; give one, e.g. "
+                    f"{fmu}.{name}={var.start if var.start is not None else 1.0}"
+                )
+            params[fmu][name] = x
     return params
 
 
-def open_system(system: System, scheme: str, sets: list[str]) -> dict[str, FmuSubsystem]:
-    """Instantiates the system's FMUs and initializes them on the connections of `scheme`
-    (see `system.py`)."""
+def open_system(
+    system: System, scheme: str, sets: list[str], on_warning=None
+) -> dict[str, FmuSubsystem]:
+    """Checks the system against its FMUs' model descriptions (`system.check`) and `sets`,
+    then instantiates the FMUs and initializes them on the connections of `scheme` (see
+    `system.py`); `on_warning(fmu, message)` gets the FMUs' warnings."""
     from .master import initialize
 
+    system.scheme(scheme)
+    models = variables(system)
+    check(system, models)
+    params = parameters(system, models, sets)
     subs = {}
     try:
         for n, f in system.fmus.items():
-            if not f.path.exists():
-                raise SystemFileError(
-                    f"fmus.{n}.path = {str(f.path)!r}: no such file; build "
-                    f"it or pass --fmu {n}=PATH"
-                )
-            subs[n] = FmuSubsystem(f.path, n)
+            subs[n] = FmuSubsystem(f.path, n, on_warning)
             subs[n].instantiate()
-        initialize(system, scheme, subs, parameters(system, subs, sets))
+        initialize(system, scheme, subs, params)
     except BaseException:
         for s in subs.values():
             s.close()
@@ -93,15 +116,37 @@ def simulate(
     t_end: float,
     sets=(),
     settings: Settings | None = None,
+    on_warning=None,
 ):
     """Opens the system's FMUs for `scheme` (`--set` items `sets`), runs it and closes them:
     the run's `Result`."""
-    subs = open_system(system, scheme, list(sets))
+    subs = open_system(system, scheme, list(sets), on_warning)
     try:
         return run(system, scheme, subs, step, t_end, settings)
     finally:
         for s in subs.values():
             s.close()
+
+
+def _time(option: str, given, default: float, field: str) -> float:
+    """A time [s] from `--option` (when given, 0 included) or the system file's `field`."""
+    x = default if given is None else given
+    where = option if given is not None else field
+    if not math.isfinite(x) or not x > 0:
+        raise SystemFileError(f"{where} = {x!r}: give a positive finite time [s]")
+    return x
+
+
+def _warnings():
+    """An `on_warning` printing each distinct FMU warning once (to stderr)."""
+    seen = set()
+
+    def warn(fmu, message):
+        if (fmu, message) not in seen:
+            seen.add((fmu, message))
+            print(f"hybeam-cosim: warning from {fmu}: {message}", file=sys.stderr, flush=True)
+
+    return warn
 
 
 def write(result, out: pathlib.Path, title: str, plot: list[str]):
@@ -160,18 +205,35 @@ def main(argv=None):
     p.add_argument("--no-plot", action="store_true")
     a = p.parse_args(argv)
     try:
-        paths = dict(item.split("=", 1) for item in a.fmu)
+        paths = {}
+        for item in a.fmu:
+            name, sep, path = item.partition("=")
+            if not (sep and name and path):
+                raise SystemFileError(
+                    f"--fmu {item!r}: write NAME=PATH, e.g. --fmu boom=out/boom.fmu"
+                )
+            paths[name] = path
         system = load(a.system, paths)
-        step = a.step or system.step
-        t_end = a.t_end or system.t_end
-        if not step > 0 or not t_end > 0:
-            raise SystemFileError(f"--step {step} / --t-end {t_end}: give positive times")
         system.scheme(a.scheme)
+        step = _time("--step", a.step, system.step, "system.step")
+        t_end = _time("--t-end", a.t_end, system.t_end, "system.t_end")
+        if step > t_end:
+            raise SystemFileError(
+                f"{'--step' if a.step is not None else 'system.step'} = {step!r}: longer than "
+                f"--t-end = {t_end!r}; give a step of at most t_end"
+            )
+        n = round(t_end / step)
+        if abs(n * step - t_end) > 1e-9 * max(t_end, 1.0):
+            raise SystemFileError(
+                f"--t-end = {t_end!r}: not a whole multiple of --step = {step!r}; give "
+                f"--t-end {n * step:g} or a step that divides it"
+            )
         settings = Settings(rtol=a.rtol, max_iterations=a.max_iterations)
-        res = simulate(system, a.scheme, step, t_end, a.set, settings)
-    except (SystemFileError, ValueError) as e:
+        settings.check()
+        res = simulate(system, a.scheme, step, t_end, a.set, settings, _warnings())
+    except (SystemFileError, FmuError, ValueError) as e:
         print(f"hybeam-cosim: {e}", file=sys.stderr)
-        return 2
+        raise SystemExit(2) from None
     out = pathlib.Path(a.out)
     write(
         res,
@@ -181,11 +243,11 @@ def main(argv=None):
     )
     print(
         f"{len(res.rows)} points to {out / 'cosim.csv'}; {res.iterations:.2f} iterations "
-        f"per step; {'stable' if res.stable else 'NOT stable: ' + res.message}",
+        f"per step; {res.verdict}",
         file=sys.stderr,
     )
     print(json.dumps(res.summary(a.scheme, step)))
-    return 0 if res.stable else 1
+    return 1 if res.stable is False else 0
 
 
 if __name__ == "__main__":

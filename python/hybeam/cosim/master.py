@@ -26,6 +26,7 @@ The energy ledger of the system file is evaluated at each communication point.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 
@@ -57,6 +58,27 @@ class Settings:
     #: use the subsystems' directional derivatives for the first iterate
     newton_start: bool = True
 
+    def check(self) -> None:
+        """Raises ValueError naming a setting out of its range and the fix."""
+        for name, x, low in [
+            ("rtol", self.rtol, "> 0"),
+            ("atol", self.atol, ">= 0"),
+            ("relaxation", self.relaxation, "> 0"),
+        ]:
+            ok = isinstance(x, int | float) and math.isfinite(x)
+            ok = ok and (x > 0 if low == "> 0" else x >= 0)
+            if not ok:
+                raise ValueError(f"--{name} = {x!r}: give a positive finite number ({low})")
+        for name, x, low in [("max-iterations", self.max_iterations, 1), ("reuse", self.reuse, 0)]:
+            if isinstance(x, bool) or not isinstance(x, int) or x < low:
+                raise ValueError(f"--{name} = {x!r}: give an integer >= {low}")
+
+
+#: the energy ledger's resolution relative to the stored energy's level: a coupled run whose
+#: ledger terms change by less than 100 times this over the run exchanged too little energy to
+#: tell a coupling error from the subsystems' own round-off and tolerances
+LEDGER_RESOLUTION = 1e-9
+
 
 @dataclass
 class Result:
@@ -64,13 +86,22 @@ class Result:
 
     columns: list[str]
     rows: list[list[float]] = field(default_factory=list)
-    stable: bool = True
+    #: True or False; None when the run is too short to judge (its energy ledger saw almost
+    #: no energy exchanged: `verdict` says so)
+    stable: bool | None = True
     message: str = ""
     energy_residual: float | None = None
     energy_scale: float | None = None
     iterations: float = 1.0
     steps: int = 0
     wall_s: float = 0.0
+
+    @property
+    def verdict(self) -> str:
+        """ "stable", "NOT stable: WHY" or "stability not judged: WHY"."""
+        if self.stable is None:
+            return f"stability not judged: {self.message}"
+        return "stable" if self.stable else f"NOT stable: {self.message}"
 
     def table(self) -> np.ndarray:
         return np.array(self.rows, dtype=float)
@@ -202,6 +233,9 @@ def run(
     scale.
     """
     settings = settings or Settings()
+    settings.check()
+    if not (math.isfinite(step) and step > 0 and math.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"--step {step} / --t-end {t_end}: give positive finite times [s]")
     sch = system.scheme(scheme)
     links = _Links(system.connections(scheme), system.order)
     cols = (
@@ -212,8 +246,11 @@ def run(
     res = Result(cols)
     h = float(step)
     n_steps = int(round(t_end / h))
-    if abs(n_steps * h - t_end) > 1e-9 * max(t_end, 1.0):
-        raise ValueError(f"--t-end {t_end} is not a multiple of --step {h}")
+    if n_steps < 1 or abs(n_steps * h - t_end) > 1e-9 * max(t_end, 1.0):
+        raise ValueError(
+            f"--t-end = {t_end:g}: not a whole multiple of --step = {h:g}; give a t_end of "
+            f"n steps, e.g. --t-end {max(n_steps, 1) * h:g}"
+        )
     implicit = sch.algorithm == "implicit"
     if implicit:
         for n, s in subs.items():
@@ -226,6 +263,7 @@ def run(
     e0 = None
     scale = 0.0
     worst = 0.0
+    level = 0.0
     t0 = time.perf_counter()
     total_iterations = 0
     # interface values at the current point (what each input was last set to)
@@ -240,7 +278,7 @@ def run(
     ns, nst, nsu = len(system.record), len(e.stored), len(e.supplied)
 
     def record(t, its, rnorm):
-        nonlocal e0, scale, worst
+        nonlocal e0, scale, worst, level
         vals = _values(subs, probes)
         row = [t] + vals[:ns]
         eres = float("nan")
@@ -250,6 +288,7 @@ def run(
             dissipated = sum(vals[ns + nst + nsu :])
             if e0 is None:
                 e0 = stored
+            level = max(level, sum(abs(x) for x in stored))
             d = [a - b for a, b in zip(stored, e0, strict=True)]
             eres = sum(d) - supplied + dissipated
             scale = max(scale, sum(abs(x) for x in d) + abs(supplied) + abs(dissipated))
@@ -288,7 +327,16 @@ def run(
     res.iterations = total_iterations / max(res.steps, 1)
     if ledger:
         res.energy_residual, res.energy_scale = worst, scale
-        if res.stable and not worst < 1e-2 * scale:
+        floor = LEDGER_RESOLUTION * level
+        if res.stable and np.isfinite(worst) and scale <= 100 * floor:
+            res.stable = None
+            res.message = (
+                f"the energy ledger's terms changed by {scale:.3e} J over the run, within "
+                f"100 x its resolution ({floor:.3e} J, {LEDGER_RESOLUTION:g} of the "
+                f"{level:.3e} J stored): too little energy was exchanged to tell (energy "
+                f"residual {worst:.3e} J); run past an excitation (a longer --t-end)"
+            )
+        elif res.stable and not worst < 1e-2 * scale:
             res.stable = False
             res.message = f"energy residual {worst:.3e} J is over 1 % of its scale {scale:.3e} J"
     return res

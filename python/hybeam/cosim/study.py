@@ -33,6 +33,11 @@ from .cli import simulate
 from .system import load
 
 
+def _word(stable) -> str:
+    """The verdict of a run (`Result.stable`: True, False, or None when not judged)."""
+    return {True: "stable", None: "not judged"}.get(stable, "NOT stable")
+
+
 def _cell(args):
     path, fmus, scheme, step, t_end, sets = args
     return simulate(load(path, fmus), scheme, step, t_end, sets)
@@ -71,7 +76,7 @@ def stability_map(a):
             r = rows[i]
             print(
                 f"[{n + 1}/{len(jobs)}] {r['scheme']} h = {r['step']:g} {r['set']}: "
-                f"{'stable' if r['stable'] else 'NOT stable'} residual "
+                f"{_word(r['stable'])} residual "
                 f"{r['energy_residual']} of {r['energy_scale']} ({r['wall_s']:.1f} s, "
                 f"{r['iterations']:.2f} it/step) {r['message']}",
                 file=sys.stderr,
@@ -112,7 +117,7 @@ def _text(r, rows, g, h):
         frac = "-"
     else:
         frac = f"{r['energy_residual'] / r['energy_scale']:.1e}"
-    mark = "" if r["stable"] else "✗ "
+    mark = {True: "", None: "? "}.get(r["stable"], "✗ ")
     naive = [x for x in rows if x["scheme"] == "naive" and x["step"] == h and x["grid"] == g]
     cost = ""
     if r["scheme"] != "naive" and naive and naive[0]["steps"] == r["steps"]:
@@ -166,7 +171,7 @@ def order(a):
     with ProcessPoolExecutor(max_workers=a.jobs) as ex:
         results = list(ex.map(_cell, jobs))
     ref = results[0]
-    if not ref.stable:
+    if ref.stable is False:
         raise SystemExit(f"the reference run is not stable: {ref.message}")
     rt = ref.table()
     coarse = max(steps)

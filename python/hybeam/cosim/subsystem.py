@@ -18,6 +18,15 @@ class StepRefused(RuntimeError):
     """A subsystem refused a step (fmi2Discard/fmi2Error, or a non-finite output)."""
 
 
+class FmuError(RuntimeError):
+    """An FMU refused a call other than a step (a value, initialization, a state): the call,
+    its arguments and the FMU's logged message, in one line."""
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
 class Subsystem:
     """The interface the master couples (all values SI, as the subsystem declares them)."""
 
@@ -70,10 +79,12 @@ class FmuSubsystem(Subsystem):
 
     Lifecycle: `instantiate()` → `enter_initialization(params)` → `exit_initialization()` →
     steps; `reset()` returns to instantiated. Every FMI status above fmi2Warning raises
-    (`StepRefused` from `step`) with the FMU's logged message when there is one.
+    (`StepRefused` from `step`, `FmuError` from the other calls) with what the FMU logged
+    during the call (its logger callback); a message the FMU logs with fmi2Warning goes to
+    `on_warning(name, message)` when given.
     """
 
-    def __init__(self, path: str, name: str):
+    def __init__(self, path: str, name: str, on_warning=None):
         from fmpy import extract, read_model_description
 
         self.name = name
@@ -90,6 +101,9 @@ class FmuSubsystem(Subsystem):
         self.can_rollback = bool(cs.canGetAndSetFMUstate)
         self.provides_jacobian = bool(cs.providesDirectionalDerivative)
         self.messages: list[str] = []
+        #: messages logged since the instance was made (the calls' marks)
+        self.logged = 0
+        self.on_warning = on_warning
         self.slave = None
 
     def instantiate(self):
@@ -105,8 +119,12 @@ class FmuSubsystem(Subsystem):
         )
 
         def logger(env, instance, status, category, message):
-            self.messages.append(message.decode(errors="replace") if message else "")
+            text = _one_line(message.decode(errors="replace") if message else "")
+            self.messages.append(text)
+            self.logged += 1
             del self.messages[:-20]
+            if status == 1 and self.on_warning is not None:  # fmi2Warning
+                self.on_warning(self.name, text)
 
         # the FMU's messages (why a step or a call was refused) kept for the errors raised
         cb = fmi2CallbackFunctions()
@@ -120,16 +138,34 @@ class FmuSubsystem(Subsystem):
         except Exception:
             pass
         self._callbacks = cb
-        self.slave = FMU2Slave(
-            guid=self.md.guid,
-            unzipDirectory=self.dir,
-            modelIdentifier=self.md.coSimulation.modelIdentifier,
-            instanceName=self.name,
-        )
-        self.slave.instantiate(callbacks=cb, loggingOn=False)
+        try:
+            self.slave = FMU2Slave(
+                guid=self.md.guid,
+                unzipDirectory=self.dir,
+                modelIdentifier=self.md.coSimulation.modelIdentifier,
+                instanceName=self.name,
+            )
+        except Exception as e:  # no binary for this platform, a library that does not load
+            raise FmuError(
+                f"{self.name} ({self.path}): cannot load its binary ({_one_line(e)}); build "
+                "the FMU for this platform"
+            ) from None
+        self._call("fmi2Instantiate", self.slave.instantiate, callbacks=cb, loggingOn=False)
 
     def last_message(self) -> str:
         return self.messages[-1] if self.messages else ""
+
+    def _call(self, what: str, fn, *args, **kwargs):
+        """`fn(*args)`, an FMI call; on a status above fmi2Warning (fmpy raises) an
+        FmuError naming `what` with the FMU's messages logged during the call."""
+        mark = self.logged
+        try:
+            return fn(*args, **kwargs)
+        except Exception as e:
+            k = min(self.logged - mark, len(self.messages))
+            new = self.messages[len(self.messages) - k :]
+            said = "; ".join(m for m in new if m) or _one_line(e)
+            raise FmuError(f"{self.name}: {what} refused: {said}") from None
 
     def names(self, causality):
         return [n for n, v in self.vars.items() if v.causality == causality]
@@ -149,31 +185,43 @@ class FmuSubsystem(Subsystem):
             raise KeyError(f"{self.name} ({self.path}) has no variable {e.args[0]!r}") from None
 
     def get(self, names):
-        return np.array(self.slave.getReal(self._vrs(names)), dtype=float)
+        return np.array(self._call("fmi2GetReal", self.slave.getReal, self._vrs(names)), float)
 
     def set(self, names, values):
-        self.slave.setReal(self._vrs(names), [float(x) for x in values])
+        values = [float(x) for x in values]
+        what = "fmi2SetReal(" + ", ".join(
+            f"{n} = {x:g}" for n, x in zip(names, values, strict=True)
+        )
+        what = (what[:300] + " ...") if len(what) > 300 else what
+        self._call(what + ")", self.slave.setReal, self._vrs(names), values)
 
     def set_rates(self, names, rates):
-        self.slave.setRealInputDerivatives(
-            self._vrs(names), [1] * len(names), [float(x) for x in rates]
+        self._call(
+            "fmi2SetRealInputDerivatives",
+            self.slave.setRealInputDerivatives,
+            self._vrs(names),
+            [1] * len(names),
+            [float(x) for x in rates],
         )
 
     def enter_initialization(self, parameters: dict[str, float | str], start: float = 0.0):
-        self.slave.setupExperiment(startTime=start)
-        self.slave.enterInitializationMode()
+        self._call("fmi2SetupExperiment", self.slave.setupExperiment, startTime=start)
+        self._call("fmi2EnterInitializationMode", self.slave.enterInitializationMode)
         text = {n: v for n, v in parameters.items() if self.vars[n].type == "String"}
         reals = {n: v for n, v in parameters.items() if n not in text}
         if reals:
             self.set(list(reals), list(reals.values()))
         if text:
-            self.slave.setString(self._vrs(list(text)), [str(v) for v in text.values()])
+            what = "fmi2SetString(" + ", ".join(f"{n} = {v!r}" for n, v in text.items()) + ")"
+            self._call(
+                what, self.slave.setString, self._vrs(list(text)), [str(v) for v in text.values()]
+            )
 
     def exit_initialization(self):
-        self.slave.exitInitializationMode()
+        self._call("fmi2ExitInitializationMode", self.slave.exitInitializationMode)
 
     def reset(self):
-        self.slave.reset()
+        self._call("fmi2Reset", self.slave.reset)
 
     def step(self, t, h):
         try:
@@ -189,10 +237,10 @@ class FmuSubsystem(Subsystem):
             )
 
     def save(self):
-        return self.slave.getFMUState()
+        return self._call("fmi2GetFMUstate", self.slave.getFMUState)
 
     def restore(self, state):
-        self.slave.setFMUState(state)
+        self._call("fmi2SetFMUstate", self.slave.setFMUState, state)
 
     def free(self, state):
         self.slave.freeFMUState(state)

@@ -2,10 +2,11 @@
 existing scheduler), or serially in this process, with the same results bit for bit.
 
 The convention of fmpy's `parameter_variation.py`: the variants go in chunks, each chunk runs in
-one FMU instance, `fmi2Reset` between variants (a fresh instance after a failed one). The FMU's
-bytes are shipped to the workers (scattered once), written to a file named by their SHA-256 in
-the worker's temporary directory, not assumed on a shared disk. A variant the FMU refuses is
-recorded with its message; a chunk whose worker dies is rerun once by the scheduler
+one FMU instance, `fmi2Reset` between variants (a fresh instance after a failed one); at most
+two chunks per worker are in flight, the next made (lazily, from the grid) as one completes.
+The FMU's bytes are shipped to the workers (scattered once), written to a file named by their
+SHA-256 in the worker's temporary directory, not assumed on a shared disk. A variant the FMU
+refuses is recorded with its message; a chunk whose worker dies is rerun once by the scheduler
 (`retries=1`). Results are ordered by the grid, whatever ran where and when.
 """
 
@@ -16,6 +17,7 @@ import os
 import pathlib
 import tempfile
 import time
+from collections.abc import Iterable
 
 import numpy as np
 
@@ -164,36 +166,38 @@ def _chunks(items: list, size: int) -> list[list]:
     return [items[i : i + size] for i in range(0, len(items), size)]
 
 
-def execute(
-    jobs: list[tuple[Study, list[tuple[str, dict]]]],
+def chunk_size(count: int) -> int:
+    """Variants per chunk for a study of `count` variants: at least 32 chunks (work for every
+    worker of a small cluster), at most 64 variants each (what an interruption may lose per
+    worker). Fixed by the count alone, so a rerun makes the same chunks."""
+    return max(1, min(64, math.ceil(count / 32)))
+
+
+def execute_chunks(
+    chunks: Iterable[tuple[Study, list[tuple[str, dict]]]],
+    on_chunk,
     scheduler: str | None = None,
     workers: int | None = None,
     serial: bool = False,
-    progress=None,
-) -> dict[str, dict]:
-    """Runs the variants of `jobs` ((study with its FMU, [(id, values)]) pairs): serially
-    here, on `scheduler` (`tcp://HOST:PORT`), or on a new `LocalCluster` of `workers`
-    processes (default: all cores). `progress(done, failed, total, elapsed_s)` is called as
-    chunks complete. Returns the results by variant id."""
-    results: dict[str, dict] = {}
-    total = sum(len(todo) for _, todo in jobs)
-    t0 = time.perf_counter()
+):
+    """Runs `chunks` ((study with its FMU, [(id, values)]) pairs, consumed lazily) serially
+    here, on `scheduler` (`tcp://HOST:PORT`) or on a new `LocalCluster` of `workers`
+    processes (default: all cores), with at most two chunks per worker in flight;
+    `on_chunk(study, chunk, results)` is called here as each completes (results by id)."""
+    shipped: dict[str, tuple] = {}
 
-    def collect(pairs):
-        results.update(pairs)
-        if progress:
-            failed = sum(r["status"] != "ok" for r in results.values())
-            progress(len(results), failed, total, time.perf_counter() - t0)
-
-    jobs = [(study, todo) for study, todo in jobs if todo]
-    if not jobs:
-        return results
-    if serial:
-        for study, todo in jobs:
+    def fmu_of(study, client=None):
+        key = str(study.fmu)
+        if key not in shipped:
             data, digest = study.fmu_bytes()
-            for chunk in _chunks(todo, max(1, math.ceil(len(todo) / 8))):
-                collect(run_chunk(data, digest, study, chunk))
-        return results
+            shipped[key] = (client.scatter(data, broadcast=True) if client else data, digest)
+        return shipped[key]
+
+    if serial:
+        for study, chunk in chunks:
+            data, digest = fmu_of(study)
+            on_chunk(study, chunk, dict(run_chunk(data, digest, study, chunk)))
+        return
     from dask.distributed import Client, LocalCluster, as_completed
 
     cluster = None
@@ -211,19 +215,56 @@ def execute(
         client = Client(cluster)
     try:
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
-        futures = []
-        for study, todo in jobs:
-            size = max(1, math.ceil(len(todo) / (4 * n_workers)))
-            data, digest = study.fmu_bytes()
-            shipped = client.scatter(data, broadcast=True)
-            futures += [
-                client.submit(run_chunk, shipped, digest, study, chunk, retries=1, pure=False)
-                for chunk in _chunks(todo, size)
-            ]
-        for f in as_completed(futures):
-            collect(f.result())
+        pending = iter(chunks)
+        running = as_completed()
+        what = {}
+
+        def submit() -> bool:
+            for study, chunk in pending:
+                data, digest = fmu_of(study, client)
+                f = client.submit(run_chunk, data, digest, study, chunk, retries=1, pure=False)
+                what[f.key] = (study, chunk)
+                running.add(f)
+                return True
+            return False
+
+        for _ in range(2 * n_workers):
+            if not submit():
+                break
+        for f in running:
+            study, chunk = what.pop(f.key)
+            on_chunk(study, chunk, dict(f.result()))
+            submit()
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+def execute(
+    jobs: list[tuple[Study, list[tuple[str, dict]]]],
+    scheduler: str | None = None,
+    workers: int | None = None,
+    serial: bool = False,
+    progress=None,
+) -> dict[str, dict]:
+    """Runs the variants of `jobs` ((study with its FMU, [(id, values)]) pairs) as
+    `execute_chunks` does; `progress(done, failed, total, elapsed_s)` is called as chunks
+    complete. Returns the results by variant id."""
+    results: dict[str, dict] = {}
+    total = sum(len(todo) for _, todo in jobs)
+    t0 = time.perf_counter()
+
+    def collect(study, chunk, pairs):
+        results.update(pairs)
+        if progress:
+            failed = sum(r["status"] != "ok" for r in results.values())
+            progress(len(results), failed, total, time.perf_counter() - t0)
+
+    chunks = (
+        (study, chunk)
+        for study, todo in jobs
+        for chunk in _chunks(todo, max(1, math.ceil(len(todo) / 8)))
+    )
+    execute_chunks(chunks, collect, scheduler, workers, serial)
     return results
