@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=${1:-scenes/case1.toml}
 id=$(basename "$scene" .toml)
-bash scripts/setup.sh
+bash scripts/setup.sh --main
 mkdir -p out
 fmu=$(cargo fmu-build "$scene" --out out | tail -n 1)
 rm -rf "out/${id}_view"

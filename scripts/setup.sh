@@ -1,12 +1,19 @@
 #!/usr/bin/env bash
 # Idempotent setup on a fresh Debian machine with rustup's toolchain and python3 (3.11):
-# libclang-dev (fmi-sys runs bindgen), a .venv with the pinned Python test tools, cargo build.
+# libclang-dev (fmi-sys runs bindgen in the tests), a .venv with the pinned Python tools, the
+# views' browser test (Chromium, Node.js, the viewer's npm packages). Nothing is compiled here:
+# each command compiles what it needs (scripts/test.sh: cargo test; cargo fmu-build: the engine
+# once, in the FMU's profile).
+#   --main   only what the main job needs (scripts/main.sh): the .venv with fmpy, numpy and
+#            matplotlib
 set -euo pipefail
 cd "$(dirname "$0")/.."
+MAIN=0
+if [ "${1:-}" = --main ]; then MAIN=1; fi
 
 FMPY_VERSION=0.3.32
 
-if ! dpkg -s libclang-dev >/dev/null 2>&1; then
+if [ "$MAIN" = 0 ] && ! dpkg -s libclang-dev >/dev/null 2>&1; then
     echo "setup: installing libclang-dev (needed by fmi-sys/bindgen)"
     SUDO=""
     if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
@@ -24,6 +31,8 @@ if ! .venv/bin/python -c "import fmpy, pytest, numpy, matplotlib, sys; sys.exit(
     .venv/bin/python -m pip install --quiet --upgrade pip
     .venv/bin/python -m pip install --quiet "fmpy==$FMPY_VERSION" "pytest>=8,<9" "numpy>=1.26,<3" "matplotlib>=3.8,<4"
 fi
+
+if [ "$MAIN" = 1 ]; then exit 0; fi
 
 # the project's Python tools (python/: hybeam-cosim, the co-simulation master; hybeam-sweep,
 # parameter studies on Dask), editable, with their dependencies (dask, pandas, pyarrow, scipy, tomli-w), and
@@ -59,5 +68,3 @@ if ! cmp -s viewer/package-lock.json viewer/node_modules/.hybeam-lock 2>/dev/nul
     echo "setup: npm ci in viewer/ (three.js, esbuild, playwright-core)"
     (cd viewer && npm ci --no-audit --no-fund --loglevel=error && cp package-lock.json node_modules/.hybeam-lock)
 fi
-
-cargo build --workspace

@@ -218,6 +218,12 @@ impl Platform {
         cmd.current_dir(root)
             .arg(if zig.is_some() { "zigbuild" } else { "build" });
         cmd.args(["--profile", PROFILE, "-p", "hybeam-fmu", "--lib"]);
+        if self == Platform::Linux64 && zig.is_none() {
+            // the same packages as `cargo fmu-build` built this tool with (`.cargo/config.toml`:
+            // run --profile fmu-release -p fmu-build): the same unified features, so the engine
+            // it compiled for the tool is the library's (no second compile)
+            cmd.args(["-p", "fmu-build"]);
+        }
         if let Some(z) = zig {
             // zig itself comes from the venv's ziglang (`python -m ziglang`): its bin first
             let mut path = vec![z.parent().unwrap_or(Path::new(".")).to_path_buf()];
