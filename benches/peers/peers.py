@@ -662,6 +662,71 @@ def family_table(runs: list[Run], families: list[Family]) -> str:
     return "\n".join(lines)
 
 
+def summary_table(sections: list[tuple[Problem, list[Run]]], tol: float = 1e-5) -> str:
+    """Markdown: per problem, the cheapest run of each hybeam family within `tol` and Exudyn's
+    cheapest time over it."""
+    lines = [
+        "| problem | family | cheapest setting | time | Exudyn / family |",
+        "|---|---|---|---|---|",
+    ]
+    for prob, runs in sections:
+        ex = cheapest([r for r in runs if r.family.code == "exudyn"], tol)
+        label = prob.name
+        hits = []
+        for fam in prob.families:
+            r = cheapest([x for x in runs if x.family == fam], tol)
+            if fam.code == "hybeam" and r is not None:
+                hits.append(r)
+        for r in sorted(hits, key=lambda r: r.time_s):
+            ratio = f"{ex.time_s / r.time_s:.1f}×" if ex else "n/a"
+            setting = f"{size(r)}, h = {r.step:g} s"
+            lines.append(
+                f"| {label} | {r.family.name} | {setting} | {r.time_s:.3g} s | {ratio} |"
+            )
+            label = ""
+    return "\n".join(lines)
+
+
+def read_csv(path: Path) -> dict[str, list[Run]]:
+    """The runs of a `write_csv` file by problem (times: the median as the one time; no tip
+    series), for regenerating the tables without running."""
+    out: dict[str, list[Run]] = {}
+    with path.open(newline="") as f:
+        for row in csv.DictReader(f):
+            fams = {x.name: x for x in PROBLEMS[row["problem"]].families}
+            r = Run(
+                row["problem"],
+                fams[row["family"]],
+                int(row["elements"]),
+                float(row["step_s"]),
+                int(row["modes"]),
+                [float(row["time_s"])] if row["time_s"] else [],
+                row["status"],
+                float(row["error_m"]),
+            )
+            out.setdefault(r.problem, []).append(r)
+    return out
+
+
+SUMMARY_HEADING = "## Per family at 1e-5 m"
+
+
+def summary_section(sections: list[tuple[Problem, list[Run]]]) -> list[str]:
+    """The page's per-family summary (heading, text, table)."""
+    return [
+        SUMMARY_HEADING,
+        "",
+        "The cheapest run of each hybeam family within 1e-5 m in the run above, against Exudyn's "
+        "cheapest (from the runs CSV; `peers.py --summary CSV` prints it again):",
+        "",
+        summary_table(sections),
+        "",
+        "What these tables mean for choosing a scene's setting, and how earlier runs compare: "
+        "`docs/performance-notes.md` (written by hand).",
+        "",
+    ]
+
+
 def xy(runs: list[Run]) -> tuple[list[float], list[float]]:
     return [r.time_s for r in runs], [r.error_m for r in runs]
 
@@ -717,6 +782,12 @@ def machine() -> dict:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small grid, t_end 0.5 s, 1 repeat")
+    ap.add_argument(
+        "--summary",
+        type=Path,
+        metavar="CSV",
+        help="print the page's per-family summary of a runs CSV (no runs) and exit",
+    )
     ap.add_argument("--hybeam", type=Path, default=ROOT / "target/release/hybeam")
     ap.add_argument(
         "--problems",
@@ -735,6 +806,10 @@ def main(argv: list[str] | None = None) -> int:
         f"the scenes' own (default {HYBEAM_NEWTON_TOL:g}, Exudyn's)",
     )
     args = ap.parse_args(argv)
+    if args.summary:
+        runs = read_csv(args.summary)
+        print("\n".join(summary_section([(PROBLEMS[n], runs[n]) for n in PROBLEMS if n in runs])))
+        return 0
     if args.hybeam_tolerance == "scene":
         hybeam_tol = None
     else:
@@ -903,6 +978,7 @@ def write_doc(
             f"![{prob.name}]({rel(svg, here)})",
             "",
         ]
+    parts += summary_section([(prob, runs) for prob, runs, *_ in sections])
     doc.write_text("\n".join(parts))
 
 
