@@ -680,9 +680,7 @@ def summary_table(sections: list[tuple[Problem, list[Run]]], tol: float = 1e-5) 
         for r in sorted(hits, key=lambda r: r.time_s):
             ratio = f"{ex.time_s / r.time_s:.1f}×" if ex else "n/a"
             setting = f"{size(r)}, h = {r.step:g} s"
-            lines.append(
-                f"| {label} | {r.family.name} | {setting} | {r.time_s:.3g} s | {ratio} |"
-            )
+            lines.append(f"| {label} | {r.family.name} | {setting} | {r.time_s:.3g} s | {ratio} |")
             label = ""
     return "\n".join(lines)
 
