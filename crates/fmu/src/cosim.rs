@@ -2,17 +2,23 @@
 //! mapping onto an [`AnySimulator`] (planar or spatial, from the scene's `space`). Implements
 //! [`CoSimModel`] for the FMI layer.
 //!
-//! The variables are declared in [`variables`].
+//! Its rooms: the variables ([`variables`]), what the scene declares ([`describe`]), the
+//! feedthrough and output derivatives ([`feedthrough`]), the FMU state ([`snapshot`]), the
+//! views ([`view`]).
 
+pub mod describe;
+pub mod feedthrough;
+pub mod snapshot;
 pub mod variables;
 pub mod view;
 
 use fmi2::{CoSimModel, ModelInfo, StepError, StringVariable, Variable};
 
 use hybeam::error::SimError;
-use hybeam::scene::{Root, Scene};
-use hybeam::simulator::{AnyOutputs, AnySimulator, InputKind, Quantity};
+use hybeam::scene::Scene;
+use hybeam::simulator::{AnyOutputs, AnySimulator};
 
+use feedthrough::{Evaluated, Feedthrough};
 use variables::{Access, Table, VISUALIZATION_DIRECTORY};
 
 /// The beam FMU model.
@@ -29,32 +35,46 @@ pub struct BeamFmu {
     table: Table,
     sim: AnySimulator,
     /// Outputs of the current state, computed once per state change (setting an input changes
-    /// only the reaction of a mounted beam, through `apparent`).
+    /// only the reaction of a mounted beam, through the feedthrough).
     outputs: AnyOutputs,
-    /// A mounted beam's apparent mass at the current state (the reaction's partials by the
-    /// mount accelerations), computed with the outputs.
-    apparent: Option<Vec<Vec<f64>>>,
-    /// The mass matrix of its rigid inertia at the mount (the rigid reaction's partials), for
-    /// the elastic outputs' feedthrough: apparent minus this.
-    rigid: Option<Vec<Vec<f64>>>,
-    /// The last communication step [s] (the velocity-input mode's partials divide by it).
-    last_step: f64,
-    /// Initialized (fmi2ExitInitializationMode passed, or a state restored).
-    started: bool,
-    /// Before initialization: a parameter or input was set since the instance was built.
-    changed_before_start: bool,
-    /// Then the outputs of the start the scene now describes, built at the first read after a
-    /// change (a host reading outputs in initialization mode, as libcosim does to settle its
-    /// connections, sees the values set).
-    pre_start: std::cell::RefCell<Option<Result<AnyOutputs, String>>>,
-    /// Per variable (table order): the change of an output over the last communication step
-    /// divided by it, the first-order output derivative of the outputs without an exact one
-    /// (reactions, energies, inertia); 0 before the first step.
-    backward: Vec<f64>,
+    /// A mounted beam's apparent mass and rigid inertia at the current state, the last step
+    /// and the outputs' backward differences.
+    feed: Feedthrough,
+    /// Started or not; before the start, the outputs of the values set so far.
+    start: Start,
     /// The views: `visualization.*` and the files written ([`view::ViewState`]).
     views: view::ViewState,
     /// A warning for the FMI layer to report ([`CoSimModel::take_warning`]).
     warning: Option<String>,
+}
+
+/// Before the start (fmi2ExitInitializationMode or a restored state): a host reading outputs
+/// in initialization mode, as libcosim does to settle its connections, sees the start the
+/// values set so far describe, built at the first read after a change.
+#[derive(Debug, Default)]
+struct Start {
+    /// Initialized (fmi2ExitInitializationMode passed, or a state restored).
+    started: bool,
+    /// Before initialization: a parameter or input was set since the instance was built.
+    changed: bool,
+    /// Then the outputs of that start (built at the first read).
+    outputs: std::cell::RefCell<Option<Result<AnyOutputs, String>>>,
+}
+
+impl Start {
+    /// A value was set: before the start, the cached outputs are stale.
+    fn changed(&mut self) {
+        if !self.started {
+            self.changed = true;
+            self.outputs.replace(None);
+        }
+    }
+
+    /// The run started (or a state was restored).
+    fn started(&mut self) {
+        self.started = true;
+        self.outputs.replace(None);
+    }
 }
 
 impl BeamFmu {
@@ -68,131 +88,8 @@ impl BeamFmu {
     pub fn view_collection(&self) -> Option<std::path::PathBuf> {
         self.views.collection()
     }
-    /// modelDescription.xml of the FMU of `scene_toml` with this modelIdentifier, from the
-    /// scene alone (its variable table and default experiment): no simulator is built.
-    pub fn model_description(scene_toml: &str, model_identifier: &str) -> Result<String, String> {
-        let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
-        let guid = fmi2::guid::guid::<Self>(scene_toml.as_bytes());
-        let ids = fmi2::xml::Identity {
-            model_identifier,
-            guid: &guid,
-            generation_tool: Self::GENERATION_TOOL,
-        };
-        let table = Table::of(&scene);
-        fmi2::xml::model_description_with_strings(
-            &model_info(&scene),
-            table.variables(),
-            table.string_variables(),
-            &ids,
-        )
-    }
-
-    /// A mounted scene's OSP-IS extended model description: its file name
-    /// (`<modelName>_OspModelDescription.xml`, where libcosim looks beside the FMU) and text.
-    /// The mount's groups: `LinearDisplacement` `mount.position`; the orientation
-    /// (`AngularDisplacement` `mount.angle` in the plane, `Generic` `mount.orientation` in
-    /// space); a `LinearMechanicalPort` `mount.linear` (Force `mount.force` = `root.force.*`,
-    /// LinearVelocity `mount.velocity`); an `AngularMechanicalPort` `mount.angular` (Torque
-    /// `mount.moment`, AngularVelocity `mount.angular_velocity`); with acceleration inputs,
-    /// `Generic` `mount.acceleration` and `mount.angular_acceleration`. All at the top level
-    /// (libcosim connects the groups nested in a connected group, not deeper). A host body
-    /// that declares the mirror groups (its outputs where the beam has inputs) connects each
-    /// with one `<VariableGroupConnection>`. `None` for a fixed root.
-    pub fn osp_model_description(scene_toml: &str) -> Result<Option<(String, String)>, String> {
-        let scene = Scene::from_toml(scene_toml).map_err(|e| e.0)?;
-        let Some(groups) = Self::osp_groups(&scene) else {
-            return Ok(None);
-        };
-        let text = fmi2::osp::model_description(&groups, Table::of(&scene).variables())?;
-        Ok(Some((
-            format!("{}_OspModelDescription.xml", scene.name),
-            text,
-        )))
-    }
-
-    /// The mount's OSP-IS groups of a scene ([`BeamFmu::osp_model_description`]), `None` for a
-    /// fixed root.
-    pub fn osp_groups(scene: &Scene) -> Option<Vec<fmi2::osp::VariableGroup>> {
-        use fmi2::osp::VariableGroup as G;
-        if scene.root != Root::Mounted {
-            return None;
-        }
-        let table = Table::of(scene);
-        let vars = table.variables();
-        let named = |stem: &str| -> Vec<&str> {
-            vars.iter()
-                .map(|v| v.name.as_str())
-                .filter(|n| *n == stem || n.strip_prefix(stem).is_some_and(|r| r.starts_with('.')))
-                .collect()
-        };
-        let group = |kind, name: &str, stem: &str| G::of(kind, name, &named(stem));
-        let orientation = if named("root.angle").is_empty() {
-            group("Generic", "mount.orientation", "root.orientation")
-        } else {
-            group("AngularDisplacement", "mount.angle", "root.angle")
-        };
-        let mut groups = vec![
-            group("LinearDisplacement", "mount.position", "root.position"),
-            orientation,
-            G::nest(
-                "LinearMechanicalPort",
-                "mount.linear",
-                vec![
-                    group("Force", "mount.force", "root.force"),
-                    group("LinearVelocity", "mount.velocity", "root.velocity"),
-                ],
-            ),
-            G::nest(
-                "AngularMechanicalPort",
-                "mount.angular",
-                vec![
-                    group("Torque", "mount.moment", "root.moment"),
-                    group(
-                        "AngularVelocity",
-                        "mount.angular_velocity",
-                        "root.angular_velocity",
-                    ),
-                ],
-            ),
-        ];
-        if !named("root.acceleration").is_empty() {
-            groups.push(group("Generic", "mount.acceleration", "root.acceleration"));
-            groups.push(group(
-                "Generic",
-                "mount.angular_acceleration",
-                "root.angular_acceleration",
-            ));
-        }
-        Some(groups)
-    }
-
     fn refresh_outputs(&mut self) {
-        (self.outputs, self.apparent, self.rigid) = evaluated(&mut self.sim);
-    }
-
-    /// The partials of reaction component `row` (force then moment) by the mount accelerations
-    /// (columns): the apparent mass, minus the rigid inertia's mass matrix for the elastic
-    /// part. `None` when not available.
-    fn feedthrough(&self, row: usize, elastic: bool) -> Option<Vec<f64>> {
-        let j = self.apparent.as_ref()?;
-        if !elastic {
-            return Some(j[row].clone());
-        }
-        let r = self.rigid.as_ref()?;
-        Some(j[row].iter().zip(&r[row]).map(|(a, b)| a - b).collect())
-    }
-
-    /// The reaction component `row` (force then moment; `elastic`: its part beyond the rigid
-    /// inertia's) with the direct feedthrough of the mount accelerations set for the next step:
-    /// exact, both being linear in them.
-    fn reaction_now(&self, row: usize, elastic: bool, cached: f64) -> f64 {
-        match (
-            self.feedthrough(row, elastic),
-            self.sim.mount_acceleration_change(),
-        ) {
-            (Some(j), Some(d)) => cached + j.iter().zip(&d).map(|(a, b)| a * b).sum::<f64>(),
-            _ => cached,
-        }
+        self.outputs = self.feed.take(Evaluated::of(&mut self.sim));
     }
 
     /// The scene a start builds from: the parameters set so far and the inputs the host set
@@ -203,66 +100,12 @@ impl BeamFmu {
         self.sim.inputs_into(&mut scene);
         scene
     }
-
-    /// The parameter values, in table order.
-    fn parameters(&self) -> Vec<f64> {
-        self.table
-            .parameters()
-            .filter_map(|a| a.parameter(&self.scene))
-            .collect()
-    }
-
-    fn build_scene_with_parameters(&self, params: &[f64]) -> Result<Scene, String> {
-        let mut scene = self.base.clone();
-        if self.table.parameters().count() != params.len() {
-            return Err("snapshot parameter count does not match this model".into());
-        }
-        for (a, x) in self.table.parameters().zip(params) {
-            a.set_parameter(&mut scene, *x);
-        }
-        scene.validate().map_err(|e| e.0)?;
-        Ok(scene)
-    }
-}
-
-/// The outputs of `sim`'s current state, its apparent mass and its rigid inertia's mass matrix
-/// at the mount (see [`BeamFmu::outputs`](BeamFmu)).
-type Evaluated = (AnyOutputs, Option<Vec<Vec<f64>>>, Option<Vec<Vec<f64>>>);
-
-fn evaluated(sim: &mut AnySimulator) -> Evaluated {
-    let outputs = sim.outputs();
-    let apparent = sim.apparent_mass();
-    let rigid = sim.rigid_mass_matrix(&outputs);
-    (outputs, apparent, rigid)
 }
 
 /// The error for a variable the simulator's space does not have (a table of another space:
 /// cannot happen through the FMI layer, which only passes the table's variables).
 fn not_in_space(name: &str, sim: &AnySimulator) -> String {
     format!("{name}: not a variable of this {:?} model", sim.space())
-}
-
-/// Model name, description and default experiment of a scene.
-fn model_info(scene: &Scene) -> ModelInfo {
-    ModelInfo {
-        model_name: scene.name.clone(),
-        description: scene.description.clone(),
-        start_time: 0.0,
-        stop_time: scene.simulation.t_end,
-        step_size: scene.simulation.output_step,
-        // a fixed-root beam has no direct feedthrough and no input interpolation; a mounted
-        // one's reaction depends directly on the mount accelerations, which the host may
-        // interpolate with derivatives
-        capabilities: if scene.root == Root::Mounted {
-            fmi2::Capabilities {
-                input_derivative_order: 2,
-                output_derivative_order: 1,
-                directional_derivative: true,
-            }
-        } else {
-            fmi2::Capabilities::default()
-        },
-    }
 }
 
 impl CoSimModel for BeamFmu {
@@ -279,7 +122,7 @@ impl CoSimModel for BeamFmu {
         let sim = AnySimulator::new(scene.clone()).map_err(|e| e.to_string())?;
         let outputs = sim.outputs();
         let step = scene.simulation.output_step;
-        let backward = vec![0.0; table.variables().len()];
+        let feed = Feedthrough::new(table.variables().len(), step);
         let mut fmu = Self {
             scene_text: scene_toml.to_string(),
             base: scene.clone(),
@@ -287,13 +130,8 @@ impl CoSimModel for BeamFmu {
             table,
             sim,
             outputs,
-            apparent: None,
-            rigid: None,
-            started: false,
-            changed_before_start: false,
-            pre_start: std::cell::RefCell::new(None),
-            last_step: step,
-            backward,
+            feed,
+            start: Start::default(),
             views: view::ViewState::new(),
             warning: None,
         };
@@ -302,7 +140,7 @@ impl CoSimModel for BeamFmu {
     }
 
     fn model_info(&self) -> ModelInfo {
-        model_info(&self.base)
+        describe::model_info(&self.base)
     }
 
     fn variables(&self) -> &[Variable] {
@@ -353,8 +191,8 @@ impl CoSimModel for BeamFmu {
         let access = self.table.access(index);
         let value = match access {
             Access::Input(id) => self.sim.input(id),
-            Access::Output(id) if !self.started && self.changed_before_start => {
-                let mut cached = self.pre_start.borrow_mut();
+            Access::Output(id) if !self.start.started && self.start.changed => {
+                let mut cached = self.start.outputs.borrow_mut();
                 let outputs = cached.get_or_insert_with(|| {
                     AnySimulator::start_at(self.start_scene(), 0.0)
                         .map(|sim| sim.outputs())
@@ -370,25 +208,10 @@ impl CoSimModel for BeamFmu {
                     }
                 }
             }
-            Access::Output(id) => {
-                let value = self.outputs.value(id);
-                let dim = self.sim.scene().space.dim();
-                match (id.quantity, value) {
-                    (Quantity::RootForce, Some(x)) => {
-                        Some(self.reaction_now(id.component, false, x))
-                    }
-                    (Quantity::RootMoment, Some(x)) => {
-                        Some(self.reaction_now(dim + id.component, false, x))
-                    }
-                    (Quantity::ElasticForce, Some(x)) => {
-                        Some(self.reaction_now(id.component, true, x))
-                    }
-                    (Quantity::ElasticMoment, Some(x)) => {
-                        Some(self.reaction_now(dim + id.component, true, x))
-                    }
-                    _ => value,
-                }
-            }
+            Access::Output(id) => self
+                .outputs
+                .value(id)
+                .map(|x| self.feed.value(id, x, &self.sim)),
             Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
                 access.parameter(&self.scene)
             }
@@ -427,10 +250,7 @@ impl CoSimModel for BeamFmu {
                 self.scene = scene;
             }
         }
-        if !self.started {
-            self.changed_before_start = true;
-            self.pre_start.replace(None);
-        }
+        self.start.changed();
         Ok(())
     }
 
@@ -441,9 +261,8 @@ impl CoSimModel for BeamFmu {
         self.sim = AnySimulator::start_at(scene, start_time).map_err(|e| e.to_string())?;
         self.sim.set_partner(partner);
         self.refresh_outputs();
-        self.backward.fill(0.0);
-        self.started = true;
-        self.pre_start.replace(None);
+        self.feed.restart();
+        self.start.started();
         // a new run: a new series
         self.views.new_run();
         self.record_view();
@@ -457,15 +276,8 @@ impl CoSimModel for BeamFmu {
         // t + h (the FMI layer checked t against its time, which is the simulator's)
         let before = self.outputs;
         self.sim.advance(t + h).map_err(step_error)?;
-        self.last_step = h;
         self.refresh_outputs();
-        for (index, rate) in self.backward.iter_mut().enumerate() {
-            if let Access::Output(id) = self.table.access(index) {
-                if let (Some(a), Some(b)) = (before.value(id), self.outputs.value(id)) {
-                    *rate = (b - a) / h;
-                }
-            }
-        }
+        self.feed.stepped(h, &before, &self.outputs, &self.table);
         self.record_view();
         Ok(())
     }
@@ -477,7 +289,7 @@ impl CoSimModel for BeamFmu {
     fn get_output_derivative(&self, index: usize, order: u32) -> Result<f64, String> {
         let name = &self.table.variables()[index].name;
         match (self.table.access(index), order) {
-            (Access::Output(id), 1) => Ok(self.outputs.rate(id).unwrap_or(self.backward[index])),
+            (Access::Output(id), 1) => Ok(self.feed.derivative(index, self.outputs.rate(id))),
             (Access::Output(_), _) => Err(format!("{name}: derivatives of order 1 only")),
             _ => Err(format!("{name} is not an output")),
         }
@@ -515,24 +327,9 @@ impl CoSimModel for BeamFmu {
             ));
         };
         let dim = self.sim.scene().space.dim();
-        let (row, elastic) = match o.quantity {
-            Quantity::RootForce => (o.component, false),
-            Quantity::RootMoment => (dim + o.component, false),
-            Quantity::ElasticForce => (o.component, true),
-            Quantity::ElasticMoment => (dim + o.component, true),
-            _ => return Ok(0.0),
-        };
-        let (col, scale) = match i.kind {
-            InputKind::MountAcceleration => (i.component, 1.0),
-            InputKind::MountAngularAcceleration => (dim + i.component, 1.0),
-            InputKind::MountVelocity => (i.component, 1.0 / self.last_step),
-            InputKind::MountAngularVelocity => (dim + i.component, 1.0 / self.last_step),
-            _ => return Ok(0.0),
-        };
-        let j = self
-            .feedthrough(row, elastic)
-            .ok_or_else(|| format!("{}: the apparent mass is not available", names(&self.table)))?;
-        Ok(j[col] * scale)
+        self.feed
+            .partial(o, i, dim)
+            .ok_or_else(|| format!("{}: the apparent mass is not available", names(&self.table)))
     }
 
     /// Back to the instantiated model; the views of the run are discarded (no collection or
@@ -547,111 +344,14 @@ impl CoSimModel for BeamFmu {
         Ok(())
     }
 
-    /// The FMU's part (the parameter values, in table order) around the simulator's snapshot
-    /// (state, memory, inputs; versioned and bound to the scene), encoded with `postcard`.
     fn save_state(&self) -> Vec<u8> {
-        let snapshot: FmuSnapshot = (
-            self.parameters(),
-            self.sim.snapshot(),
-            self.backward.clone(),
-        );
-        postcard::to_allocvec(&snapshot).unwrap_or_default()
+        self.state_bytes()
     }
 
     fn load_state(&mut self, bytes: &[u8]) -> Result<(), String> {
-        let (snapshot, rest) = postcard::take_from_bytes::<FmuSnapshot>(bytes)
-            .map_err(|e| format!("not a hybeam FMU snapshot: {e}"))?;
-        if !rest.is_empty() {
-            return Err(format!(
-                "not a hybeam FMU snapshot: {} trailing bytes",
-                rest.len()
-            ));
-        }
-        let (params, sim_bytes, backward) = snapshot;
-        if backward.len() != self.backward.len() {
-            return Err("snapshot output count does not match this model".into());
-        }
-        let variables = self.table.variables();
-        if let Some((k, x)) = backward.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-            return Err(format!(
-                "snapshot backward difference of {} = {x} is not finite",
-                variables[k].name
-            ));
-        }
-        let scene = self.build_scene_with_parameters(&params)?;
-        // a rollback (the running simulator's parameters) restores into it, keeping its own
-        // state to return to if the snapshot is refused; other parameters build a model anew
-        let rollback = self.started && params == self.parameters();
-        let (mut fresh, backup) = if rollback {
-            (None, Some(self.sim.snapshot()))
-        } else {
-            let sim = AnySimulator::restorable(scene.clone()).map_err(|e| e.to_string())?;
-            (Some(sim), None)
-        };
-        let sim = fresh.as_mut().unwrap_or(&mut self.sim);
-        let checked = checked_restore(sim, &sim_bytes, &self.table);
-        let (outputs, apparent, rigid) = match checked {
-            Ok(evaluated) => evaluated,
-            Err(e) => {
-                if let Some(b) = backup {
-                    // its own snapshot of a moment ago: restores
-                    let _ = self.sim.restore_snapshot(&b);
-                }
-                return Err(e);
-            }
-        };
-        if let Some(sim) = fresh {
-            self.sim = sim;
-        }
-        self.scene = scene;
-        self.backward = backward;
-        self.outputs = outputs;
-        self.apparent = apparent;
-        self.rigid = rigid;
-        self.started = true;
-        self.pre_start.replace(None);
-        Ok(())
+        self.restore_state(bytes)
     }
 }
-
-/// Restores `bytes` of [`AnySimulator::snapshot`] into `sim` and evaluates the state: a
-/// snapshot that does not fit is an error of the call (fmi2Error), not of a step, and so is
-/// a state whose values are finite but whose outputs overflow (coordinates of 1e300: infinite
-/// energies) or whose apparent mass is not finite.
-fn checked_restore(
-    sim: &mut AnySimulator,
-    bytes: &[u8],
-    table: &Table,
-) -> Result<Evaluated, String> {
-    sim.restore_snapshot(bytes).map_err(|e| e.to_string())?;
-    let (outputs, apparent, rigid) = evaluated(sim);
-    for (index, var) in table.variables().iter().enumerate() {
-        if let Access::Output(id) = table.access(index) {
-            match outputs.value(id) {
-                Some(x) if !x.is_finite() => {
-                    return Err(format!(
-                        "the snapshot's state gives {} = {x}: its values are beyond what the \
-                         model can evaluate",
-                        var.name
-                    ))
-                }
-                _ => {}
-            }
-        }
-    }
-    if apparent.iter().flatten().flatten().any(|x| !x.is_finite()) {
-        return Err(
-            "the snapshot's state gives a non-finite apparent mass at the mount: its values are \
-             beyond what the model can evaluate"
-                .into(),
-        );
-    }
-    Ok((outputs, apparent, rigid))
-}
-
-/// A serialized FMU state: the parameter values in table order, the bytes of
-/// [`AnySimulator::snapshot`], and the outputs' backward differences (table order).
-type FmuSnapshot = (Vec<f64>, Vec<u8>, Vec<f64>);
 
 /// The FMI outcome of a failed `advance`: the simulator kept its state from before the call, so
 /// whatever a smaller step, other inputs or a restored state can overcome is
