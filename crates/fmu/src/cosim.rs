@@ -78,10 +78,22 @@ impl Start {
 }
 
 impl BeamFmu {
+    /// modelDescription.xml of the FMU of `scene_toml` ([`describe::model_description`]).
+    pub fn model_description(scene_toml: &str, model_identifier: &str) -> Result<String, String> {
+        describe::model_description::<Self>(scene_toml, model_identifier)
+    }
+
+    /// A mounted scene's OSP-IS model description ([`describe::osp_model_description`]).
+    pub fn osp_model_description(scene_toml: &str) -> Result<Option<(String, String)>, String> {
+        describe::osp_model_description(scene_toml)
+    }
+
     /// Records the current state in the views ([`view::ViewState::record`]).
     fn record_view(&mut self) {
+        let table = &self.table;
+        let tip = || table.outputs_named("tip.");
         self.views
-            .record(&self.sim, &self.outputs, &self.scene, &self.table);
+            .record(&self.sim, &self.outputs, &self.scene, tip);
     }
 
     /// The `.pvd` collection of the views, if they are open.

@@ -636,6 +636,18 @@ impl Table {
         self.access[index]
     }
 
+    /// The outputs whose names start with `prefix` (name, id), in table order.
+    pub fn outputs_named(&self, prefix: &str) -> Vec<(String, OutputId)> {
+        self.variables
+            .iter()
+            .zip(&self.access)
+            .filter_map(|(v, a)| match a {
+                Access::Output(id) if v.name.starts_with(prefix) => Some((v.name.clone(), *id)),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The parameters' accesses, in table order (the order of a snapshot's parameter block).
     pub fn parameters(&self) -> impl Iterator<Item = Access> + '_ {
         self.access.iter().copied().filter(|a| {

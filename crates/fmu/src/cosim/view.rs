@@ -13,9 +13,7 @@
 use std::path::{Path, PathBuf};
 
 use hybeam::scene::Scene;
-use hybeam::simulator::{AnyOutputs, AnySimulator};
-
-use super::variables::{Access, Table};
+use hybeam::simulator::{AnyOutputs, AnySimulator, OutputId};
 
 /// Centreline samples per element of the shape written (as the command line's default).
 pub const SAMPLES_PER_ELEMENT: usize = 8;
@@ -137,17 +135,13 @@ struct Views {
 
 impl Views {
     /// Views in `dir` (created if missing) named `stem` (`STEM.pvd`, `STEM.html`), for the beam
-    /// of `scene` and its variable `table` (the page shows its `tip.*` outputs). Writes nothing
-    /// yet.
-    fn open(dir: &str, stem: &str, scene: &Scene, table: &Table) -> Result<Self, String> {
-        let tip = (0..table.variables().len())
-            .filter_map(|index| match table.access(index) {
-                Access::Output(id) if table.variables()[index].name.starts_with("tip.") => {
-                    Some((table.variables()[index].name.clone(), id))
-                }
-                _ => None,
-            })
-            .collect();
+    /// of `scene`, the page showing the outputs `tip` (name, id). Writes nothing yet.
+    fn open(
+        dir: &str,
+        stem: &str,
+        scene: &Scene,
+        tip: Vec<(String, OutputId)>,
+    ) -> Result<Self, String> {
         let title = format!("{} (FMU instance {stem})", scene.name);
         let path = Path::new(dir);
         let views = hybeam_view::Views::create(
@@ -253,8 +247,15 @@ impl ViewState {
 
     /// Records the simulator's current state, if a directory is set, the directory's views have
     /// not failed in this run, and `visualization.interval` has passed since the last state
-    /// recorded (or the time went back: a rollback). Switches to the directory set first.
-    pub fn record(&mut self, sim: &AnySimulator, outputs: &AnyOutputs, scene: &Scene, t: &Table) {
+    /// recorded (or the time went back: a rollback). Switches to the directory set first. The
+    /// page shows the outputs `tip` gives (name, id; asked when views are opened).
+    pub fn record(
+        &mut self,
+        sim: &AnySimulator,
+        outputs: &AnyOutputs,
+        scene: &Scene,
+        tip: impl FnOnce() -> Vec<(String, OutputId)>,
+    ) {
         if self.open.as_ref().is_some_and(|v| v.dir != self.dir) {
             self.leave();
         }
@@ -265,7 +266,7 @@ impl ViewState {
             let back = self.kept.iter().position(|v| v.dir == self.dir);
             self.open = match back.map(|k| self.kept.remove(k)) {
                 Some(v) => Some(v),
-                None => match Views::open(&self.dir, &self.stem, scene, t) {
+                None => match Views::open(&self.dir, &self.stem, scene, tip()) {
                     Ok(v) => Some(v),
                     Err(e) => return self.failure(e),
                 },
