@@ -35,12 +35,17 @@ fi
 if [ "$MAIN" = 1 ]; then exit 0; fi
 
 # the project's Python tools (python/: hybeam-cosim, the co-simulation master; hybeam-sweep,
-# parameter studies on Dask), editable, with their dependencies (dask, pandas, pyarrow, scipy, tomli-w), and
-# ruff, which lints and formats them
+# parameter studies on Dask), editable, with their dependencies (dask, pandas, pyarrow, scipy,
+# tomli-w, lxml) and the extras the tests need (test: pytest, pyvista, vtk; plot: matplotlib);
+# ruff, which lints and formats them, and mypy, which type-checks them (python/pyproject.toml)
 RUFF_VERSION=0.14.14
-if ! .venv/bin/python -c "import hybeam.cosim, hybeam.sweep, dask.distributed, pyarrow, scipy, tomli_w, pyvista" 2>/dev/null || ! .venv/bin/ruff --version 2>/dev/null | grep -q "$RUFF_VERSION"; then
-    echo "setup: installing the Python tools (python/, editable) and ruff==$RUFF_VERSION into .venv"
-    .venv/bin/python -m pip install --quiet -e python "ruff==$RUFF_VERSION"
+MYPY_VERSION=2.4.1
+if ! .venv/bin/python -c "import hybeam.cosim.ssp, hybeam.sweep.sweep, dask.distributed, pyarrow, scipy, tomli_w, lxml, pyvista, vtk, matplotlib, pytest" 2>/dev/null ||
+    ! .venv/bin/ruff --version 2>/dev/null | grep -q "$RUFF_VERSION" ||
+    ! .venv/bin/mypy --version 2>/dev/null | grep -q "mypy $MYPY_VERSION " ||
+    ! .venv/bin/hybeam-ssp --help >/dev/null 2>&1; then
+    echo "setup: installing the Python tools (python/[test,plot], editable), ruff==$RUFF_VERSION and mypy==$MYPY_VERSION into .venv"
+    .venv/bin/python -m pip install --quiet -e "python[test,plot]" "ruff==$RUFF_VERSION" "mypy==$MYPY_VERSION"
 fi
 
 # libcosim for the vehicle example's second host (examples/vehicle/cosim_libcosim.py); its

@@ -47,12 +47,16 @@ fi
 
 echo "== pytest (fmpy) on ${FMUS[*]}"
 for fmu in "${FMUS[@]}"; do
-    .venv/bin/python -m pytest -q tests/python --fmu "$fmu"
+    # test_view.py tests the runner's ParaView output, no FMU: run once, below
+    .venv/bin/python -m pytest -q tests/python --fmu "$fmu" --ignore=tests/python/test_view.py
 done
+echo "== the runner's ParaView series read by PyVista/VTK (tests/python/test_view.py)"
+.venv/bin/python -m pytest -q tests/python/test_view.py
 
-echo "== Python tools: lint, format, the co-simulation master's tests"
+echo "== Python tools: lint, format, type check (mypy), the tools' tests (python/tests)"
 .venv/bin/ruff check .
 .venv/bin/ruff format --check .
+(cd python && ../.venv/bin/mypy)
 .venv/bin/python -m pytest -q python/tests
 
 echo "== views: the viewer bundle, the animation pages in headless Chromium"

@@ -12,7 +12,7 @@ import pickle
 import tempfile
 import time
 
-from hybeam.sweep import cli
+from hybeam.sweep import sweep
 from hybeam.sweep.run import run_chunk
 from hybeam.sweep.study import load
 
@@ -51,7 +51,7 @@ def main():
         ("LocalCluster, 2 workers", {"workers": 2}),
     ]:
         t0 = time.perf_counter()
-        v = cli.run(path, tmp / f"run{len(walls)}", quiet=True, **kw)
+        v = sweep.run(path, tmp / f"run{len(walls)}", quiet=True, **kw)
         walls[name] = time.perf_counter() - t0
         assert (v["status"] == "ok").all() and len(v) == n
         print(f"{name}: {walls[name]:.1f} s", flush=True)

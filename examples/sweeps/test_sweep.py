@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from hybeam.sweep import build as build_module
-from hybeam.sweep import cli
+from hybeam.sweep import sweep
 from hybeam.sweep.run import run_chunk
 from hybeam.sweep.study import StudyError, load
 
@@ -46,8 +46,8 @@ def test_a_cluster_of_two_workers_gives_the_serial_results_and_refusals_are_data
     same tables, bit for bit, serially and on a LocalCluster of 2 worker processes; the
     refused ones recorded with the FMU's message naming the field, the others complete."""
     study = _study(tmp_path, boom, walls="[0.044, 0.042, 0.040, 0.06]")
-    serial = cli.run(study, tmp_path / "serial", serial=True, quiet=True)
-    cluster = cli.run(study, tmp_path / "cluster", workers=2, quiet=True)
+    serial = sweep.run(study, tmp_path / "serial", serial=True, quiet=True)
+    cluster = sweep.run(study, tmp_path / "cluster", workers=2, quiet=True)
     assert len(serial) == 16
     failed = serial[serial["status"] == "failed"]
     assert len(failed) == 4 and (failed["*.inner_diameter"] == 0.06).all()
@@ -65,7 +65,7 @@ def test_the_tip_drop_is_twice_the_static_deflection(tmp_path, boom):
     0.6 s: past the first peak of the slowest, 3.5 m and twice as dense, period 0.36 s):
     the swept tip drop of every length, wall and density within 2 %."""
     study = _study(tmp_path, boom, lengths="[1.5, 2.0, 2.5]", walls="[0.044, 0.040]", stop=0.6)
-    v = cli.run(study, tmp_path / "out", workers=2, quiet=True)
+    v = sweep.run(study, tmp_path / "out", workers=2, quiet=True)
     assert (v["status"] == "ok").all(), v["message"].tolist()
     for _, row in v.iterrows():
         length = ROOT + row["tip.length"]
@@ -82,8 +82,8 @@ def test_a_rerun_skips_the_variants_done(tmp_path, boom):
     """A second run into the same directory finds every variant by its content hash and runs
     none (the recorded wall times come back unchanged)."""
     study = _study(tmp_path, boom, lengths="[1.5]", walls="[0.044]")
-    first = cli.run(study, tmp_path / "out", serial=True, quiet=True)
-    again = cli.run(study, tmp_path / "out", serial=True, quiet=True)
+    first = sweep.run(study, tmp_path / "out", serial=True, quiet=True)
+    again = sweep.run(study, tmp_path / "out", serial=True, quiet=True)
     pd.testing.assert_frame_equal(first, again, check_exact=True)
 
 
@@ -183,7 +183,7 @@ summaries = {{ tip_drop = "range(tip.position.y)" }}
     path = tmp_path / "sample.toml"
     path.write_text(text)
     assert list(load(path).variants()) == list(load(path).variants())
-    v = cli.run(path, tmp_path / "out", workers=2, quiet=True)
+    v = sweep.run(path, tmp_path / "out", workers=2, quiet=True)
     assert len(v) == 8 and (v["status"] == "ok").all()
     assert v["tip.length"].between(1.5, 2.5).all()
     assert v["*.inner_diameter"].between(0.040, 0.044).all()
@@ -215,7 +215,7 @@ def _one_variant(tmp_path, boom, name, inputs, stop=0.3, series='"tip.position.y
         f"[outputs]\nseries = [{series}]\n"
         'summaries = { drop = "range(tip.position.y)", force = "range(root.force.y)" }\n'
     )
-    return cli.run(path, tmp_path / name, serial=True, quiet=True)
+    return sweep.run(path, tmp_path / name, serial=True, quiet=True)
 
 
 def test_a_csv_input_holding_the_load_gives_the_constant_inputs_bits(tmp_path, boom):
@@ -268,7 +268,7 @@ def test_a_scene_study_builds_an_fmu_per_structure(tmp_path):
         f'[inputs]\n"tip.force.y" = {-F}\n'
         '[outputs]\nsummaries = { tip_drop = "range(tip.position.y)" }\n'
     )
-    v = cli.run(path, tmp_path / "out", workers=2, quiet=True)
+    v = sweep.run(path, tmp_path / "out", workers=2, quiet=True)
     fmus = sorted((tmp_path / "out" / "fmus").glob("*/boom.fmu"))
     assert len(fmus) == 2 and len(v) == 6
     bad = v[v["scene:segments.tip.elements"] == 0]
@@ -280,7 +280,7 @@ def test_a_scene_study_builds_an_fmu_per_structure(tmp_path):
         expected = 2 * F * (ROOT + row["tip.length"]) ** 3 / (3 * E * inertia)
         assert abs(row["tip_drop"] / expected - 1) < 0.02, row
     stamps = [f.stat().st_mtime_ns for f in fmus]
-    cli.run(path, tmp_path / "out", serial=True, quiet=True)
+    sweep.run(path, tmp_path / "out", serial=True, quiet=True)
     assert [f.stat().st_mtime_ns for f in fmus] == stamps
 
 
@@ -295,7 +295,7 @@ def test_the_tip_rings_at_the_cantilevers_first_frequency(tmp_path, boom):
         f'[inputs]\n"tip.force.y" = {-F}\n'
         '[outputs]\nsummaries = { f1 = "frequency(tip.position.y)" }\n'
     )
-    v = cli.run(path, tmp_path / "out", workers=2, quiet=True)
+    v = sweep.run(path, tmp_path / "out", workers=2, quiet=True)
     for _, row in v.iterrows():
         di = row["*.inner_diameter"]
         inertia, area = math.pi / 64 * (D**4 - di**4), math.pi / 4 * (D**2 - di**2)
@@ -318,7 +318,7 @@ def test_a_list_of_csv_files_is_a_dimension_of_the_grid(tmp_path, boom):
         '[inputs]\n"tip.force.y" = { csv = ["f100.csv", "f200.csv"], column = "fy" }\n'
         '[outputs]\nsummaries = { tip_drop = "range(tip.position.y)" }\n'
     )
-    v = cli.run(path, tmp_path / "out", serial=True, quiet=True)
+    v = sweep.run(path, tmp_path / "out", serial=True, quiet=True)
     assert list(v["input:tip.force.y"]) == ["f100.csv", "f200.csv"]
     inertia = math.pi / 64 * (D**4 - 0.044**4)
     for load_, drop in zip((100, 200), v["tip_drop"], strict=True):
@@ -347,14 +347,14 @@ def test_an_interrupted_sweep_resumes_where_it_stopped(tmp_path, boom, monkeypat
 
     monkeypatch.setattr(run_module, "run_chunk", counted(stop_after=2))
     with pytest.raises(KeyboardInterrupt):
-        cli.run(study, tmp_path / "out", serial=True, quiet=True)
+        sweep.run(study, tmp_path / "out", serial=True, quiet=True)
     kept = sum(ran)
     assert 1 <= kept < 4 and list((tmp_path / "out" / "chunks").glob("*.variants.parquet"))
     ran.clear()
     monkeypatch.setattr(run_module, "run_chunk", counted())
-    resumed = cli.run(study, tmp_path / "out", serial=True, quiet=True)
+    resumed = sweep.run(study, tmp_path / "out", serial=True, quiet=True)
     assert sum(ran) == 4 - kept
-    whole = cli.run(study, tmp_path / "whole", serial=True, quiet=True)
+    whole = sweep.run(study, tmp_path / "whole", serial=True, quiet=True)
     assert (resumed["status"] == "ok").all(), resumed["message"].tolist()
     pd.testing.assert_frame_equal(resumed.drop(columns="wall_s"), whole.drop(columns="wall_s"))
     s1 = pd.read_parquet(tmp_path / "out" / "series.parquet")
@@ -374,5 +374,5 @@ def test_the_study_is_checked_against_the_fmus_variables(tmp_path, boom):
     ]:
         study.write_text(text.replace(old, new, 1))
         with pytest.raises(StudyError, match=pattern):
-            cli.run(study, tmp_path / "out", serial=True, quiet=True)
+            sweep.run(study, tmp_path / "out", serial=True, quiet=True)
         assert not (tmp_path / "out").exists()

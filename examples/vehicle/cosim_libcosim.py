@@ -18,7 +18,7 @@ import shutil
 import tempfile
 
 import numpy as np
-from hybeam.cosim.cli import simulate
+from hybeam.cosim.run import simulate
 from hybeam.cosim.system import load
 
 HERE = pathlib.Path(__file__).resolve().parent

@@ -18,8 +18,8 @@ import argparse
 import pathlib
 
 import numpy as np
-from hybeam.cosim.cli import open_system
 from hybeam.cosim.master import _Links, _values
+from hybeam.cosim.run import open_system
 from hybeam.cosim.system import load
 
 SYSTEM = pathlib.Path(__file__).resolve().parent / "system.toml"

@@ -32,6 +32,9 @@ case "${1:-}" in
             --columns car.body.pitch,boom.tip.position.y --out docs/report/coupling_order
         ;;
     *)
+        # the same system as SSP 1.0 (examples/vehicle/system.ssd with the FMUs packed into
+        # resources/): hybeam-cosim out/vehicle/vehicle.ssp runs it as system.toml (docs/coupling.md)
+        .venv/bin/hybeam-ssp "$SYSTEM" --out out/vehicle/vehicle.ssp --fmu car=out/car.fmu --fmu boom="$boom"
         # the boom FMU writes its shape (ParaView series) into out/vehicle/view; the page of
         # the run then shows the car body as a box carried by the mount frame (the roof point
         # 0.3 m ahead of and 0.9 m above the centre of mass; a 4.1 x 1.3 x 1.8 m body)

@@ -32,6 +32,9 @@ case "${1:-}" in
             --boom "$boom" --planar-car out/car.fmu --planar-boom "$planar_boom"
         ;;
     *)
+        # the same system as SSP 1.0 (examples/vehicle3d/system.ssd with the FMUs packed into
+        # resources/): hybeam-cosim out/vehicle3d/vehicle3d.ssp runs it as system.toml (docs/coupling.md)
+        .venv/bin/hybeam-ssp "$SYSTEM" --out out/vehicle3d/vehicle3d.ssp --fmu car=out/car3d.fmu --fmu boom="$boom"
         # the boom FMU writes its shape into out/vehicle3d/view; the page shows the car body
         # (4.1 x 1.8 x 1.3 m) as a box carried by the mount frame (the roof point 0.3 m ahead
         # of and 0.9 m above the centre of mass)

@@ -57,3 +57,20 @@ def test_a_run_that_exchanges_no_energy_is_not_judged(system, tmp_path, capsys):
     assert "stability not judged" in captured.err and "NOT stable" not in captured.err
     assert record["stable"] is None and record["steps"] == 10
     assert code == 0
+
+
+def test_hybeam_cosim_study_runs_on_the_library(system, tmp_path, capsys):
+    """`hybeam-cosim-study` (cli.study) on `hybeam.cosim.stability` and `hybeam.cosim.run`: a
+    stability map of two cells and an order study, each writing its tables."""
+    out = tmp_path / "map"
+    argv = ["map", str(system), "--scheme", "naive", "--steps", "1e-3,2e-3"]
+    argv += ["--grid", "boom.tip.density=7850", "--t-end", "0.01", "--jobs", "1", "--out", str(out)]
+    assert cli.study(argv) == 0
+    rows = (out.with_suffix(".csv")).read_text().splitlines()
+    assert len(rows) == 3 and out.with_suffix(".svg").exists()
+    assert "Stability map: `map " in out.with_suffix(".md").read_text()
+    argv = ["order", str(system), "--scheme", "naive", "--steps", "2e-3,1e-3"]
+    argv += ["--reference", "5e-4", "--columns", "boom.tip.position.y", "--t-end", "0.01"]
+    assert cli.study([*argv, "--jobs", "1", "--out", str(tmp_path / "order")]) == 0
+    assert "| 2 |" in (tmp_path / "order.md").read_text()
+    assert '{"orders"' in capsys.readouterr().out

@@ -4,8 +4,8 @@ import csv
 
 import numpy as np
 import pandas as pd
-from hybeam.cosim.cli import write
 from hybeam.cosim.master import Result
+from hybeam.cosim.run import write
 
 
 def test_the_parquet_table_equals_the_csv_table(tmp_path):

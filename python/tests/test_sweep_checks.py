@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from fakefmu import BEAM, write_fmu
-from hybeam.sweep import cli
+from hybeam.sweep import cli, sweep
 from hybeam.sweep import run as run_module
 from hybeam.sweep.study import StudyError, load
 
@@ -129,18 +129,18 @@ def test_an_interrupted_sweep_keeps_its_chunks_and_a_rerun_runs_only_the_rest(
     calls = []
     monkeypatch.setattr(run_module, "run_chunk", _stand_in(calls, stop_after=2))
     with pytest.raises(KeyboardInterrupt):
-        cli.run(path, tmp_path / "out", serial=True, quiet=True)
+        sweep.run(path, tmp_path / "out", serial=True, quiet=True)
     kept = sum(len(c) for c in calls)
     assert 1 <= kept < 6
     assert list((tmp_path / "out" / "chunks").glob("*.parquet")), "no chunk written"
     again = []
     monkeypatch.setattr(run_module, "run_chunk", _stand_in(again))
-    v = cli.run(path, tmp_path / "out", serial=True, quiet=True)
+    v = sweep.run(path, tmp_path / "out", serial=True, quiet=True)
     assert sum(len(c) for c in again) == 6 - kept
     # every variant in grid order, as one uninterrupted run gives them
     whole = []
     monkeypatch.setattr(run_module, "run_chunk", _stand_in(whole))
-    ref = cli.run(path, tmp_path / "whole", serial=True, quiet=True)
+    ref = sweep.run(path, tmp_path / "whole", serial=True, quiet=True)
     assert sum(len(c) for c in whole) == 6
     pd.testing.assert_frame_equal(v.drop(columns="wall_s"), ref.drop(columns="wall_s"))
     assert list(v["tip.length"]) == [1.5, 1.5, 2.0, 2.0, 2.5, 2.5]
@@ -150,7 +150,7 @@ def test_an_interrupted_sweep_keeps_its_chunks_and_a_rerun_runs_only_the_rest(
     # a third run runs nothing
     none = []
     monkeypatch.setattr(run_module, "run_chunk", _stand_in(none))
-    cli.run(path, tmp_path / "out", serial=True, quiet=True)
+    sweep.run(path, tmp_path / "out", serial=True, quiet=True)
     assert none == []
 
 
@@ -163,7 +163,7 @@ def test_a_sweep_whose_variants_all_fail_still_writes_its_tables_and_plot(
         ]
 
     monkeypatch.setattr(run_module, "run_chunk", refuse)
-    v = cli.run(_write(tmp_path, fmu), tmp_path / "out", serial=True, quiet=True)
+    v = sweep.run(_write(tmp_path, fmu), tmp_path / "out", serial=True, quiet=True)
     assert (v["status"] == "failed").all() and v["drop"].isna().all()
     assert (tmp_path / "out" / "sweep.png").exists()
 

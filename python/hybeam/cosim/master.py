@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -69,9 +70,12 @@ class Settings:
             ok = ok and (x > 0 if low == "> 0" else x >= 0)
             if not ok:
                 raise ValueError(f"--{name} = {x!r}: give a positive finite number ({low})")
-        for name, x, low in [("max-iterations", self.max_iterations, 1), ("reuse", self.reuse, 0)]:
-            if isinstance(x, bool) or not isinstance(x, int) or x < low:
-                raise ValueError(f"--{name} = {x!r}: give an integer >= {low}")
+        for key, n, least in [
+            ("max-iterations", self.max_iterations, 1),
+            ("reuse", self.reuse, 0),
+        ]:
+            if isinstance(n, bool) or not isinstance(n, int) or n < least:
+                raise ValueError(f"--{key} = {n!r}: give an integer >= {least}")
 
 
 #: the energy ledger's resolution relative to the stored energy's level: a coupled run whose
@@ -127,7 +131,7 @@ class Result:
 class _Links:
     """Connections grouped per destination and source (batched get/set)."""
 
-    def __init__(self, conns: list[Connection], order: list[str]):
+    def __init__(self, conns: list[Connection], order: list[str]) -> None:
         self.conns = conns
         self.order = order
         pos = {n: i for i, n in enumerate(order)}
@@ -142,12 +146,14 @@ class _Links:
             n: [c for c in conns if c.src == n and c not in self.backward] for n in order
         }
 
-    def read(self, subs: dict[str, Subsystem], conns: list[Connection]) -> dict:
+    def read(self, subs: Mapping[str, Subsystem], conns: list[Connection]) -> dict:
         """The sources' current values of `conns`."""
         vals = _values(subs, [(c.src, c.src_var) for c in conns])
         return dict(zip(conns, vals, strict=True))
 
-    def write(self, subs: dict[str, Subsystem], vals: dict, dsts=None):
+    def write(
+        self, subs: Mapping[str, Subsystem], vals: dict, dsts: Iterable[str] | None = None
+    ) -> None:
         """Sets the inputs of `dsts` (default: all, in order) from `vals` (per connection)."""
         for n in self.order if dsts is None else dsts:
             cs = self.into[n]
@@ -155,7 +161,7 @@ class _Links:
                 subs[n].set([c.dst_var for c in cs], [vals[c] for c in cs])
 
 
-def _values(subs: dict[str, Subsystem], pairs: list[tuple[str, str]]) -> list[float]:
+def _values(subs: Mapping[str, Subsystem], pairs: list[tuple[str, str]]) -> list[float]:
     """The current values of (subsystem, output) pairs, one get per subsystem, in order."""
     by: dict[str, list[int]] = {}
     for i, (f, _) in enumerate(pairs):
@@ -168,8 +174,11 @@ def _values(subs: dict[str, Subsystem], pairs: list[tuple[str, str]]) -> list[fl
 
 
 def initialize(
-    system: System, scheme: str, subs: dict[str, Subsystem], parameters: dict[str, dict]
-):
+    system: System,
+    scheme: str,
+    subs: Mapping[str, Subsystem],
+    parameters: Mapping[str, dict[str, float | str]],
+) -> None:
     """Initialization mode as the system file describes it, on the connections of `scheme`
     (FMU subsystems only)."""
     links = _Links(system.connections(scheme), system.order)
@@ -177,7 +186,7 @@ def initialize(
         s.enter_initialization(parameters.get(n, {}))
     done = set()
 
-    def leave(n):
+    def leave(n: str) -> None:
         links.write(subs, links.read(subs, links.into[n]), [n])
         subs[n].exit_initialization()
         done.add(n)
@@ -192,11 +201,12 @@ def initialize(
             leave(n)
 
 
-def _iqn_ils(V, W, r, xt):
+def _iqn_ils(V: np.ndarray, W: np.ndarray, r: np.ndarray, xt: np.ndarray) -> np.ndarray | None:
     """IQN-ILS update: c = argmin ‖V c + r‖ (columns filtered by QR), x = x̃ + W c."""
     # newest columns first; a column adding less than 1e-8 of its norm to the span of the
     # kept ones is dropped (as preCICE's QR1 filter), at most as many as unknowns
-    basis, keep = [], []
+    basis: list[np.ndarray] = []
+    keep: list[int] = []
     for j in range(V.shape[1]):
         v = V[:, j].copy()
         norm = np.linalg.norm(v)
@@ -217,11 +227,11 @@ def _iqn_ils(V, W, r, xt):
 def run(
     system: System,
     scheme: str,
-    subs: dict[str, Subsystem],
+    subs: Mapping[str, Subsystem],
     step: float,
     t_end: float,
     settings: Settings | None = None,
-    progress=None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> Result:
     """Couples initialized subsystems from t = 0 to `t_end` with communication step `step`.
 
@@ -342,7 +352,16 @@ def run(
     return res
 
 
-def _implicit_step(subs, links: _Links, current: dict, t, h, st: Settings, history, reused):
+def _implicit_step(
+    subs: Mapping[str, Subsystem],
+    links: _Links,
+    current: dict,
+    t: float,
+    h: float,
+    st: Settings,
+    history: list,
+    reused: list,
+) -> tuple[int, float]:
     """One implicit macro step from t; updates `current` to the accepted values at t + h.
     Returns (iterations, accepted relative residual)."""
     order = links.order
@@ -351,7 +370,8 @@ def _implicit_step(subs, links: _Links, current: dict, t, h, st: Settings, histo
     x_n = np.array([current[c] for c in back])
     # predictor: linear extrapolation of the converged values
     x = 2.0 * x_n - history[-1] if history else x_n.copy()
-    V_cols, W_cols = [], []
+    V_cols: list[np.ndarray] = []
+    W_cols: list[np.ndarray] = []
     prev = None
     jac = None
     try:
@@ -421,7 +441,7 @@ def _implicit_step(subs, links: _Links, current: dict, t, h, st: Settings, histo
     )
 
 
-def _loop_jacobian(subs, links: _Links):
+def _loop_jacobian(subs: Mapping[str, Subsystem], links: _Links) -> np.ndarray | None:
     """∂x̃/∂x through the direct feedthrough of both subsystems (2-FMU loop), or None."""
     a, b = links.order
     if not (subs[a].provides_jacobian and subs[b].provides_jacobian):

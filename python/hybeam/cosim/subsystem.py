@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import fnmatch
 import shutil
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -23,7 +25,7 @@ class FmuError(RuntimeError):
     its arguments and the FMU's logged message, in one line."""
 
 
-def _one_line(text: str) -> str:
+def _one_line(text: object) -> str:
     return " ".join(str(text).split())
 
 
@@ -45,10 +47,10 @@ class Subsystem:
     def get(self, names: list[str]) -> np.ndarray:
         raise NotImplementedError
 
-    def set(self, names: list[str], values) -> None:
+    def set(self, names: list[str], values: Sequence[float] | np.ndarray) -> None:
         raise NotImplementedError
 
-    def set_rates(self, names: list[str], rates) -> None:
+    def set_rates(self, names: list[str], rates: Sequence[float] | np.ndarray) -> None:
         """First time derivatives of inputs for the next step (only if
         `input_derivative_order >= 1`)."""
         raise NotImplementedError
@@ -57,14 +59,26 @@ class Subsystem:
         """Advances from t to t + h; raises `StepRefused` with the subsystem's message."""
         raise NotImplementedError
 
-    def save(self):
+    def save(self) -> Any:
+        """The subsystem's state (an opaque handle for `restore`)."""
         raise NotImplementedError
 
-    def restore(self, state) -> None:
+    def restore(self, state: Any) -> None:
         raise NotImplementedError
 
-    def free(self, state) -> None:
+    def free(self, state: Any) -> None:
         pass
+
+    def enter_initialization(self, parameters: dict[str, float | str], start: float = 0.0) -> None:
+        """Initialization mode with these start values (FMU subsystems)."""
+        raise NotImplementedError
+
+    def exit_initialization(self) -> None:
+        raise NotImplementedError
+
+    def reset(self) -> None:
+        """Back to instantiated (FMU subsystems)."""
+        raise NotImplementedError
 
     def jacobian(self, outputs: list[str], inputs: list[str]) -> np.ndarray:
         """∂outputs/∂inputs at the current point (direct feedthrough)."""
@@ -84,7 +98,9 @@ class FmuSubsystem(Subsystem):
     `on_warning(name, message)` when given.
     """
 
-    def __init__(self, path: str, name: str, on_warning=None):
+    def __init__(
+        self, path: str, name: str, on_warning: Callable[[str, str], None] | None = None
+    ) -> None:
         from fmpy import extract, read_model_description
 
         self.name = name
@@ -104,9 +120,9 @@ class FmuSubsystem(Subsystem):
         #: messages logged since the instance was made (the calls' marks)
         self.logged = 0
         self.on_warning = on_warning
-        self.slave = None
+        self.slave: Any = None
 
-    def instantiate(self):
+    def instantiate(self) -> None:
         from ctypes import byref
 
         from fmpy import calloc, free
@@ -118,7 +134,7 @@ class FmuSubsystem(Subsystem):
             fmi2CallbackLoggerTYPE,
         )
 
-        def logger(env, instance, status, category, message):
+        def logger(env: Any, instance: Any, status: int, category: Any, message: bytes) -> None:
             text = _one_line(message.decode(errors="replace") if message else "")
             self.messages.append(text)
             self.logged += 1
@@ -155,7 +171,7 @@ class FmuSubsystem(Subsystem):
     def last_message(self) -> str:
         return self.messages[-1] if self.messages else ""
 
-    def _call(self, what: str, fn, *args, **kwargs):
+    def _call(self, what: str, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
         """`fn(*args)`, an FMI call; on a status above fmi2Warning (fmpy raises) an
         FmuError naming `what` with the FMU's messages logged during the call."""
         mark = self.logged
@@ -167,7 +183,7 @@ class FmuSubsystem(Subsystem):
             said = "; ".join(m for m in new if m) or _one_line(e)
             raise FmuError(f"{self.name}: {what} refused: {said}") from None
 
-    def names(self, causality):
+    def names(self, causality: str) -> list[str]:
         return [n for n, v in self.vars.items() if v.causality == causality]
 
     def match(self, pattern: str) -> list[str]:
@@ -178,24 +194,24 @@ class FmuSubsystem(Subsystem):
         """The parameters among `match(pattern)`."""
         return [n for n in self.match(pattern) if self.vars[n].causality == "parameter"]
 
-    def _vrs(self, names):
+    def _vrs(self, names: Sequence[str]) -> list[int]:
         try:
             return [self.vr[n] for n in names]
         except KeyError as e:
             raise KeyError(f"{self.name} ({self.path}) has no variable {e.args[0]!r}") from None
 
-    def get(self, names):
+    def get(self, names: list[str]) -> np.ndarray:
         return np.array(self._call("fmi2GetReal", self.slave.getReal, self._vrs(names)), float)
 
-    def set(self, names, values):
-        values = [float(x) for x in values]
+    def set(self, names: list[str], values: Sequence[float] | np.ndarray) -> None:
+        floats = [float(x) for x in values]
         what = "fmi2SetReal(" + ", ".join(
-            f"{n} = {x:g}" for n, x in zip(names, values, strict=True)
+            f"{n} = {x:g}" for n, x in zip(names, floats, strict=True)
         )
         what = (what[:300] + " ...") if len(what) > 300 else what
-        self._call(what + ")", self.slave.setReal, self._vrs(names), values)
+        self._call(what + ")", self.slave.setReal, self._vrs(names), floats)
 
-    def set_rates(self, names, rates):
+    def set_rates(self, names: list[str], rates: Sequence[float] | np.ndarray) -> None:
         self._call(
             "fmi2SetRealInputDerivatives",
             self.slave.setRealInputDerivatives,
@@ -204,26 +220,26 @@ class FmuSubsystem(Subsystem):
             [float(x) for x in rates],
         )
 
-    def enter_initialization(self, parameters: dict[str, float | str], start: float = 0.0):
+    def enter_initialization(self, parameters: dict[str, float | str], start: float = 0.0) -> None:
         self._call("fmi2SetupExperiment", self.slave.setupExperiment, startTime=start)
         self._call("fmi2EnterInitializationMode", self.slave.enterInitializationMode)
         text = {n: v for n, v in parameters.items() if self.vars[n].type == "String"}
         reals = {n: v for n, v in parameters.items() if n not in text}
         if reals:
-            self.set(list(reals), list(reals.values()))
+            self.set(list(reals), [float(v) for v in reals.values()])
         if text:
             what = "fmi2SetString(" + ", ".join(f"{n} = {v!r}" for n, v in text.items()) + ")"
             self._call(
                 what, self.slave.setString, self._vrs(list(text)), [str(v) for v in text.values()]
             )
 
-    def exit_initialization(self):
+    def exit_initialization(self) -> None:
         self._call("fmi2ExitInitializationMode", self.slave.exitInitializationMode)
 
-    def reset(self):
+    def reset(self) -> None:
         self._call("fmi2Reset", self.slave.reset)
 
-    def step(self, t, h):
+    def step(self, t: float, h: float) -> None:
         try:
             status = self.slave.doStep(currentCommunicationPoint=t, communicationStepSize=h)
         except Exception as e:  # fmpy raises on a status above fmi2Warning
@@ -236,16 +252,16 @@ class FmuSubsystem(Subsystem):
                 f"{self.last_message() or f'fmi2Status {status}'}"
             )
 
-    def save(self):
+    def save(self) -> Any:
         return self._call("fmi2GetFMUstate", self.slave.getFMUState)
 
-    def restore(self, state):
+    def restore(self, state: Any) -> None:
         self._call("fmi2SetFMUstate", self.slave.setFMUState, state)
 
-    def free(self, state):
+    def free(self, state: Any) -> None:
         self.slave.freeFMUState(state)
 
-    def jacobian(self, outputs, inputs):
+    def jacobian(self, outputs: list[str], inputs: list[str]) -> np.ndarray:
         vo, vi = self._vrs(outputs), self._vrs(inputs)
         cols = []
         for k in range(len(inputs)):
@@ -254,7 +270,7 @@ class FmuSubsystem(Subsystem):
             cols.append(self.slave.getDirectionalDerivative(vo, vi, seed))
         return np.array(cols, dtype=float).T
 
-    def close(self):
+    def close(self) -> None:
         if self.slave is not None:
             try:
                 self.slave.terminate()

@@ -60,8 +60,10 @@ import math
 import pathlib
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
+from typing import Any, NoReturn
 
 import tomllib
+
 from hybeam.checks import did_you_mean, unknown_key
 
 
@@ -122,6 +124,13 @@ class System:
     plot: list[tuple[str, str]]
     t_end: float = 1.0
     step: float = 1e-3
+    #: the names of a source other than TOML for the fields the checks name (an SSP's
+    #: elements: "fmus.car.path" -> "<Component name="car"> source"), see `label`
+    labels: dict[str, str] = field(default_factory=dict)
+
+    def label(self, where: str) -> str:
+        """The field `where` (TOML's name: "connections.mount[0]") as the file names it."""
+        return self.labels.get(where, where)
 
     def connections(self, scheme: str) -> list[Connection]:
         s = self.scheme(scheme)
@@ -139,7 +148,7 @@ class System:
 ALGORITHMS = ("naive", "implicit")
 
 
-def _fail(where: str, value, fix: str):
+def _fail(where: str, value: object, fix: str) -> NoReturn:
     raise SystemFileError(f"{where} = {value!r}: {fix}")
 
 
@@ -206,11 +215,18 @@ def one_source(name: str, conns: list[tuple[str, Connection]]) -> None:
         fed[key] = (where, c)
 
 
-def load(path, fmu_paths: dict[str, str] | None = None) -> System:
-    """Reads a system file (TOML, or an OSP system structure `.xml`)."""
+def load(path: str | pathlib.Path, fmu_paths: dict[str, str] | None = None) -> System:
+    """Reads a system file (TOML; an SSP 1.0 `.ssp` archive or bare `.ssd`, see `ssp.py`;
+    or an OSP system structure `.xml`). `fmu_paths`: FMU paths by name (`--fmu NAME=PATH`)
+    instead of the file's."""
     path = pathlib.Path(path)
+    fmu_paths = fmu_paths or {}
     if path.suffix.lower() == ".xml":
         return load_osp(path, fmu_paths)
+    if path.suffix.lower() in (".ssp", ".ssd"):
+        from .ssp import load_ssp
+
+        return load_ssp(path, fmu_paths)
     try:
         doc = tomllib.loads(path.read_text())
     except (OSError, tomllib.TOMLDecodeError) as e:
@@ -305,13 +321,13 @@ def load(path, fmu_paths: dict[str, str] | None = None) -> System:
     for n in init:
         if n not in fmus:
             _fail("system.initialization", n, f"not an FMU of [fmus] ({sorted(fmus)})")
-    e = _table("energy", doc.get("energy", {}))
-    _keys("energy", e, ("stored", "supplied", "dissipated", "divergence"))
+    ledger = _table("energy", doc.get("energy", {}))
+    _keys("energy", ledger, ("stored", "supplied", "dissipated", "divergence"))
     energy = Energy(
-        stored=_names("energy.stored", e.get("stored", []), fmus),
-        supplied=_names("energy.supplied", e.get("supplied", []), fmus),
-        dissipated=_names("energy.dissipated", e.get("dissipated", []), fmus),
-        divergence=_num("energy.divergence", e.get("divergence", float("inf")), finite=False),
+        stored=_names("energy.stored", ledger.get("stored", []), fmus),
+        supplied=_names("energy.supplied", ledger.get("supplied", []), fmus),
+        dissipated=_names("energy.dissipated", ledger.get("dissipated", []), fmus),
+        divergence=_num("energy.divergence", ledger.get("divergence", float("inf")), finite=False),
     )
     rec = _table("record", doc.get("record", {}))
     _keys("record", rec, ("columns", "plot"))
@@ -336,7 +352,7 @@ class Variables:
     """An FMU's variables by name, from its modelDescription.xml (what `check` and `--set`
     need before the FMU is instantiated)."""
 
-    def __init__(self, md):
+    def __init__(self, md: Any) -> None:
         self.md = md
         self.vars = {v.name: v for v in md.modelVariables}
 
@@ -356,7 +372,7 @@ class Variables:
         ]
 
 
-def model_description(where: str, path: pathlib.Path, fix: str):
+def model_description(where: str, path: pathlib.Path, fix: str) -> Any:
     """The FMI 2.0 co-simulation FMU's model description (fmpy), or SystemFileError."""
     from fmpy import read_model_description
 
@@ -378,7 +394,7 @@ def variables(system: System) -> dict[str, Variables]:
     return {
         n: Variables(
             model_description(
-                f"fmus.{n}.path",
+                system.label(f"fmus.{n}.path"),
                 f.path,
                 f"build it or pass --fmu {n}=PATH (an FMI 2.0 co-simulation FMU)",
             )
@@ -398,10 +414,10 @@ def check(system: System, models: dict[str, Variables]) -> None:
         if v is None or v.type != "Real":
             pool = m.names(causality)
             what = f"{causality} " if causality else "Real variable "
-            _fail(where, value, f"{fmu} has no {what}{name!r}{_like(name, pool)}")
+            _fail(system.label(where), value, f"{fmu} has no {what}{name!r}{_like(name, pool)}")
         if causality and v.causality != causality:
             _fail(
-                where,
+                system.label(where),
                 value,
                 f"{fmu}.{name} is an {v.causality}, not an {causality}; connect "
                 '["FMU.OUTPUT", "FMU.INPUT"]',
@@ -424,13 +440,13 @@ def check(system: System, models: dict[str, Variables]) -> None:
             var(where, f"{fmu}.{name}", fmu, name)
     for n, spec in system.fmus.items():
         m = models[n]
-        for k, value in spec.parameters.items():
+        for k, given in spec.parameters.items():
             v = m.vars.get(k)
-            kind = "String" if isinstance(value, str) else "Real"
+            kind = "String" if isinstance(given, str) else "Real"
             if v is None or v.causality != "parameter" or v.type != kind:
                 _fail(
-                    f"fmus.{n}.parameters",
-                    {k: value},
+                    system.label(f"fmus.{n}.parameters"),
+                    {k: given},
                     f"{n} has no {kind} parameter {k!r}{_like(k, m.names('parameter', kind))}",
                 )
 
@@ -480,10 +496,11 @@ def _osp_groups(fmu_path: pathlib.Path) -> dict[str, list[str]]:
     return groups
 
 
-def load_osp(path, fmu_paths: dict[str, str] | None = None) -> System:
+def load_osp(path: str | pathlib.Path, fmu_paths: dict[str, str] | None = None) -> System:
     """Reads an OSP system structure: simulators, `VariableConnection`s and
     `VariableGroupConnection`s (direction from the FMUs' causalities)."""
     path = pathlib.Path(path)
+    fmu_paths = fmu_paths or {}
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError) as e:

@@ -17,7 +17,8 @@ import os
 import pathlib
 import tempfile
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
+from typing import Any
 
 import numpy as np
 
@@ -64,20 +65,19 @@ def _summary(kind: str, t: np.ndarray, x: np.ndarray) -> float:
         return frequency(t, x)
     if kind == "settling":
         return settling(t, x)
-    return float(
-        {
-            "max": np.max,
-            "min": np.min,
-            "peak": lambda v: np.max(np.abs(v)),
-            "range": np.ptp,
-            "rms": lambda v: np.sqrt(np.mean(v * v)),
-            "mean": np.mean,
-            "final": lambda v: v[-1],
-        }[kind](x)
-    )
+    kinds: dict[str, Callable[[np.ndarray], Any]] = {
+        "max": np.max,
+        "min": np.min,
+        "peak": lambda v: np.max(np.abs(v)),
+        "range": np.ptp,
+        "rms": lambda v: np.sqrt(np.mean(v * v)),
+        "mean": np.mean,
+        "final": lambda v: v[-1],
+    }
+    return float(kinds[kind](x))
 
 
-def parameter_names(study: Study, names_of) -> dict[str, list[str]]:
+def parameter_names(study: Study, names_of: Callable[[str], list[str]]) -> dict[str, list[str]]:
     """The FMU parameters each study parameter (a name or a glob) sets; raises StudyError for
     one that matches none. `names_of(pattern)` lists the FMU's parameters matching it."""
     out = {}
@@ -85,14 +85,15 @@ def parameter_names(study: Study, names_of) -> dict[str, list[str]]:
         names = names_of(p)
         if not names:
             raise StudyError(
-                f"[parameters] {p!r}: matches no parameter of {study.fmu.name}; "
+                f"[parameters] {p!r}: matches no parameter of "
+                f"{study.fmu.name if study.fmu else 'the FMU'}; "
                 f"write a parameter's name (docs/fmu-variables.md) or a glob such as '*.density'"
             )
         out[p] = names
     return out
 
 
-def _run_one(sub, study: Study, variant: dict[str, float]) -> dict:
+def _run_one(sub: Any, study: Study, variant: dict[str, Any]) -> dict:
     """One variant in an instantiated (or reset) FMU: its summaries and decimated series."""
     from hybeam.cosim.subsystem import StepRefused
 
@@ -175,11 +176,11 @@ def chunk_size(count: int) -> int:
 
 def execute_chunks(
     chunks: Iterable[tuple[Study, list[tuple[str, dict]]]],
-    on_chunk,
+    on_chunk: Callable[[Study, list[tuple[str, dict]], dict[str, dict]], None],
     scheduler: str | None = None,
     workers: int | None = None,
     serial: bool = False,
-):
+) -> None:
     """Runs `chunks` ((study with its FMU, [(id, values)]) pairs, consumed lazily) serially
     here, on `scheduler` (`tcp://HOST:PORT`) or on a new `LocalCluster` of `workers`
     processes (default: all cores), with at most two chunks per worker in flight;
@@ -246,7 +247,7 @@ def execute(
     scheduler: str | None = None,
     workers: int | None = None,
     serial: bool = False,
-    progress=None,
+    progress: Callable[[int, int, int, float], None] | None = None,
 ) -> dict[str, dict]:
     """Runs the variants of `jobs` ((study with its FMU, [(id, values)]) pairs) as
     `execute_chunks` does; `progress(done, failed, total, elapsed_s)` is called as chunks

@@ -18,17 +18,19 @@ import sys
 import numpy as np
 import pandas as pd
 
+from .study import Study
+
 VARIANTS = ".variants.parquet"
 SERIES = ".series.parquet"
 
 
-def _atomic(frame: pd.DataFrame, path: pathlib.Path):
+def _atomic(frame: pd.DataFrame, path: pathlib.Path) -> None:
     tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
     frame.to_parquet(tmp, index=False)
     tmp.replace(path)
 
 
-def import_legacy(out: pathlib.Path):
+def import_legacy(out: pathlib.Path) -> None:
     """The tables of an earlier hybeam-sweep that wrote them only at the end (no chunks/) as
     one chunk, so that its variants are skipped as before."""
     chunks = out / "chunks"
@@ -56,7 +58,9 @@ def done_ids(out: pathlib.Path) -> set[str]:
     return ids
 
 
-def write_chunk(out: pathlib.Path, study, pairs: list[tuple[str, dict]], results: dict):
+def write_chunk(
+    out: pathlib.Path, study: Study, pairs: list[tuple[str, dict]], results: dict
+) -> None:
     """Writes one chunk: `pairs` ((id, parameter values)) with their `results` by id."""
     chunks = out / "chunks"
     chunks.mkdir(parents=True, exist_ok=True)
@@ -105,7 +109,8 @@ def gather(out: pathlib.Path, index: dict[str, int]) -> pd.DataFrame:
     # the series, a chunk at a time, the chunks in the grid order of their first variant
     parts.sort(key=lambda p: min(index[x] for x in p[1]["variant"]))
     tmp = out / f".series.parquet.{os.getpid()}.part"
-    writer, seen = None, set()
+    writer = None
+    seen: set[str] = set()
     try:
         for f, v in parts:
             sf = f.with_name(f.name[: -len(VARIANTS)] + SERIES)

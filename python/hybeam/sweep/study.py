@@ -68,6 +68,7 @@ import pathlib
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from typing import Any, NoReturn
 
 import numpy as np
 import tomllib
@@ -189,10 +190,11 @@ class Signal:
         if self.sine is not None:
             a, f, phase = self.sine
             return start + a * math.sin(2 * math.pi * f * t + math.radians(phase))
-        times, values = self.tables[table] if table else next(iter(self.tables.values()))
+        tables = self.tables or {}
+        times, values = tables[table] if table else next(iter(tables.values()))
         return float(np.interp(t, times, values))
 
-    def content(self):
+    def content(self) -> list:
         return [self.constant, self.tables, self.sine]
 
 
@@ -251,7 +253,7 @@ _HOW_INPUT = (
 )
 
 
-def _fail(where: str, value, fix: str):
+def _fail(where: str, value: object, fix: str) -> NoReturn:
     raise StudyError(f"{where} = {value!r}: {fix}")
 
 
@@ -276,7 +278,7 @@ def _known(where: str, table, keys) -> None:
         )
 
 
-def model_description(where: str, path: pathlib.Path, written=None):
+def model_description(where: str, path: pathlib.Path, written: str | None = None) -> Any:
     """The FMU's model description (fmpy), or StudyError naming `where` when `path` is not an
     FMI 2.0 co-simulation FMU."""
     from fmpy import read_model_description
@@ -300,7 +302,7 @@ def model_description(where: str, path: pathlib.Path, written=None):
     return md
 
 
-def check(study: "Study", md, fmu_name: str) -> None:
+def check(study: Study, md: Any, fmu_name: str) -> None:
     """Checks the study's FMU parameters, inputs and outputs against the FMU's variables (its
     model description `md`): names, causality and type. Raises StudyError naming the field,
     the value and the fix."""
@@ -367,7 +369,9 @@ def _section(where: str, value) -> dict:
     return value
 
 
-def load(path, max_variants: int | None = None, check_fmu: bool = True) -> Study:
+def load(
+    path: str | pathlib.Path, max_variants: int | None = None, check_fmu: bool = True
+) -> Study:
     """Reads and checks a study file (see the module's docstring); `max_variants` overrides
     the file's limit (`--max-variants`); `check_fmu`: the FMU study's names against its
     modelDescription.xml (a scene study's FMUs are checked as they are built)."""
@@ -415,17 +419,17 @@ def load(path, max_variants: int | None = None, check_fmu: bool = True) -> Study
         if not isinstance(sample, dict) or sample.get("method") not in ("sobol", "lhs"):
             _fail("[study] sample", sample, 'write { method = "sobol" or "lhs", n = N, seed = S }')
         _known("[study] sample", sample, ("method", "n", "seed"))
-        n, seed = sample.get("n"), sample.get("seed", 0)
+        count, seed = sample.get("n"), sample.get("seed", 0)
         if (
-            isinstance(n, bool)
-            or not isinstance(n, int)
-            or n < 2
+            isinstance(count, bool)
+            or not isinstance(count, int)
+            or count < 2
             or isinstance(seed, bool)
             or not isinstance(seed, int)
         ):
             _fail("[study] sample", sample, "n must be an integer >= 2 and seed an integer")
-        sample = (sample["method"], n, seed)
-    params = {}
+        sample = (sample["method"], count, seed)
+    params: dict[str, list] = {}
     for name, values in _section("[parameters]", doc.get("parameters", {})).items():
         where = f"[parameters] {name!r}"
         if sample is not None:

@@ -19,7 +19,6 @@ that every run shares, with the observed order between neighbouring steps.
 
 from __future__ import annotations
 
-import argparse
 import csv
 import json
 import math
@@ -29,21 +28,23 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
-from .cli import simulate
+from ..plotting import pyplot
+from .master import Result
+from .run import simulate
 from .system import load
 
 
-def _word(stable) -> str:
+def _word(stable: bool | None) -> str:
     """The verdict of a run (`Result.stable`: True, False, or None when not judged)."""
     return {True: "stable", None: "not judged"}.get(stable, "NOT stable")
 
 
-def _cell(args):
+def _cell(args: tuple) -> Result:
     path, fmus, scheme, step, t_end, sets = args
     return simulate(load(path, fmus), scheme, step, t_end, sets)
 
 
-def _summary(args):
+def _summary(args: tuple) -> dict:
     res = _cell(args[:-1])
     out = res.summary(args[2], args[3])
     out["set"] = " ".join(args[5])
@@ -51,44 +52,60 @@ def _summary(args):
     return out
 
 
-def _floats(text):
+def floats(text: str) -> list[float]:
+    """Comma-separated numbers ("1e-3,2e-3") as floats."""
     return [float(x) for x in text.split(",") if x]
 
 
-def stability_map(a):
-    key, _, values = a.grid.partition("=")
-    grid = _floats(values)
-    steps = _floats(a.steps)
-    fmus = dict(item.split("=", 1) for item in a.fmu)
-    jobs = [
-        (a.system, fmus, s, h, a.t_end, [f"{key}={g}"] + a.set, g)
-        for s in a.scheme
-        for g in grid
+def stability_map(
+    system: str | pathlib.Path,
+    schemes: list[str],
+    steps: list[float],
+    grid: str,
+    out: str | pathlib.Path,
+    t_end: float = 2.0,
+    sets: list[str] | None = None,
+    fmus: dict[str, str] | None = None,
+    jobs: int = 2,
+    command: str = "",
+) -> list[dict]:
+    """Runs every (scheme, step, grid value) cell (`grid`: "FMU.KEY=V1,V2,..."; `sets`:
+    `--set` items for every cell) in `jobs` processes and writes OUT.csv, OUT.md and OUT.svg
+    (see the module's docstring; `command`: the command line the .md quotes). The cells'
+    summaries."""
+    key, _, values = grid.partition("=")
+    grid_values = floats(values)
+    sets = list(sets or [])
+    fmus = dict(fmus or {})
+    cells = [
+        (system, fmus, s, h, t_end, [f"{key}={g}"] + sets, g)
+        for s in schemes
+        for g in grid_values
         for h in steps
     ]
     # the longest cells (fine steps) first, to balance the processes
-    order = sorted(range(len(jobs)), key=lambda i: jobs[i][3])
-    rows = [None] * len(jobs)
-    with ProcessPoolExecutor(max_workers=a.jobs) as ex:
-        futs = {i: ex.submit(_summary, jobs[i]) for i in order}
+    order = sorted(range(len(cells)), key=lambda i: cells[i][3])
+    rows: list[dict] = [{} for _ in cells]
+    with ProcessPoolExecutor(max_workers=jobs) as ex:
+        futs = {i: ex.submit(_summary, cells[i]) for i in order}
         for n, i in enumerate(order):
             rows[i] = futs[i].result()
             r = rows[i]
             print(
-                f"[{n + 1}/{len(jobs)}] {r['scheme']} h = {r['step']:g} {r['set']}: "
+                f"[{n + 1}/{len(cells)}] {r['scheme']} h = {r['step']:g} {r['set']}: "
                 f"{_word(r['stable'])} residual "
                 f"{r['energy_residual']} of {r['energy_scale']} ({r['wall_s']:.1f} s, "
                 f"{r['iterations']:.2f} it/step) {r['message']}",
                 file=sys.stderr,
             )
-    out = pathlib.Path(a.out)
+    out = pathlib.Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
     with open(out.with_suffix(".csv"), "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    md = [f"Stability map: `{' '.join(sys.argv[1:])}`", ""]
-    for s in a.scheme:
+    md = [f"Stability map: `{command}`", ""]
+    for s in schemes:
         md += [
             f"**{s}** — energy residual / scale (✗: not stable; wall time per cell "
             f"relative to the naive cell where both ran)",
@@ -96,16 +113,14 @@ def stability_map(a):
             "| " + key + " \\ h [ms] | " + " | ".join(f"{1e3 * h:g}" for h in steps) + " |",
             "|---" * (len(steps) + 1) + "|",
         ]
-        for g in grid:
-            cells = []
-            for h in steps:
-                r = _find(rows, s, h, g)
-                cells.append(_text(r, rows, g, h))
-            md.append(f"| {g:g} | " + " | ".join(cells) + " |")
+        for g in grid_values:
+            texts = [_text(_find(rows, s, h, g), rows, g, h) for h in steps]
+            md.append(f"| {g:g} | " + " | ".join(texts) + " |")
         md.append("")
     out.with_suffix(".md").write_text("\n".join(md))
-    _figure(rows, a.scheme, steps, grid, key, out.with_suffix(".svg"))
+    _figure(rows, schemes, steps, grid_values, key, out.with_suffix(".svg"))
     print("\n".join(md))
+    return rows
 
 
 def _find(rows, scheme, h, g):
@@ -126,10 +141,7 @@ def _text(r, rows, g, h):
 
 
 def _figure(rows, schemes, steps, grid, key, path):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot(f"{path.name} (the stability map's figure)")
 
     fig, axes = plt.subplots(1, len(schemes), figsize=(4.2 * len(schemes), 3.4), squeeze=False)
     for ax, s in zip(axes[0], schemes, strict=True):
@@ -163,28 +175,43 @@ def _figure(rows, schemes, steps, grid, key, path):
     plt.close(fig)
 
 
-def order(a):
-    steps = _floats(a.steps)
-    fmus = dict(item.split("=", 1) for item in a.fmu)
-    cols = a.columns.split(",")
-    jobs = [(a.system, fmus, a.scheme, h, a.t_end, a.set) for h in [a.reference] + steps]
-    with ProcessPoolExecutor(max_workers=a.jobs) as ex:
-        results = list(ex.map(_cell, jobs))
+def order(
+    system: str | pathlib.Path,
+    scheme: str,
+    steps: list[float],
+    reference: float,
+    columns: list[str],
+    out: str | pathlib.Path | None = None,
+    t_end: float = 2.0,
+    sets: list[str] | None = None,
+    fmus: dict[str, str] | None = None,
+    jobs: int = 2,
+    command: str = "",
+) -> list[tuple[str, float]]:
+    """Runs `scheme` at each of `steps` and at `reference`, prints (and writes as OUT.md) the
+    largest difference of each of `columns` from the reference run, with the observed order
+    between neighbouring steps; the orders, (column, order) pairs."""
+    sets = list(sets or [])
+    fmus = dict(fmus or {})
+    cols = columns
+    runs = [(system, fmus, scheme, h, t_end, sets) for h in [reference] + steps]
+    with ProcessPoolExecutor(max_workers=jobs) as ex:
+        results = list(ex.map(_cell, runs))
     ref = results[0]
     if ref.stable is False:
         raise SystemExit(f"the reference run is not stable: {ref.message}")
     rt = ref.table()
     coarse = max(steps)
-    stride = int(round(coarse / a.reference))
+    stride = int(round(coarse / reference))
     md = [
-        f"Order of convergence: `{' '.join(sys.argv[1:])}`; largest difference from the "
-        f"reference (h = {a.reference:g} s) at every {coarse:g} s",
+        f"Order of convergence: `{command}`; largest difference from the "
+        f"reference (h = {reference:g} s) at every {coarse:g} s",
         "",
         "| h [ms] | " + " | ".join(cols) + " | stable | wall [s] |",
         "|---" * (len(cols) + 3) + "|",
     ]
-    prev = None
-    orders = []
+    prev: tuple[list[float], float] | None = None
+    orders: list[tuple[str, float]] = []
     for h, r in zip(steps, results[1:], strict=True):
         t = r.table()
         k = int(round(coarse / h))
@@ -205,42 +232,9 @@ def order(a):
         prev = (errs, h)
         md.append(f"| {1e3 * h:g} | " + " | ".join(cells) + f" | {r.stable} | {r.wall_s:.1f} |")
     text = "\n".join(md)
-    if a.out:
-        pathlib.Path(a.out).parent.mkdir(parents=True, exist_ok=True)
-        pathlib.Path(a.out).with_suffix(".md").write_text(text + "\n")
+    if out:
+        pathlib.Path(out).parent.mkdir(parents=True, exist_ok=True)
+        pathlib.Path(out).with_suffix(".md").write_text(text + "\n")
     print(text)
     print(json.dumps({"orders": orders}))
-
-
-def main(argv=None):
-    p = argparse.ArgumentParser(
-        prog="hybeam-cosim-study",
-        description=__doc__.splitlines()[0],
-        epilog=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    sub = p.add_subparsers(dest="study", required=True)
-    m = sub.add_parser("map", help="stability map")
-    m.add_argument("system")
-    m.add_argument("--scheme", action="append", required=True)
-    m.add_argument("--steps", required=True, help="communication steps [s], comma separated")
-    m.add_argument("--grid", required=True, metavar="FMU.KEY=V1,V2,...")
-    m.add_argument("--out", default="out/coupling_map")
-    o = sub.add_parser("order", help="order of convergence in the communication step")
-    o.add_argument("system")
-    o.add_argument("--scheme", required=True)
-    o.add_argument("--steps", required=True)
-    o.add_argument("--reference", type=float, required=True)
-    o.add_argument("--columns", required=True)
-    o.add_argument("--out")
-    for x in (m, o):
-        x.add_argument("--t-end", type=float, default=2.0)
-        x.add_argument("--set", action="append", default=[])
-        x.add_argument("--fmu", action="append", default=[])
-        x.add_argument("--jobs", type=int, default=2)
-    a = p.parse_args(argv)
-    (stability_map if a.study == "map" else order)(a)
-
-
-if __name__ == "__main__":
-    main()
+    return orders
