@@ -451,10 +451,18 @@ fn driven_histories_match_the_recordings() {
     }
 }
 
+/// A recorded setting: (recording, scene, overrides `(key, TOML value)`, t_end [s]).
+type Setting = (
+    &'static str,
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    f64,
+);
+
 /// The shipped settings no scene file holds (issue 38): the angle element, the 3D cable
 /// (`torsion = false`) and ESDIRK4, planar and spatial: (recording, scene, overrides, t_end).
 /// Recorded at commit 6cf647b's engine; every later change keeps them bit for bit.
-const SETTINGS: [(&str, &str, &[(&str, &str)], f64); 5] = [
+const SETTINGS: [Setting; 5] = [
     (
         "setting_angle",
         "case1_3d_ancf",
