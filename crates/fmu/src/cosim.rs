@@ -64,10 +64,6 @@ impl BeamFmu {
             .record(&self.sim, &self.outputs, &self.scene, &self.table);
     }
 
-    /// The `.pvd` collection of the views, if they are open.
-    pub fn view_collection(&self) -> Option<std::path::PathBuf> {
-        self.views.collection()
-    }
     /// modelDescription.xml of the FMU of `scene_toml` with this modelIdentifier, from the
     /// scene alone (its variable table and default experiment): no simulator is built.
     pub fn model_description(scene_toml: &str, model_identifier: &str) -> Result<String, String> {
