@@ -26,7 +26,7 @@
 //! Newton block ([`ModalBody3::newton_block`]).
 
 use super::basis::ModalBasis;
-use super::body::{panels, point_fields, Nonlinear};
+use super::nonlinear::{panels, point_fields, Nonlinear};
 use crate::math;
 use crate::model::sample::{minimal_frame, ShapePoint};
 use crate::model::vector::{add, cross, dot, scale, Real, V3};
