@@ -65,10 +65,10 @@ impl Ancf3Props {
         [[h, 0.0], [0.0, h]]
     }
 
-    /// The director inertia beyond the constant mass pattern at (e, ė, ë), with torsion (zero
-    /// without) [N, N m]: at each node (weight w = l/2) the kinetic energy ½wρI_p|v|² of the
-    /// director rate relative to the tangent's rotation, v = ṙ_y − w_t × r_y, w_t = (r_x ×
-    /// ṙ_x)/|r_x|² (twist only, see the module doc), less ½wρI_p|ṙ_y|² (the pattern's).
+    /// The director inertia beyond the constant mass pattern at (e, ė, ë) of the director element
+    /// (zero for the 3D cable) [N, N m]: at each node (weight w = l/2) the kinetic energy
+    /// ½wρI_p|v|² of the director rate relative to the tangent's rotation, v = ṙ_y − w_t × r_y, w_t
+    /// = (r_x × ṙ_x)/|r_x|² (twist only, see the module doc), less ½wρI_p|ṙ_y|² (the pattern's).
     pub fn director_inertia<const D: usize>(
         &self,
         tab: &Tables3,
@@ -221,7 +221,7 @@ impl Ancf3Props {
         ]
     }
 
-    /// Section-director measures of an element with torsion at `e` (18 entries): the twist
+    /// Section-director measures of the director element at `e` (18 entries): the twist
     /// within the element [rad], |φ| = |τ_e| l ([`twist_angle`]: the angle about the node-1
     /// tangent between the node-1 section axis and the node-0 one carried along by parallel
     /// transport; π if a tangent turns back), and the smaller of the two nodes' sines of the
@@ -257,9 +257,9 @@ impl Ancf3Props {
         (if twist.is_nan() { worst } else { twist }, sine)
     }
 
-    /// Strain measures (ε, κ2, κ3, τ_e) at ξ ∈ [0, 1] of an element with torsion (τ_e the
+    /// Strain measures (ε, κ2, κ3, τ_e) at ξ ∈ [0, 1] of the director element (τ_e the
     /// element's twist rate, [`Ancf3Props::twist_rate`]).
-    pub fn strains_at(&self, e: &[f64; TORSION_DOFS], xi: f64) -> [f64; 4] {
+    pub fn strains_at(&self, e: &[f64; DIRECTOR_DOFS], xi: f64) -> [f64; 4] {
         let l = self.length;
         let (_, ds, dds) = hermite(xi, l);
         let (rs, ys) = self.slots();

@@ -10,7 +10,7 @@
 //! The 3D cable and the director element share [`Ancf3Props`] (its `torsion` flag chooses):
 //! this file holds their common parts (properties, quadrature tables, mass, gravity, the
 //! stretching, the assembly of the element force and its tangent), `cable.rs` and
-//! `director.rs` each family's own terms; the angle element ([`angle::AngleProps`]) is built
+//! `director.rs` each family's own terms; the angle element ([`angle::Angle3`]) is built
 //! on a 3D cable's properties.
 //!
 //! Coordinates (global axes), node 0 then node 1. x is the arc length of the straight reference
@@ -47,11 +47,11 @@ use kernel::*;
 pub use kernel::{strains, twist_angle};
 pub use mass::{straight, MassPatterns};
 
-/// Coordinates of an element with torsion (2 nodes × [r, r_x, r_y]).
-pub const TORSION_DOFS: usize = 18;
-/// Coordinates of a cable element (2 nodes × [r, r_x]).
+/// Coordinates of the director element (2 nodes × [r, r_x, r_y]).
+pub const DIRECTOR_DOFS: usize = 18;
+/// Coordinates of the 3D cable (2 nodes × [r, r_x]).
 pub const CABLE_DOFS: usize = 12;
-/// Starts of the nodal vectors of the element twist in an element with torsion: r_x,0, r_y,0,
+/// Starts of the nodal vectors of the element twist in the director element: r_x,0, r_y,0,
 /// r_x,1, r_y,1.
 const TWIST_SLOTS: [usize; 4] = [3, 6, 12, 15];
 /// Penalty factor c of the nodal r_y penalty k = c·GJ/l_e² [-].
@@ -82,7 +82,8 @@ pub struct Ancf3Props {
     pub gj: f64,
     /// Kelvin–Voigt retardation time τ_d [s] (0 = no damping).
     pub damping_time: f64,
-    /// With torsion: nodes [r, r_x, r_y] (18 coordinates); without: the cable [r, r_x] (12).
+    /// True: the director element, nodes [r, r_x, r_y] (18 coordinates); false: the 3D cable,
+    /// nodes [r, r_x] (12). The scene's `torsion`, the public key, keeps its name.
     pub torsion: bool,
 }
 
@@ -113,7 +114,8 @@ struct BendPoint {
 
 impl Ancf3Props {
     /// Properties of the elements of an ANCF `segment` of a validated scene, split into its
-    /// `elements` equal elements, with or without torsion (the scene's `torsion`). Refuses
+    /// `elements` equal elements: the director element with torsion, the 3D cable without (the
+    /// scene's `torsion`). Refuses
     /// what this element cannot represent, naming the segment, field and fix: the paper's
     /// simplified strain model, and E·I_y ≠ E·I_z without torsion ([`Ancf3Props::check`]).
     pub fn of_segment(segment: &Segment, torsion: bool) -> Result<Self, String> {
@@ -144,10 +146,10 @@ impl Ancf3Props {
         Ok(props)
     }
 
-    /// Number of element coordinates (18 with torsion, 12 without).
+    /// Number of element coordinates (18 for the director element, 12 for the 3D cable).
     pub fn dofs(&self) -> usize {
         if self.torsion {
-            TORSION_DOFS
+            DIRECTOR_DOFS
         } else {
             CABLE_DOFS
         }
@@ -176,7 +178,7 @@ impl Ancf3Props {
 
     /// Constant part of the consistent mass matrix, row-major d × d (d = [`Ancf3Props::dofs`])
     /// [kg, kg m, kg m²]: ρA ∫SᵀS dx ⊗ I₃ on the r-blocks plus ρI_p l/2 I₃ per node (lumped) on the
-    /// r_y blocks (with torsion the configuration-dependent rest is
+    /// r_y blocks (the director element's configuration-dependent rest is
     /// [`Ancf3Props::director_tangent`]'s).
     pub fn mass_matrix(&self) -> Vec<f64> {
         let d = self.dofs();
@@ -235,11 +237,11 @@ impl Ancf3Props {
 
     /// Generalized gravity force ∫ρA S_rᵀ g dx = ρA l [½, l/12, ½, −l/12] ⊗ g on the r-blocks
     /// (first d entries used) [N, N m].
-    pub fn gravity_force(&self, g: [f64; 3]) -> [f64; TORSION_DOFS] {
+    pub fn gravity_force(&self, g: [f64; 3]) -> [f64; DIRECTOR_DOFS] {
         let l = self.length;
         let w = [0.5, l / 12.0, 0.5, -l / 12.0];
         let (rs, _) = self.slots();
-        let mut f = [0.0; TORSION_DOFS];
+        let mut f = [0.0; DIRECTOR_DOFS];
         for j in 0..4 {
             for c in 0..3 {
                 f[rs[j] + c] = self.rho_a * l * w[j] * g[c];
@@ -524,9 +526,9 @@ impl Ancf3Props {
         worst
     }
 
-    /// The centreline at ξ ∈ [0, 1] of the element at `e`, `ed` (d entries each): r = S e,
-    /// ṙ = S ė, the section frame (with torsion: Gram–Schmidt of r_x and the interpolated r_y,
-    /// so the twist shows; without: the smallest rotation of (e_y, e_z) onto the tangent), and
+    /// The centreline at ξ ∈ [0, 1] of the element at `e`, `ed` (d entries each): r = S e, ṙ = S ė,
+    /// the section frame (the director element: Gram–Schmidt of r_x and the interpolated r_y, so
+    /// the twist shows; the 3D cable: the smallest rotation of (e_y, e_z) onto the tangent), and
     /// the element's own strain measures ε, (κ2, κ3), τ (the module doc); the cable's curvature
     /// vector r_x × r_xx/|r_x|² on its frame, no twist.
     pub fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
