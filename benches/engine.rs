@@ -8,7 +8,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::integrator::{EvalRequest, Integrable, StateRef};
 use hybeam::linalg::{LuMethod, INVERSE_MAX_DIM};
 use hybeam::model::ancf::{straight, AncfProps, Vec8};
-use hybeam::model::ancf3d::angle::AngleProps;
+use hybeam::model::ancf3d::angle::Angle3;
 use hybeam::model::ancf3d::Ancf3Props;
 use hybeam::model::modal::{BodyOut, ModalBasis, ModalBody};
 use hybeam::model::{Model, Planar, Space, Spatial};
@@ -211,7 +211,7 @@ fn spatial_sweep(c: &mut Criterion) {
 
 /// Cost per step against the number of elements, for every family of the peer comparison
 /// (issue 23: linear from 8 to 512): Case 1 as planar all-ANCF, hybrid (modal + n ANCF
-/// elements), 3D cable and the 3D torsion elements (director and angle), h = 1e-4 s, after
+/// elements), the 3D cable, the director element and the angle element, h = 1e-4 s, after
 /// 0.05 s of the released fall.
 /// Prints best-of-7 batches per step and the log–log slope between 8 and 512 elements to stderr.
 fn step_sweep(_c: &mut Criterion) {
@@ -256,7 +256,7 @@ fn step_sweep(_c: &mut Criterion) {
             let s = sized("case1_3d_ancf.toml", 0, n, Some(false));
             per_step(Simulator::<Spatial>::start_at(s, 0.0).unwrap(), n)
         }),
-        ("3D torsion element", &|n| {
+        ("3D director element", &|n| {
             let s = sized("case1_3d_ancf.toml", 0, n, Some(true));
             per_step(Simulator::<Spatial>::start_at(s, 0.0).unwrap(), n)
         }),
@@ -344,7 +344,7 @@ fn spatial_element(c: &mut Criterion) {
 /// the same bent state as [`spatial_element`]: forces, tangent, and the nodal twist inertia.
 fn angle_element(c: &mut Criterion) {
     let e2 = straight([0.0, 0.0], 0.1, 0.025);
-    let p = AngleProps::new(bench_props(false), [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]).unwrap();
+    let p = Angle3::new(bench_props(false), [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]).unwrap();
     let tab = p.tables();
     let mut e = [0.0; 14];
     for node in 0..2 {

@@ -11,104 +11,9 @@
 //! spatial scene to its `simulation.t_end`, all FMU outputs, and four scenes (planar and spatial, fixed and mounted)
 //! under inputs, input derivatives, a mount path and a snapshot restored halfway.
 //!
-//! Re-recorded for issue 23's clamp (the all-ANCF root's slope held in direction only, its
-//! axial stretch free: `src/model/direction.rs`): the all-ANCF scenes `case{1,2,3}_ancf`,
-//! `case{1,2,3}_3d_ancf`, `soft_rod` and the statics table. Largest changes against the
-//! recordings before (`tests/golden` at commit 7a8a229 vs the re-recording): Case 1 tip 1.6e-8 m of a 9.5 mm
-//! swing, Case 2 and 3 below 3e-9 m, the statics table's tip 1.4e-7 m (root moment 1.9e-4 N m
-//! of the elastica's), the soft rod's tip 1.0e-3 m of its 0.46 m whip; the hybrid and modal
-//! scenes are bit-identical.
-//!
-//! Re-recorded for issue 23's band LU (`src/linalg/band.rs`: the Newton matrix factorized in band
-//! storage in reverse Cuthill–McKee order instead of faer's sparse LU; same equations, other
-//! round-off, each step converged to the same Newton tolerance): every file. Largest tip-position
-//! change against the recordings before (commit 36ff72b): 1.3e-8 m (`strip_3d`), 1.1e-8 m
-//! (`case3_modal`), ≤ 7.3e-9 m for Cases 1–3 and the soft rod, ≤ 4e-14 m for Case 1, the
-//! booms and the driven histories; the axial root force, which the Newton tolerance fixes only
-//! to about EA·tol·L/l_e ≈ 1e-4 N, moved by at most 6.4e-6 N (`case2`).
-//!
-//! Re-recorded for issue 23's director inertia (the torsion element's twist director carries the
-//! twist's inertia only, `src/model/ancf3d/`): the scenes whose torsion elements bend in the
-//! director's plane. Largest tip-position change: `strip_3d` 9.7e-6 m (of a 4.8e-2 m swing),
-//! `case1_3d_mounted` 1.5e-7 m, the driven spatial histories ≤ 4.2e-9 m; `boom_3d` only in
-//! outputs other than the tip position; planar and x–z bending scenes bit-identical.
-//!
-//! Re-recorded for issue 23's explicit inverse (`DenseInverse` in `src/linalg/band.rs`: systems of
-//! at most 48 unknowns are solved by a product with the inverse of the band factors; same
-//! equations, other round-off): the scenes that small — the modal and hybrid ones, the boom, the
-//! driven Case 1 and boom, the statics table. Largest tip-position change against the recordings
-//! before (commit 993bf74): `case3_3d_modal` 1.0e-7 m (round-off of 1e-17 m at 0.01 s growing
-//! steadily through its large modal swing), `case2` 5.1e-9 m, `case3_modal` 1.6e-9 m, `case1`
-//! 2.3e-10 m, the booms and driven histories ≤ 2.6e-14 m; the root forces, which the Newton
-//! tolerance fixes only to about 1e-4 N, by ≤ 1.1e-5 N.
-//!
-//! Re-recorded for the geometrically nonlinear planar modal body (branch modal-nl,
-//! `src/model/modal/body.rs`: the foreshortening of every point in the inertia and gravity
-//! forces, the inextensible curvature κ = w″(1 + ½w′²), the modal tip angle θ + atan2(w′,
-//! 1 − ½w′²)): every planar scene with a modal segment. Largest tip-position change against the
-//! recordings before (commit 993bf74): `case3_modal` 1.39e-3 m of a 4.8e-2 m swing (its distance
-//! to the all-ANCF Case 3 at h = 1e-5 s falls from 1.40e-3 to 1.9e-5 m), `case1_modal`
-//! 4.4e-5 m and `case1` 3.7e-5 m of 9.5e-3 m (the old floor against the all-ANCF beam),
-//! `case2_modal` 7.8e-6 m, `driven_case1` 7.2e-6 m, `case2` 5.6e-6 m, `case3` 4.0e-6 m,
-//! `boom` 2.4e-8 m (at rest: the static sag), `driven_boom` 7.9e-8 m; `soft_rod_modal` 8.1e-4 m
-//! of 0.14 m before its refusal at 0.16 s (unchanged), `soft_rod_hybrid` 1.4e-5 m of 8.0e-2 m,
-//! now refused at 0.14 s instead of 0.13 s; the statics table's hybrid and all-modal rows:
-//! tip ≤ 7.9e-6 m, tip angle ≤ 2.2e-5 rad, root moment ≤ 5.8e-6 N m (all-ANCF rows, every
-//! all-ANCF and spatial scene bit-identical). Merged after the explicit inverse and re-recorded:
-//! against the branch's recordings round-off only (tip ≤ 1.0e-7 m `case3_3d_modal`, ≤ 9.3e-9 m
-//! elsewhere), so the changes above hold against commit a3d7c6b too.
-//!
-//! Re-recorded for the geometrically nonlinear spatial modal body (branch modal3d-nl,
-//! `src/model/modal/body3d.rs`: the foreshortening of every point ū = (x − ½∫(v′² + w′²), v, w)
-//! in the inertia and gravity forces, the inextensible curvatures κ_z = v″(1 + ½v′²) + v′w′w″,
-//! κ_y = w″(1 + ½w′²), the tip directors turned by the field's tangent angle atan2(σ,
-//! 1 − ½σ²)): every spatial scene with a modal segment. Largest tip-position change against the
-//! recordings before (commit 45c36b2): `strip_3d` 1.80e-3 m of a 5.6e-2 m swing,
-//! `case3_3d_modal` 1.39e-3 m of 4.8e-2 m, `case1_3d_mounted` 8.3e-5 m (of its 6.0 m carried
-//! motion), `case1_3d_modal` 4.4e-5 m and `case1_3d` 3.7e-5 m of 9.5e-3 m (the planar twins'
-//! changes: the spatial hybrid's floor against the all-ANCF beam falls from 8.8e-5 to 2.3e-7 m,
-//! docs/engine-findings.md), `driven_case1_3d_mounted` 1.5e-5 m, `case2_3d_modal` 7.8e-6 m,
-//! `driven_case1_3d` 7.3e-6 m, `case2_3d` 5.6e-6 m, `case3_3d` 4.0e-6 m, `boom_3d` 2.4e-8 m
-//! (at rest: the static sag); root forces by ≤ 2.3e-3 N. Every planar and all-ANCF recording
-//! bit-identical.
-//!
-//! Re-recorded for issue 23's element twist (the torsion element's twist from its nodal frames by
-//! parallel transport, `src/model/ancf3d/`, instead of the Gauss-point twist of the linear r_y):
-//! the scenes whose torsion elements twist or bend out of the director's planes. Largest
-//! tip-position change against the recordings before (the branch base f455578): `strip_3d`
-//! 1.5e-9 m (of a 5.6e-2 m swing), `case1_3d_mounted` 5.8e-11 m, `driven_case1_3d_mounted`
-//! 8.1e-12 m, `driven_case1_3d` 2.9e-14 m; the largest change of any output, the tip's angular
-//! velocity, 2.5e-6 rad/s (`strip_3d`); every other file bit-identical.
-//!
-//! Re-recorded for issue 23's nodal director inertia (the torsion element's twist director
-//! inertia and its r_y mass lumped at the nodes instead of the 3 Gauss points and the consistent
-//! pattern, `src/model/ancf3d/`): every spatial scene with torsion elements. Largest tip-position
-//! change against the recordings before (commit 45c36b2): `case1_3d_mounted` 1.7e-8 m (of a
-//! 6.0 m path), `strip_3d` 5.7e-9 m, `case2_3d` 4.0e-9 m, `case3_3d` 2.9e-9 m, the driven
-//! histories ≤ 1.3e-9 m, Case 1 ≤ 2.9e-14 m; the tip's twist rate under the driven tip moment
-//! (`driven_case1_3d*`, a ~2 kHz torsion oscillation sampled at 2 ms) by up to 1.5 of 7.5 rad/s:
-//! the chain's twist frequency moved from above the rod's to below it (consistent → lumped
-//! r_y mass: +0.16 % → −0.16 % for 8 clamped elements), a phase shift over hundreds of
-//! periods; the cable, modal and planar scenes bit-identical.
-//!
-//! Re-recorded for the torsion element's cable bending measure (an undamped round section's
-//! bending points take ½EI|r_x × r_xx|²/|r_x|⁴, the same energy as the material frame's, other
-//! round-off; `Ancf3Props::cable_bending`): the undamped spatial torsion scenes. Largest
-//! tip-position change against the recordings before (commit 99ed2f8): `case1_3d_mounted`
-//! 4.3e-10 m, `case1_3d` 2.3e-10 m, the others ≤ 4.3e-14 m; the root forces (Newton
-//! tolerance) ≤ 3.2e-6 N.
-//!
-//! Both branches merged (the nonlinear spatial modal body with the nodal director inertia and
-//! the cable bending measure) and re-recorded: against the modal3d-nl branch's recordings the
-//! changes are the torsion element's above (tip ≤ 1.2e-8 m `case1_3d_mounted`, ≤ 9.7e-9 m
-//! elsewhere; the driven twist rate's phase as above).
-//!
-//! Re-recorded for the modal segments' Kelvin–Voigt damping of the whole inextensible curvature
-//! (session 17, `src/model/modal/body.rs`, `body3d.rs`; docs/engine-findings.md): every scene
-//! with a damped modal segment. Largest tip-position change against the recordings before
-//! (commit ae0a690): `strip_3d` 2.2e-5 m, `case3_modal` and `case3_3d_modal` 1.83e-5 m each
-//! (the planar and spatial twins alike), `case2_modal`, `case2_3d_modal` 3.3e-7 m, `case2`,
-//! `case2_3d` 2.7e-7 m, `case3`, `case3_3d` 1.6e-7 m; every other file bit-identical.
+//! Every re-recording so far (what changed, why, and by how much against the recordings
+//! before) is logged in docs/engine-findings.md, section "Golden re-recordings"; a new one adds
+//! its paragraph there.
 //!
 //! Re-record (only when a physics change is intended and explained), e.g. the spatial ones:
 //! `HYBEAM_RECORD_GOLDEN=1 cargo test --test golden spatial`.
@@ -451,10 +356,18 @@ fn driven_histories_match_the_recordings() {
     }
 }
 
+/// A recorded setting: (recording, scene, overrides `(key, TOML value)`, t_end [s]).
+type Setting = (
+    &'static str,
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    f64,
+);
+
 /// The shipped settings no scene file holds (issue 38): the angle element, the 3D cable
 /// (`torsion = false`) and ESDIRK4, planar and spatial: (recording, scene, overrides, t_end).
 /// Recorded at commit 6cf647b's engine; every later change keeps them bit for bit.
-const SETTINGS: [(&str, &str, &[(&str, &str)], f64); 5] = [
+const SETTINGS: [Setting; 5] = [
     (
         "setting_angle",
         "case1_3d_ancf",

@@ -233,7 +233,7 @@ fn rigid_inertia_of_a_straight_rod_is_the_closed_form() {
         assert!(o.center_of_mass[1].abs() < 1e-14 && o.center_of_mass[2].abs() < 1e-14);
         // a rigid round rod: I_yy = I_zz = mL²/3 + ρIL, I_xx = ρI_pL (I = I_p/2); the
         // elements carry the section's rotary inertia at most where a director turns (the
-        // twist director r_y, about the axis only), a 5e-6 share here
+        // director element's r_y, about the axis only), a 5e-6 share here
         let rod = m * l * l / 3.0 + ip / 2.0;
         for k in [4, 8] {
             assert!(

@@ -1,7 +1,8 @@
 //! The engine's transcendental functions come from `src/math.rs` (the `libm` crate, the same
 //! bits on every target), never from std's `f64` methods, which call the platform's C library
 //! and made the win64 and linux64 FMUs differ (docs/platforms.md). Scans `src/` outside test
-//! modules (code generic over num-dual numbers uses `math::sin_cos_dual`).
+//! modules (an inline one closes its file; an out-of-line one is a `tests.rs`). Code generic
+//! over num-dual numbers uses `math::sin_cos_dual`.
 
 use std::path::Path;
 
@@ -33,7 +34,11 @@ fn scan(dir: &Path, found: &mut Vec<String>) {
             scan(&path, found);
             continue;
         }
-        if path.extension().is_none_or(|e| e != "rs") || path.ends_with("math.rs") {
+        // `tests.rs`: a test module in its own file (`#[cfg(test)] mod tests;`)
+        if path.extension().is_none_or(|e| e != "rs")
+            || path.ends_with("math.rs")
+            || path.ends_with("tests.rs")
+        {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();

@@ -217,7 +217,7 @@ fn gravity_in_any_transverse_direction_gives_the_same_deflection() {
         let reference = static_tip::<Planar>(&planar).tip_position;
         let dref = ((reference[0] - 0.4).powi(2) + reference[1].powi(2)).sqrt();
         for torsion in [false, true] {
-            // the cable's bending energy is isotropic, and so is the torsion element's since
+            // the cable's bending energy is isotropic, and so is the director element's since
             // its twist comes from the nodal frames by parallel transport (zero for any
             // twist-free bending plane; measured ≤ 2.8e-15 with torsion, −5.0e-7 oblique with
             // the earlier Gauss-point twist of the linear r_y)
@@ -368,7 +368,7 @@ fn b3_oblique_tip_force_gives_the_rotated_planar_elastica() {
     // 8, 16, 32 elements)
     assert!(errs.iter().all(|e| e.1 < 1e-14), "{errs:?}");
     assert!(errs[2].0 < 3e-5, "{errs:?}");
-    // the cable (isotropic, no twist director) stays in the plane exactly
+    // the cable (isotropic, no section director) stays in the plane exactly
     assert!(errs[3].0 < 2e-5 && errs[3].1 < 1e-12, "{errs:?}");
 }
 

@@ -1,4 +1,4 @@
-//! Issue 23: the ANCF element with a twist director is isotropic in bending. A round rod with
+//! Issue 23: the director element is isotropic in bending. A round rod with
 //! torsion, clamped, loaded at the tip by a force in the y–z plane at 0°, 30°, 45° and 90°:
 //! statics (Newton on the static residual) and a short step-load dynamic run at fixed steps
 //! give deflections of equal magnitude along the load (the independent reference: the same

@@ -9,7 +9,9 @@
 //! converge is rejected with the state untouched; it is never accepted.
 
 use super::newton::{Newton, Rates};
-use super::{Counters, EvalRequest, Integrable, IntegrationParameters, State};
+use super::{
+    Counters, EvalRequest, Integrable, IntegrationParameters, IntegratorMemory, State, StepFailure,
+};
 use crate::math;
 
 /// The four generalized-α coefficients from ρ∞.
@@ -41,39 +43,6 @@ impl AlphaParams {
     }
 }
 
-/// Why a step failed.
-#[derive(Debug, Clone, PartialEq)]
-pub enum StepFailure {
-    /// Newton did not converge within the iteration limit.
-    NoConvergence {
-        /// Step size tried [s].
-        h: f64,
-        /// Last scaled increment norm (1 = tolerance).
-        last_norm: f64,
-    },
-    /// The Newton matrix is singular or produced non-finite values.
-    Singular {
-        /// Step size tried [s].
-        h: f64,
-    },
-}
-
-impl std::fmt::Display for StepFailure {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            StepFailure::NoConvergence { h, last_norm } => write!(
-                f,
-                "Newton did not converge at step {h:.3e} s (last increment {last_norm:.2e} x tolerance)"
-            ),
-            StepFailure::Singular { h } => {
-                write!(f, "singular or non-finite Newton matrix at step {h:.3e} s")
-            }
-        }
-    }
-}
-
-impl std::error::Error for StepFailure {}
-
 /// The integrator with its reusable work arrays and Jacobian policy.
 #[derive(Debug, Clone)]
 pub struct GeneralizedAlpha {
@@ -85,30 +54,6 @@ pub struct GeneralizedAlpha {
     /// Newton convergence-rate estimate η = ρ/(1 − ρ) carried across steps.
     eta: f64,
     trial: State,
-}
-
-/// The state and step size at which the held Newton matrix was evaluated.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct JacobianPoint {
-    /// Step size [s].
-    pub h: f64,
-    /// Coordinates, velocities, accelerations and scaled multipliers of the evaluation.
-    pub q: Vec<f64>,
-    /// q̇.
-    pub v: Vec<f64>,
-    /// q̈.
-    pub acc: Vec<f64>,
-    /// λ̃ = βh²λ.
-    pub lam: Vec<f64>,
-}
-
-/// Integrator memory beyond the state: what a snapshot must carry for a bit-identical restart.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct IntegratorMemory {
-    /// Convergence-rate estimate.
-    pub eta: f64,
-    /// Jacobian evaluation point, if a factorization is held.
-    pub jacobian: Option<JacobianPoint>,
 }
 
 impl GeneralizedAlpha {

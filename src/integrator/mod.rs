@@ -3,18 +3,17 @@
 //! the coordinate update. Nothing here imports the model.
 
 mod consistent;
+mod esdirk;
 mod generalized_alpha;
 mod newton;
 mod parameters;
-mod sdirk;
 mod seam;
 mod statics;
 
-pub use generalized_alpha::{
-    AlphaParams, GeneralizedAlpha, IntegratorMemory, JacobianPoint, StepFailure,
-};
+pub use esdirk::{Esdirk, Tableau, ESDIRK4};
+pub use generalized_alpha::{AlphaParams, GeneralizedAlpha};
+pub use newton::{IntegratorMemory, JacobianPoint, StepFailure};
 pub use parameters::*;
-pub use sdirk::{Sdirk, Tableau, ESDIRK4};
 pub use seam::{constraint_rows, EvalRequest, Integrable, StateRef};
 pub use statics::{solve_relative_static, solve_static, StaticFailure};
 
@@ -51,13 +50,23 @@ impl State {
     }
 }
 
+/// `$body` with `$i` bound to the integrator of either method (the [`Integrator`] forwarders).
+macro_rules! each {
+    ($any:expr, $i:ident => $body:expr) => {
+        match $any {
+            Integrator::Alpha($i) => $body,
+            Integrator::Esdirk($i) => $body,
+        }
+    };
+}
+
 /// The integrator a scene asks for ([`Method`]), behind one interface.
 #[derive(Debug, Clone)]
 pub enum Integrator {
     /// Generalized-α.
     Alpha(GeneralizedAlpha),
     /// The order-4 ESDIRK.
-    Sdirk(Sdirk),
+    Esdirk(Esdirk),
 }
 
 impl Integrator {
@@ -65,40 +74,28 @@ impl Integrator {
     pub fn new(params: &IntegrationParameters, n: usize, m: usize) -> Self {
         match params.method {
             Method::GeneralizedAlpha => Self::Alpha(GeneralizedAlpha::new(params, n, m)),
-            Method::Esdirk4 => Self::Sdirk(Sdirk::new(params, &ESDIRK4, n, m)),
+            Method::Esdirk4 => Self::Esdirk(Esdirk::new(params, &ESDIRK4, n, m)),
         }
     }
 
     /// Work counters.
     pub fn counters(&self) -> &Counters {
-        match self {
-            Self::Alpha(g) => g.counters(),
-            Self::Sdirk(s) => s.counters(),
-        }
+        each!(self, i => i.counters())
     }
 
     /// Work counters, to count rejections.
     pub fn counters_mut(&mut self) -> &mut Counters {
-        match self {
-            Self::Alpha(g) => g.counters_mut(),
-            Self::Sdirk(s) => s.counters_mut(),
-        }
+        each!(self, i => i.counters_mut())
     }
 
     /// Forgets the held Jacobian.
     pub fn invalidate(&mut self) {
-        match self {
-            Self::Alpha(g) => g.invalidate(),
-            Self::Sdirk(s) => s.invalidate(),
-        }
+        each!(self, i => i.invalidate())
     }
 
     /// The memory a snapshot must carry.
     pub fn memory(&self) -> IntegratorMemory {
-        match self {
-            Self::Alpha(g) => g.memory(),
-            Self::Sdirk(s) => s.memory(),
-        }
+        each!(self, i => i.memory())
     }
 
     /// Restores memory (the held Newton matrix rebuilt where it was evaluated).
@@ -107,10 +104,7 @@ impl Integrator {
         model: &mut M,
         mem: &IntegratorMemory,
     ) -> Result<(), StepFailure> {
-        match self {
-            Self::Alpha(g) => g.restore_memory(model, mem),
-            Self::Sdirk(s) => s.restore_memory(model, mem),
-        }
+        each!(self, i => i.restore_memory(model, mem))
     }
 
     /// Consistent initial accelerations and multipliers ([`GeneralizedAlpha::initialize`]).
@@ -119,10 +113,7 @@ impl Integrator {
         model: &mut M,
         s: &mut State,
     ) -> Result<(), StepFailure> {
-        match self {
-            Self::Alpha(g) => g.initialize(model, s),
-            Self::Sdirk(k) => k.initialize(model, s),
-        }
+        each!(self, i => i.initialize(model, s))
     }
 
     /// A jump of the inputs at t_n ([`GeneralizedAlpha::change_inputs`]; for the ESDIRK, a
@@ -133,10 +124,7 @@ impl Integrator {
         s: &mut State,
         change: impl FnOnce(&mut M),
     ) -> Result<(), StepFailure> {
-        match self {
-            Self::Alpha(g) => g.change_inputs(model, s, change),
-            Self::Sdirk(k) => k.change_inputs(model, s, change),
-        }
+        each!(self, i => i.change_inputs(model, s, change))
     }
 
     /// One step of size `h` from `s`; `at(model, dt)` sets the model's time-dependent inputs
@@ -154,7 +142,7 @@ impl Integrator {
                 at(model, h);
                 g.step(model, s, h)
             }
-            Self::Sdirk(k) => k.step(model, s, h, at),
+            Self::Esdirk(k) => k.step(model, s, h, at),
         }
     }
 }

@@ -254,11 +254,6 @@ impl<S: Space> Model<S> {
         &self.q0
     }
 
-    /// How the Newton matrix is factorized ([`NewtonLu`] chooses by the band width).
-    pub fn lu_method(&self) -> LuMethod {
-        self.lu.method()
-    }
-
     /// Factorizes the Newton matrix by `method` from now on (benchmarks and the tests that
     /// compare the two; results differ by round-off). The held factorization is dropped, so the
     /// caller's integrator must refactorize (`GeneralizedAlpha::invalidate`).

@@ -157,7 +157,7 @@ pub struct Validity {
     /// Elastic deflection of a small-deformation (modal) element, to be compared with the
     /// validity limit of a linear floating frame; `None` for large-deformation elements.
     pub modal_deflection: Option<f64>,
-    /// Section director of an ANCF element with torsion: (largest |twist| within one element
+    /// Section director of the director element: (largest |twist| within one element
     /// [rad], smallest sine of the angle between r_x and r_y at its nodes [-]); `None` for
     /// elements without a director.
     pub section: Option<(f64, f64)>,

@@ -88,11 +88,6 @@ impl Numbering {
         std::mem::take(&mut self.groups)
     }
 
-    /// Number of free coordinates so far.
-    pub fn free_count(&self) -> usize {
-        self.q0.len()
-    }
-
     /// (initial free coordinates, their scales, held values).
     pub fn finish(self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
         (self.q0, self.scale, self.held)

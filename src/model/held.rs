@@ -16,11 +16,6 @@ use super::space::{Motion, Space};
 type G = [f64; 4];
 
 impl<S: Space> Model<S> {
-    /// Whether the root is clamped to a moving mount.
-    pub fn is_mounted(&self) -> bool {
-        self.mount.is_some()
-    }
-
     /// The mount motion of the last Newton-matrix evaluation (`None` unless mounted).
     pub fn mount_at_matrix(&self) -> Option<Motion<S>> {
         self.mount_at_matrix.as_deref().copied()

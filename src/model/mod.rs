@@ -9,16 +9,22 @@
 //! * [`assembly`]: [`Model`], the sparse pattern and `eval` as loops over components;
 //! * [`outputs`]: [`Outputs`], energies, the support reaction, validity checks;
 //! * [`load`]: the dead point force at a port (tip force);
-//! * [`mount`]: the mounted root, dimension-free: [`Motion`] of the mount frame, its rigid
-//!   inertia ([`MountInertia`]), the held coordinates as rigid functions of the motion, the
-//!   relative static solve on a spinning mount.
+//! * [`walk`], [`build`](mod@build): the segment walk of a build, written once, and the build
+//!   of a scene in a space given as a type;
+//! * the mounted root, dimension-free: [`Motion`] of the mount frame ([`space`]), the held
+//!   coordinates as rigid functions of the motion and the relative static start on a spinning
+//!   mount ([`held`]), its rigid inertia ([`MountInertia`], [`inertia`]); the clamped slope
+//!   direction of an ANCF root ([`direction`]);
+//! * [`shape`], [`sample`]: the beam's shape at one state for viewers ([`Shape`],
+//!   [`ShapePoint`]).
 //!
 //! Planar ([`planar`]): [`Planar`], the components wrapping the kernels, the rigid joint, the
-//! root support, the mount's rigid motion of planar coordinate groups (`planar/mount.rs`) and
-//! the build from a scene. Spatial ([`spatial`]): [`Spatial`], the same parts in 3D (Euler
-//! parameters, spherical + DOT1 joint rows). Kernels (pure functions of local coordinates):
-//! [`ancf`] (planar ANCF cable), [`ancf3d`] (3D cable with a twist director), [`modal`] (shape
-//! basis, planar and spatial floating-frame bodies).
+//! root support, the rigid motion of planar coordinate groups ([`Space::carry`] in
+//! `planar/mod.rs`; the mount's path in `planar/frame.rs`) and the build from a scene. Spatial
+//! ([`spatial`]): [`Spatial`], the same parts in 3D (Euler parameters, spherical + DOT1 joint
+//! rows). Kernels (pure functions of local coordinates): [`ancf`] (planar ANCF cable),
+//! [`ancf3d`] (the spatial ANCF elements: the 3D cable, the director element and the angle
+//! element), [`modal`] (shape basis, planar and spatial floating-frame bodies).
 
 pub mod ancf;
 pub mod ancf3d;

@@ -246,15 +246,6 @@ impl<S: Space> Motion<S> {
         }
         out
     }
-
-    /// Whether the frame moves at all (a rate or an acceleration nonzero).
-    pub fn is_moving(&self) -> bool {
-        let nz = |v: &[f64]| v.iter().any(|x| *x != 0.0);
-        nz(self.velocity.as_ref())
-            || nz(self.acceleration.as_ref())
-            || nz(S::moment_components(&self.angular_velocity))
-            || nz(S::moment_components(&self.angular_acceleration))
-    }
 }
 
 /// Rates of change of the accelerations along a path: jerk and snap [m/s³, m/s⁴], angular

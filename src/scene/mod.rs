@@ -304,8 +304,9 @@ pub struct Scene {
     /// `planar` (default) or `spatial`.
     #[serde(default)]
     pub space: SpaceKind,
-    /// Spatial scenes: whether the ANCF elements carry a twist director r_y (torsion; 9
-    /// coordinates per node) or are 3D cables (r, r_x; 6 per node, no torque about the axis).
+    /// Spatial scenes: whether the ANCF elements carry torsion (the director element, a section
+    /// director r_y: 9 coordinates per node; or the angle element) or are 3D cables (r, r_x; 6
+    /// per node, no torque about the axis).
     #[serde(default = "Scene::default_torsion")]
     pub torsion: bool,
     /// Spatial scenes with torsion: the ANCF element that carries the twist, `"director"`

@@ -96,10 +96,6 @@ impl BeamFmu {
             .record(&self.sim, &self.outputs, &self.scene, tip);
     }
 
-    /// The `.pvd` collection of the views, if they are open.
-    pub fn view_collection(&self) -> Option<std::path::PathBuf> {
-        self.views.collection()
-    }
     fn refresh_outputs(&mut self) {
         self.outputs = self.feed.take(Evaluated::of(&mut self.sim));
     }

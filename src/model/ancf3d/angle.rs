@@ -1,4 +1,4 @@
-//! The spatial ANCF element with a nodal twist angle ("cable + twist angle", 14 coordinates):
+//! The angle element: the spatial ANCF element with a nodal twist angle (14 coordinates):
 //! nodes `[r, r_x, θ]` (global axes; [m], [-], [rad]), `torsion_element = "angle"`. Pure
 //! functions of the element coordinates, as the director element's ([`super::Ancf3Props`]);
 //! docs/references.md §7.7, docs/spatial.md.
@@ -11,12 +11,12 @@
 //! d⁰ (unit, ⟂ t⁰) carried by the smallest rotation P taking the reference axis t⁰ to the
 //! node's tangent t_i = r_x,i/|r_x,i|, then turned by θ_i about t_i: the smallest-rotation
 //! triad of Meier, Popp & Wall 2014 (CMAME 278:445–478; docs/references.md §7.7). It is
-//! defined unless a tangent turns onto −t⁰ ([`AngleProps::chart_margin`]): by the hairy-ball
+//! defined unless a tangent turns onto −t⁰ ([`Angle3::chart_margin`]): by the hairy-ball
 //! theorem no map from the tangent alone to a section axis is smooth on the whole sphere, so a
 //! node that must turn that far needs its reference (t⁰, d⁰) moved on (not done here: the
 //! simulator refuses such a step, [`crate::simulator::MIN_CHART_MARGIN`]).
 //!
-//! Stretching and bending are the 3D cable's ([`Ancf3Props`] without torsion): for a round
+//! Stretching and bending are the 3D cable's ([`Ancf3Props`] with `torsion` false): for a round
 //! section (E·I_y = E·I_z, required) the bending energy does not see the section frame. Twist:
 //! the director element's element twist ([`super::twist_angle`]: parallel transport of the
 //! nodal frames between the tangents, with the midpoint's Richardson step) of the frames (t_i,
@@ -54,7 +54,7 @@ const CABLE_SLOTS: [usize; CABLE_DOFS] = [0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12]
 
 /// Element properties (constant): the cable part and the reference frame of the angles.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AngleProps {
+pub struct Angle3 {
     /// Stretching and bending: the 3D cable (`torsion` false); also ρI_p, GJ and τ_d.
     pub cable: Ancf3Props,
     /// Reference axis t⁰ (unit, global axes): the straight initial element's axis.
@@ -63,7 +63,7 @@ pub struct AngleProps {
     pub d0: [f64; 3],
 }
 
-impl AngleProps {
+impl Angle3 {
     /// The element of `props` (round section: E·I_y = E·I_z, [`Ancf3Props::check`] of the
     /// cable) with reference axis `t0` and section axis `d0` (normalized here; `d0` made ⟂
     /// `t0`).

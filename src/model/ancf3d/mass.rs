@@ -43,7 +43,8 @@ impl MassPatterns {
 }
 
 /// Coordinates of a straight, unstretched element from `p0` with section frame `frame`
-/// (columns: axis x̄, section ȳ, z̄ in global axes), d entries (d = 18 with torsion).
+/// (columns: axis x̄, section ȳ, z̄ in global axes), d entries (d = 18 for the director
+/// element, 12 for the 3D cable).
 pub fn straight(p0: [f64; 3], frame: [[f64; 3]; 3], l: f64, torsion: bool) -> Vec<f64> {
     let [x, y, _] = frame;
     let mut e = Vec::with_capacity(18);

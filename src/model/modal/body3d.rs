@@ -26,7 +26,7 @@
 //! Newton block ([`ModalBody3::newton_block`]).
 
 use super::basis::ModalBasis;
-use super::body::{panels, point_fields, Nonlinear};
+use super::nonlinear::{panels, point_fields, Nonlinear};
 use crate::math;
 use crate::model::sample::{minimal_frame, ShapePoint};
 use crate::model::vector::{add, cross, dot, scale, Real, V3};
@@ -366,13 +366,6 @@ impl ModalBody3 {
     /// Whether the body carries damping.
     pub fn is_damped(&self) -> bool {
         self.damped
-    }
-
-    /// Bending frequencies of the clamped segment ω_k [rad/s]: (x–y plane, x–z plane).
-    pub fn bending_omegas(&self) -> (Vec<f64>, Vec<f64>) {
-        let m = self.mass();
-        let f = |k: &[f64]| k.iter().map(|k| (k / m).sqrt()).collect();
-        (f(&self.k_y), f(&self.k_z))
     }
 
     /// Torsion frequencies of the clamped segment [rad/s], ascending (K_t x = ω² M_t x).
@@ -892,21 +885,6 @@ impl ModalBody3 {
                 + gz.iter().zip(az).map(|(g, a)| g * a).sum::<f64>());
         let (d, _, _) = self.tip_elastic(q);
         ([self.props.length - short, d[0], d[1]], gy, gz)
-    }
-
-    /// Centerline point ū(ξ) = (ξL, φ(ξ)ᵀa_y, φ(ξ)ᵀa_z) in the body frame [m] and the section
-    /// twist θ(ξ) = χ(ξ)ᵀa_t [rad] (linear field, no foreshortening).
-    pub fn point_local(&self, q: &[f64], xi: f64) -> ([f64; 3], f64) {
-        let nb = self.modes();
-        let (mut v, mut w) = (0.0, 0.0);
-        for n in 0..nb {
-            let phi = self.basis.eval_one(n, xi)[0];
-            v += phi * q[7 + n];
-            w += phi * q[7 + nb + n];
-        }
-        let (chi, _) = torsion_shapes(xi);
-        let th = chi[0] * q[7 + 2 * nb] + chi[1] * q[8 + 2 * nb];
-        ([xi * self.props.length, v, w], th)
     }
 
     /// The centreline at each ξ ∈ [0, 1] of the ascending `xi` at (q, q̇) onto `out`: r = R +

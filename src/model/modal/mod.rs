@@ -3,6 +3,7 @@
 pub mod basis;
 pub mod body;
 pub mod body3d;
+mod nonlinear;
 
 pub use basis::ModalBasis;
 pub use body::{rot, BodyOut, ModalBody};

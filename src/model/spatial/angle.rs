@@ -7,7 +7,7 @@ use super::node::{
     frame_duals, gravity_potential, moment_stiffness, rotation_of, rotation_second_along, NodeFrame,
 };
 use super::Spatial;
-use crate::model::ancf3d::angle::{section_frame, AngleProps, ANGLE_DOFS};
+use crate::model::ancf3d::angle::{section_frame, Angle3, ANGLE_DOFS};
 use crate::model::ancf3d::{MassPatterns, Tables3};
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Port, Validity};
 use crate::model::sample::ShapePoint;
@@ -21,7 +21,7 @@ use std::any::Any;
 #[derive(Debug, Clone)]
 pub struct AngleElement3 {
     /// Element properties.
-    pub props: AngleProps,
+    pub props: Angle3,
     /// Dense constant mass matrix, row-major 14 × 14 (for the Newton block).
     mass: Vec<f64>,
     /// The cable part's mass patterns (the residual's M ë without the dense matrix).
@@ -33,7 +33,7 @@ pub struct AngleElement3 {
 
 impl AngleElement3 {
     /// Element of the given properties (gravity zero until set).
-    pub fn new(props: AngleProps) -> Self {
+    pub fn new(props: Angle3) -> Self {
         Self {
             props,
             mass: props.mass_matrix(),

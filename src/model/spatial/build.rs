@@ -3,16 +3,16 @@
 //!
 //! Geometry: the root frame → world rotation A₀ is `scene.root_orientation()`; the beam starts
 //! straight at the origin along A₀x̄ with its section axes A₀ȳ, A₀z̄, every segment in that
-//! frame. ANCF nodes are `[r, r_x, r_y]` (with torsion) or `[r, r_x]` (the cable); modal bodies
-//! `[R, p, a_y, a_z, a_t]` with p = A₀'s Euler parameters. A joint's DOT1 rows are scaled by
-//! the length of its upstream segment.
+//! frame. ANCF nodes are `[r, r_x, r_y]` (the director element), `[r, r_x, θ]` (the angle
+//! element) or `[r, r_x]` (the 3D cable); modal bodies `[R, p, a_y, a_z, a_t]` with p = A₀'s
+//! Euler parameters. A joint's DOT1 rows are scaled by the length of its upstream segment.
 
 use super::joint::RigidJoint3;
 use super::{
     AncfElement3, AngleElement3, AnglePort3, EulerNormalization, FrameSupport3, ModalElement3,
     ModalRootPort3, ModalTipPort3, NodePort3, NodeSupport3, Spatial,
 };
-use crate::model::ancf3d::angle::AngleProps;
+use crate::model::ancf3d::angle::Angle3;
 use crate::model::ancf3d::Ancf3Props;
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
@@ -110,7 +110,7 @@ impl SegmentParts<Spatial> for SpatialParts {
         let props = Ancf3Props::of_segment(seg, self.torsion).map_err(err)?;
         if self.angle {
             // the angle element bends as the cable: one bending stiffness
-            AngleProps::new(props, self.ax.into(), self.ay.into())
+            Angle3::new(props, self.ax.into(), self.ay.into())
                 .map_err(|m| err(format!("segment {:?}: {m}", seg.name)))?;
         }
         Ok(props)
@@ -119,7 +119,7 @@ impl SegmentParts<Spatial> for SpatialParts {
     fn ancf_element(&self, props: &Ancf3Props) -> Box<dyn Element<Spatial>> {
         if self.angle {
             // the axes of the root frame: unit and perpendicular (checked in `ancf_props`)
-            Box::new(AngleElement3::new(AngleProps {
+            Box::new(AngleElement3::new(Angle3 {
                 cable: Ancf3Props {
                     torsion: false,
                     ..*props

@@ -1,7 +1,8 @@
 //! Space: [`Spatial`], the spatial components and the build of a spatial model from a scene
-//! (`space = "spatial"`). The formulation is `docs/spatial.md`'s: ANCF cable + twist director
-//! (r, r_x, r_y) elements or their twist-angle twin (r, r_x, θ), floating-frame modal bodies oriented by Euler parameters, rigid
-//! joints of a spherical joint plus three DOT1 rows.
+//! (`space = "spatial"`). The formulation is `docs/spatial.md`'s: ANCF elements (the director
+//! element r, r_x, r_y; the angle element r, r_x, θ; the 3D cable r, r_x), floating-frame
+//! modal bodies oriented by Euler parameters, rigid joints of a spherical joint plus three DOT1
+//! rows.
 //!
 //! Port kinematics ([`kin`]): every end exposes its position and its directors as [`Field3`]s
 //! (a vector with its first and second derivatives by the local coordinates), so joint rows,

@@ -4,7 +4,7 @@
 
 use super::kin::{EndKin3, Field3};
 use super::Spatial;
-use crate::model::ancf3d::{Ancf3Props, MassPatterns, Tables3, TORSION_DOFS};
+use crate::model::ancf3d::{Ancf3Props, MassPatterns, Tables3, DIRECTOR_DOFS};
 use crate::model::component::{
     Element, ElementOut, Energies, Env, LocalState, Port, Support, Validity,
 };
@@ -25,7 +25,7 @@ pub struct AncfElement3 {
     patterns: MassPatterns,
     tables: Tables3,
     /// ∫ρA S_rᵀ g dx at the current gravity (first d entries).
-    gravity_force: [f64; TORSION_DOFS],
+    gravity_force: [f64; DIRECTOR_DOFS],
 }
 
 impl AncfElement3 {
@@ -37,7 +37,7 @@ impl AncfElement3 {
             mass: props.mass_matrix(),
             patterns: props.mass_patterns(),
             tables: props.tables(),
-            gravity_force: [0.0; TORSION_DOFS],
+            gravity_force: [0.0; DIRECTOR_DOFS],
         }
     }
 
@@ -159,7 +159,8 @@ pub(super) fn gravity_potential(e: &[f64], f_g: &[f64]) -> f64 {
     -e.iter().zip(f_g).map(|(a, b)| a * b).sum::<f64>()
 }
 
-/// An ANCF node as a port, local coordinates `[r, r_x, r_y]` (torsion) or `[r, r_x]` (cable).
+/// An ANCF node as a port, local coordinates `[r, r_x, r_y]` (the director element) or
+/// `[r, r_x]` (the 3D cable).
 ///
 /// Frame [t d2 d3]: with torsion Gram–Schmidt of (r_x, r_y) (t = r_x/|r_x|, d2 = normalized
 /// r_y ⟂ t, d3 = t × d2); for the cable the minimal rotation of `reference` that takes its

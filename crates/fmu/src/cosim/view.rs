@@ -10,7 +10,7 @@
 //! refuses changes nothing; the series of a directory left in a run is kept, and continues if
 //! the run comes back to it.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use hybeam::scene::Scene;
 use hybeam::simulator::{AnyOutputs, AnySimulator, OutputId};
@@ -367,14 +367,6 @@ impl ViewState {
         let all = self.warnings.join("; ");
         self.warnings.clear();
         Some(all)
-    }
-
-    /// The `.pvd` collection of the open views.
-    pub fn collection(&self) -> Option<PathBuf> {
-        self.open
-            .as_ref()
-            .and_then(|v| v.views.collection())
-            .map(|c| c.0)
     }
 }
 

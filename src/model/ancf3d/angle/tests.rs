@@ -7,8 +7,8 @@ use crate::model::ancf3d::tests::{check_jacobians, noise, props};
 use std::f64::consts::PI;
 
 /// The element along the reference axis t⁰ = (0.6, 0, 0.8) with d⁰ = ŷ.
-fn element(tau: f64) -> AngleProps {
-    AngleProps::new(props(false, tau, 1.0), [0.6, 0.0, 0.8], [0.0, 1.0, 0.0]).unwrap()
+fn element(tau: f64) -> Angle3 {
+    Angle3::new(props(false, tau, 1.0), [0.6, 0.0, 0.8], [0.0, 1.0, 0.0]).unwrap()
 }
 
 /// Index of the stretch noise of the node at offset `o`.
@@ -18,7 +18,7 @@ fn c_noise(o: usize) -> usize {
 
 /// A bent, stretched and twisted element and a rate, deterministic: slopes turned by up to
 /// ~0.6 rad from t⁰, angles up to ±1 rad.
-fn deformed(p: &AngleProps, seed: u64) -> ([f64; 14], [f64; 14]) {
+fn deformed(p: &Angle3, seed: u64) -> ([f64; 14], [f64; 14]) {
     let l = p.cable.length;
     let r = noise(seed, 28);
     let mut e = [0.0; 14];
@@ -144,7 +144,7 @@ fn tangent_and_damping_match_central_differences() {
 
 /// The frames (t_i, d2_i) of `e` rotated by `rot` (columns), as the angle element's
 /// coordinates: r and r_x rotated, θ_i the angle about t'_i from P(t⁰ → t'_i) d⁰ to R d2_i.
-fn rotated(p: &AngleProps, e: &[f64; 14], rot: [[f64; 3]; 3]) -> [f64; 14] {
+fn rotated(p: &Angle3, e: &[f64; 14], rot: [[f64; 3]; 3]) -> [f64; 14] {
     let apply = |v: [f64; 3]| [0, 1, 2].map(|i| (0..3).map(|k| rot[k][i] * v[k]).sum::<f64>());
     let mut out = *e;
     for node in 0..2 {
@@ -325,12 +325,12 @@ fn chart_margin_and_refusals() {
     }
     assert!(p.chart_margin(&back).abs() < 1e-15);
     let oval = props(false, 0.0, 2.0);
-    let err = AngleProps::new(oval, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]).unwrap_err();
+    let err = Angle3::new(oval, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]).unwrap_err();
     assert!(
         err.contains("E·I_y") && err.contains("torsion_element"),
         "{err}"
     );
-    let err = AngleProps::new(props(false, 0.0, 1.0), [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
+    let err = Angle3::new(props(false, 0.0, 1.0), [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
     assert!(err.unwrap_err().contains("parallel"));
 }
 

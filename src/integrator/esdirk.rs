@@ -131,7 +131,7 @@ impl Tableau {
 
 /// The integrator with its work arrays and Jacobian policy.
 #[derive(Debug, Clone)]
-pub struct Sdirk {
+pub struct Esdirk {
     tableau: &'static Tableau,
     nodes: [f64; MAX_STAGES],
     /// 𝔄² by rows.
@@ -147,7 +147,7 @@ pub struct Sdirk {
     trial: State,
 }
 
-impl Sdirk {
+impl Esdirk {
     /// New integrator of `tableau` for `n` coordinates and `m` constraints, with the Newton
     /// tolerance and iteration limit of `params`.
     pub fn new(
@@ -452,7 +452,7 @@ mod tests {
     ) -> Vec<f64> {
         let (n, m) = (model.coordinates(), model.constraints());
         let mut integ = match tableau {
-            Some(tab) => Integrator::Sdirk(Sdirk::new(&params(), tab, n, m)),
+            Some(tab) => Integrator::Esdirk(Esdirk::new(&params(), tab, n, m)),
             None => Integrator::Alpha(GeneralizedAlpha::new(&params(), n, m)),
         };
         model.set_force(force(0.0));
