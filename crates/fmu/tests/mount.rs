@@ -617,3 +617,64 @@ fn a_state_saved_after_a_start_pose_set_in_initialization_restores() {
     assert_eq!(first, again);
     assert_eq!(i.free_state(&mut saved), OK);
 }
+
+/// A host of negative rotational inertia comparable to the boom's over a step
+/// (`root.mobility.alphaz_mz` = +250 1/(kg m²) alone): the coupled rotation grows until a step's
+/// partner equation has no solution (the 5th or 6th); that step is discarded with a message naming
+/// the equation's residual and the state kept, the saved state restores, and the host, back at the
+/// start with the mobility off, steps on. Before the fix the unconverged deviation failed the
+/// beam's Newton iteration in the 2nd step, discarded with a message that named neither the partner
+/// model nor its residual.
+#[test]
+fn a_step_that_misses_the_partner_equation_is_discarded_naming_the_residual() {
+    let scene = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/boom.toml"
+    ))
+    .unwrap();
+    let i = initialized_with(&scene, "partner_refused");
+    let mobility = vr_in(&scene, "root.mobility.alphaz_mz");
+    let reaction = vrs(&scene, &["root.force.x", "root.force.y", "root.moment.z"]);
+    let reference = vrs(
+        &scene,
+        &[
+            "root.reaction_reference.fx",
+            "root.reaction_reference.fy",
+            "root.reaction_reference.mz",
+        ],
+    );
+    let tip = vrs(
+        &scene,
+        &["tip.position.x", "tip.position.y", "root.force.y"],
+    );
+    assert_eq!(i.set_real(&[mobility], &[250.0]), OK);
+    assert_eq!(i.set_real(&reference, &i.get_real(&reaction).unwrap()), OK);
+    let mut first = i.get_state();
+    for k in 0..20 {
+        let t = k as f64 * 1e-3;
+        let mut saved = i.get_state();
+        let before = i.get_real(&tip).unwrap();
+        match i.do_step(t, 1e-3) {
+            OK => assert_eq!(i.free_state(&mut saved), OK),
+            DISCARD => {
+                i.log.assert_last(
+                    2,
+                    "logStatusDiscard",
+                    &["partner model's equation", "residual"],
+                );
+                eprintln!("step {}: {}", k + 1, i.log.last().message);
+                assert_eq!(i.get_real(&tip).unwrap(), before, "state kept");
+                assert_eq!(i.set_state(saved), OK);
+                assert_eq!(i.get_real(&tip).unwrap(), before);
+                assert_eq!(i.set_state(first), OK);
+                assert_eq!(i.set_real(&[mobility], &[0.0]), OK);
+                assert_eq!(i.do_step(0.0, 1e-3), OK, "{:?}", i.log.entries());
+                assert_eq!(i.free_state(&mut saved), OK);
+                assert_eq!(i.free_state(&mut first), OK);
+                return;
+            }
+            s => panic!("status {s}: {:?}", i.log.entries()),
+        }
+    }
+    panic!("20 steps returned fmi2OK");
+}
