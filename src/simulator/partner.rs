@@ -377,6 +377,8 @@ impl<S: Space> Simulator<S> {
     /// (I − G M_app) a₀ = G (R(a_host) − R_ref)) and applied as a jump of the inputs. Without
     /// it the host's acceleration, computed with the reaction of one step earlier, would drive
     /// the step's start, and with it the explicit exchange's loop the model is there to cut.
+    /// The mount is at the host's path here ([`Simulator::take_mount_input`] took it back from
+    /// the last step's deviation).
     pub(super) fn partner_start(&mut self, p: &PartnerStep) -> Result<Deviation, SimError> {
         let t = self.state.t;
         let a0 = p.start * p.answer(&self.reaction_now());
@@ -511,14 +513,39 @@ impl<S: Space> Simulator<S> {
     }
 
     /// After a communication step with the partner model: the mount's path continues from
-    /// where the deviation took it (the host's next input re-anchors the beam from there).
+    /// where the deviation took it, its pose and velocity, with the host's accelerations (the
+    /// inputs, which hold until set again); the deviation's acceleration, which the state is
+    /// consistent with, is kept beside it ([`MountState::deviation`]) and the next step takes
+    /// the mount back to the path before it solves its own. So a host that holds its
+    /// acceleration inputs steps as one that sends the same values again, and the deviation is
+    /// answered once, never added to the host's acceleration. The host's next pose or velocity
+    /// input re-anchors the beam from there.
     pub(super) fn continue_deviated(&mut self, dev: &Deviation, t_end: f64) {
         if let Some(ms) = &mut self.mount {
-            ms.base = dev.applied(&ms.at(t_end));
+            let host = ms.at(t_end);
+            ms.base = dev.applied(&host).with_accelerations_of(&host);
+            ms.deviation = dev.a;
             ms.t0 = t_end;
             ms.rates = MotionRates::default();
         }
     }
+}
+
+/// `m` with the accelerations `a` (components as [`Partner`]) added, as
+/// [`Deviation::applied`] adds them.
+pub(super) fn accelerated<S: Space>(m: &Motion<S>, a: &[f64; PARTNER_COMPONENTS]) -> Motion<S> {
+    let mut m = *m;
+    let dim = S::DIM;
+    for k in 0..dim {
+        m.acceleration[k] += a[k];
+    }
+    for (k, x) in S::moment_components_mut(&mut m.angular_acceleration)
+        .iter_mut()
+        .enumerate()
+    {
+        *x += a[dim + k];
+    }
+    m
 }
 
 #[cfg(test)]

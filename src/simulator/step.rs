@@ -34,7 +34,7 @@ impl<S: Space> Simulator<S> {
         // the applied loads (an attempt left the pending ones, or their values within the step)
         self.applied.apply(&mut self.model);
         if let Some(ms) = &saved.mount {
-            self.model.set_mount(&ms.at(saved.state.t));
+            self.model.set_mount(&ms.held(saved.state.t));
         }
         self.mount = saved.mount;
         self.state = saved.state;
