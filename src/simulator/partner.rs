@@ -11,13 +11,25 @@
 //!
 //! a(t) = a_host(t) + G (R(t) − R_ref),
 //!
-//! the deviation from the host's path integrated by the trapezoidal rule and solved with the
-//! step (Newton on the deviation's end acceleration with the matrix I − G M_app, M_app the
-//! beam's apparent mass at the mount, [`Simulator::apparent_mass`]). The stiff, fast part of the
-//! coupling is thereby implicit in the beam; the host's next input re-anchors the beam at the
-//! host's motion. This is the interface-mass idea of Morandini & Masarati (`docs/references.md`
-//! §8) with the host's mass on the beam's side given as its mobility. A zero mobility (the
-//! default) leaves the step exactly as without the model.
+//! the deviation from the host's path integrated by the trapezoidal rule and its end
+//! acceleration solved with the step: at the communication step's start exactly (a jump, with
+//! I − G M_app, M_app the beam's apparent mass at the mount, [`Simulator::apparent_mass`]),
+//! then per internal step by a quasi-Newton iteration on the deviation's end acceleration
+//! (Broyden's update of the matrix from (I − G M_app)⁻¹, each iteration the beam's step
+//! repeated) to [`PARTNER_TOLERANCE`] × `solver.tolerance` of the equation's terms, or, where
+//! the step's reaction does not resolve that, to the Newton tolerance; a step that meets
+//! neither within [`PARTNER_ITERATIONS`] fails, is halved, and at the halving limit is refused
+//! naming the residual (`SimError::Partner`; the FMU's fmi2Discard, the state kept). So at
+//! every communication point the mount's acceleration the beam used meets the equation.
+//!
+//! The stiff, fast part of the coupling is thereby implicit in the beam; the host's next input
+//! re-anchors the beam at the host's motion. The mount's path continues from the deviated pose
+//! and velocity with the host's accelerations, which hold until the host sets them again (an
+//! FMI input keeps its value), the deviation of the accelerations held beside it: a host that
+//! does not send unchanged inputs again steps as one that does. This is the interface-mass
+//! idea of Morandini & Masarati (`docs/references.md` §8) with the host's mass on the beam's
+//! side given as its mobility. A zero mobility (the default) leaves the step exactly as
+//! without the model.
 
 use super::*;
 use crate::model::MotionRates;
