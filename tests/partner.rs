@@ -412,7 +412,7 @@ fn boom_3d() -> AnySimulator {
 /// plane and in space: every 1 ms step succeeds and meets the partner equation
 /// a = a_host + G (R − R_ref) at its end, evaluated from the outputs, to the partner tolerance
 /// (`PARTNER_TOLERANCE` × solver.tolerance = 1e-7 of the magnitude of the equation's terms;
-/// measured ≤ 9.9e-8). Before the fix the iteration stopped after 8 iterations whatever the
+/// measured ≤ 7.9e-8). Before the fix the iteration stopped after 8 iterations whatever the
 /// residual and the steps returned Ok missing it by up to 5.1e-5 of the terms (the plane,
 /// 0.1) and 2.0e-3 of |G (R − R_ref)| (the plane, 0.01).
 #[test]
