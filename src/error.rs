@@ -76,6 +76,34 @@ pub enum SimError {
         /// The integrator's last failure.
         source: StepFailure,
     },
+    /// An internal step with the partner model (`root.mobility`) did not meet the partner
+    /// equation a = a_host + G (R − R_ref) within
+    /// [`PARTNER_ITERATIONS`](crate::simulator::PARTNER_ITERATIONS) iterations, to neither of
+    /// its tolerances ([`PARTNER_TOLERANCE`](crate::simulator::PARTNER_TOLERANCE)), and could
+    /// not be halved further.
+    #[error(
+        "step from t = {t:.6} s failed {limit}: the partner model's equation a = a_host + G (R - R_ref) (root.mobility, root.reaction_reference) was not met at an internal step of {h:.3e} s after {} iterations: residual {residual:.2e} of the magnitude of its terms (tolerance {tolerance:.1e}, {:.0e} x solver.tolerance), and the correction of the mount's acceleration still to make {correction:.2e} x what moves the mount by solver.tolerance over the step. Check that root.mobility is the host's own mobility at the mount (without the beam's inertia) and finite in size, or reduce the communication step",
+        crate::simulator::PARTNER_ITERATIONS,
+        crate::simulator::PARTNER_TOLERANCE
+    )]
+    Partner {
+        /// Start of the communication step [s].
+        t: f64,
+        /// Halvings of the internal step done before giving up.
+        halvings: u32,
+        /// Which limit stopped the halving.
+        limit: StepLimit,
+        /// The last internal step tried [s].
+        h: f64,
+        /// Its last residual, the largest component relative to the magnitude of the
+        /// equation's terms.
+        residual: f64,
+        /// The tolerance it missed, relative as `residual`.
+        tolerance: f64,
+        /// The correction of the deviation's acceleration the iteration would still make,
+        /// relative to the one that moves the mount by the Newton tolerance over the step.
+        correction: f64,
+    },
     /// The step converged to a state outside the model's validity.
     #[error("step to t = {t:.6} s refused: {refusal}")]
     Refused {
@@ -283,7 +311,9 @@ impl SimError {
             SimError::Static(_) => "statics",
             SimError::BadTime { .. } => "bad time",
             SimError::WorkCap { .. } => "work cap",
-            SimError::InputJump { .. } | SimError::Step { .. } => "step failure",
+            SimError::InputJump { .. } | SimError::Step { .. } | SimError::Partner { .. } => {
+                "step failure"
+            }
             SimError::Refused { .. } => "refusal",
             SimError::NonFinite { .. } => "non-finite",
             SimError::Snapshot(_) => "snapshot",

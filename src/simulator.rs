@@ -17,7 +17,7 @@ pub use any::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
 pub use inputs::{Inputs, LoadRates};
 pub use limits::*;
 pub use mount::{MountInput, MountState};
-pub use partner::{Partner, PARTNER_COMPONENTS, PARTNER_ITERATIONS};
+pub use partner::{Partner, PARTNER_COMPONENTS, PARTNER_ITERATIONS, PARTNER_TOLERANCE};
 pub use snapshot::{Memory, SNAPSHOT_VERSION};
 pub use step::StepControl;
 

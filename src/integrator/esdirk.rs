@@ -141,7 +141,7 @@ pub struct Esdirk {
     /// The Newton loop with its held matrix (tolerance and iteration limit per stage) and the
     /// work counters (an accepted step counts once, its Newton iterations over all stages).
     newton: Newton,
-    eta: f64,
+    pub(super) eta: f64,
     /// Stage accelerations A_j (n each).
     stage_acc: Vec<Vec<f64>>,
     trial: State,

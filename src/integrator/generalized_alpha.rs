@@ -52,7 +52,7 @@ pub struct GeneralizedAlpha {
     /// work counters.
     newton: Newton,
     /// Newton convergence-rate estimate η = ρ/(1 − ρ) carried across steps.
-    eta: f64,
+    pub(super) eta: f64,
     trial: State,
 }
 

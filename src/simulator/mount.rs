@@ -43,6 +43,12 @@ pub struct MountState<S: Space> {
     pub accelerations_given: bool,
     /// The host's response at the mount (zero: none), held until set again.
     pub partner: Partner,
+    /// The partner model's deviation of the mount's accelerations at `t0` from the path's
+    /// (components as [`Partner`]), which the state's accelerations are consistent with: zero
+    /// but after a communication step with the partner model, whose deviation the path does
+    /// not carry (its accelerations stay the host's inputs); the next step takes the mount back
+    /// to the path ([`MountState::held`]).
+    pub deviation: [f64; PARTNER_COMPONENTS],
 }
 
 impl<S: Space> MountState<S> {
@@ -57,7 +63,19 @@ impl<S: Space> MountState<S> {
             last: None,
             accelerations_given: m.motion_input == MotionInput::PoseVelocityAcceleration,
             partner: Partner::default(),
+            deviation: [0.0; PARTNER_COMPONENTS],
         })
+    }
+
+    /// The motion the model holds at `t` (a communication point): the path's with the partner
+    /// model's [`MountState::deviation`] of the accelerations.
+    pub fn held(&self, t: f64) -> Motion<S> {
+        let m = self.at(t);
+        if self.deviation == [0.0; PARTNER_COMPONENTS] {
+            m
+        } else {
+            super::partner::accelerated(&m, &self.deviation)
+        }
     }
 
     /// The motion at time `t` along the path.
@@ -77,8 +95,8 @@ impl<S: Space> MountState<S> {
         })
     }
 
-    /// A host input checked and normalized (finite, a defined orientation), with estimated
-    /// accelerations when it gives none.
+    /// A host input checked and normalized (finite, a defined orientation, normalized unless it
+    /// is the path's own at `t`), with estimated accelerations when it gives none.
     pub fn checked(&self, input: MountInput<S>, t: f64) -> Result<MountInput<S>, Refusal> {
         let mut input = input;
         let m = &mut input.motion;
@@ -92,11 +110,18 @@ impl<S: Space> MountState<S> {
                     .into(),
             ));
         }
-        m.attitude = S::normalized_attitude(&m.attitude).ok_or_else(|| {
+        let unit = S::normalized_attitude(&m.attitude).ok_or_else(|| {
             Refusal::MountInput(
                 "root.orientation is the zero quaternion: give unit Euler parameters (identity: e0 = 1, e1 = e2 = e3 = 0)".into(),
             )
         })?;
+        // the path's own orientation (a host sending back what it reads) is kept as it is:
+        // normalizing it anew may move its last bits, which would re-anchor the beam by them,
+        // and a host that sends back the motion it reads would not step as one that sends
+        // nothing
+        if m.attitude != self.at(t).attitude {
+            m.attitude = unit;
+        }
         if !input.accelerations {
             // backward difference of the velocity inputs (previous input, else the path)
             let (tp, prev) = self.last.unwrap_or((self.t0, self.base));
@@ -274,9 +299,10 @@ impl<S: Space> Simulator<S> {
         Some(d)
     }
 
-    /// The mount's motion now (`None` for a fixed root).
+    /// The mount's motion now, as the state has it (`None` for a fixed root): the path's, with
+    /// the partner model's deviation of the accelerations after a step with it.
     pub fn mount(&self) -> Option<Motion<S>> {
-        self.mount.as_ref().map(|m| m.at(self.state.t))
+        self.mount.as_ref().map(|m| m.held(self.state.t))
     }
 
     /// Whether mount accelerations are inputs (else estimated from velocities).
@@ -286,13 +312,20 @@ impl<S: Space> Simulator<S> {
 
     /// Takes the pending mount input at the start of a communication step: refuses a jump,
     /// re-anchors a pose or velocity that differs from the prediction, and returns the motion
-    /// whose accelerations differ from the prediction (a jump of the inputs), if any.
+    /// whose accelerations differ from the ones the state holds (a jump of the inputs), if
+    /// any. After a step with the partner model that is the path's (the host's) accelerations
+    /// whether the host set them again or not ([`MountState::deviation`]): the same jump, so
+    /// the two step alike, bit for bit.
     pub(super) fn take_mount_input(&mut self) -> Result<Option<Motion<S>>, SimError> {
         let t0 = self.state.t;
         let length = self.scene.total_length();
         let Some(ms) = &mut self.mount else {
             return Ok(None);
         };
+        // the motion the state is consistent with; the step starts from the path (a failed
+        // step returns to the deviation with the rest of the mount's state)
+        let held = ms.held(t0);
+        let deviated = std::mem::take(&mut ms.deviation) != [0.0; PARTNER_COMPONENTS];
         let Some(raw) = ms.pending.take() else {
             // input derivatives hold for one step: continue the path without them
             if ms.rates != MotionRates::default() {
@@ -300,7 +333,7 @@ impl<S: Space> Simulator<S> {
                 ms.t0 = t0;
                 ms.rates = MotionRates::default();
             }
-            return Ok(None);
+            return Ok(deviated.then(|| ms.at(t0)));
         };
         let input = match ms.checked(raw, t0) {
             Ok(i) => i,
@@ -325,11 +358,11 @@ impl<S: Space> Simulator<S> {
                 refusal: Refusal::MountJump { distance, angle },
             });
         }
-        let mid = target.with_accelerations_of(&pred);
-        if mid != pred {
+        let mid = target.with_accelerations_of(&held);
+        if mid != held {
             let s = &mut self.state;
             self.model.reanchor(
-                &pred,
+                &held,
                 &mid,
                 &mut s.q,
                 &mut s.v,

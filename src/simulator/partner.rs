@@ -11,13 +11,25 @@
 //!
 //! a(t) = a_host(t) + G (R(t) − R_ref),
 //!
-//! the deviation from the host's path integrated by the trapezoidal rule and solved with the
-//! step (Newton on the deviation's end acceleration with the matrix I − G M_app, M_app the
-//! beam's apparent mass at the mount, [`Simulator::apparent_mass`]). The stiff, fast part of the
-//! coupling is thereby implicit in the beam; the host's next input re-anchors the beam at the
-//! host's motion. This is the interface-mass idea of Morandini & Masarati (`docs/references.md`
-//! §8) with the host's mass on the beam's side given as its mobility. A zero mobility (the
-//! default) leaves the step exactly as without the model.
+//! the deviation from the host's path integrated by the trapezoidal rule and its end
+//! acceleration solved with the step: at the communication step's start exactly (a jump, with
+//! I − G M_app, M_app the beam's apparent mass at the mount, [`Simulator::apparent_mass`]),
+//! then per internal step by a quasi-Newton iteration on the deviation's end acceleration
+//! (Broyden's update of the matrix from (I − G M_app)⁻¹, each iteration the beam's step
+//! repeated) to [`PARTNER_TOLERANCE`] × `solver.tolerance` of the equation's terms, or, where
+//! the step's reaction does not resolve that, to the Newton tolerance; a step that meets
+//! neither within [`PARTNER_ITERATIONS`] fails, is halved, and at the halving limit is refused
+//! naming the residual (`SimError::Partner`; the FMU's fmi2Discard, the state kept). So at
+//! every communication point the mount's acceleration the beam used meets the equation.
+//!
+//! The stiff, fast part of the coupling is thereby implicit in the beam; the host's next input
+//! re-anchors the beam at the host's motion. The mount's path continues from the deviated pose
+//! and velocity with the host's accelerations, which hold until the host sets them again (an
+//! FMI input keeps its value), the deviation of the accelerations held beside it: a host that
+//! does not send unchanged inputs again steps as one that does. This is the interface-mass
+//! idea of Morandini & Masarati (`docs/references.md` §8) with the host's mass on the beam's
+//! side given as its mobility. A zero mobility (the default) leaves the step exactly as
+//! without the model.
 
 use super::*;
 use crate::model::MotionRates;
@@ -55,45 +67,203 @@ impl Partner {
     }
 }
 
-/// Newton iterations of the partner's deviation per internal step, at most.
-pub const PARTNER_ITERATIONS: usize = 8;
+/// Iterations of the partner's deviation per internal step, at most; an internal step that
+/// has not met the partner tolerance after them, nor the Newton tolerance in the last
+/// ([`PARTNER_TOLERANCE`]), fails (and is halved, as a step whose Newton iteration fails).
+pub const PARTNER_ITERATIONS: usize = 12;
 
-/// Relative tolerance of the deviation's end acceleration (of the largest of it and 1e-9).
-const PARTNER_TOLERANCE: f64 = 1e-10;
+/// Tolerance of the partner equation a₁ = G (R − R_ref) at an internal step's end, as a
+/// multiple of the solver's Newton tolerance (`solver.tolerance`): per component i, relative
+/// to the magnitude of its terms,
+///
+/// |a₁ᵢ − Σⱼ Gᵢⱼ (Rⱼ − R_ref,ⱼ)| ≤ this · solver.tolerance · (|a₁ᵢ| + Σⱼ |Gᵢⱼ| (|Rⱼ| + |R_ref,ⱼ|)),
+///
+/// a₁ the deviation's end acceleration (the mount's acceleration minus the host's): 1e-7 at
+/// the default 1e-11. The reaction R is that of a step converged to the Newton tolerance, and
+/// no better: its coordinates' remaining error, amplified by the stiffness at the mount and
+/// by 1/h² in the accelerations, varies R between solves of the same step by about 1e-9–1e-8
+/// of its size at the default and the boom's 0.2 ms steps (`scenes/boom.toml`), and by more
+/// at smaller steps (it grows as 1/h²), which no iteration on a₁ resolves. So a step that has
+/// not met this after [`PARTNER_ITERATIONS`] iterations is accepted at the Newton tolerance
+/// itself, as the beam's coordinates are: if the correction of a₁ the iteration would still
+/// make, δ, moves the mount over the step by less than it, h²/4 |δᵢ| ≤ solver.tolerance · ℓᵢ
+/// (ℓ the Newton scale of the mount's coordinates: the beam's length for a translation, 1 rad
+/// for a rotation).
+pub const PARTNER_TOLERANCE: f64 = 1e4;
 
-/// The partner model over one communication step: the mobility and the Newton matrix.
+/// A vector of the partner's components (the plane's 3 in the first places, the others zero).
+type Vector = nalgebra::Vector6<f64>;
+
+/// A matrix of the partner's components (the plane's 3 × 3 in the upper left, the identity in
+/// the rest).
+type Matrix = nalgebra::Matrix6<f64>;
+
+/// The partner model over one communication step: the mobility and the iteration's matrix.
 pub(super) struct PartnerStep {
     partner: Partner,
     n: usize,
-    /// LU factors of I − G M_app.
-    lu: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
+    /// The relative tolerance of the equation ([`PARTNER_TOLERANCE`] · solver.tolerance).
+    tolerance: f64,
+    /// Per component, the largest correction of a₁ within the Newton tolerance at a step h,
+    /// times h²: 4 · solver.tolerance · ℓᵢ ([`PARTNER_TOLERANCE`]).
+    newton: [f64; PARTNER_COMPONENTS],
+    /// (I − G M_app)⁻¹: the start's exact solve, and the iteration's matrix at a new step size.
+    start: Matrix,
+    /// The iteration's approximation of (∂res/∂a₁)⁻¹, res = a₁ − G (R(a₁) − R_ref) after an
+    /// internal step of `learned_h`: (I − G M_app)⁻¹ to begin with, then corrected by Broyden's
+    /// update with each iteration's secant, held over the internal steps of that size.
+    inverse: Matrix,
+    /// The internal step `inverse` was learned at (0: none yet).
+    learned_h: f64,
+    /// The change of the deviation's acceleration over the last internal step, per second
+    /// (the next step's first guess extrapolates it).
+    trend: [f64; PARTNER_COMPONENTS],
+}
+
+/// Why an internal step with the partner model failed.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum PartnerFailure {
+    /// The beam's step failed.
+    Step(crate::integrator::StepFailure),
+    /// The partner equation was not met within [`PARTNER_ITERATIONS`] iterations.
+    Unconverged {
+        /// The internal step [s].
+        h: f64,
+        /// The last iteration's residual relative to the magnitude of the terms.
+        residual: f64,
+        /// The tolerance it missed.
+        tolerance: f64,
+        /// The correction of a₁ left, relative to the one within the Newton tolerance.
+        correction: f64,
+    },
 }
 
 impl PartnerStep {
-    /// The step's model from the partner and the beam's apparent mass now; `None` if the
-    /// Newton matrix is singular (to rounding).
-    fn new(partner: Partner, apparent: &[Vec<f64>]) -> Option<Self> {
+    /// The step's model from the partner, the beam's apparent mass now, the solver's Newton
+    /// tolerance and the Newton scale of positions (the beam's length) in a space of `dim`
+    /// dimensions; `None` if I − G M_app is singular (to rounding).
+    fn new(
+        partner: Partner,
+        apparent: &[Vec<f64>],
+        newton_tolerance: f64,
+        (length, dim): (f64, usize),
+    ) -> Option<Self> {
         let n = apparent.len();
-        let jac = nalgebra::DMatrix::from_fn(n, n, |i, j| {
-            let gm: f64 = (0..n)
-                .map(|k| partner.mobility[i][k] * apparent[k][j])
-                .sum();
+        let jac = Matrix::from_fn(|i, j| {
+            let gm: f64 = if i < n && j < n {
+                (0..n)
+                    .map(|k| partner.mobility[i][k] * apparent[k][j])
+                    .sum()
+            } else {
+                0.0
+            };
             f64::from(u8::from(i == j)) - gm
         });
         let lu = jac.lu();
         // singular to rounding: a pivot below 1e-9 of the largest or of the identity's
         let pivots = lu.u().diagonal().map(f64::abs);
-        (pivots.min() > 1e-9 * pivots.max().max(1.0)).then_some(Self { partner, n, lu })
+        let regular = pivots.min() > 1e-9 * pivots.max().max(1.0);
+        if !regular {
+            return None;
+        }
+        let start = lu.try_inverse()?;
+        Some(Self {
+            partner,
+            n,
+            tolerance: PARTNER_TOLERANCE * newton_tolerance,
+            newton: std::array::from_fn(|i| {
+                4.0 * newton_tolerance * if i < dim { length } else { 1.0 }
+            }),
+            start,
+            inverse: start,
+            learned_h: 0.0,
+            trend: [0.0; PARTNER_COMPONENTS],
+        })
     }
 
     /// The host's answer G (R − R_ref) to the reaction `r` (components as [`Partner`]).
-    fn answer(&self, r: &[f64; PARTNER_COMPONENTS]) -> nalgebra::DVector<f64> {
+    fn answer(&self, r: &[f64; PARTNER_COMPONENTS]) -> Vector {
         let (g, r_ref) = (&self.partner.mobility, &self.partner.reference);
-        nalgebra::DVector::from_fn(self.n, |i, _| {
+        Vector::from_fn(|i, _| {
             (0..self.n)
-                .map(|j| g[i][j] * (r[j] - r_ref[j]))
+                .map(|j| {
+                    if i < self.n {
+                        g[i][j] * (r[j] - r_ref[j])
+                    } else {
+                        0.0
+                    }
+                })
                 .sum::<f64>()
         })
+    }
+
+    /// The magnitude of the terms of component `i` of the equation at `a1` and the reaction
+    /// `r`: |a₁ᵢ| + Σⱼ |Gᵢⱼ| (|Rⱼ| + |R_ref,ⱼ|).
+    fn scale(
+        &self,
+        i: usize,
+        a1: &[f64; PARTNER_COMPONENTS],
+        r: &[f64; PARTNER_COMPONENTS],
+    ) -> f64 {
+        let (g, r_ref) = (&self.partner.mobility, &self.partner.reference);
+        a1[i].abs()
+            + (0..self.n)
+                .map(|j| g[i][j].abs() * (r[j].abs() + r_ref[j].abs()))
+                .sum::<f64>()
+    }
+
+    /// The residual a₁ − G (R − R_ref) of the deviation's end acceleration `a1` with the
+    /// reaction `r`, and its largest component relative to the magnitude of its terms
+    /// ([`PartnerStep::scale`], [`PARTNER_TOLERANCE`]).
+    fn residual(
+        &self,
+        a1: &[f64; PARTNER_COMPONENTS],
+        r: &[f64; PARTNER_COMPONENTS],
+    ) -> (Vector, f64) {
+        let answer = self.answer(r);
+        let res = Vector::from_fn(|i, _| if i < self.n { a1[i] - answer[i] } else { 0.0 });
+        let relative = (0..self.n)
+            .map(|i| {
+                if res[i] == 0.0 {
+                    0.0
+                } else {
+                    res[i].abs() / self.scale(i, a1, r)
+                }
+            })
+            .fold(0.0, f64::max);
+        (res, relative)
+    }
+
+    /// The largest correction `delta` of a₁ at a step `h` relative to the one within the
+    /// Newton tolerance (≤ 1: within it).
+    fn correction(&self, delta: &Vector, h: f64) -> f64 {
+        (0..self.n)
+            .map(|i| h * h * delta[i].abs() / self.newton[i])
+            .fold(0.0, f64::max)
+    }
+
+    /// The correction of a₁ for the residual `res`: the iteration's matrix times it, but for a
+    /// component whose row of G is zero, whose equation a₁ᵢ = 0 is solved exactly (so that no
+    /// secant's coupling leaves it a value the equation has no scale for).
+    fn correct(&self, res: &Vector) -> Vector {
+        let mut delta = self.inverse * res;
+        for (i, row) in self.partner.mobility.iter().enumerate().take(self.n) {
+            if row.iter().take(self.n).all(|g| *g == 0.0) {
+                delta[i] = res[i];
+            }
+        }
+        delta
+    }
+
+    /// Broyden's ("good") update of [`PartnerStep::inverse`] with the secant of an iteration:
+    /// the step `s` of a₁ changed the residual by `y`.
+    fn learn(&mut self, s: &Vector, y: &Vector) {
+        let hy = self.inverse * y;
+        let sh = s.transpose() * self.inverse;
+        let denom = s.dot(&hy);
+        if denom.abs() > 1e-12 * s.norm() * hy.norm() && denom.is_finite() {
+            self.inverse += (s - hy) * sh / denom;
+        }
     }
 }
 
@@ -202,7 +372,8 @@ impl<S: Space> Simulator<S> {
         let apparent = self
             .apparent_mass()
             .ok_or_else(|| refused("the beam's apparent mass at the mount could not be solved"))?;
-        PartnerStep::new(partner, &apparent)
+        let scale = (self.scene.total_length(), S::DIM);
+        PartnerStep::new(partner, &apparent, self.scene.solver.tolerance, scale)
             .map(Some)
             .ok_or_else(|| {
                 refused(
@@ -218,10 +389,11 @@ impl<S: Space> Simulator<S> {
     /// (I − G M_app) a₀ = G (R(a_host) − R_ref)) and applied as a jump of the inputs. Without
     /// it the host's acceleration, computed with the reaction of one step earlier, would drive
     /// the step's start, and with it the explicit exchange's loop the model is there to cut.
+    /// The mount is at the host's path here ([`Simulator::take_mount_input`] took it back from
+    /// the last step's deviation).
     pub(super) fn partner_start(&mut self, p: &PartnerStep) -> Result<Deviation, SimError> {
         let t = self.state.t;
-        let b = p.answer(&self.reaction_now());
-        let a0 = p.lu.solve(&b).unwrap_or(b);
+        let a0 = p.start * p.answer(&self.reaction_now());
         let mut dev = Deviation::default();
         for i in 0..p.n {
             dev.a[i] = a0[i];
@@ -237,76 +409,155 @@ impl<S: Space> Simulator<S> {
     }
 
     /// One internal step to `t_next` with the partner model: the deviation's end acceleration
-    /// solved with the step so that it equals G (R − R_ref) there. On failure the state is
-    /// the one at the step's start.
+    /// a₁ solved with the step so that it equals G (R − R_ref) there to the partner tolerance
+    /// ([`PARTNER_TOLERANCE`]). Each iteration is the beam's step with the deviation of a₁,
+    /// then a quasi-Newton update of a₁ from the residual with [`PartnerStep::inverse`], which
+    /// Broyden's update corrects by each iteration's secant; the first guess extrapolates the
+    /// last step's change. (I − G M_app, the start's exact matrix, holds for a jump at a fixed
+    /// state; over a step the reaction answers a₁ through the step's own apparent mass M_h,
+    /// which the elastic coordinates' motion within the step makes differ from M_app. With the
+    /// fixed matrix the iteration contracts by ‖(I − G M_app)⁻¹ G (M_h − M_app)‖, which for a
+    /// host lighter than the beam, ‖G M_app‖ > 1, tends to ‖M_app⁻¹ (M_h − M_app)‖ whatever
+    /// the host's mass: 8 iterations of it left up to 2e-3 of the deviation there. The secants
+    /// learn M_h, which barely changes from one internal step to the next.) Each attempt
+    /// starts from the step's start with the same Newton rate estimate, so that the beam's
+    /// Newton iteration stops by the same rule and the reaction is a smooth function of a₁: a
+    /// rate estimate carried from attempt to attempt moved the stopping point, a noise in R
+    /// that stalled the iteration at up to 1e-6 of the terms. On failure, of the beam's step or
+    /// of the iteration after [`PARTNER_ITERATIONS`], the state is the one at the step's start.
     pub(super) fn step_with_partner(
         &mut self,
-        p: &PartnerStep,
+        p: &mut PartnerStep,
         dev: &mut Deviation,
+        span: (f64, f64, f64),
+        inputs: &Inputs<S>,
+    ) -> Result<(), PartnerFailure> {
+        let h = span.2;
+        let start = self.state.clone();
+        // each attempt repeats the step from the same state, its Newton iteration stopped by
+        // the same rule
+        let eta = self.integ.rate_estimate();
+        if (h - p.learned_h).abs() > 1e-9 * h {
+            // a new step size (a halving): its own apparent mass, learned anew
+            p.inverse = p.start;
+            p.learned_h = h;
+            p.trend = [0.0; PARTNER_COMPONENTS];
+        }
+        let mut a1: [f64; PARTNER_COMPONENTS] = std::array::from_fn(|i| dev.a[i] + h * p.trend[i]);
+        // the previous iteration's a₁ and residual: the secant
+        let mut last: Option<(Vector, Vector)> = None;
+        let (mut residual, mut correction) = (f64::NAN, f64::NAN);
+        for it in 0..PARTNER_ITERATIONS {
+            let (next, res, relative) =
+                match self.partner_attempt(p, dev, &a1, (&start, eta), span, inputs) {
+                    Ok(x) => x,
+                    Err(e) => {
+                        self.state = start;
+                        return Err(PartnerFailure::Step(e));
+                    }
+                };
+            let x = Vector::from_column_slice(&a1);
+            if let Some((x0, r0)) = &last {
+                p.learn(&(x - x0), &(res - r0));
+            }
+            let delta = p.correct(&res);
+            (residual, correction) = (relative, p.correction(&delta, h));
+            if relative <= p.tolerance || (it + 1 == PARTNER_ITERATIONS && correction <= 1.0) {
+                p.trend = std::array::from_fn(|i| (a1[i] - dev.a[i]) / h);
+                *dev = next;
+                return Ok(());
+            }
+            for (a, d) in a1.iter_mut().zip(delta.iter()).take(p.n) {
+                *a -= d;
+            }
+            last = Some((x, res));
+        }
+        self.state = start;
+        Err(PartnerFailure::Unconverged {
+            h,
+            residual,
+            tolerance: p.tolerance,
+            correction,
+        })
+    }
+
+    /// One attempt of the internal step of `span` (t₀ of the communication step, the step's
+    /// end, h) from `start` (the state, the Newton rate estimate) with the deviation's end
+    /// acceleration `a1`: the deviation at the end, the residual and its relative size
+    /// ([`PartnerStep::residual`]).
+    fn partner_attempt(
+        &mut self,
+        p: &PartnerStep,
+        dev: &Deviation,
+        a1: &[f64; PARTNER_COMPONENTS],
+        (start, eta): (&State, f64),
         (t0, t_next, h): (f64, f64, f64),
         inputs: &Inputs<S>,
-    ) -> Result<(), crate::integrator::StepFailure> {
+    ) -> Result<(Deviation, Vector, f64), crate::integrator::StepFailure> {
         let varying = self.load_rates.any();
-        let t_start = self.state.t;
-        let n = p.n;
-        let start = self.state.clone();
-        let mut a1 = dev.a;
-        for it in 0..PARTNER_ITERATIONS {
-            let next = dev.advanced(&a1, h);
-            // the loads and the deviated mount at the step's end (each stage time of a
-            // multi-stage method: the deviation's acceleration linear over the step)
-            let (mount, rates, d0) = (self.mount.as_deref(), &self.load_rates, &*dev);
-            let at = |m: &mut Model<S>, dt: f64| {
-                let t = super::step::stage_time(t_start, t_next, h, dt);
-                if varying {
-                    rates.advanced(inputs, t - t0).apply(m);
-                }
-                if let Some(ms) = mount {
-                    let d = if dt == h {
-                        next.clone()
-                    } else {
-                        let f = dt / h;
-                        let a: [f64; PARTNER_COMPONENTS] =
-                            std::array::from_fn(|i| d0.a[i] + f * (a1[i] - d0.a[i]));
-                        d0.advanced(&a, dt)
-                    };
-                    m.set_mount(&d.applied(&ms.at(t)));
-                }
-            };
-            if let Err(e) = self.integ.step(&mut self.model, &mut self.state, h, at) {
-                self.state = start;
-                return Err(e);
+        let t_start = start.t;
+        self.state.clone_from(start);
+        self.integ.set_rate_estimate(eta);
+        let next = dev.advanced(a1, h);
+        // the loads and the deviated mount at the step's end (each stage time of a
+        // multi-stage method: the deviation's acceleration linear over the step)
+        let (mount, rates) = (self.mount.as_deref(), &self.load_rates);
+        let at = |m: &mut Model<S>, dt: f64| {
+            let t = super::step::stage_time(t_start, t_next, h, dt);
+            if varying {
+                rates.advanced(inputs, t - t0).apply(m);
             }
-            if self.mount.is_none() {
-                *dev = next;
-                return Ok(());
+            if let Some(ms) = mount {
+                let d = if dt == h {
+                    next.clone()
+                } else {
+                    let f = dt / h;
+                    let a: [f64; PARTNER_COMPONENTS] =
+                        std::array::from_fn(|i| dev.a[i] + f * (a1[i] - dev.a[i]));
+                    dev.advanced(&a, dt)
+                };
+                m.set_mount(&d.applied(&ms.at(t)));
             }
-            let answer = p.answer(&self.reaction_now());
-            let res = nalgebra::DVector::from_fn(n, |i, _| a1[i] - answer[i]);
-            let size = res.amax();
-            let scale = a1[..n].iter().fold(1e-9f64, |m, x| m.max(x.abs()));
-            if size <= PARTNER_TOLERANCE * scale || it + 1 == PARTNER_ITERATIONS {
-                *dev = next;
-                return Ok(());
-            }
-            let delta = p.lu.solve(&res).unwrap_or(res);
-            for i in 0..n {
-                a1[i] -= delta[i];
-            }
-            self.state = start.clone();
-        }
-        Ok(())
+        };
+        self.integ.step(&mut self.model, &mut self.state, h, at)?;
+        let (res, relative) = p.residual(a1, &self.reaction_now());
+        Ok((next, res, relative))
     }
 
     /// After a communication step with the partner model: the mount's path continues from
-    /// where the deviation took it (the host's next input re-anchors the beam from there).
+    /// where the deviation took it, its pose and velocity, with the host's accelerations (the
+    /// inputs, which hold until set again); the deviation's acceleration, which the state is
+    /// consistent with, is kept beside it ([`MountState::deviation`]) and the next step takes
+    /// the mount back to the path before it solves its own. So a host that holds its
+    /// acceleration inputs steps as one that sends the same values again, and the deviation is
+    /// answered once, never added to the host's acceleration. The host's next pose or velocity
+    /// input re-anchors the beam from there.
     pub(super) fn continue_deviated(&mut self, dev: &Deviation, t_end: f64) {
         if let Some(ms) = &mut self.mount {
-            ms.base = dev.applied(&ms.at(t_end));
+            let host = ms.at(t_end);
+            ms.base = dev.applied(&host).with_accelerations_of(&host);
+            ms.deviation = dev.a;
             ms.t0 = t_end;
             ms.rates = MotionRates::default();
         }
     }
+}
+
+/// `m` with the accelerations `a` (components as [`Partner`]) added, as
+/// [`Deviation::applied`] adds them.
+pub(super) fn accelerated<S: Space>(m: &Motion<S>, a: &[f64; PARTNER_COMPONENTS]) -> Motion<S> {
+    let mut m = *m;
+    let dim = S::DIM;
+    for k in 0..dim {
+        m.acceleration[k] += a[k];
+    }
+    for (k, x) in S::moment_components_mut(&mut m.angular_acceleration)
+        .iter_mut()
+        .enumerate()
+    {
+        *x += a[dim + k];
+    }
+    m
 }
 
 #[cfg(test)]

@@ -33,7 +33,7 @@ pub(super) const ATTITUDE_TOLERANCE: f64 = 1e-9;
 
 /// Format version of [`Simulator::snapshot`]; raise it when a field of [`Snapshot`] (or of the
 /// structs it holds) changes.
-pub const SNAPSHOT_VERSION: u32 = 5;
+pub const SNAPSHOT_VERSION: u32 = 6;
 
 /// The payload of [`Simulator::snapshot`], encoded with `postcard` (f64 as 8 little-endian
 /// bytes, so restored values are bit-identical).
@@ -184,7 +184,7 @@ impl<S: Space> Simulator<S> {
             return Err(SnapshotError::NewtonMatrix(e).into());
         }
         if let Some(ms) = &mem.mount {
-            self.model.set_mount(&ms.at(s.t));
+            self.model.set_mount(&ms.held(s.t));
         }
         self.state = s;
         self.step = mem.step;

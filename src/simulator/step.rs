@@ -2,6 +2,7 @@
 //! roll-back, the refusals of a converged state outside the model's validity, and the static
 //! solve.
 
+use super::partner::PartnerFailure;
 use super::*;
 
 /// Internal step control carried from one communication step to the next.
@@ -33,7 +34,7 @@ impl<S: Space> Simulator<S> {
         // the applied loads (an attempt left the pending ones, or their values within the step)
         self.applied.apply(&mut self.model);
         if let Some(ms) = &saved.mount {
-            self.model.set_mount(&ms.at(saved.state.t));
+            self.model.set_mount(&ms.held(saved.state.t));
         }
         self.mount = saved.mount;
         self.state = saved.state;
@@ -142,8 +143,9 @@ impl<S: Space> Simulator<S> {
         let mut attempts = 0u64;
         let mut halvings = 0;
         let varying = self.load_rates.any();
-        // the partner model: its Newton matrix once per communication step
-        let partner = self.partner_step()?;
+        // the partner model: its iteration's matrix from the apparent mass once per
+        // communication step
+        let mut partner = self.partner_step()?;
         let mut dev = match &partner {
             Some(p) => self.partner_start(p)?,
             None => partner::Deviation::default(),
@@ -169,12 +171,13 @@ impl<S: Space> Simulator<S> {
                     rates.advanced(inputs, t - t0).apply(m);
                 }
             };
-            let stepped = match &partner {
+            let stepped = match &mut partner {
                 Some(p) => self.step_with_partner(p, &mut dev, (t0, t_next, h), inputs),
                 None => self
                     .integ
                     .step(&mut self.model, &mut self.state, h, at)
-                    .map(|_| ()),
+                    .map(|_| ())
+                    .map_err(PartnerFailure::Step),
             };
             match stepped {
                 Ok(()) => {
@@ -200,11 +203,28 @@ impl<S: Space> Simulator<S> {
                     };
                     if let Some(limit) = limit {
                         // reported at the time the state returns to
-                        return Err(SimError::Step {
-                            t: t0,
-                            halvings: halvings - 1,
-                            limit,
-                            source: e,
+                        let halvings = halvings - 1;
+                        return Err(match e {
+                            PartnerFailure::Step(source) => SimError::Step {
+                                t: t0,
+                                halvings,
+                                limit,
+                                source,
+                            },
+                            PartnerFailure::Unconverged {
+                                h,
+                                residual,
+                                tolerance,
+                                correction,
+                            } => SimError::Partner {
+                                t: t0,
+                                halvings,
+                                limit,
+                                h,
+                                residual,
+                                tolerance,
+                                correction,
+                            },
                         });
                     }
                     steps *= 2;

@@ -369,6 +369,7 @@ fn step_error(e: SimError) -> StepError {
     let message = e.to_string();
     match e {
         SimError::Step { .. }
+        | SimError::Partner { .. }
         | SimError::Refused { .. }
         | SimError::WorkCap { .. }
         | SimError::NonFinite { .. }
@@ -594,6 +595,15 @@ mod tests {
                     h: 1e-4,
                     last_norm: 3.0,
                 },
+            },
+            SimError::Partner {
+                t: 0.1,
+                halvings: 12,
+                limit: StepLimit::MaxHalvings,
+                h: 2e-4 / 4096.0,
+                residual: 3e-6,
+                tolerance: 1e-7,
+                correction: 40.0,
             },
             SimError::Refused {
                 t: 0.2,
