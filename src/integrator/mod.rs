@@ -100,19 +100,13 @@ impl Integrator {
 
     /// The Newton convergence-rate estimate the next step starts from.
     pub fn rate_estimate(&self) -> f64 {
-        match self {
-            Self::Alpha(g) => g.eta,
-            Self::Sdirk(s) => s.eta,
-        }
+        each!(self, i => i.eta)
     }
 
     /// Sets [`Integrator::rate_estimate`]: a step repeated from the same state then stops its
     /// Newton iteration by the same rule as the first attempt.
     pub fn set_rate_estimate(&mut self, eta: f64) {
-        match self {
-            Self::Alpha(g) => g.eta = eta,
-            Self::Sdirk(s) => s.eta = eta,
-        }
+        each!(self, i => i.eta = eta)
     }
 
     /// Restores memory (the held Newton matrix rebuilt where it was evaluated).
