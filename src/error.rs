@@ -78,13 +78,13 @@ pub enum SimError {
     },
     /// An internal step with the partner model (`root.mobility`) did not meet the partner
     /// equation a = a_host + G (R − R_ref) within
-    /// [`PARTNER_ITERATIONS`](crate::simulator::PARTNER_ITERATIONS) iterations, to neither of
-    /// its tolerances ([`PARTNER_TOLERANCE`](crate::simulator::PARTNER_TOLERANCE)), and could
+    /// [`PARTNER_ITERATIONS`](crate::simulator::limits::PARTNER_ITERATIONS) iterations, to neither of
+    /// its tolerances ([`PARTNER_TOLERANCE`](crate::simulator::limits::PARTNER_TOLERANCE)), and could
     /// not be halved further.
     #[error(
         "step from t = {t:.6} s failed {limit}: the partner model's equation a = a_host + G (R - R_ref) (root.mobility, root.reaction_reference) was not met at an internal step of {h:.3e} s after {} iterations: residual {residual:.2e} of the magnitude of its terms (tolerance {tolerance:.1e}, {:.0e} x solver.tolerance), and the correction of the mount's acceleration still to make {correction:.2e} x what moves the mount by solver.tolerance over the step. Check that root.mobility is the host's own mobility at the mount (without the beam's inertia) and finite in size, or reduce the communication step",
-        crate::simulator::PARTNER_ITERATIONS,
-        crate::simulator::PARTNER_TOLERANCE
+        crate::simulator::limits::PARTNER_ITERATIONS,
+        crate::simulator::limits::PARTNER_TOLERANCE
     )]
     Partner {
         /// Start of the communication step [s].

@@ -16,8 +16,9 @@ mod step;
 pub use any::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
 pub use inputs::{Inputs, LoadRates};
 pub use limits::*;
+pub use limits::{PARTNER_ITERATIONS, PARTNER_TOLERANCE};
 pub use mount::{MountInput, MountState};
-pub use partner::{Partner, PARTNER_COMPONENTS, PARTNER_ITERATIONS, PARTNER_TOLERANCE};
+pub use partner::{Partner, PARTNER_COMPONENTS};
 pub use snapshot::{Memory, SNAPSHOT_VERSION};
 pub use step::StepControl;
 

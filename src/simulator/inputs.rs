@@ -144,3 +144,14 @@ impl<S: Space> Simulator<S> {
         self.load_rates
     }
 }
+
+/// The time `dt` into a step of size `h` from `t_start` to `t_next`, at which a stage takes its
+/// inputs (load rates, the mount's path): `t_next` itself at the step's end (its rounding is
+/// the communication grid's), `t_start + dt` at a stage inside.
+pub(super) fn stage_time(t_start: f64, t_next: f64, h: f64, dt: f64) -> f64 {
+    if dt == h {
+        t_next
+    } else {
+        t_start + dt
+    }
+}

@@ -67,30 +67,6 @@ impl Partner {
     }
 }
 
-/// Iterations of the partner's deviation per internal step, at most; an internal step that
-/// has not met the partner tolerance after them, nor the Newton tolerance in the last
-/// ([`PARTNER_TOLERANCE`]), fails (and is halved, as a step whose Newton iteration fails).
-pub const PARTNER_ITERATIONS: usize = 12;
-
-/// Tolerance of the partner equation a₁ = G (R − R_ref) at an internal step's end, as a
-/// multiple of the solver's Newton tolerance (`solver.tolerance`): per component i, relative
-/// to the magnitude of its terms,
-///
-/// |a₁ᵢ − Σⱼ Gᵢⱼ (Rⱼ − R_ref,ⱼ)| ≤ this · solver.tolerance · (|a₁ᵢ| + Σⱼ |Gᵢⱼ| (|Rⱼ| + |R_ref,ⱼ|)),
-///
-/// a₁ the deviation's end acceleration (the mount's acceleration minus the host's): 1e-7 at
-/// the default 1e-11. The reaction R is that of a step converged to the Newton tolerance, and
-/// no better: its coordinates' remaining error, amplified by the stiffness at the mount and
-/// by 1/h² in the accelerations, varies R between solves of the same step by about 1e-9–1e-8
-/// of its size at the default and the boom's 0.2 ms steps (`scenes/boom.toml`), and by more
-/// at smaller steps (it grows as 1/h²), which no iteration on a₁ resolves. So a step that has
-/// not met this after [`PARTNER_ITERATIONS`] iterations is accepted at the Newton tolerance
-/// itself, as the beam's coordinates are: if the correction of a₁ the iteration would still
-/// make, δ, moves the mount over the step by less than it, h²/4 |δᵢ| ≤ solver.tolerance · ℓᵢ
-/// (ℓ the Newton scale of the mount's coordinates: the beam's length for a translation, 1 rad
-/// for a rotation).
-pub const PARTNER_TOLERANCE: f64 = 1e4;
-
 /// A vector of the partner's components (the plane's 3 in the first places, the others zero).
 type Vector = nalgebra::Vector6<f64>;
 
@@ -503,7 +479,7 @@ impl<S: Space> Simulator<S> {
         // multi-stage method: the deviation's acceleration linear over the step)
         let (mount, rates) = (self.mount.as_deref(), &self.load_rates);
         let at = |m: &mut Model<S>, dt: f64| {
-            let t = super::step::stage_time(t_start, t_next, h, dt);
+            let t = super::inputs::stage_time(t_start, t_next, h, dt);
             if varying {
                 rates.advanced(inputs, t - t0).apply(m);
             }

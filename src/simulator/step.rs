@@ -163,7 +163,7 @@ impl<S: Space> Simulator<S> {
             let t_start = self.state.t;
             let (mount, rates) = (self.mount.as_deref(), &self.load_rates);
             let at = |m: &mut Model<S>, dt: f64| {
-                let t = stage_time(t_start, t_next, h, dt);
+                let t = inputs::stage_time(t_start, t_next, h, dt);
                 if let Some(ms) = mount {
                     m.set_mount(&ms.at(t));
                 }
@@ -334,15 +334,5 @@ impl<S: Space> Simulator<S> {
         let it = solve_static(&mut self.model, &mut self.state, tol)?;
         self.integ.invalidate();
         Ok(it)
-    }
-}
-
-/// The time `dt` into a step of size `h` from `t_start` to `t_next`: `t_next` itself at the
-/// step's end (its rounding is the communication grid's), `t_start + dt` at a stage inside.
-pub(super) fn stage_time(t_start: f64, t_next: f64, h: f64, dt: f64) -> f64 {
-    if dt == h {
-        t_next
-    } else {
-        t_start + dt
     }
 }
