@@ -37,6 +37,7 @@ pub mod held;
 pub mod inertia;
 pub mod load;
 pub mod modal;
+pub mod output_names;
 pub mod outputs;
 pub mod planar;
 pub mod sample;
@@ -54,6 +55,7 @@ pub use component::{
 };
 pub use dofs::{Dof, LocalDofs, Numbering, Rigid, RigidGroup};
 pub use inertia::MountInertia;
+pub use output_names::{OutputId, Quantity};
 pub use outputs::{ModelValidity, Outputs};
 pub use planar::Planar;
 pub use sample::ShapePoint;

@@ -145,6 +145,143 @@ impl<S: Space> Simulator<S> {
     }
 }
 
+impl<S: Space> Inputs<S> {
+    /// The value of one input; `None` for a component this space does not have (and for the
+    /// mount's inputs, which are not part of these).
+    pub fn get(&self, id: InputId) -> Option<f64> {
+        let k = id.component;
+        match id.kind {
+            InputKind::TipForce => self.tip_force.as_ref().get(k).copied(),
+            InputKind::TipMoment => S::moment_components(&self.tip_moment).get(k).copied(),
+            InputKind::Gravity => self.gravity.as_ref().get(k).copied(),
+            _ => None,
+        }
+    }
+
+    /// Sets one input; `false` (and no change) for a component this space does not have.
+    pub fn set(&mut self, id: InputId, x: f64) -> bool {
+        let k = id.component;
+        let slot = match id.kind {
+            InputKind::TipForce => self.tip_force.as_mut().get_mut(k),
+            InputKind::TipMoment => S::moment_components_mut(&mut self.tip_moment).get_mut(k),
+            InputKind::Gravity => self.gravity.as_mut().get_mut(k),
+            _ => None,
+        };
+        slot.map(|s| *s = x).is_some()
+    }
+}
+
+impl<S: Space> LoadRates<S> {
+    /// The slot of the `order`-th derivative (1 or 2) of a tip load component; `None` for
+    /// other inputs (gravity takes no derivatives) or components.
+    fn slot(&mut self, id: InputId, order: u32) -> Option<&mut f64> {
+        let rates = self;
+        let o = (order as usize).checked_sub(1).filter(|o| *o < 2)?;
+        match id.kind {
+            InputKind::TipForce => rates.force[o].as_mut().get_mut(id.component),
+            InputKind::TipMoment => {
+                S::moment_components_mut(&mut rates.moment[o]).get_mut(id.component)
+            }
+            _ => None,
+        }
+    }
+}
+
+impl<S: Space> Simulator<S> {
+    /// The value of an input set for the next step; `None` for a component this space (or a
+    /// fixed root) does not have.
+    pub fn input(&self, id: InputId) -> Option<f64> {
+        if id.kind.is_partner() {
+            let mounted = self.mount_accelerations_given().is_some();
+            let mut p = self.partner();
+            return p.slot(id).filter(|_| mounted).map(|x| *x);
+        }
+        if id.kind.is_mount() {
+            return self.mount_input().and_then(|mut m| m.slot(id).map(|x| *x));
+        }
+        self.pending.get(id)
+    }
+
+    /// Sets one input for the next step (a jump of the inputs: see [`Simulator::advance`]; a
+    /// mount input is checked there), leaving every other input as it is; an input set again
+    /// forgets its derivatives (they held for one step). `false` (and no change) for a
+    /// component this space (or a fixed root) does not have.
+    pub fn set_input(&mut self, id: InputId, x: f64) -> bool {
+        if id.kind.is_partner() {
+            let mut p = self.partner();
+            return p.slot(id).map(|slot| *slot = x).is_some() && self.set_partner(p);
+        }
+        if id.kind.is_mount() {
+            let Some(mut m) = self.mount_input() else {
+                return false;
+            };
+            let known = m.slot(id).map(|slot| *slot = x).is_some();
+            let velocity_mode = self.mount_accelerations_given() == Some(false);
+            for order in [1, 2] {
+                if let Some(d) = m.derivative_slot(id, order, velocity_mode) {
+                    if !(velocity_mode && order == 1) {
+                        *d = 0.0;
+                    }
+                }
+            }
+            if velocity_mode
+                && matches!(
+                    id.kind,
+                    InputKind::MountVelocity | InputKind::MountAngularVelocity
+                )
+            {
+                m.accelerations = false;
+            }
+            return known && self.set_mount_unchecked(m);
+        }
+        let known = self.pending.set(id, x);
+        if known {
+            for order in [1, 2] {
+                if let Some(d) = self.load_rates.slot(id, order) {
+                    *d = 0.0;
+                }
+            }
+        }
+        known
+    }
+
+    /// Sets the derivative of order 1 or 2 of an input over the coming communication step
+    /// (FMI input derivatives; they hold for the next step only). Mount inputs: the
+    /// accelerations' derivatives (or, with `motion_input = "pose_velocity"`, the velocities')
+    /// shape the base motion; derivatives of the pose, implied by the velocities, are accepted
+    /// and not used. Tip loads: [`LoadRates`]. `false` for gravity.
+    pub fn set_input_derivative(&mut self, id: InputId, order: u32, x: f64) -> bool {
+        if !(1..=2).contains(&order) {
+            return false;
+        }
+        if id.kind.is_partner() {
+            // the partner model is held over a step: a derivative is accepted, not used
+            return self.input(id).is_some();
+        }
+        if !id.kind.is_mount() {
+            return self.load_rates.slot(id, order).map(|d| *d = x).is_some();
+        }
+        let (Some(mut m), Some(given)) = (self.mount_input(), self.mount_accelerations_given())
+        else {
+            return false;
+        };
+        if m.slot(id).is_none() {
+            return false;
+        }
+        let Some(slot) = m.derivative_slot(id, order, !given) else {
+            // a derivative implied by other inputs (the pose's, or the velocities' when
+            // accelerations are inputs): accepted, not used
+            return true;
+        };
+        *slot = x;
+        if !given && order == 1 {
+            // the velocity's derivative given: no backward-difference estimate
+            m.accelerations = true;
+        }
+        self.set_mount_unchecked(m)
+    }
+}
+
 /// The time `dt` into a step of size `h` from `t_start` to `t_next`, at which a stage takes its
 /// inputs (load rates, the mount's path): `t_next` itself at the step's end (its rounding is
 /// the communication grid's), `t_start + dt` at a stage inside.

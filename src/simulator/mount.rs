@@ -377,3 +377,57 @@ impl<S: Space> Simulator<S> {
         Ok((target != mid).then_some(target))
     }
 }
+
+impl<S: Space> MountInput<S> {
+    /// The slot of one mount input component (`None`: not a mount input, or a component this
+    /// space does not have).
+    pub(super) fn slot(&mut self, id: InputId) -> Option<&mut f64> {
+        let (m, k) = (&mut self.motion, id.component);
+        match id.kind {
+            InputKind::MountPosition => m.position.as_mut().get_mut(k),
+            InputKind::MountAttitude => S::attitude_components_mut(&mut m.attitude).get_mut(k),
+            InputKind::MountVelocity => m.velocity.as_mut().get_mut(k),
+            InputKind::MountAngularVelocity => {
+                S::moment_components_mut(&mut m.angular_velocity).get_mut(k)
+            }
+            InputKind::MountAcceleration => m.acceleration.as_mut().get_mut(k),
+            InputKind::MountAngularAcceleration => {
+                S::moment_components_mut(&mut m.angular_acceleration).get_mut(k)
+            }
+            _ => None,
+        }
+    }
+
+    /// The slot of a derivative of order 1 or 2 of one mount input that defines the motion:
+    /// the accelerations' (jerk, snap), or, when the scene's accelerations are not inputs
+    /// (`velocity_mode`), the velocities' (acceleration, jerk). `None` for the pose and for
+    /// derivatives implied by other inputs.
+    pub(super) fn derivative_slot(
+        &mut self,
+        id: InputId,
+        order: u32,
+        velocity_mode: bool,
+    ) -> Option<&mut f64> {
+        let k = id.component;
+        let (r, m) = (&mut self.rates, &mut self.motion);
+        match (id.kind, order, velocity_mode) {
+            (InputKind::MountAcceleration, 1, false) => r.jerk.as_mut().get_mut(k),
+            (InputKind::MountAcceleration, 2, false) => r.snap.as_mut().get_mut(k),
+            (InputKind::MountAngularAcceleration, 1, false) => {
+                S::moment_components_mut(&mut r.angular_jerk).get_mut(k)
+            }
+            (InputKind::MountAngularAcceleration, 2, false) => {
+                S::moment_components_mut(&mut r.angular_snap).get_mut(k)
+            }
+            (InputKind::MountVelocity, 1, true) => m.acceleration.as_mut().get_mut(k),
+            (InputKind::MountVelocity, 2, true) => r.jerk.as_mut().get_mut(k),
+            (InputKind::MountAngularVelocity, 1, true) => {
+                S::moment_components_mut(&mut m.angular_acceleration).get_mut(k)
+            }
+            (InputKind::MountAngularVelocity, 2, true) => {
+                S::moment_components_mut(&mut r.angular_jerk).get_mut(k)
+            }
+            _ => None,
+        }
+    }
+}

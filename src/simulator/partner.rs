@@ -57,6 +57,20 @@ impl Partner {
         self.mobility.iter().flatten().any(|x| *x != 0.0)
     }
 
+    /// The partner's slot of this input (`None` for another input or a component outside
+    /// the partner's arrays).
+    pub(super) fn slot(&mut self, id: InputId) -> Option<&mut f64> {
+        let (p, k) = (self, id.component);
+        match id.kind {
+            InputKind::MountMobility => p
+                .mobility
+                .get_mut(k / PARTNER_COMPONENTS)
+                .map(|row| &mut row[k % PARTNER_COMPONENTS]),
+            InputKind::MountReactionReference => p.reference.get_mut(k),
+            _ => None,
+        }
+    }
+
     /// Whether every value is finite.
     pub fn is_finite(&self) -> bool {
         self.mobility
