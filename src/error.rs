@@ -5,8 +5,7 @@
 use crate::integrator::{StaticFailure, StepFailure};
 use crate::scene::{SceneError, MIN_STEP};
 use crate::simulator::limits::{
-    MAX_AXIAL_STRAIN, MAX_MODAL_DEFLECTION, MAX_TWIST_PER_ELEMENT, MIN_CHART_MARGIN,
-    MIN_SECTION_SINE,
+    MAX_MODAL_DEFLECTION, MAX_TWIST_PER_ELEMENT, MIN_CHART_MARGIN, MIN_SECTION_SINE,
 };
 use thiserror::Error;
 
@@ -163,15 +162,16 @@ pub enum Refusal {
         /// Tip deflection over length, or tip slope [rad].
         value: f64,
     },
-    /// The largest axial strain exceeds [`MAX_AXIAL_STRAIN`].
+    /// The largest axial strain exceeds the scene's `solver.max_axial_strain`.
     #[error(
-        "axial strain {:.1} % exceeds the {:.0} % validity limit of the linear elastic rod; the loads (tip force or gravity) are too large for this beam",
-        100.0 * .value,
-        100.0 * MAX_AXIAL_STRAIN
+        "axial strain {:.1} % exceeds solver.max_axial_strain = {limit}, the validity limit of the linear elastic rod; the loads (tip force or gravity) are too large for this beam, or, for a material that stays elastic further (a rubber hose, a soft polymer rod), raise solver.max_axial_strain",
+        100.0 * .value
     )]
     AxialStrain {
         /// Largest axial strain [-].
         value: f64,
+        /// The limit it exceeds (`solver.max_axial_strain`) [-].
+        limit: f64,
     },
     /// An ANCF element twists more than [`MAX_TWIST_PER_ELEMENT`].
     #[error(

@@ -33,6 +33,11 @@ pub struct IntegrationParameters {
     /// Default: 20 000 (one Case 1–3 step takes 6–18 µs here, so a call stays below about
     /// 0.4 s; it allows communication steps up to 2 s at `max_step` = 1e-4 s).
     pub max_internal_steps: u64,
+    /// Largest axial strain [-] a state may reach: a step beyond it is refused (the FMU returns
+    /// fmi2Discard and keeps its state) rather than giving a number outside the linear elastic
+    /// law's meaning. In (0, 1]; default [`DEFAULT_MAX_AXIAL_STRAIN`] (a metal rod); a rubber
+    /// hose or a soft polymer rod may raise it.
+    pub max_axial_strain: f64,
 }
 
 /// The time integration method: the scene's `solver.method`.
@@ -66,9 +71,14 @@ impl Default for IntegrationParameters {
             tolerance: 1e-11,
             max_iterations: 12,
             max_internal_steps: 20_000,
+            max_axial_strain: DEFAULT_MAX_AXIAL_STRAIN,
         }
     }
 }
+
+/// The default of `solver.max_axial_strain`: 5 %, beyond which the linear elastic law has no
+/// meaning for a metal rod.
+pub const DEFAULT_MAX_AXIAL_STRAIN: f64 = 0.05;
 
 /// Smallest internal step [s]: the lower bound of `solver.max_step`, of the step size a
 /// snapshot holds, and of a halved internal step.
@@ -139,5 +149,6 @@ mod tests {
             p.max_internal_steps as f64,
             documented("max_internal_steps")
         );
+        assert_eq!(p.max_axial_strain, documented("max_axial_strain"));
     }
 }

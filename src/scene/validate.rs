@@ -146,6 +146,15 @@ impl Scene {
                 "solver.max_internal_steps = 0: must be >= 1 (internal steps allowed in one communication step; 20000 is the default)".into(),
             ));
         }
+        if !(s.max_axial_strain.is_finite()
+            && s.max_axial_strain > 0.0
+            && s.max_axial_strain <= 1.0)
+        {
+            return Err(SceneError(format!(
+                "solver.max_axial_strain = {}: must be in (0, 1] (the largest axial strain a state may reach before the step is refused; 0.05 is the default, a rubber hose or soft polymer rod may raise it)",
+                s.max_axial_strain
+            )));
+        }
         if s.max_iterations == 0 || s.max_iterations > 100 {
             return Err(SceneError(format!(
                 "solver.max_iterations = {}: must be in 1..=100",

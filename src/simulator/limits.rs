@@ -5,10 +5,6 @@
 /// slope [rad]: a linear floating frame is a small-deformation model.
 pub const MAX_MODAL_DEFLECTION: f64 = 0.3;
 
-/// Largest axial strain accepted: beyond it the linear elastic law of the model has no meaning
-/// for a metal rod, and the step is refused rather than returning a number.
-pub const MAX_AXIAL_STRAIN: f64 = 0.05;
-
 /// Largest twist within one ANCF element accepted [rad] (45°): the twist energy takes the
 /// element's twist from its nodal frames (exact for any angle below 180°, where its atan2 jumps),
 /// but the section director r_y is interpolated linearly for the director inertia and the

@@ -265,11 +265,15 @@ impl<S: Space> Simulator<S> {
         if let Some(refusal) = self.section_refusal(&validity, true).filter(|_| finite) {
             return Err(SimError::Refused { t: t_end, refusal });
         }
-        if !finite || strain > MAX_AXIAL_STRAIN {
+        let limit = self.scene.solver.max_axial_strain;
+        if !finite || strain > limit {
             return Err(if finite {
                 SimError::Refused {
                     t: t_end,
-                    refusal: Refusal::AxialStrain { value: strain },
+                    refusal: Refusal::AxialStrain {
+                        value: strain,
+                        limit,
+                    },
                 }
             } else {
                 SimError::NonFinite { t: t_end }

@@ -614,7 +614,10 @@ mod tests {
             },
             SimError::Refused {
                 t: 0.2,
-                refusal: Refusal::AxialStrain { value: 0.06 },
+                refusal: Refusal::AxialStrain {
+                    value: 0.06,
+                    limit: 0.05,
+                },
             },
             SimError::WorkCap {
                 t0: 0.0,

@@ -6,7 +6,7 @@
 //! space decides which exist); this file gives each name its value reference, unit and
 //! description. Value references belong to the name, the same in both spaces, never to an
 //! enumeration order that could shift: inputs 1–6, outputs 10–32, gravity 100–102, solver
-//! 110–112, and segment i's field k at 1000·(i + 1) + k (k: length 1, diameter 2, width 3,
+//! 110–113, and segment i's field k at 1000·(i + 1) + k (k: length 1, diameter 2, width 3,
 //! height 4, youngs_modulus 5, density 6, damping_time 7, damping_ratio 8, inner_diameter 9). A scene only gets
 //! the variables it needs: no z or quaternion in the plane, no `tip.angle` in space, no damping
 //! parameters without damping, no width/height on a round section, an inner diameter on a tube only. `docs/fmu-variables.md` is
@@ -302,8 +302,8 @@ pub struct SegmentField {
     pub set: fn(&mut Segment, f64),
 }
 
-/// Scene-wide fixed parameters: solver 110–112.
-const SCENE_PARAMETERS: [SceneParameter; 3] = [
+/// Scene-wide fixed parameters: solver 110–113.
+const SCENE_PARAMETERS: [SceneParameter; 4] = [
     SceneParameter {
         name: "solver.rho_inf",
         vr: 110,
@@ -327,6 +327,14 @@ const SCENE_PARAMETERS: [SceneParameter; 3] = [
         description: "relative Newton tolerance",
         get: |s| s.solver.tolerance,
         set: |s, x| s.solver.tolerance = x,
+    },
+    SceneParameter {
+        name: "solver.max_axial_strain",
+        vr: 113,
+        unit: None,
+        description: "largest axial strain a state may reach before the step is refused, (0, 1]",
+        get: |s| s.solver.max_axial_strain,
+        set: |s, x| s.solver.max_axial_strain = x,
     },
 ];
 
