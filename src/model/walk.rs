@@ -89,7 +89,8 @@ pub trait SegmentParts<S: Space> {
     type AncfProps;
 
     /// A modal segment `si` whose root is at arc length `s` [m]; `held` when its frame is the
-    /// support's (the first segment of a clamped or mounted root).
+    /// support's (the first segment of a clamped or mounted root); carrying the point masses
+    /// `points`: (x from the segment's start [m], mass [kg]).
     fn modal(
         &mut self,
         num: &mut Numbering,
@@ -97,11 +98,14 @@ pub trait SegmentParts<S: Space> {
         seg: &Segment,
         s: f64,
         held: bool,
+        points: &[(f64, f64)],
     ) -> Result<ModalSegment<S>, SceneError>;
     /// The element properties of ANCF segment `si` (elements of length `le` [m]).
     fn ancf_props(&self, si: usize, seg: &Segment, le: f64) -> Result<Self::AncfProps, SceneError>;
     /// One ANCF element.
-    fn ancf_element(&self, props: &Self::AncfProps) -> Box<dyn Element<S>>;
+    /// One ANCF element carrying the point masses `points`: (ξ ∈ [0, 1] along the element,
+    /// mass [kg]) (empty: the element alone).
+    fn ancf_element(&self, props: &Self::AncfProps, points: &[(f64, f64)]) -> Box<dyn Element<S>>;
     /// An ANCF node at arc length `s` [m], held as `hold` says, with the rigid groups it forms.
     fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords;
     /// The held normals of a clamped root node's slope direction (rigid directions, turning
@@ -126,6 +130,30 @@ pub trait SegmentParts<S: Space> {
     ) -> Result<(LocalDofs, Box<dyn Constraint>), SceneError>;
 }
 
+/// The element of an ANCF segment of length `length` cut into `ne` equal elements that carries
+/// a point at arc length `at` [m] from the segment's start, and the point's ξ ∈ [0, 1] on it (a
+/// point on a node between two elements goes to the earlier one: the node moves both alike).
+pub fn element_of(at: f64, length: f64, ne: usize) -> (usize, f64) {
+    let le = length / ne as f64;
+    let k = ((at / le).ceil() as usize).clamp(1, ne) - 1;
+    (k, ((at - k as f64 * le) / le).clamp(0.0, 1.0))
+}
+
+/// Refuses attached masses with what the model does not carry yet: an offset or a rotary
+/// inertia (non-zero), naming the field and the fix.
+fn point_masses_are_points(scene: &Scene) -> Result<(), SceneError> {
+    for (i, m) in scene.masses.iter().enumerate() {
+        for (field, v) in [("inertia", &m.inertia), ("offset", &m.offset)] {
+            if let Some(v) = v.as_ref().filter(|v| v.iter().any(|x| *x != 0.0)) {
+                return Err(SceneError(format!(
+                    "masses[{i}].{field} = {v:?}: attached masses are point masses on the centreline in this version (the {field} is not modelled yet); remove `{field}` or set it to zeros"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The model of a validated scene, its segments built by `parts`.
 pub fn walk<S: Space, P: SegmentParts<S>>(
     scene: &Scene,
@@ -140,11 +168,13 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
     let mut prev: Option<End<S>> = None;
     let mut s_pos = 0.0; // arc length at the segment root
     let mut prev_len = 0.0; // length of the previous segment (joint row scale)
+    point_masses_are_points(scene)?;
     for (si, seg) in scene.segments.iter().enumerate() {
         let first = si == 0;
+        let points = scene.point_masses(si);
         match seg.kind {
             SegmentKind::Modal => {
-                let m = parts.modal(&mut num, si, seg, s_pos, first && clamped)?;
+                let m = parts.modal(&mut num, si, seg, s_pos, first && clamped, &points)?;
                 if first {
                     support = m.support;
                 }
@@ -208,7 +238,14 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                     let next = parts.node(&mut num, s_pos + (k + 1) as f64 * le, Hold::Free);
                     let dofs =
                         LocalDofs::new(last.dofs.iter().chain(&next.dofs).copied().collect());
-                    ancf.push((dofs, parts.ancf_element(&props), si));
+                    let on: Vec<(f64, f64)> = points
+                        .iter()
+                        .filter_map(|&(at, m)| {
+                            let (j, xi) = element_of(at, seg.length, ne);
+                            (j == k).then_some((xi, m))
+                        })
+                        .collect();
+                    ancf.push((dofs, parts.ancf_element(&props, &on), si));
                     last = next;
                 }
                 prev = Some(End {

@@ -34,7 +34,7 @@
 //! automatic differentiation ([`Dual64`]) of the nonlinear part, whose residual is plain f64.
 
 use super::basis::ModalBasis;
-use super::nonlinear::{panels, point_fields, Nonlinear};
+use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
 use crate::math;
 use crate::model::sample::ShapePoint;
 use crate::model::vector::Real;
@@ -81,6 +81,8 @@ pub struct ModalBody {
     /// The geometrically nonlinear body (true unless built [`ModalBody::linear`]).
     pub nonlinear: bool,
     nl: Nonlinear,
+    /// Point masses on the body ([`ModalBody::with_points`]).
+    points: Vec<BodyPoint>,
 }
 
 /// Slots per quadrature point of [`ModalBody::fields`].
@@ -201,7 +203,112 @@ impl ModalBody {
             gram,
             nonlinear: true,
             nl,
+            points: Vec::new(),
         }
+    }
+
+    /// The body carrying point masses `points`: (x from the root [m], mass [kg]), each a point
+    /// of the body's kinematics r = R + A[x + c(x); w(x)] with its own mass (c = 0 on a linear
+    /// body): its inertia and weight enter every term on the body's shapes (Ritz). Call after
+    /// [`ModalBody::linear`].
+    pub fn with_points(mut self, points: &[(f64, f64)]) -> Self {
+        self.points = points
+            .iter()
+            .map(|&p| BodyPoint::new(&self.basis, &self.nl, self.length, self.nonlinear, p))
+            .collect();
+        self
+    }
+
+    /// Mass of the point masses [kg].
+    pub fn point_mass(&self) -> f64 {
+        self.points.iter().map(|p| p.mass).sum()
+    }
+
+    /// Adds the point masses' inertia and weight, Σ m (∂r/∂q)ᵀ(r̈ − g), to `out`; `(sn, cs)`
+    /// = (sin θ, cos θ). With the local acceleration α = Aᵀ(r̈ − g) = Z + θ̈Jū − θ̇²ū + 2θ̇J ū̇ + ü
+    /// (Z = Aᵀ(R̈ − g)): F_R = m Aα, F_θ = m (Jū)·α, F_a = m(φ α_y − G_m a α_x).
+    fn add_point_forces<T: Real>(
+        &self,
+        (q, v, a): (&[T], &[T], &[T]),
+        g: [f64; 2],
+        (sn, cs): (T, T),
+        out: &mut [T],
+    ) {
+        let n = self.modes();
+        let (thd, thdd) = (v[2], a[2]);
+        let thd2 = thd * thd;
+        let (gx, gy) = (a[0] - g[0], a[1] - g[1]);
+        let (zx, zy) = (cs * gx + sn * gy, cs * gy - sn * gx);
+        let (am, vm, acc) = (&q[3..3 + n], &v[3..3 + n], &a[3..3 + n]);
+        for pt in &self.points {
+            let (c, w) = pt.plane(am, vm, acc);
+            let (ux, uy) = (c[0] + pt.x, w[0]);
+            let alx = zx - thdd * uy - thd2 * ux - thd * w[1] * 2.0 + c[2];
+            let aly = zy + thdd * ux - thd2 * uy + thd * c[1] * 2.0 + w[2];
+            let (fx, fy) = (alx * pt.mass, aly * pt.mass);
+            out[0] += cs * fx - sn * fy;
+            out[1] += sn * fx + cs * fy;
+            out[2] += ux * fy - uy * fx;
+            for k in 0..n {
+                out[3 + k] += fy * pt.phi[k] - fx * pt.ga(am, k);
+            }
+        }
+    }
+
+    /// The exact partial derivatives of [`ModalBody::add_point_forces`] into `out.m`, `out.c`,
+    /// `out.k`, column by column by forward-mode automatic differentiation, in the scratch of
+    /// `out`.
+    fn add_point_matrices(&self, q: &[f64], v: &[f64], a: &[f64], g: [f64; 2], out: &mut BodyOut) {
+        let d = self.dim();
+        let zero = Dual64::from_re(0.0);
+        let ad = &mut out.ad;
+        for (x, y) in ad.x.iter_mut().zip([q, v, a]) {
+            x.clear();
+            x.extend(y.iter().map(|&y| Dual64::from_re(y)));
+        }
+        ad.r.clear();
+        ad.r.resize(d, zero);
+        for j in 0..d {
+            for which in 0..3 {
+                if which < 2 && j < 2 {
+                    continue;
+                }
+                ad.x[which][j].eps = 1.0;
+                ad.r.fill(zero);
+                let [xq, xv, xa] = &ad.x;
+                let sc = math::sin_cos_dual(xq[2]);
+                self.add_point_forces((xq, xv, xa), g, sc, &mut ad.r);
+                let mat = match which {
+                    0 => &mut out.k,
+                    1 => &mut out.c,
+                    _ => &mut out.m,
+                };
+                for (i, ri) in ad.r.iter().enumerate() {
+                    mat[(i, j)] += ri.eps;
+                }
+                ad.x[which][j].eps = 0.0;
+            }
+        }
+    }
+
+    /// The point masses' kinetic energy Σ ½m|ṙ|² and gravity potential −Σ m gᵀr [J].
+    fn point_energies(&self, q: &[f64], v: &[f64], g: [f64; 2]) -> (f64, f64) {
+        let n = self.modes();
+        let rot_a = rot(q[2]);
+        let (am, vm) = (&q[3..3 + n], &v[3..3 + n]);
+        let z = vec![0.0; n];
+        let rd = Vector2::new(v[0], v[1]);
+        let (mut t, mut u) = (0.0, 0.0);
+        for pt in &self.points {
+            let (c, w) = pt.plane(am, vm, &z);
+            let ul = Vector2::new(c[0] + pt.x, w[0]);
+            let vl = Vector2::new(-v[2] * ul[1] + c[1], v[2] * ul[0] + w[1]);
+            let vel = rd + rot_a * vl;
+            let r = Vector2::new(q[0], q[1]) + rot_a * ul;
+            t += 0.5 * pt.mass * vel.norm_squared();
+            u -= pt.mass * (g[0] * r[0] + g[1] * r[1]);
+        }
+        (t, u)
     }
 
     /// The linear floating frame instead: ū = [x; w] inside the segment, strain energy
@@ -331,12 +438,19 @@ impl ModalBody {
             self.fields_f64(q, v, a, &mut out.buf);
             self.add_nonlinear_fields(v, a, g, sc, out.res.as_mut_slice(), &mut out.buf);
         }
+        if !self.points.is_empty() {
+            let sc = (rot_a[(1, 0)], rot_a[(0, 0)]);
+            self.add_point_forces((q, v, a), g, sc, out.res.as_mut_slice());
+        }
         if !matrices {
             return;
         }
         self.linear_matrices(q, v, &lt, out);
         if self.nonlinear {
             self.add_nonlinear_matrices(q, v, a, g, out);
+        }
+        if !self.points.is_empty() {
+            self.add_point_matrices(q, v, a, g, out);
         }
     }
 
@@ -661,8 +775,15 @@ impl ModalBody {
         }
         // the foreshortening's part: |V⁰ + (ċ, θ̇c)|² − |V⁰|² at the quadrature points, V⁰ the
         // linear frame's local point velocity
+        let tp = |t: f64| {
+            if self.points.is_empty() {
+                t
+            } else {
+                t + self.point_energies(q, v, [0.0; 2]).0
+            }
+        };
         if !self.nonlinear {
-            return 0.5 * t;
+            return tp(0.5 * t);
         }
         let mut buf = Vec::new();
         self.fields(q, v, &vec![0.0; q.len()], &mut buf);
@@ -675,7 +796,7 @@ impl ModalBody {
             let dv = (cd, v[2] * c);
             t += ml * self.nl.w[p] * (2.0 * (v0x * dv.0 + v0y * dv.1) + dv.0 * dv.0 + dv.1 * dv.1);
         }
-        0.5 * t
+        tp(0.5 * t)
     }
 
     /// Strain energy ½EI∫κ²dx with κ = w″(1 + ½w′²): ½ aᵀ K a plus ½EI∫w″²(w′² + ¼w′⁴)dx on
@@ -722,7 +843,12 @@ impl ModalBody {
             * self.length;
         let first = self.mass() * Vector2::new(q[0], q[1])
             + rot(q[2]) * Vector2::new(s0 + short, self.dot_sf(&q[3..]));
-        -(g[0] * first[0] + g[1] * first[1])
+        let u = -(g[0] * first[0] + g[1] * first[1]);
+        if self.points.is_empty() {
+            u
+        } else {
+            u + self.point_energies(q, &vec![0.0; q.len()], g).1
+        }
     }
 
     /// (G a)_k / L: gradient of the tip foreshortening ½ aᵀ G a / L with respect to a_k [-].

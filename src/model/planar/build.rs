@@ -37,6 +37,7 @@ impl SegmentParts<Planar> for PlanarParts {
         seg: &Segment,
         s: f64,
         held: bool,
+        points: &[(f64, f64)],
     ) -> Result<ModalSegment<Planar>, SceneError> {
         let (area, inertia) = seg.area_inertia();
         let basis = ModalBasis::new(seg.modes.unwrap_or(1), seg.interface_modes);
@@ -48,7 +49,8 @@ impl SegmentParts<Planar> for PlanarParts {
             seg.damping_ratio,
             seg.damping_time,
         );
-        let body = Arc::new(if seg.linear { body.linear() } else { body });
+        let body = if seg.linear { body.linear() } else { body };
+        let body = Arc::new(body.with_points(points));
         let first = si == 0;
         let root_pt = [s * self.dir[0], s * self.dir[1]];
         let mut c = Coords::default();
@@ -95,8 +97,8 @@ impl SegmentParts<Planar> for PlanarParts {
         })
     }
 
-    fn ancf_element(&self, props: &AncfProps) -> Box<dyn Element<Planar>> {
-        Box::new(AncfElement::new(*props))
+    fn ancf_element(&self, props: &AncfProps, points: &[(f64, f64)]) -> Box<dyn Element<Planar>> {
+        Box::new(AncfElement::new(*props).with_points(points))
     }
 
     fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {

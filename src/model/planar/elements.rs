@@ -3,7 +3,7 @@
 
 use super::Planar;
 use crate::math;
-use crate::model::ancf::{AncfProps, Mat8, QuadTables, Vec8};
+use crate::model::ancf::{AncfProps, Mat8, QuadTables, Shape, Vec8};
 use crate::model::assembly::Model;
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
 use crate::model::modal::{BodyOut, ModalBody};
@@ -20,8 +20,11 @@ pub struct AncfElement {
     /// 4×4 scalar pattern of the mass matrix (M = M4 ⊗ I₂).
     mass4: [[f64; 4]; 4],
     tables: QuadTables,
-    /// ∫ρA Sᵀ g dx at the current gravity.
+    /// ∫ρA Sᵀ g dx at the current gravity (and the point masses' weight).
     gravity_force: Vec8,
+    /// Σ m S(ξ_m)ᵀ over the point masses on the element (scalar pattern) [kg, kg m]; `None`
+    /// without masses.
+    points: Option<[f64; 4]>,
 }
 
 impl AncfElement {
@@ -40,7 +43,32 @@ impl AncfElement {
             mass4,
             tables: props.tables(),
             gravity_force: Vec8::zeros(),
+            points: None,
         }
+    }
+
+    /// The element carrying point masses `points` (ξ ∈ [0, 1], mass [kg]): a point at ξ is at
+    /// r = S(ξ)e, so it adds m S(ξ)ᵀS(ξ) to the constant mass matrix and m S(ξ)ᵀg to the
+    /// gravity force.
+    pub fn with_points(mut self, points: &[(f64, f64)]) -> Self {
+        if points.is_empty() {
+            return self;
+        }
+        let mut w = [0.0; 4];
+        for &(xi, m) in points {
+            let s = Shape::at(xi, self.props.length).s;
+            for k in 0..4 {
+                w[k] += m * s[k];
+                for j in 0..4 {
+                    let mkj = m * s[k] * s[j];
+                    self.mass4[k][j] += mkj;
+                    self.mass[(2 * k, 2 * j)] += mkj;
+                    self.mass[(2 * k + 1, 2 * j + 1)] += mkj;
+                }
+            }
+        }
+        self.points = Some(w);
+        self
     }
 }
 
@@ -108,6 +136,12 @@ impl Element<Planar> for AncfElement {
 
     fn set_gravity(&mut self, g: &[f64; 2]) {
         self.gravity_force = self.props.gravity_force(*g);
+        if let Some(w) = &self.points {
+            for k in 0..4 {
+                self.gravity_force[2 * k] += w[k] * g[0];
+                self.gravity_force[2 * k + 1] += w[k] * g[1];
+            }
+        }
     }
 
     fn is_damped(&self) -> bool {

@@ -52,6 +52,7 @@ impl SegmentParts<Spatial> for SpatialParts {
         seg: &Segment,
         s: f64,
         held: bool,
+        points: &[(f64, f64)],
     ) -> Result<ModalSegment<Spatial>, SceneError> {
         let first = si == 0;
         let root_pt = s * self.ax;
@@ -66,7 +67,7 @@ impl SegmentParts<Spatial> for SpatialParts {
                 body = body.with_stiffening();
             }
         }
-        let body = Arc::new(body);
+        let body = Arc::new(body.with_points(points));
         let free_p = !held;
         let mut c = Coords::default();
         for k in 0..3 {
@@ -116,19 +117,22 @@ impl SegmentParts<Spatial> for SpatialParts {
         Ok(props)
     }
 
-    fn ancf_element(&self, props: &Ancf3Props) -> Box<dyn Element<Spatial>> {
+    fn ancf_element(&self, props: &Ancf3Props, points: &[(f64, f64)]) -> Box<dyn Element<Spatial>> {
         if self.angle {
             // the axes of the root frame: unit and perpendicular (checked in `ancf_props`)
-            Box::new(AngleElement3::new(Angle3 {
-                cable: Ancf3Props {
-                    torsion: false,
-                    ..*props
-                },
-                t0: self.ax.into(),
-                d0: self.ay.into(),
-            }))
+            Box::new(
+                AngleElement3::new(Angle3 {
+                    cable: Ancf3Props {
+                        torsion: false,
+                        ..*props
+                    },
+                    t0: self.ax.into(),
+                    d0: self.ay.into(),
+                })
+                .with_points(points),
+            )
         } else {
-            Box::new(AncfElement3::new(*props))
+            Box::new(AncfElement3::new(*props).with_points(points))
         }
     }
 

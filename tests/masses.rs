@@ -1,0 +1,412 @@
+//! Attached point masses (`[[masses]]`, issue 39 item 1) against independent references:
+//! - the Newton matrices with masses on ANCF and modal segments against central differences;
+//! - a cantilever with a tip mass M: its first two bending frequencies against the roots of the
+//!   exact frequency equation 1 + cos β cosh β + μβ (cos β sinh β − sin β cosh β) = 0,
+//!   ω = β²√(EI/(ρA L⁴)), μ = M/(ρAL) (Blevins, Formulas for Natural Frequency and Mode Shape,
+//!   Table 8-1 case 4; docs/references.md §10), solved here by bisection;
+//! - a point mass's weight: the static tip deflection P a²(3L − a)/(6EI) of a load P at a
+//!   (Roark's Formulas for Stress and Strain, Table 8.1 case 1a) plus the beam's own qL⁴/(8EI);
+//! - the support reaction and the mount's rigid inertia against the rigid sums;
+//! - an undamped swinging beam with a mass: kinetic + strain + gravity energy constant, the
+//!   gravity potential at the start against −gᵀ(∫ρA r dx + m r_m).
+
+mod common;
+use common::*;
+use hybeam::model::{Model, Planar, Space, Spatial};
+use hybeam::simulator::Simulator;
+
+/// Rod: L = 0.4 m, steel, round d = 2 mm.
+const L: f64 = 0.4;
+const D: f64 = 0.002;
+
+fn rho_a() -> f64 {
+    RHO_STEEL * std::f64::consts::PI * D * D / 4.0
+}
+
+fn ei() -> f64 {
+    E_STEEL * std::f64::consts::PI * D.powi(4) / 64.0
+}
+
+/// A `[[masses]]` table.
+fn mass_table(name: &str, segment: &str, at: f64, mass: f64) -> String {
+    format!(
+        "[[masses]]\nname = \"{name}\"\nsegment = \"{segment}\"\nat = {at:e}\nmass = {mass:e}\n"
+    )
+}
+
+/// A scene from a header, segments and trailing tables (masses).
+fn scene_with(header: &str, segments: &[String], tail: &str) -> hybeam::scene::Scene {
+    let mut text = format!("name = \"test\"\n{header}\n");
+    for s in segments {
+        text.push_str("[[segments]]\n");
+        text.push_str(s);
+        text.push('\n');
+    }
+    text.push_str(tail);
+    hybeam::scene::Scene::from_toml(&text).unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+/// The lowest two roots β of 1 + cos β cosh β + μβ(cos β sinh β − sin β cosh β) = 0 (a scan
+/// for sign changes, then bisection to rounding).
+fn tip_mass_roots(mu: f64) -> [f64; 2] {
+    let f = |b: f64| 1.0 + b.cos() * b.cosh() + mu * b * (b.cos() * b.sinh() - b.sin() * b.cosh());
+    let mut roots = Vec::new();
+    let mut b0 = 0.05;
+    while roots.len() < 2 {
+        let b1 = b0 + 1e-3;
+        if f(b0).signum() != f(b1).signum() {
+            let (mut lo, mut hi) = (b0, b1);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if f(lo).signum() == f(mid).signum() {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            roots.push(0.5 * (lo + hi));
+        }
+        b0 = b1;
+    }
+    [roots[0], roots[1]]
+}
+
+/// The exact first two bending frequencies [Hz] of the rod with tip mass ratio μ.
+fn tip_mass_frequencies(mu: f64) -> [f64; 2] {
+    let w = (ei() / (rho_a() * L.powi(4))).sqrt();
+    tip_mass_roots(mu).map(|b| b * b * w / std::f64::consts::TAU)
+}
+
+fn check_frequencies(name: &str, got: [f64; 2], want: [f64; 2], tol: f64) -> f64 {
+    let mut worst = 0.0f64;
+    for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+        let rel = g / w - 1.0;
+        eprintln!(
+            "{name}: f{} = {g:.6} Hz, exact {w:.6} Hz, error {rel:+.2e}",
+            i + 1
+        );
+        worst = worst.max(rel.abs());
+        assert!(rel.abs() < tol, "{name}: f{} error {rel:e}", i + 1);
+    }
+    worst
+}
+
+/// The lowest two bending frequencies [Hz] of the linearized model (planar: the lowest two;
+/// spatial, round section: the lowest two pairs, each pair equal).
+fn bending_frequencies<S: Space>(model: &mut Model<S>, spatial: bool) -> [f64; 2] {
+    let f: Vec<f64> = linearized_modes(model).iter().map(|m| m.0).collect();
+    if spatial {
+        for k in [0, 2] {
+            assert!((f[k + 1] / f[k] - 1.0).abs() < 1e-8, "pair {k}: {f:?}");
+        }
+        [f[0], f[2]]
+    } else {
+        [f[0], f[1]]
+    }
+}
+
+/// The test rods, each with the tip mass on its last segment: (label, segments, the segment
+/// carrying the mass).
+fn rods() -> Vec<(&'static str, Vec<String>, &'static str)> {
+    let r = round(D);
+    vec![
+        ("all-ANCF", vec![ancf("a", L, &r, 16, "")], "a"),
+        ("all-modal", vec![modal("m", L, &r, 8, true, "")], "m"),
+        (
+            "hybrid modal+ANCF",
+            vec![
+                modal("m", 0.5 * L, &r, 6, true, ""),
+                ancf("a", 0.5 * L, &r, 12, ""),
+            ],
+            "a",
+        ),
+        (
+            "hybrid ANCF+modal",
+            vec![
+                ancf("a", 0.5 * L, &r, 12, ""),
+                modal("m", 0.5 * L, &r, 6, true, ""),
+            ],
+            "m",
+        ),
+    ]
+}
+
+#[test]
+fn tip_mass_frequencies_match_the_exact_frequency_equation() {
+    // the equation's limits: μ = 0 gives the clamped–free roots 1.8751, 4.6941
+    let b0 = tip_mass_roots(0.0);
+    assert!((b0[0] - 1.875_104_068_711_961).abs() < 1e-12);
+    assert!((b0[1] - 4.694_091_132_974_175).abs() < 1e-12);
+    let mu = 0.5;
+    let m = mu * rho_a() * L;
+    let want = tip_mass_frequencies(mu);
+    let mut worst = 0.0f64;
+    for (label, segs, on) in rods() {
+        let len: f64 = if segs.len() == 1 { L } else { 0.5 * L };
+        let tail = mass_table("tip", on, len, m);
+        for spatial in [false, true] {
+            // a cable (torsion = false) passes no torque to a modal segment after it: the
+            // director element there
+            let torsion = label == "hybrid ANCF+modal";
+            let header = if spatial {
+                format!("space = \"spatial\"\ntorsion = {torsion}\ngravity = [0.0, 0.0, 0.0]")
+            } else {
+                "gravity = [0.0, 0.0]".to_string()
+            };
+            let s = scene_with(&header, &segs, &tail);
+            let got = if spatial {
+                bending_frequencies(&mut Model::<Spatial>::from_scene(&s).unwrap(), true)
+            } else {
+                bending_frequencies(&mut Model::<Planar>::from_scene(&s).unwrap(), false)
+            };
+            let space = if spatial { "spatial" } else { "planar" };
+            worst = worst.max(check_frequencies(
+                &format!("{space} {label}, mu = {mu}"),
+                got,
+                want,
+                1e-4,
+            ));
+        }
+    }
+    eprintln!("worst relative frequency error {worst:.2e}");
+}
+
+#[test]
+fn newton_matrices_with_masses_match_central_differences() {
+    let r = round(0.004);
+    let segs = [
+        modal("m1", 0.2, &r, 3, true, "damping_ratio = 0.05"),
+        ancf("a", 0.2, &r, 2, "damping_time = 1e-3"),
+        modal("m2", 0.2, &r, 2, false, ""),
+    ];
+    let tail = [
+        mass_table("p1", "m1", 0.07, 0.01),
+        mass_table("p2", "a", 0.1, 0.02),
+        mass_table("p3", "a", 0.13, 0.005),
+        mass_table("p4", "m2", 0.2, 0.03),
+    ]
+    .concat();
+    for lin in [false, true] {
+        let segs: Vec<String> = segs
+            .iter()
+            .map(|s| {
+                if lin && s.contains("modal") {
+                    format!("{s}linear = true\n")
+                } else {
+                    s.clone()
+                }
+            })
+            .collect();
+        let s = scene_with("root = \"pinned\"\ngravity = [1.0, -9.81]", &segs, &tail);
+        let mut model = Model::<Planar>::from_scene(&s).unwrap();
+        model.set_tip_force([0.3, -0.7]);
+        let w = check_newton_matrix(&mut model);
+        eprintln!("planar, linear = {lin}: worst error {w:.2e} of the tolerance");
+        for torsion in [
+            "torsion = true",
+            "torsion_element = \"angle\"",
+            "torsion = false",
+        ] {
+            // a cable passes no torque to a modal segment after it: the cable without m2
+            let segs = if torsion == "torsion = false" {
+                &segs[..2]
+            } else {
+                &segs[..]
+            };
+            let tail = if torsion == "torsion = false" {
+                &tail[..tail.rfind("[[masses]]").unwrap()]
+            } else {
+                &tail[..]
+            };
+            let s = scene_with(
+                &format!(
+                    "space = \"spatial\"\n{torsion}\nroot = \"ball\"\ngravity = [0.0, 1.0, -9.81]"
+                ),
+                segs,
+                tail,
+            );
+            let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+            model.set_tip_force([0.3, -0.7, 0.2]);
+            let w = check_newton_matrix(&mut model);
+            eprintln!("spatial {torsion}, linear = {lin}: worst error {w:.2e} of the tolerance");
+        }
+    }
+}
+
+#[test]
+fn point_mass_weight_deflects_the_tip_as_roark() {
+    // square b = 1 cm, L = 1 m, light material (ρ = 1 kg/m³) so that the tip deflection stays
+    // near 1e-4 L (linear range); P = m g at a = 0.6 L on a node of the mesh
+    let (l, b, g): (f64, f64, f64) = (1.0, 0.01, 9.81);
+    let ei = E_STEEL * b.powi(4) / 12.0;
+    let rho = 1.0;
+    let q = rho * b * b * g;
+    let (a, m) = (0.6 * l, 0.0124);
+    let p = m * g;
+    let want = p * a * a * (3.0 * l - a) / (6.0 * ei) + q * l.powi(4) / (8.0 * ei);
+    let seg = format!(
+        "name = \"rod\"\nkind = \"ancf\"\nlength = {l:e}\n{}\nyoungs_modulus = {E_STEEL:e}\ndensity = {rho:e}\nelements = 10\n",
+        square(b)
+    );
+    let tail = mass_table("load", "rod", a, m);
+    let planar = scene_with(
+        &format!("gravity = [0.0, {:e}]", -g),
+        std::slice::from_ref(&seg),
+        &tail,
+    );
+    let mut sim = Simulator::<Planar>::new(planar).unwrap();
+    sim.solve_static().unwrap();
+    let o = sim.outputs();
+    let got = -o.tip_position[1];
+    let rel = got / want - 1.0;
+    eprintln!("planar: tip deflection {got:.9e} m, Roark {want:.9e} m, error {rel:+.2e}");
+    assert!(rel.abs() < 1e-6, "{rel:e}");
+    // the support carries the beam's and the mass's weight, and their moment
+    let weight = (rho * b * b * l + m) * g;
+    assert!(
+        (o.root_force[1] / weight - 1.0).abs() < 1e-10,
+        "{:?}",
+        o.root_force
+    );
+    let moment = (rho * b * b * l * l / 2.0 + m * a) * g;
+    let rm = hybeam::model::Planar::moment_components(&o.root_moment)[0];
+    assert!((rm / moment - 1.0).abs() < 1e-3, "{rm} vs {moment}");
+    for torsion in ["torsion = false", "torsion = true"] {
+        let spatial = scene_with(
+            &format!(
+                "space = \"spatial\"\n{torsion}\ngravity = [0.0, 0.0, {:e}]",
+                -g
+            ),
+            std::slice::from_ref(&seg),
+            &tail,
+        );
+        let mut sim = Simulator::<Spatial>::new(spatial).unwrap();
+        sim.solve_static().unwrap();
+        let got = -sim.outputs().tip_position[2];
+        let rel = got / want - 1.0;
+        eprintln!(
+            "spatial {torsion}: tip deflection {got:.9e} m, Roark {want:.9e} m, error {rel:+.2e}"
+        );
+        assert!(rel.abs() < 1e-6, "{rel:e}");
+    }
+}
+
+#[test]
+fn mount_rigid_inertia_includes_the_masses() {
+    // a mounted rod (modal then ANCF) with a mass on each segment: mass, centre of mass and
+    // inertia about the mount point against the rigid sums of the straight rod and the points
+    let r = round(D);
+    let segs = [
+        modal("m", 0.5 * L, &r, 3, true, ""),
+        ancf("a", 0.5 * L, &r, 4, ""),
+    ];
+    let (m1, x1, m2, x2) = (0.01, 0.13, 0.02, 0.1);
+    let tail = [mass_table("p1", "m", x1, m1), mass_table("p2", "a", x2, m2)].concat();
+    let (x1, x2) = (x1, 0.5 * L + x2);
+    let mb = rho_a() * L;
+    let mass = mb + m1 + m2;
+    let com = (mb * L / 2.0 + m1 * x1 + m2 * x2) / mass;
+    let izz = mb * L * L / 3.0 + m1 * x1 * x1 + m2 * x2 * x2;
+    for spatial in [false, true] {
+        let header = if spatial {
+            "space = \"spatial\"\ntorsion = false\nroot = \"mounted\"\ngravity = [0.0, 0.0, -9.81]"
+        } else {
+            "root = \"mounted\"\ngravity = [0.0, -9.81]"
+        };
+        let s = scene_with(header, &segs, &tail);
+        let (m, c, i) = if spatial {
+            let sim = Simulator::<Spatial>::new(s).unwrap();
+            let mi = sim.outputs().mount.unwrap();
+            (mi.mass, mi.center_of_mass[0], mi.inertia[8])
+        } else {
+            let sim = Simulator::<Planar>::new(s).unwrap();
+            let mi = sim.outputs().mount.unwrap();
+            (mi.mass, mi.center_of_mass[0], mi.inertia[0])
+        };
+        eprintln!("spatial {spatial}: mass {m:.9e} ({mass:.9e}), com {c:.9e} ({com:.9e}), Izz {i:.9e} ({izz:.9e})");
+        assert!((m / mass - 1.0).abs() < 1e-12);
+        assert!((c / com - 1.0).abs() < 1e-12);
+        assert!((i / izz - 1.0).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn swinging_beam_with_masses_keeps_its_energy() {
+    // a pinned (planar) or ball-rooted (spatial) hybrid rod with a mass on each segment,
+    // released horizontal under gravity, undamped: total energy constant over 0.5 s; the start's
+    // gravity potential with gravity (g_x, g_y) against −g_x(ρA L²/2 + Σ m x_m)
+    let r = round(0.004);
+    let rho_a = RHO_STEEL * std::f64::consts::PI * 0.004f64.powi(2) / 4.0;
+    let segs = [
+        modal("m", 0.5 * L, &r, 4, true, ""),
+        ancf("a", 0.5 * L, &r, 6, ""),
+    ];
+    let (m1, x1, m2, x2) = (0.02, 0.1, 0.03, 0.2);
+    let tail = [mass_table("p1", "m", x1, m1), mass_table("p2", "a", x2, m2)].concat();
+    let (x1, x2) = (x1, 0.5 * L + x2);
+    let (gx, g) = (0.5, 9.81);
+    let scale = (rho_a * L + m1 + m2) * g * L / 2.0;
+    let want_u0 = -gx * (rho_a * L * L / 2.0 + m1 * x1 + m2 * x2);
+    let solver =
+        "[solver]\nrho_inf = 0.99\nmax_step = 2.5e-4\ntolerance = 1e-11\nmax_iterations = 20\n";
+    for spatial in [false, true] {
+        let header = if spatial {
+            format!("space = \"spatial\"\ntorsion = false\nroot = \"ball\"\ngravity = [{gx:e}, 0.0, {:e}]\n{solver}", -g)
+        } else {
+            format!("root = \"pinned\"\ngravity = [{gx:e}, {:e}]\n{solver}", -g)
+        };
+        let s = scene_with(&header, &segs, &tail);
+        let energy = |k: f64, u: f64, p: f64| k + u + p;
+        let (u0, mut drift, mut kmax) = if spatial {
+            let mut sim = Simulator::<Spatial>::new(s).unwrap();
+            let o = sim.outputs();
+            let (u0, e0) = (o.potential, energy(o.kinetic, o.strain, o.potential));
+            let (mut d, mut km) = (0.0f64, 0.0f64);
+            for k in 1..=500 {
+                sim.advance(k as f64 * 1e-3).unwrap();
+                let o = sim.outputs();
+                d = d.max((energy(o.kinetic, o.strain, o.potential) - e0).abs());
+                km = km.max(o.kinetic);
+            }
+            (u0, d, km)
+        } else {
+            let mut sim = Simulator::<Planar>::new(s).unwrap();
+            let o = sim.outputs();
+            let (u0, e0) = (o.potential, energy(o.kinetic, o.strain, o.potential));
+            let (mut d, mut km) = (0.0f64, 0.0f64);
+            for k in 1..=500 {
+                sim.advance(k as f64 * 1e-3).unwrap();
+                let o = sim.outputs();
+                d = d.max((energy(o.kinetic, o.strain, o.potential) - e0).abs());
+                km = km.max(o.kinetic);
+            }
+            (u0, d, km)
+        };
+        drift /= scale;
+        kmax /= scale;
+        eprintln!(
+            "spatial {spatial}: start potential {u0:.12e} J (closed form {want_u0:.12e}), energy drift {drift:.2e} of m g L/2, peak kinetic {kmax:.3} of it"
+        );
+        assert!((u0 / want_u0 - 1.0).abs() < 1e-12);
+        assert!(kmax > 0.5, "it swings: {kmax}");
+        assert!(drift < 1e-3, "{drift:e}");
+    }
+}
+
+#[test]
+fn offset_and_rotary_inertia_are_refused_until_modelled() {
+    let segs = [ancf("a", L, &round(D), 2, "")];
+    for extra in ["inertia = [1e-4]", "offset = [0.0, 0.01]"] {
+        let tail = format!("{}{extra}\n", mass_table("p", "a", 0.2, 0.01));
+        let s = scene_with("gravity = [0.0, -9.81]", &segs, &tail);
+        let err = Model::<Planar>::from_scene(&s).unwrap_err().0;
+        assert!(err.contains("masses[0]."), "{err}");
+        assert!(err.contains("not modelled yet"), "{err}");
+    }
+    let tail = format!(
+        "{}inertia = [0.0]\noffset = [0.0, 0.0]\n",
+        mass_table("p", "a", 0.2, 0.01)
+    );
+    let s = scene_with("gravity = [0.0, -9.81]", &segs, &tail);
+    assert!(Model::<Planar>::from_scene(&s).is_ok());
+}
