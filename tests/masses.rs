@@ -394,19 +394,206 @@ fn swinging_beam_with_masses_keeps_its_energy() {
 }
 
 #[test]
-fn offset_and_rotary_inertia_are_refused_until_modelled() {
-    let segs = [ancf("a", L, &round(D), 2, "")];
+fn offset_and_rotary_inertia_are_refused_where_not_modelled() {
+    // modelled on planar ANCF segments; refused on modal segments and in spatial scenes
+    let segs = [
+        ancf("a", 0.5 * L, &round(D), 2, ""),
+        modal("m", 0.5 * L, &round(D), 2, true, ""),
+    ];
     for extra in ["inertia = [1e-4]", "offset = [0.0, 0.01]"] {
-        let tail = format!("{}{extra}\n", mass_table("p", "a", 0.2, 0.01));
+        let tail = format!("{}{extra}\n", mass_table("p", "m", 0.1, 0.01));
         let s = scene_with("gravity = [0.0, -9.81]", &segs, &tail);
         let err = Model::<Planar>::from_scene(&s).unwrap_err().0;
         assert!(err.contains("masses[0]."), "{err}");
-        assert!(err.contains("not modelled yet"), "{err}");
+        assert!(err.contains("planar ANCF segments only"), "{err}");
+        let tail = format!("{}{extra}\n", mass_table("p", "a", 0.1, 0.01));
+        let s = scene_with("gravity = [0.0, -9.81]", &segs, &tail);
+        assert!(Model::<Planar>::from_scene(&s).is_ok());
+    }
+    for extra in ["inertia = [1e-4, 0.0, 0.0]", "offset = [0.0, 0.01, 0.0]"] {
+        let tail = format!("{}{extra}\n", mass_table("p", "a", 0.1, 0.01));
+        let s = scene_with(
+            "space = \"spatial\"\ngravity = [0.0, 0.0, -9.81]",
+            &segs,
+            &tail,
+        );
+        let err = Model::<Spatial>::from_scene(&s).unwrap_err().0;
+        assert!(err.contains("planar ANCF segments only"), "{err}");
     }
     let tail = format!(
         "{}inertia = [0.0]\noffset = [0.0, 0.0]\n",
-        mass_table("p", "a", 0.2, 0.01)
+        mass_table("p", "m", 0.2, 0.01)
     );
     let s = scene_with("gravity = [0.0, -9.81]", &segs, &tail);
     assert!(Model::<Planar>::from_scene(&s).is_ok());
+}
+
+/// The lowest two roots β of the cantilever with an end body: mass ratio μ = M/(ρAL), rotary
+/// inertia about its centre j = J/(ρAL³), centre at ε = e/L beyond the tip on the axis. From
+/// the end conditions (the mass's centre moves by y_c = w + e w′, turns by w′):
+/// EI w‴ = −Mω² y_c, EI w″ = Jω² w′ + e Mω² y_c at x = L, with the clamped–free solution
+/// w = A(cosh βξ − cos βξ) + B(sinh βξ − sin βξ): the 2 × 2 determinant's zeros (at j = ε = 0
+/// it is −2β⁵ times Blevins' equation).
+fn end_body_roots(mu: f64, j: f64, eps: f64) -> [f64; 2] {
+    let det = |b: f64| {
+        let (c, cc, s, ss) = (b.cosh(), b.cos(), b.sinh(), b.sin());
+        let b4 = b.powi(4);
+        // (F, F′, F″, F‴) of the two functions at ξ = 1
+        let f1 = [c - cc, b * (s + ss), b * b * (c + cc), b.powi(3) * (s - ss)];
+        let f2 = [s - ss, b * (c - cc), b * b * (s + ss), b.powi(3) * (c + cc)];
+        let rows = |f: [f64; 4]| {
+            let yc = f[0] + eps * f[1];
+            (
+                f[3] + mu * b4 * yc,
+                f[2] - j * b4 * f[1] - eps * mu * b4 * yc,
+            )
+        };
+        let ((a1, a2), (b1, b2)) = (rows(f1), rows(f2));
+        (a1 * b2 - b1 * a2) / b.powi(5)
+    };
+    let mut roots = Vec::new();
+    let mut b0 = 0.05;
+    while roots.len() < 2 {
+        let b1 = b0 + 1e-3;
+        if det(b0).signum() != det(b1).signum() {
+            let (mut lo, mut hi) = (b0, b1);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if det(lo).signum() == det(mid).signum() {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            roots.push(0.5 * (lo + hi));
+        }
+        b0 = b1;
+    }
+    [roots[0], roots[1]]
+}
+
+#[test]
+fn end_body_frequencies_match_the_frequency_equation_with_rotary_inertia_and_offset() {
+    // the equation's limits: J → 0 (and no offset) is Blevins' tip-mass equation; μ → 0 and
+    // J → 0 the clamped–free beam
+    for mu in [0.0, 0.5, 2.0] {
+        let (a, b) = (end_body_roots(mu, 1e-15, 0.0), tip_mass_roots(mu));
+        assert!(
+            (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9,
+            "{a:?} {b:?}"
+        );
+    }
+    let b = end_body_roots(0.0, 0.0, 0.3);
+    assert!((b[0] - 1.875_104_068_711_961).abs() < 1e-9);
+    // rotary inertia lowers the frequencies
+    let (r0, r1) = (
+        end_body_roots(0.5, 0.0, 0.0),
+        end_body_roots(0.5, 0.01, 0.0),
+    );
+    assert!(r1[0] < r0[0] && r1[1] < r0[1]);
+    let w = (ei() / (rho_a() * L.powi(4))).sqrt();
+    let mu = 0.5;
+    let m = mu * rho_a() * L;
+    for (j, eps) in [(0.01, 0.0), (0.0, 0.05), (0.01, 0.05), (0.02, -0.03)] {
+        let want = end_body_roots(mu, j, eps).map(|b| b * b * w / std::f64::consts::TAU);
+        let tail = format!(
+            "{}inertia = [{:e}]\noffset = [{:e}, 0.0]\n",
+            mass_table("tip", "a", L, m),
+            j * rho_a() * L.powi(3),
+            eps * L
+        );
+        let s = scene_with(
+            "gravity = [0.0, 0.0]",
+            &[ancf("a", L, &round(D), 16, "")],
+            &tail,
+        );
+        let got = bending_frequencies(&mut Model::<Planar>::from_scene(&s).unwrap(), false);
+        check_frequencies(
+            &format!("planar all-ANCF, mu = {mu}, J/(rho A L^3) = {j}, e/L = {eps}"),
+            got,
+            want,
+            1e-4,
+        );
+    }
+}
+
+#[test]
+fn section_bodies_newton_matrix_energy_and_statics() {
+    // Newton matrix with bodies (offset, rotary inertia) on ANCF elements of a pinned hybrid
+    let r = round(0.004);
+    let segs = [
+        modal("m", 0.2, &r, 3, true, ""),
+        ancf("a", 0.2, &r, 3, "damping_time = 1e-3"),
+    ];
+    let body = |name: &str, at: f64, o: [f64; 2], j: f64| {
+        format!(
+            "{}inertia = [{j:e}]\noffset = [{:e}, {:e}]\n",
+            mass_table(name, "a", at, 0.02),
+            o[0],
+            o[1]
+        )
+    };
+    let tail = [
+        body("b1", 0.05, [0.01, 0.02], 1e-5),
+        body("b2", 0.2, [0.0, -0.03], 0.0),
+        mass_table("p", "m", 0.1, 0.01),
+    ]
+    .concat();
+    let s = scene_with("root = \"pinned\"\ngravity = [1.0, -9.81]", &segs, &tail);
+    let mut model = Model::<Planar>::from_scene(&s).unwrap();
+    model.set_tip_force([0.3, -0.7]);
+    let w = check_newton_matrix(&mut model);
+    eprintln!("section bodies: Newton matrix worst error {w:.2e} of the tolerance");
+    // energy of the undamped swing; the start potential against the closed form
+    let segs = [segs[0].clone(), ancf("a", 0.2, &r, 3, "")];
+    let (gx, g) = (0.5, 9.81);
+    let header = format!(
+        "root = \"pinned\"\ngravity = [{gx:e}, {:e}]\n[solver]\nrho_inf = 0.99\nmax_step = 2.5e-4\ntolerance = 1e-11\nmax_iterations = 20\n",
+        -g
+    );
+    let mut sim = Simulator::<Planar>::new(scene_with(&header, &segs, &tail)).unwrap();
+    let rho_a4 = RHO_STEEL * std::f64::consts::PI * 0.004f64.powi(2) / 4.0;
+    // centres: b1 at (0.25 + 0.01, 0.02), b2 at (0.4, −0.03), p at 0.1
+    let u_want = -gx * (rho_a4 * 0.4 * 0.4 / 2.0 + 0.02 * 0.26 + 0.02 * 0.4 + 0.01 * 0.1)
+        + g * (0.02 * 0.02 - 0.02 * 0.03);
+    let o = sim.outputs();
+    let e0 = o.kinetic + o.strain + o.potential;
+    assert!(
+        (o.potential / u_want - 1.0).abs() < 1e-12,
+        "{} {u_want}",
+        o.potential
+    );
+    let scale = (rho_a4 * 0.4 + 0.05) * g * 0.2;
+    let (mut drift, mut kmax) = (0.0f64, 0.0f64);
+    for k in 1..=500 {
+        sim.advance(k as f64 * 1e-3).unwrap();
+        let o = sim.outputs();
+        drift = drift.max((o.kinetic + o.strain + o.potential - e0).abs() / scale);
+        kmax = kmax.max(o.kinetic / scale);
+    }
+    eprintln!("section bodies: energy drift {drift:.2e} of m g L/2 over 0.5 s, peak kinetic {kmax:.3} of it");
+    assert!(kmax > 0.5 && drift < 1e-3, "{kmax} {drift:e}");
+    // statics: a mass on a 1 m arm along the section normal at a = 0.6 L, gravity along the
+    // axis: a moment M0 = m g o at a, tip deflection M0 a(2L − a)/(2EI) (Roark Table 8.1 case
+    // 3a); the axial pull m g changes it by up to m g a²/EI = 9e-6 (second order, not in the closed
+    // form)
+    let (l, b, gg): (f64, f64, f64) = (1.0, 0.01, 9.81);
+    let ei = E_STEEL * b.powi(4) / 12.0;
+    let (a, m, arm) = (0.6 * l, 4.3e-4, 1.0);
+    let want = m * gg * arm * a * (2.0 * l - a) / (2.0 * ei);
+    let seg = format!(
+        "name = \"rod\"\nkind = \"ancf\"\nlength = {l:e}\n{}\nyoungs_modulus = {E_STEEL:e}\ndensity = 1e-9\nelements = 10\n",
+        square(b)
+    );
+    let tail = format!(
+        "{}offset = [0.0, {arm:e}]\n",
+        mass_table("arm", "rod", a, m)
+    );
+    let s = scene_with(&format!("gravity = [{gg:e}, 0.0]"), &[seg], &tail);
+    let mut sim = Simulator::<Planar>::new(s).unwrap();
+    sim.solve_static().unwrap();
+    let got = -sim.outputs().tip_position[1];
+    let rel = got / want - 1.0;
+    eprintln!("offset arm: tip deflection {got:.9e} m, Roark {want:.9e} m, error {rel:+.2e}");
+    assert!(rel.abs() < 1e-5, "{rel:e}");
 }

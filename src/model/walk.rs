@@ -6,11 +6,12 @@
 //! constraints from root to tip, a segment's own rows before the joint to its upstream
 //! neighbour (this order is the summation order of the assembly).
 
+use super::ancf::SectionMass;
 use super::assembly::{Model, Parts};
 use super::component::{Constraint, Element, Port, Support};
 use super::dofs::{Dof, LocalDofs, Numbering};
 use super::space::{moment_from, vec_from, Space};
-use crate::scene::{Root, Scene, SceneError, Segment, SegmentKind};
+use crate::scene::{Root, Scene, SceneError, Segment, SegmentKind, SpaceKind};
 
 /// An end of a segment being built: its local coordinates with their initial values, and its
 /// port.
@@ -102,10 +103,15 @@ pub trait SegmentParts<S: Space> {
     ) -> Result<ModalSegment<S>, SceneError>;
     /// The element properties of ANCF segment `si` (elements of length `le` [m]).
     fn ancf_props(&self, si: usize, seg: &Segment, le: f64) -> Result<Self::AncfProps, SceneError>;
-    /// One ANCF element.
     /// One ANCF element carrying the point masses `points`: (ξ ∈ [0, 1] along the element,
-    /// mass [kg]) (empty: the element alone).
-    fn ancf_element(&self, props: &Self::AncfProps, points: &[(f64, f64)]) -> Box<dyn Element<S>>;
+    /// mass [kg]) (empty: the element alone), and the rigid bodies `bodies` on its section
+    /// (offset or rotary inertia; the walk passes them to planar elements only).
+    fn ancf_element(
+        &self,
+        props: &Self::AncfProps,
+        points: &[(f64, f64)],
+        bodies: &[SectionMass],
+    ) -> Box<dyn Element<S>>;
     /// An ANCF node at arc length `s` [m], held as `hold` says, with the rigid groups it forms.
     fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords;
     /// The held normals of a clamped root node's slope direction (rigid directions, turning
@@ -140,13 +146,20 @@ pub fn element_of(at: f64, length: f64, ne: usize) -> (usize, f64) {
 }
 
 /// Refuses attached masses with what the model does not carry yet: an offset or a rotary
-/// inertia (non-zero), naming the field and the fix.
-fn point_masses_are_points(scene: &Scene) -> Result<(), SceneError> {
+/// inertia (non-zero) anywhere but on a planar ANCF segment, naming the field and the fix.
+fn point_masses_are_points<S: Space>(scene: &Scene) -> Result<(), SceneError> {
     for (i, m) in scene.masses.iter().enumerate() {
+        let on_ancf = scene
+            .segments
+            .iter()
+            .any(|s| s.name == m.segment && s.kind == SegmentKind::Ancf);
+        if S::KIND == SpaceKind::Planar && on_ancf {
+            continue;
+        }
         for (field, v) in [("inertia", &m.inertia), ("offset", &m.offset)] {
             if let Some(v) = v.as_ref().filter(|v| v.iter().any(|x| *x != 0.0)) {
                 return Err(SceneError(format!(
-                    "masses[{i}].{field} = {v:?}: attached masses are point masses on the centreline in this version (the {field} is not modelled yet); remove `{field}` or set it to zeros"
+                    "masses[{i}].{field} = {v:?}: a mass's {field} is modelled on planar ANCF segments only in this version (not on modal segments nor in spatial scenes); remove `{field}` or set it to zeros (a point mass), or put the mass on an ancf segment of a planar scene"
                 )));
             }
         }
@@ -168,7 +181,7 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
     let mut prev: Option<End<S>> = None;
     let mut s_pos = 0.0; // arc length at the segment root
     let mut prev_len = 0.0; // length of the previous segment (joint row scale)
-    point_masses_are_points(scene)?;
+    point_masses_are_points::<S>(scene)?;
     for (si, seg) in scene.segments.iter().enumerate() {
         let first = si == 0;
         let points = scene.point_masses(si);
@@ -245,7 +258,21 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                             (j == k).then_some((xi, m))
                         })
                         .collect();
-                    ancf.push((dofs, parts.ancf_element(&props, &on), si));
+                    let held: Vec<SectionMass> = scene
+                        .masses_on(si)
+                        .filter(|m| !m.is_point())
+                        .filter_map(|m| {
+                            let (j, xi) = element_of(m.at, seg.length, ne);
+                            let (inertia, offset) = m.planar_body();
+                            (j == k).then_some(SectionMass {
+                                xi,
+                                mass: m.mass,
+                                inertia,
+                                offset,
+                            })
+                        })
+                        .collect();
+                    ancf.push((dofs, parts.ancf_element(&props, &on, &held), si));
                     last = next;
                 }
                 prev = Some(End {

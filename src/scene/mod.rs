@@ -343,6 +343,27 @@ pub struct Scene {
     pub masses: Vec<Mass>,
 }
 
+impl Mass {
+    /// Whether it is a point mass: no offset and no rotary inertia (or all zeros).
+    pub fn is_point(&self) -> bool {
+        let zero = |v: &Option<Vec<f64>>| v.as_ref().is_none_or(|v| v.iter().all(|x| *x == 0.0));
+        zero(&self.inertia) && zero(&self.offset)
+    }
+
+    /// Planar: the rotary inertia I_zz [kg m²] and the offset (along the tangent, along the
+    /// section's y axis) [m] (zeros where not given).
+    pub fn planar_body(&self) -> (f64, [f64; 2]) {
+        let get = |v: &Option<Vec<f64>>, k: usize| v.as_ref().and_then(|v| v.get(k)).copied();
+        (
+            get(&self.inertia, 0).unwrap_or(0.0),
+            [
+                get(&self.offset, 0).unwrap_or(0.0),
+                get(&self.offset, 1).unwrap_or(0.0),
+            ],
+        )
+    }
+}
+
 /// An attached mass (`[[masses]]`): a rigid body riding on a segment's centreline.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -469,17 +490,21 @@ impl Scene {
         true
     }
 
-    /// The point masses on segment `si`: (arc length from the segment's start [m], mass [kg]),
-    /// in scene order.
+    /// The point masses on segment `si` (no offset, no rotary inertia, [`Mass::is_point`]):
+    /// (arc length from the segment's start [m], mass [kg]), in scene order.
     pub fn point_masses(&self, si: usize) -> Vec<(f64, f64)> {
-        let Some(seg) = self.segments.get(si) else {
-            return Vec::new();
-        };
-        self.masses
-            .iter()
-            .filter(|m| m.segment == seg.name)
+        self.masses_on(si)
+            .filter(|m| m.is_point())
             .map(|m| (m.at, m.mass))
             .collect()
+    }
+
+    /// The attached masses on segment `si`, in scene order.
+    pub fn masses_on(&self, si: usize) -> impl Iterator<Item = &Mass> + '_ {
+        let name = self.segments.get(si).map(|s| s.name.as_str());
+        self.masses
+            .iter()
+            .filter(move |m| Some(m.segment.as_str()) == name)
     }
 
     /// Gravity [m/s²] with `N` components (a scene without gravity: zero).

@@ -7,7 +7,7 @@ use super::ends::{ModalRootPort, ModalTipPort, NodePort, RootSupport};
 use super::joint::RigidJoint;
 use super::Planar;
 use crate::math;
-use crate::model::ancf::AncfProps;
+use crate::model::ancf::{AncfProps, SectionMass};
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
@@ -97,8 +97,17 @@ impl SegmentParts<Planar> for PlanarParts {
         })
     }
 
-    fn ancf_element(&self, props: &AncfProps, points: &[(f64, f64)]) -> Box<dyn Element<Planar>> {
-        Box::new(AncfElement::new(*props).with_points(points))
+    fn ancf_element(
+        &self,
+        props: &AncfProps,
+        points: &[(f64, f64)],
+        bodies: &[SectionMass],
+    ) -> Box<dyn Element<Planar>> {
+        Box::new(
+            AncfElement::new(*props)
+                .with_points(points)
+                .with_bodies(bodies),
+        )
     }
 
     fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {

@@ -12,6 +12,7 @@ use super::{
     AncfElement3, AngleElement3, AnglePort3, EulerNormalization, FrameSupport3, ModalElement3,
     ModalRootPort3, ModalTipPort3, NodePort3, NodeSupport3, Spatial,
 };
+use crate::model::ancf::SectionMass;
 use crate::model::ancf3d::angle::Angle3;
 use crate::model::ancf3d::Ancf3Props;
 use crate::model::assembly::Model;
@@ -117,7 +118,12 @@ impl SegmentParts<Spatial> for SpatialParts {
         Ok(props)
     }
 
-    fn ancf_element(&self, props: &Ancf3Props, points: &[(f64, f64)]) -> Box<dyn Element<Spatial>> {
+    fn ancf_element(
+        &self,
+        props: &Ancf3Props,
+        points: &[(f64, f64)],
+        _bodies: &[SectionMass],
+    ) -> Box<dyn Element<Spatial>> {
         if self.angle {
             // the axes of the root frame: unit and perpendicular (checked in `ancf_props`)
             Box::new(
