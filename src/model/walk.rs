@@ -90,8 +90,8 @@ pub trait SegmentParts<S: Space> {
     type AncfProps;
 
     /// A modal segment `si` whose root is at arc length `s` [m]; `held` when its frame is the
-    /// support's (the first segment of a clamped or mounted root); carrying the point masses
-    /// `points`: (x from the segment's start [m], mass [kg]).
+    /// support's (the first segment of a clamped or mounted root); carrying the attached
+    /// masses `masses`.
     fn modal(
         &mut self,
         num: &mut Numbering,
@@ -99,7 +99,7 @@ pub trait SegmentParts<S: Space> {
         seg: &Segment,
         s: f64,
         held: bool,
-        points: &[(f64, f64)],
+        masses: &SegmentMasses,
     ) -> Result<ModalSegment<S>, SceneError>;
     /// The element properties of ANCF segment `si` (elements of length `le` [m]).
     fn ancf_props(&self, si: usize, seg: &Segment, le: f64) -> Result<Self::AncfProps, SceneError>;
@@ -136,6 +136,17 @@ pub trait SegmentParts<S: Space> {
     ) -> Result<(LocalDofs, Box<dyn Constraint>), SceneError>;
 }
 
+/// The attached masses of a modal segment: point masses (x from the segment's start [m], mass
+/// [kg]) and rigid bodies on the section (offset or rotary inertia; `xi` = x/L; the walk passes
+/// them in planar scenes only).
+#[derive(Debug, Clone, Default)]
+pub struct SegmentMasses {
+    /// Point masses (x [m], mass [kg]).
+    pub points: Vec<(f64, f64)>,
+    /// Bodies with an offset or a rotary inertia.
+    pub bodies: Vec<SectionMass>,
+}
+
 /// The element of an ANCF segment of length `length` cut into `ne` equal elements that carries
 /// a point at arc length `at` [m] from the segment's start, and the point's ξ ∈ [0, 1] on it (a
 /// point on a node between two elements goes to the earlier one: the node moves both alike).
@@ -146,20 +157,16 @@ pub fn element_of(at: f64, length: f64, ne: usize) -> (usize, f64) {
 }
 
 /// Refuses attached masses with what the model does not carry yet: an offset or a rotary
-/// inertia (non-zero) anywhere but on a planar ANCF segment, naming the field and the fix.
+/// inertia (non-zero) in a spatial scene, naming the field and the fix.
 fn point_masses_are_points<S: Space>(scene: &Scene) -> Result<(), SceneError> {
     for (i, m) in scene.masses.iter().enumerate() {
-        let on_ancf = scene
-            .segments
-            .iter()
-            .any(|s| s.name == m.segment && s.kind == SegmentKind::Ancf);
-        if S::KIND == SpaceKind::Planar && on_ancf {
+        if S::KIND == SpaceKind::Planar {
             continue;
         }
         for (field, v) in [("inertia", &m.inertia), ("offset", &m.offset)] {
             if let Some(v) = v.as_ref().filter(|v| v.iter().any(|x| *x != 0.0)) {
                 return Err(SceneError(format!(
-                    "masses[{i}].{field} = {v:?}: a mass's {field} is modelled on planar ANCF segments only in this version (not on modal segments nor in spatial scenes); remove `{field}` or set it to zeros (a point mass), or put the mass on an ancf segment of a planar scene"
+                    "masses[{i}].{field} = {v:?}: a mass's {field} is modelled in planar scenes only in this version (spatial scenes take point masses); remove `{field}` or set it to zeros (a point mass)"
                 )));
             }
         }
@@ -187,7 +194,23 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
         let points = scene.point_masses(si);
         match seg.kind {
             SegmentKind::Modal => {
-                let m = parts.modal(&mut num, si, seg, s_pos, first && clamped, &points)?;
+                let masses = SegmentMasses {
+                    points: points.clone(),
+                    bodies: scene
+                        .masses_on(si)
+                        .filter(|m| !m.is_point())
+                        .map(|m| {
+                            let (inertia, offset) = m.planar_body();
+                            SectionMass {
+                                xi: m.at / seg.length,
+                                mass: m.mass,
+                                inertia,
+                                offset,
+                            }
+                        })
+                        .collect(),
+                };
+                let m = parts.modal(&mut num, si, seg, s_pos, first && clamped, &masses)?;
                 if first {
                     support = m.support;
                 }

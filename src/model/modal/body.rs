@@ -219,6 +219,61 @@ impl ModalBody {
         self
     }
 
+    /// The body carrying rigid bodies on its section (offset or rotary inertia, `xi` = x/L):
+    /// each a point of the kinematics as [`ModalBody::with_points`] whose centre is
+    /// s = ū + R(β)o, β = atan2 of the centreline's tangent d = dū/dx = (1 + c′, w′) (c′ = 0 on a
+    /// linear body), and whose angle θ + β carries its rotary inertia.
+    pub fn with_bodies(mut self, bodies: &[crate::model::ancf::SectionMass]) -> Self {
+        let n = self.modes();
+        let mut buf = Vec::new();
+        for b in bodies {
+            let x = b.xi * self.length;
+            self.basis.eval_all(b.xi.clamp(0.0, 1.0), &mut buf);
+            let dphi = buf.iter().take(n).map(|f| f[1] / self.length).collect();
+            let pt = BodyPoint::new(
+                &self.basis,
+                &self.nl,
+                self.length,
+                self.nonlinear,
+                (x, b.mass),
+            );
+            self.points.push(pt.with_body(b.inertia, b.offset, dphi));
+        }
+        self
+    }
+
+    /// The section kinematics of a rigid body on the section: the slope sums (w′, ẇ′, ẅ′) give
+    /// the tangent d and β̇, β̈; returns (β̇, β̈, R(β)o, R(β)Jo, κ) with ∂β/∂a_k = κ φ′_k.
+    fn section<T: Real>(&self, o: [f64; 2], sl: [T; 3]) -> (T, T, [T; 2], [T; 2], T) {
+        let [w1, w1d, w1dd] = sl;
+        let one = T::from(1.0);
+        let (d, dd, ddd) = if self.nonlinear {
+            (
+                [one - w1 * w1 * 0.5, w1],
+                [-(w1 * w1d), w1d],
+                [-(w1d * w1d) - w1 * w1dd, w1dd],
+            )
+        } else {
+            ([one, w1], [T::zero(), w1d], [T::zero(), w1dd])
+        };
+        let n2 = d[0] * d[0] + d[1] * d[1];
+        let cr = d[0] * dd[1] - d[1] * dd[0];
+        let dot = d[0] * dd[0] + d[1] * dd[1];
+        let bd = cr / n2;
+        let bdd = (d[0] * ddd[1] - d[1] * ddd[0]) / n2 - cr * dot * 2.0 / (n2 * n2);
+        let nrm = n2.sqrt();
+        let t = [d[0] / nrm, d[1] / nrm];
+        let nn = [-t[1], t[0]];
+        let ro = [t[0] * o[0] + nn[0] * o[1], t[1] * o[0] + nn[1] * o[1]];
+        let rjo = [nn[0] * o[0] - t[0] * o[1], nn[1] * o[0] - t[1] * o[1]];
+        let kap = if self.nonlinear {
+            (d[0] + d[1] * w1) / n2
+        } else {
+            d[0] / n2
+        };
+        (bd, bdd, ro, rjo, kap)
+    }
+
     /// Mass of the point masses [kg].
     pub fn point_mass(&self) -> f64 {
         self.points.iter().map(|p| p.mass).sum()
@@ -242,15 +297,43 @@ impl ModalBody {
         let (am, vm, acc) = (&q[3..3 + n], &v[3..3 + n], &a[3..3 + n]);
         for pt in &self.points {
             let (c, w) = pt.plane(am, vm, acc);
-            let (ux, uy) = (c[0] + pt.x, w[0]);
-            let alx = zx - thdd * uy - thd2 * ux - thd * w[1] * 2.0 + c[2];
-            let aly = zy + thdd * ux - thd2 * uy + thd * c[1] * 2.0 + w[2];
+            // s = ū (+ R(β)o), ṡ, s̈ (local)
+            let (mut ux, mut uy) = (c[0] + pt.x, w[0]);
+            let (mut vx, mut vy) = (c[1], w[1]);
+            let (mut ax, mut ay) = (c[2], w[2]);
+            let mut rot_terms = None;
+            if let Some((j, o, dphi)) = &pt.body {
+                let mut sl = [T::zero(); 3];
+                for k in 0..n {
+                    sl[0] += am[k] * dphi[k];
+                    sl[1] += vm[k] * dphi[k];
+                    sl[2] += acc[k] * dphi[k];
+                }
+                let (bd, bdd, ro, rjo, kap) = self.section(*o, sl);
+                ux += ro[0];
+                uy += ro[1];
+                vx += rjo[0] * bd;
+                vy += rjo[1] * bd;
+                ax += rjo[0] * bdd - ro[0] * bd * bd;
+                ay += rjo[1] * bdd - ro[1] * bd * bd;
+                rot_terms = Some(((thdd + bdd) * *j, rjo, kap, dphi));
+            }
+            let alx = zx - thdd * uy - thd2 * ux - thd * vy * 2.0 + ax;
+            let aly = zy + thdd * ux - thd2 * uy + thd * vx * 2.0 + ay;
             let (fx, fy) = (alx * pt.mass, aly * pt.mass);
             out[0] += cs * fx - sn * fy;
             out[1] += sn * fx + cs * fy;
             out[2] += ux * fy - uy * fx;
             for k in 0..n {
                 out[3 + k] += fy * pt.phi[k] - fx * pt.ga(am, k);
+            }
+            if let Some((mom, rjo, kap, dphi)) = rot_terms {
+                // ∂s/∂a_k gains R(β)Jo κφ′_k; the rotary inertia J ψ̈ (ψ = θ + β)
+                out[2] += mom;
+                let along = (rjo[0] * fx + rjo[1] * fy + mom) * kap;
+                for k in 0..n {
+                    out[3 + k] += along * dphi[k];
+                }
             }
         }
     }
@@ -301,8 +384,21 @@ impl ModalBody {
         let (mut t, mut u) = (0.0, 0.0);
         for pt in &self.points {
             let (c, w) = pt.plane(am, vm, &z);
-            let ul = Vector2::new(c[0] + pt.x, w[0]);
-            let vl = Vector2::new(-v[2] * ul[1] + c[1], v[2] * ul[0] + w[1]);
+            let mut ul = Vector2::new(c[0] + pt.x, w[0]);
+            let mut ud = Vector2::new(c[1], w[1]);
+            if let Some((j, o, dphi)) = &pt.body {
+                let sl = [
+                    am.iter().zip(dphi).map(|(a, p)| a * p).sum::<f64>(),
+                    vm.iter().zip(dphi).map(|(a, p)| a * p).sum::<f64>(),
+                    0.0,
+                ];
+                let (bd, _, ro, rjo, _) = self.section(*o, sl);
+                ul += Vector2::new(ro[0], ro[1]);
+                ud += Vector2::new(rjo[0], rjo[1]) * bd;
+                let spin = v[2] + bd;
+                t += 0.5 * j * spin * spin;
+            }
+            let vl = Vector2::new(-v[2] * ul[1] + ud[0], v[2] * ul[0] + ud[1]);
             let vel = rd + rot_a * vl;
             let r = Vector2::new(q[0], q[1]) + rot_a * ul;
             t += 0.5 * pt.mass * vel.norm_squared();

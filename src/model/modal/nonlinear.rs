@@ -194,6 +194,10 @@ pub(super) struct BodyPoint {
     /// G_m = ∫₀ˣ φ′φ′ᵀ dx (row-major n × n, x-derivatives) [1/m] on the body's cumulative
     /// rule (the tip's ½aᵀGa/L at x = L); zero on a linear body (ū = (x, w)).
     pub(super) gram: Vec<f64>,
+    /// A rigid body on the section (planar): rotary inertia J about its centre [kg m²], its
+    /// centre's offset o (along the tangent, along the normal) [m] and φ_k′(x) [1/m]; `None`
+    /// for a point.
+    pub(super) body: Option<(f64, [f64; 2], Vec<f64>)>,
 }
 
 impl BodyPoint {
@@ -222,7 +226,20 @@ impl BodyPoint {
                 }
             }
         }
-        Self { mass, x, phi, gram }
+        Self {
+            mass,
+            x,
+            phi,
+            gram,
+            body: None,
+        }
+    }
+
+    /// The same point as a rigid body on the section of rotary inertia `inertia` [kg m²] and
+    /// offset `offset` [m] (planar), `dphi` = φ′(x) [1/m].
+    pub(super) fn with_body(mut self, inertia: f64, offset: [f64; 2], dphi: Vec<f64>) -> Self {
+        self.body = Some((inertia, offset, dphi));
+        self
     }
 
     /// (G_m a)_k.

@@ -13,7 +13,7 @@ use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody};
-use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentParts};
+use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SpaceKind};
 use std::sync::Arc;
 
@@ -37,7 +37,7 @@ impl SegmentParts<Planar> for PlanarParts {
         seg: &Segment,
         s: f64,
         held: bool,
-        points: &[(f64, f64)],
+        masses: &SegmentMasses,
     ) -> Result<ModalSegment<Planar>, SceneError> {
         let (area, inertia) = seg.area_inertia();
         let basis = ModalBasis::new(seg.modes.unwrap_or(1), seg.interface_modes);
@@ -50,7 +50,8 @@ impl SegmentParts<Planar> for PlanarParts {
             seg.damping_time,
         );
         let body = if seg.linear { body.linear() } else { body };
-        let body = Arc::new(body.with_points(points));
+        let body = body.with_points(&masses.points).with_bodies(&masses.bodies);
+        let body = Arc::new(body);
         let first = si == 0;
         let root_pt = [s * self.dir[0], s * self.dir[1]];
         let mut c = Coords::default();

@@ -20,7 +20,7 @@ use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
-use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentParts};
+use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind, TorsionElement};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use std::sync::Arc;
@@ -53,7 +53,7 @@ impl SegmentParts<Spatial> for SpatialParts {
         seg: &Segment,
         s: f64,
         held: bool,
-        points: &[(f64, f64)],
+        masses: &SegmentMasses,
     ) -> Result<ModalSegment<Spatial>, SceneError> {
         let first = si == 0;
         let root_pt = s * self.ax;
@@ -68,7 +68,7 @@ impl SegmentParts<Spatial> for SpatialParts {
                 body = body.with_stiffening();
             }
         }
-        let body = Arc::new(body.with_points(points));
+        let body = Arc::new(body.with_points(&masses.points));
         let free_p = !held;
         let mut c = Coords::default();
         for k in 0..3 {
