@@ -605,3 +605,144 @@ fn section_bodies_newton_matrix_energy_and_statics() {
     eprintln!("offset arm: tip deflection {got:.9e} m, Roark {want:.9e} m, error {rel:+.2e}");
     assert!(rel.abs() < 1e-5, "{rel:e}");
 }
+
+/// The lowest two roots β of a clamped–free beam with a point mass μ ρAL at α L: the two-field
+/// problem (w₁ on [0, αL], w₂ on [αL, L], each a combination of cosh, sinh, cos, sin of βx/L)
+/// with w₁ = w₁′ = 0 at the clamp, w, w′, w″ continuous at the mass, the shear jump
+/// w₁‴ − w₂‴ + μβ⁴w = 0 (the mass's inertia), w₂″ = w₂‴ = 0 at the free end: the zeros of the
+/// 8 × 8 determinant (at α = 1 the tip-mass equation, at μ = 0 the clamped–free beam: both
+/// checked in the test).
+fn mid_mass_roots(mu: f64, alpha: f64) -> [f64; 2] {
+    // (f, f′, f″, f‴) of cosh, sinh, cos, sin of βx at x
+    let funcs = |b: f64, x: f64| {
+        let (ch, sh, c, s) = ((b * x).cosh(), (b * x).sinh(), (b * x).cos(), (b * x).sin());
+        let (b2, b3) = (b * b, b * b * b);
+        [
+            [ch, b * sh, b2 * ch, b3 * sh],
+            [sh, b * ch, b2 * sh, b3 * ch],
+            [c, -b * s, -b2 * c, b3 * s],
+            [s, b * c, -b2 * s, -b3 * c],
+        ]
+    };
+    let det = |b: f64| {
+        let mut m = nalgebra::SMatrix::<f64, 8, 8>::zeros();
+        let (f0, fa, fe) = (funcs(b, 0.0), funcs(b, alpha), funcs(b, 1.0 - alpha));
+        for k in 0..4 {
+            m[(0, k)] = f0[k][0];
+            m[(1, k)] = f0[k][1];
+            for d in 0..3 {
+                m[(2 + d, k)] = fa[k][d];
+                m[(2 + d, 4 + k)] = -f0[k][d];
+            }
+            m[(5, k)] = fa[k][3] + mu * b.powi(4) * fa[k][0];
+            m[(5, 4 + k)] = -f0[k][3];
+            m[(6, 4 + k)] = fe[k][2];
+            m[(7, 4 + k)] = fe[k][3];
+        }
+        m.determinant()
+    };
+    let mut roots = Vec::new();
+    let mut b0 = 0.05;
+    while roots.len() < 2 {
+        let b1 = b0 + 1e-3;
+        if det(b0).signum() != det(b1).signum() {
+            let (mut lo, mut hi) = (b0, b1);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if det(lo).signum() == det(mid).signum() {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            roots.push(0.5 * (lo + hi));
+        }
+        b0 = b1;
+    }
+    [roots[0], roots[1]]
+}
+
+#[test]
+fn mid_span_mass_frequencies_match_the_two_field_equation() {
+    for mu in [0.5, 2.0] {
+        let (a, b) = (mid_mass_roots(mu, 1.0), tip_mass_roots(mu));
+        assert!(
+            (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9,
+            "{a:?} {b:?}"
+        );
+    }
+    let c = mid_mass_roots(0.0, 0.4);
+    assert!((c[0] - 1.875_104_068_711_961).abs() < 1e-9);
+    assert!((c[1] - 4.694_091_132_974_175).abs() < 1e-9);
+    let (mu, alpha) = (1.0, 0.5);
+    let w = (ei() / (rho_a() * L.powi(4))).sqrt();
+    let want = mid_mass_roots(mu, alpha).map(|b| b * b * w / std::f64::consts::TAU);
+    let m = mu * rho_a() * L;
+    let r = round(D);
+    // (label, segments, segment carrying the mass, its arc length there, tolerance)
+    let cases = [
+        (
+            "all-ANCF",
+            vec![ancf("a", L, &r, 16, "")],
+            "a",
+            0.5 * L,
+            1e-4,
+        ),
+        (
+            "hybrid modal+ANCF, mass at the joint",
+            vec![
+                modal("m", 0.5 * L, &r, 6, true, ""),
+                ancf("a", 0.5 * L, &r, 12, ""),
+            ],
+            "m",
+            0.5 * L,
+            1e-4,
+        ),
+        (
+            "hybrid ANCF+modal, mass at the joint",
+            vec![
+                ancf("a", 0.5 * L, &r, 12, ""),
+                modal("m", 0.5 * L, &r, 6, true, ""),
+            ],
+            "m",
+            0.0,
+            1e-4,
+        ),
+        (
+            // the modes stay Ritz functions: the shear jump inside the body converges slowly
+            // from above (12 modes + interface: +6.6e-5 on f2)
+            "all-modal 12 modes, mass inside the body",
+            vec![modal("m", L, &r, 12, true, "")],
+            "m",
+            0.5 * L,
+            1e-4,
+        ),
+    ];
+    for (label, segs, on, at, tol) in cases {
+        let tail = mass_table("mid", on, at, m);
+        for spatial in [false, true] {
+            let torsion = label.starts_with("hybrid ANCF+modal");
+            let s = if spatial {
+                scene_with(
+                    &format!("space = \"spatial\"\ntorsion = {torsion}\ngravity = [0.0, 0.0, 0.0]"),
+                    &segs,
+                    &tail,
+                )
+            } else {
+                scene_with("gravity = [0.0, 0.0]", &segs, &tail)
+            };
+            let got = if spatial {
+                bending_frequencies(&mut Model::<Spatial>::from_scene(&s).unwrap(), true)
+            } else {
+                bending_frequencies(&mut Model::<Planar>::from_scene(&s).unwrap(), false)
+            };
+            let space = if spatial { "spatial" } else { "planar" };
+            check_frequencies(
+                &format!("{space} {label}, mu = {mu} at {alpha} L"),
+                got,
+                want,
+                tol,
+            );
+        }
+    }
+}
