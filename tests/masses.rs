@@ -746,3 +746,38 @@ fn mid_span_mass_frequencies_match_the_two_field_equation() {
         }
     }
 }
+
+#[test]
+fn apparent_mass_along_the_axis_includes_the_masses() {
+    // a mounted all-modal rod along x: an axial acceleration moves the straight, inextensible
+    // body rigidly, so ∂F_x/∂a_x of the reaction is its whole mass, ρAL + Σm
+    let r = round(D);
+    let tail = [
+        mass_table("p1", "m", 0.1, 0.01),
+        mass_table("p2", "m", L, 0.02),
+    ]
+    .concat();
+    let want = rho_a() * L + 0.03;
+    for spatial in [false, true] {
+        let segs = [modal("m", L, &r, 4, true, "")];
+        let got = if spatial {
+            let s = scene_with(
+                "space = \"spatial\"\nroot = \"mounted\"\ngravity = [0.0, 0.0, -9.81]",
+                &segs,
+                &tail,
+            );
+            Simulator::<Spatial>::new(s)
+                .unwrap()
+                .apparent_mass()
+                .unwrap()[0][0]
+        } else {
+            let s = scene_with("root = \"mounted\"\ngravity = [0.0, -9.81]", &segs, &tail);
+            Simulator::<Planar>::new(s)
+                .unwrap()
+                .apparent_mass()
+                .unwrap()[0][0]
+        };
+        eprintln!("spatial {spatial}: dF_x/da_x = {got:.12e} kg, rho A L + m = {want:.12e} kg");
+        assert!((got / want - 1.0).abs() < 1e-9, "{got} vs {want}");
+    }
+}
