@@ -12,6 +12,7 @@
 
 use crate::math;
 use crate::model::sample::ShapePoint;
+use crate::model::vector::Real;
 use crate::scene::StrainModel;
 use nalgebra::{SMatrix, SVector, Vector2};
 
@@ -91,6 +92,87 @@ impl Shape {
     /// r″(x).
     pub fn r2(&self, e: &Vec8) -> Vector2<f64> {
         Self::combine(&self.dds, e)
+    }
+}
+
+/// A rigid body attached to a planar ANCF element's section at ξ (an attached mass with an
+/// offset or a rotary inertia, docs/references.md §10): its centre is at p = r + R(φ)o, r = S(ξ)e
+/// the centreline point, φ = atan2 of the slope d = S′(ξ)e (the section's angle), o the offset
+/// in section axes (along the tangent, along the normal); kinetic energy ½m|ṗ|² + ½Jφ̇².
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionMass {
+    /// ξ ∈ [0, 1] along the element.
+    pub xi: f64,
+    /// Mass m [kg].
+    pub mass: f64,
+    /// Rotary inertia J about its centre [kg m²].
+    pub inertia: f64,
+    /// Offset o (along the tangent, along the normal) [m].
+    pub offset: [f64; 2],
+}
+
+impl SectionMass {
+    /// (φ̇, φ̈, R(φ)o, R(φ)Jo) of the section with slope d, ḋ, d̈ (J the quarter turn).
+    #[inline]
+    fn kinematics<T: Real>(&self, d: [T; 2], dd: [T; 2], ddd: [T; 2]) -> (T, T, [T; 2], [T; 2]) {
+        let n2 = d[0] * d[0] + d[1] * d[1];
+        let cr = d[0] * dd[1] - d[1] * dd[0];
+        let dot = d[0] * dd[0] + d[1] * dd[1];
+        let phid = cr / n2;
+        let phidd = (d[0] * ddd[1] - d[1] * ddd[0]) / n2 - cr * dot * 2.0 / (n2 * n2);
+        let nrm = n2.sqrt();
+        let t = [d[0] / nrm, d[1] / nrm];
+        let nn = [-t[1], t[0]];
+        let [o0, o1] = self.offset;
+        let ro = [t[0] * o0 + nn[0] * o1, t[1] * o0 + nn[1] * o1];
+        let rjo = [nn[0] * o0 - t[0] * o1, nn[1] * o0 - t[1] * o1];
+        (phid, phidd, ro, rjo)
+    }
+
+    /// The body's inertia and weight as generalized forces on (r, d): F_r = m(p̈ − g),
+    /// F_d = (m (R J o)·(p̈ − g) + J φ̈) ∂φ/∂d, ∂φ/∂d = (−d_y, d_x)/|d|², with
+    /// p̈ = r̈ + R J o φ̈ − R o φ̇²; at centreline acceleration r̈ and slope d, ḋ, d̈.
+    #[inline]
+    pub fn forces<T: Real>(
+        &self,
+        rdd: [T; 2],
+        d: [T; 2],
+        dd: [T; 2],
+        ddd: [T; 2],
+        g: [f64; 2],
+    ) -> [T; 4] {
+        let (phid, phidd, ro, rjo) = self.kinematics(d, dd, ddd);
+        let acc = [
+            rdd[0] - g[0] + rjo[0] * phidd - ro[0] * phid * phid,
+            rdd[1] - g[1] + rjo[1] * phidd - ro[1] * phid * phid,
+        ];
+        let n2 = d[0] * d[0] + d[1] * d[1];
+        let coef = (rjo[0] * acc[0] + rjo[1] * acc[1]) * self.mass + phidd * self.inertia;
+        [
+            acc[0] * self.mass,
+            acc[1] * self.mass,
+            -(d[1] * coef) / n2,
+            d[0] * coef / n2,
+        ]
+    }
+
+    /// (kinetic energy ½m|ṗ|² + ½Jφ̇², gravity potential −m gᵀp) [J] at centreline position r,
+    /// velocity ṙ and slope d, ḋ.
+    pub fn energies(
+        &self,
+        r: [f64; 2],
+        rd: [f64; 2],
+        d: [f64; 2],
+        dd: [f64; 2],
+        g: [f64; 2],
+    ) -> (f64, f64) {
+        let (phid, _, ro, rjo) = self.kinematics(d, dd, [0.0; 2]);
+        let v = [rd[0] + rjo[0] * phid, rd[1] + rjo[1] * phid];
+        let p = [r[0] + ro[0], r[1] + ro[1]];
+        (
+            0.5 * self.mass * (v[0] * v[0] + v[1] * v[1]) + 0.5 * self.inertia * phid * phid,
+            -self.mass * (g[0] * p[0] + g[1] * p[1]),
+        )
     }
 }
 

@@ -6,11 +6,12 @@
 //! constraints from root to tip, a segment's own rows before the joint to its upstream
 //! neighbour (this order is the summation order of the assembly).
 
+use super::ancf::SectionMass;
 use super::assembly::{Model, Parts};
 use super::component::{Constraint, Element, Port, Support};
 use super::dofs::{Dof, LocalDofs, Numbering};
 use super::space::{moment_from, vec_from, Space};
-use crate::scene::{Root, Scene, SceneError, Segment, SegmentKind};
+use crate::scene::{Root, Scene, SceneError, Segment, SegmentKind, SpaceKind};
 
 /// An end of a segment being built: its local coordinates with their initial values, and its
 /// port.
@@ -89,7 +90,8 @@ pub trait SegmentParts<S: Space> {
     type AncfProps;
 
     /// A modal segment `si` whose root is at arc length `s` [m]; `held` when its frame is the
-    /// support's (the first segment of a clamped or mounted root).
+    /// support's (the first segment of a clamped or mounted root); carrying the attached
+    /// masses `masses`.
     fn modal(
         &mut self,
         num: &mut Numbering,
@@ -97,11 +99,19 @@ pub trait SegmentParts<S: Space> {
         seg: &Segment,
         s: f64,
         held: bool,
+        masses: &SegmentMasses,
     ) -> Result<ModalSegment<S>, SceneError>;
     /// The element properties of ANCF segment `si` (elements of length `le` [m]).
     fn ancf_props(&self, si: usize, seg: &Segment, le: f64) -> Result<Self::AncfProps, SceneError>;
-    /// One ANCF element.
-    fn ancf_element(&self, props: &Self::AncfProps) -> Box<dyn Element<S>>;
+    /// One ANCF element carrying the point masses `points`: (ξ ∈ [0, 1] along the element,
+    /// mass [kg]) (empty: the element alone), and the rigid bodies `bodies` on its section
+    /// (offset or rotary inertia; the walk passes them to planar elements only).
+    fn ancf_element(
+        &self,
+        props: &Self::AncfProps,
+        points: &[(f64, f64)],
+        bodies: &[SectionMass],
+    ) -> Box<dyn Element<S>>;
     /// An ANCF node at arc length `s` [m], held as `hold` says, with the rigid groups it forms.
     fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords;
     /// The held normals of a clamped root node's slope direction (rigid directions, turning
@@ -126,6 +136,44 @@ pub trait SegmentParts<S: Space> {
     ) -> Result<(LocalDofs, Box<dyn Constraint>), SceneError>;
 }
 
+/// The attached masses of a modal segment: point masses (x from the segment's start [m], mass
+/// [kg]) and rigid bodies on the section (offset or rotary inertia; `xi` = x/L; the walk passes
+/// them in planar scenes only).
+#[derive(Debug, Clone, Default)]
+pub struct SegmentMasses {
+    /// Point masses (x [m], mass [kg]).
+    pub points: Vec<(f64, f64)>,
+    /// Bodies with an offset or a rotary inertia.
+    pub bodies: Vec<SectionMass>,
+}
+
+/// The element of an ANCF segment of length `length` cut into `ne` equal elements that carries
+/// a point at arc length `at` [m] from the segment's start, and the point's ξ ∈ [0, 1] on it (a
+/// point on a node between two elements goes to the earlier one: the node moves both alike).
+pub fn element_of(at: f64, length: f64, ne: usize) -> (usize, f64) {
+    let le = length / ne as f64;
+    let k = ((at / le).ceil() as usize).clamp(1, ne) - 1;
+    (k, ((at - k as f64 * le) / le).clamp(0.0, 1.0))
+}
+
+/// Refuses attached masses with what the model does not carry yet: an offset or a rotary
+/// inertia (non-zero) in a spatial scene, naming the field and the fix.
+fn point_masses_are_points<S: Space>(scene: &Scene) -> Result<(), SceneError> {
+    for (i, m) in scene.masses.iter().enumerate() {
+        if S::KIND == SpaceKind::Planar {
+            continue;
+        }
+        for (field, v) in [("inertia", &m.inertia), ("offset", &m.offset)] {
+            if let Some(v) = v.as_ref().filter(|v| v.iter().any(|x| *x != 0.0)) {
+                return Err(SceneError(format!(
+                    "masses[{i}].{field} = {v:?}: a mass's {field} is modelled in planar scenes only in this version (spatial scenes take point masses); remove `{field}` or set it to zeros (a point mass)"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The model of a validated scene, its segments built by `parts`.
 pub fn walk<S: Space, P: SegmentParts<S>>(
     scene: &Scene,
@@ -140,11 +188,29 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
     let mut prev: Option<End<S>> = None;
     let mut s_pos = 0.0; // arc length at the segment root
     let mut prev_len = 0.0; // length of the previous segment (joint row scale)
+    point_masses_are_points::<S>(scene)?;
     for (si, seg) in scene.segments.iter().enumerate() {
         let first = si == 0;
+        let points = scene.point_masses(si);
         match seg.kind {
             SegmentKind::Modal => {
-                let m = parts.modal(&mut num, si, seg, s_pos, first && clamped)?;
+                let masses = SegmentMasses {
+                    points: points.clone(),
+                    bodies: scene
+                        .masses_on(si)
+                        .filter(|m| !m.is_point())
+                        .map(|m| {
+                            let (inertia, offset) = m.planar_body();
+                            SectionMass {
+                                xi: m.at / seg.length,
+                                mass: m.mass,
+                                inertia,
+                                offset,
+                            }
+                        })
+                        .collect(),
+                };
+                let m = parts.modal(&mut num, si, seg, s_pos, first && clamped, &masses)?;
                 if first {
                     support = m.support;
                 }
@@ -208,7 +274,28 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                     let next = parts.node(&mut num, s_pos + (k + 1) as f64 * le, Hold::Free);
                     let dofs =
                         LocalDofs::new(last.dofs.iter().chain(&next.dofs).copied().collect());
-                    ancf.push((dofs, parts.ancf_element(&props), si));
+                    let on: Vec<(f64, f64)> = points
+                        .iter()
+                        .filter_map(|&(at, m)| {
+                            let (j, xi) = element_of(at, seg.length, ne);
+                            (j == k).then_some((xi, m))
+                        })
+                        .collect();
+                    let held: Vec<SectionMass> = scene
+                        .masses_on(si)
+                        .filter(|m| !m.is_point())
+                        .filter_map(|m| {
+                            let (j, xi) = element_of(m.at, seg.length, ne);
+                            let (inertia, offset) = m.planar_body();
+                            (j == k).then_some(SectionMass {
+                                xi,
+                                mass: m.mass,
+                                inertia,
+                                offset,
+                            })
+                        })
+                        .collect();
+                    ancf.push((dofs, parts.ancf_element(&props, &on, &held), si));
                     last = next;
                 }
                 prev = Some(End {

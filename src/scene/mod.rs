@@ -338,6 +338,52 @@ pub struct Scene {
     /// Segments from root to tip.
     #[serde(default)]
     pub segments: Vec<Segment>,
+    /// Attached masses: rigid bodies riding on the centreline (`[[masses]]`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub masses: Vec<Mass>,
+}
+
+impl Mass {
+    /// Whether it is a point mass: no offset and no rotary inertia (or all zeros).
+    pub fn is_point(&self) -> bool {
+        let zero = |v: &Option<Vec<f64>>| v.as_ref().is_none_or(|v| v.iter().all(|x| *x == 0.0));
+        zero(&self.inertia) && zero(&self.offset)
+    }
+
+    /// Planar: the rotary inertia I_zz [kg m²] and the offset (along the tangent, along the
+    /// section's y axis) [m] (zeros where not given).
+    pub fn planar_body(&self) -> (f64, [f64; 2]) {
+        let get = |v: &Option<Vec<f64>>, k: usize| v.as_ref().and_then(|v| v.get(k)).copied();
+        (
+            get(&self.inertia, 0).unwrap_or(0.0),
+            [
+                get(&self.offset, 0).unwrap_or(0.0),
+                get(&self.offset, 1).unwrap_or(0.0),
+            ],
+        )
+    }
+}
+
+/// An attached mass (`[[masses]]`): a rigid body riding on a segment's centreline.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mass {
+    /// Unique name (letters, digits, `_`); prefixes its FMU parameters.
+    pub name: String,
+    /// The segment it sits on (a segment name).
+    pub segment: String,
+    /// Arc length from that segment's start [m], 0 ≤ at ≤ its length.
+    pub at: f64,
+    /// Mass [kg], > 0.
+    pub mass: f64,
+    /// Rotary inertia about its centre, section axes [kg m²]: `[Ixx, Iyy, Izz]` in a spatial
+    /// scene, `[Izz]` in a planar one (not modelled yet: a build refuses a non-zero value).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia: Option<Vec<f64>>,
+    /// Its centre from the centreline point, section axes [m] (`[x, y]` or `[x, y, z]`; not
+    /// modelled yet: a build refuses a non-zero value).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset: Option<Vec<f64>>,
 }
 
 impl Segment {
@@ -444,6 +490,23 @@ impl Scene {
         true
     }
 
+    /// The point masses on segment `si` (no offset, no rotary inertia, [`Mass::is_point`]):
+    /// (arc length from the segment's start [m], mass [kg]), in scene order.
+    pub fn point_masses(&self, si: usize) -> Vec<(f64, f64)> {
+        self.masses_on(si)
+            .filter(|m| m.is_point())
+            .map(|m| (m.at, m.mass))
+            .collect()
+    }
+
+    /// The attached masses on segment `si`, in scene order.
+    pub fn masses_on(&self, si: usize) -> impl Iterator<Item = &Mass> + '_ {
+        let name = self.segments.get(si).map(|s| s.name.as_str());
+        self.masses
+            .iter()
+            .filter(move |m| Some(m.segment.as_str()) == name)
+    }
+
     /// Gravity [m/s²] with `N` components (a scene without gravity: zero).
     pub fn gravity_vec<const N: usize>(&self) -> [f64; N] {
         padded(&self.gravity)
@@ -520,6 +583,35 @@ elements = 4
         assert!(err_of(&[("segments", "[]")]).contains("empty"));
         assert!(err_of(&[("segments.0.lenght", "1.0")]).contains("lenght"));
         assert!(err_of(&[("segments.0.linear", "true")]).contains("segments[0].linear = true"));
+    }
+
+    #[test]
+    fn masses_are_parsed_and_checked() {
+        let with = |extra: &str| Scene::from_toml(&format!("{OK}\n[[masses]]\n{extra}"));
+        let s = with("name = \"lamp\"\nsegment = \"a\"\nat = 0.35\nmass = 1.2").unwrap();
+        assert_eq!(s.point_masses(0), vec![(0.35, 1.2)]);
+        assert!(s.to_toml().contains("[[masses]]"));
+        assert!(Scene::from_toml(OK).unwrap().point_masses(0).is_empty());
+        assert!(!Scene::from_toml(OK).unwrap().to_toml().contains("masses"));
+        let err = |extra: &str| with(extra).unwrap_err().0;
+        let base = "name = \"m\"\nsegment = \"a\"\nmass = 1.0\n";
+        assert!(err(&format!("{base}at = 0.5")).contains("masses[0].at = 0.5: must be in [0, 0.4]"));
+        assert!(err(&format!("{base}at = -0.1")).contains("masses[0].at = -0.1"));
+        assert!(err("name = \"m\"\nsegment = \"b\"\nmass = 1.0\nat = 0.1")
+            .contains("masses[0].segment = \"b\": no segment has this name; use one of [\"a\"]"));
+        assert!(err("name = \"m\"\nsegment = \"a\"\nmass = 0.0\nat = 0.1")
+            .contains("masses[0].mass = 0"));
+        assert!(err("name = \"m\"\nsegment = \"a\"\nmass = nan\nat = 0.1")
+            .contains("masses[0].mass = NaN"));
+        assert!(err("name = \"m-1\"\nsegment = \"a\"\nmass = 1.0\nat = 0.1")
+            .contains("masses[0].name = \"m-1\""));
+        assert!(err(&format!("{base}at = 0.1\ninertia = [0.1, 0.1, 0.1]"))
+            .contains("masses[0].inertia = [0.1, 0.1, 0.1]: a planar scene takes 1 components"));
+        assert!(err(&format!("{base}at = 0.1\noffset = [0.1]"))
+            .contains("masses[0].offset = [0.1]: a planar scene takes 2 components"));
+        assert!(err(&format!("{base}at = 0.1\nspeed = 1.0")).contains("speed"));
+        assert!(err(&format!("{base}at = 0.1\n[[masses]]\n{base}at = 0.2"))
+            .contains("masses[1].name = \"m\": mass names must be unique"));
     }
 
     #[test]

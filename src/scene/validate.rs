@@ -296,6 +296,70 @@ impl Scene {
                 }
             }
         }
+        self.validate_masses()
+    }
+
+    /// The `[[masses]]` tables: names, segments, positions, masses, inertia and offset lengths.
+    fn validate_masses(&self) -> Result<(), SceneError> {
+        let sp = self.space;
+        let (space, n_in, n_off, in_how, off_how) = match sp {
+            SpaceKind::Planar => ("planar", 1, 2, "[Izz]", "[x, y]"),
+            SpaceKind::Spatial => ("spatial", 3, 3, "[Ixx, Iyy, Izz]", "[x, y, z]"),
+        };
+        for (i, m) in self.masses.iter().enumerate() {
+            let p = format!("masses[{i}]");
+            if m.name.trim().is_empty()
+                || !m
+                    .name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_')
+            {
+                return Err(SceneError(format!(
+                    "{p}.name = {:?}: must be non-empty and use only letters, digits and '_' (it prefixes FMU variable names)",
+                    m.name
+                )));
+            }
+            if self.masses[..i].iter().any(|o| o.name == m.name) {
+                return Err(SceneError(format!(
+                    "{p}.name = {:?}: mass names must be unique; rename one of them",
+                    m.name
+                )));
+            }
+            let Some(seg) = self.segments.iter().find(|s| s.name == m.segment) else {
+                let names: Vec<&str> = self.segments.iter().map(|s| s.name.as_str()).collect();
+                return Err(SceneError(format!(
+                    "{p}.segment = {:?}: no segment has this name; use one of {names:?}",
+                    m.segment
+                )));
+            };
+            if !(m.at.is_finite() && m.at >= 0.0 && m.at <= seg.length) {
+                return Err(SceneError(format!(
+                    "{p}.at = {}: must be in [0, {}] (the arc length from the start of segment {:?}, whose length is {} m); move the mass onto that segment or name the segment it sits on",
+                    m.at, seg.length, seg.name, seg.length
+                )));
+            }
+            check_positive(&format!("{p}.mass"), m.mass, "kg")?;
+            if let Some(v) = &m.inertia {
+                if v.len() != n_in {
+                    return Err(SceneError(format!(
+                        "{p}.inertia = {v:?}: a {space} scene takes {n_in} components {in_how} [kg m2] (or leave it out for a point mass)"
+                    )));
+                }
+                for (k, x) in v.iter().enumerate() {
+                    check_nonnegative(&format!("{p}.inertia[{k}]"), *x, "kg m2")?;
+                }
+            }
+            if let Some(v) = &m.offset {
+                if v.len() != n_off {
+                    return Err(SceneError(format!(
+                        "{p}.offset = {v:?}: a {space} scene takes {n_off} components {off_how} [m] (or leave it out for a mass on the centreline)"
+                    )));
+                }
+                for (k, x) in v.iter().enumerate() {
+                    check_finite(&format!("{p}.offset[{k}]"), *x)?;
+                }
+            }
+        }
         Ok(())
     }
 

@@ -34,7 +34,7 @@
 //! automatic differentiation ([`Dual64`]) of the nonlinear part, whose residual is plain f64.
 
 use super::basis::ModalBasis;
-use super::nonlinear::{panels, point_fields, Nonlinear};
+use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
 use crate::math;
 use crate::model::sample::ShapePoint;
 use crate::model::vector::Real;
@@ -81,6 +81,8 @@ pub struct ModalBody {
     /// The geometrically nonlinear body (true unless built [`ModalBody::linear`]).
     pub nonlinear: bool,
     nl: Nonlinear,
+    /// Point masses on the body ([`ModalBody::with_points`]).
+    points: Vec<BodyPoint>,
 }
 
 /// Slots per quadrature point of [`ModalBody::fields`].
@@ -201,7 +203,208 @@ impl ModalBody {
             gram,
             nonlinear: true,
             nl,
+            points: Vec::new(),
         }
+    }
+
+    /// The body carrying point masses `points`: (x from the root [m], mass [kg]), each a point
+    /// of the body's kinematics r = R + A[x + c(x); w(x)] with its own mass (c = 0 on a linear
+    /// body): its inertia and weight enter every term on the body's shapes (Ritz). Call after
+    /// [`ModalBody::linear`].
+    pub fn with_points(mut self, points: &[(f64, f64)]) -> Self {
+        self.points = points
+            .iter()
+            .map(|&p| BodyPoint::new(&self.basis, &self.nl, self.length, self.nonlinear, p))
+            .collect();
+        self
+    }
+
+    /// The body carrying rigid bodies on its section (offset or rotary inertia, `xi` = x/L):
+    /// each a point of the kinematics as [`ModalBody::with_points`] whose centre is
+    /// s = ū + R(β)o, β = atan2 of the centreline's tangent d = dū/dx = (1 + c′, w′) (c′ = 0 on a
+    /// linear body), and whose angle θ + β carries its rotary inertia.
+    pub fn with_bodies(mut self, bodies: &[crate::model::ancf::SectionMass]) -> Self {
+        let n = self.modes();
+        let mut buf = Vec::new();
+        for b in bodies {
+            let x = b.xi * self.length;
+            self.basis.eval_all(b.xi.clamp(0.0, 1.0), &mut buf);
+            let dphi = buf.iter().take(n).map(|f| f[1] / self.length).collect();
+            let pt = BodyPoint::new(
+                &self.basis,
+                &self.nl,
+                self.length,
+                self.nonlinear,
+                (x, b.mass),
+            );
+            self.points.push(pt.with_body(b.inertia, b.offset, dphi));
+        }
+        self
+    }
+
+    /// The section kinematics of a rigid body on the section: the slope sums (w′, ẇ′, ẅ′) give
+    /// the tangent d and β̇, β̈; returns (β̇, β̈, R(β)o, R(β)Jo, κ) with ∂β/∂a_k = κ φ′_k.
+    fn section<T: Real>(&self, o: [f64; 2], sl: [T; 3]) -> (T, T, [T; 2], [T; 2], T) {
+        let [w1, w1d, w1dd] = sl;
+        let one = T::from(1.0);
+        let (d, dd, ddd) = if self.nonlinear {
+            (
+                [one - w1 * w1 * 0.5, w1],
+                [-(w1 * w1d), w1d],
+                [-(w1d * w1d) - w1 * w1dd, w1dd],
+            )
+        } else {
+            ([one, w1], [T::zero(), w1d], [T::zero(), w1dd])
+        };
+        let n2 = d[0] * d[0] + d[1] * d[1];
+        let cr = d[0] * dd[1] - d[1] * dd[0];
+        let dot = d[0] * dd[0] + d[1] * dd[1];
+        let bd = cr / n2;
+        let bdd = (d[0] * ddd[1] - d[1] * ddd[0]) / n2 - cr * dot * 2.0 / (n2 * n2);
+        let nrm = n2.sqrt();
+        let t = [d[0] / nrm, d[1] / nrm];
+        let nn = [-t[1], t[0]];
+        let ro = [t[0] * o[0] + nn[0] * o[1], t[1] * o[0] + nn[1] * o[1]];
+        let rjo = [nn[0] * o[0] - t[0] * o[1], nn[1] * o[0] - t[1] * o[1]];
+        let kap = if self.nonlinear {
+            (d[0] + d[1] * w1) / n2
+        } else {
+            d[0] / n2
+        };
+        (bd, bdd, ro, rjo, kap)
+    }
+
+    /// Mass of the point masses [kg].
+    pub fn point_mass(&self) -> f64 {
+        self.points.iter().map(|p| p.mass).sum()
+    }
+
+    /// Adds the point masses' inertia and weight, Σ m (∂r/∂q)ᵀ(r̈ − g), to `out`; `(sn, cs)`
+    /// = (sin θ, cos θ). With the local acceleration α = Aᵀ(r̈ − g) = Z + θ̈Jū − θ̇²ū + 2θ̇J ū̇ + ü
+    /// (Z = Aᵀ(R̈ − g)): F_R = m Aα, F_θ = m (Jū)·α, F_a = m(φ α_y − G_m a α_x).
+    fn add_point_forces<T: Real>(
+        &self,
+        (q, v, a): (&[T], &[T], &[T]),
+        g: [f64; 2],
+        (sn, cs): (T, T),
+        out: &mut [T],
+    ) {
+        let n = self.modes();
+        let (thd, thdd) = (v[2], a[2]);
+        let thd2 = thd * thd;
+        let (gx, gy) = (a[0] - g[0], a[1] - g[1]);
+        let (zx, zy) = (cs * gx + sn * gy, cs * gy - sn * gx);
+        let (am, vm, acc) = (&q[3..3 + n], &v[3..3 + n], &a[3..3 + n]);
+        for pt in &self.points {
+            let (c, w) = pt.plane(am, vm, acc);
+            // s = ū (+ R(β)o), ṡ, s̈ (local)
+            let (mut ux, mut uy) = (c[0] + pt.x, w[0]);
+            let (mut vx, mut vy) = (c[1], w[1]);
+            let (mut ax, mut ay) = (c[2], w[2]);
+            let mut rot_terms = None;
+            if let Some((j, o, dphi)) = &pt.body {
+                let mut sl = [T::zero(); 3];
+                for k in 0..n {
+                    sl[0] += am[k] * dphi[k];
+                    sl[1] += vm[k] * dphi[k];
+                    sl[2] += acc[k] * dphi[k];
+                }
+                let (bd, bdd, ro, rjo, kap) = self.section(*o, sl);
+                ux += ro[0];
+                uy += ro[1];
+                vx += rjo[0] * bd;
+                vy += rjo[1] * bd;
+                ax += rjo[0] * bdd - ro[0] * bd * bd;
+                ay += rjo[1] * bdd - ro[1] * bd * bd;
+                rot_terms = Some(((thdd + bdd) * *j, rjo, kap, dphi));
+            }
+            let alx = zx - thdd * uy - thd2 * ux - thd * vy * 2.0 + ax;
+            let aly = zy + thdd * ux - thd2 * uy + thd * vx * 2.0 + ay;
+            let (fx, fy) = (alx * pt.mass, aly * pt.mass);
+            out[0] += cs * fx - sn * fy;
+            out[1] += sn * fx + cs * fy;
+            out[2] += ux * fy - uy * fx;
+            for k in 0..n {
+                out[3 + k] += fy * pt.phi[k] - fx * pt.ga(am, k);
+            }
+            if let Some((mom, rjo, kap, dphi)) = rot_terms {
+                // ∂s/∂a_k gains R(β)Jo κφ′_k; the rotary inertia J ψ̈ (ψ = θ + β)
+                out[2] += mom;
+                let along = (rjo[0] * fx + rjo[1] * fy + mom) * kap;
+                for k in 0..n {
+                    out[3 + k] += along * dphi[k];
+                }
+            }
+        }
+    }
+
+    /// The exact partial derivatives of [`ModalBody::add_point_forces`] into `out.m`, `out.c`,
+    /// `out.k`, column by column by forward-mode automatic differentiation, in the scratch of
+    /// `out`.
+    fn add_point_matrices(&self, q: &[f64], v: &[f64], a: &[f64], g: [f64; 2], out: &mut BodyOut) {
+        let d = self.dim();
+        let zero = Dual64::from_re(0.0);
+        let ad = &mut out.ad;
+        for (x, y) in ad.x.iter_mut().zip([q, v, a]) {
+            x.clear();
+            x.extend(y.iter().map(|&y| Dual64::from_re(y)));
+        }
+        ad.r.clear();
+        ad.r.resize(d, zero);
+        for j in 0..d {
+            for which in 0..3 {
+                if which < 2 && j < 2 {
+                    continue;
+                }
+                ad.x[which][j].eps = 1.0;
+                ad.r.fill(zero);
+                let [xq, xv, xa] = &ad.x;
+                let sc = math::sin_cos_dual(xq[2]);
+                self.add_point_forces((xq, xv, xa), g, sc, &mut ad.r);
+                let mat = match which {
+                    0 => &mut out.k,
+                    1 => &mut out.c,
+                    _ => &mut out.m,
+                };
+                for (i, ri) in ad.r.iter().enumerate() {
+                    mat[(i, j)] += ri.eps;
+                }
+                ad.x[which][j].eps = 0.0;
+            }
+        }
+    }
+
+    /// The point masses' kinetic energy Σ ½m|ṙ|² and gravity potential −Σ m gᵀr [J].
+    fn point_energies(&self, q: &[f64], v: &[f64], g: [f64; 2]) -> (f64, f64) {
+        let n = self.modes();
+        let rot_a = rot(q[2]);
+        let (am, vm) = (&q[3..3 + n], &v[3..3 + n]);
+        let z = vec![0.0; n];
+        let rd = Vector2::new(v[0], v[1]);
+        let (mut t, mut u) = (0.0, 0.0);
+        for pt in &self.points {
+            let (c, w) = pt.plane(am, vm, &z);
+            let mut ul = Vector2::new(c[0] + pt.x, w[0]);
+            let mut ud = Vector2::new(c[1], w[1]);
+            if let Some((j, o, dphi)) = &pt.body {
+                let sl = [
+                    am.iter().zip(dphi).map(|(a, p)| a * p).sum::<f64>(),
+                    vm.iter().zip(dphi).map(|(a, p)| a * p).sum::<f64>(),
+                    0.0,
+                ];
+                let (bd, _, ro, rjo, _) = self.section(*o, sl);
+                ul += Vector2::new(ro[0], ro[1]);
+                ud += Vector2::new(rjo[0], rjo[1]) * bd;
+                let spin = v[2] + bd;
+                t += 0.5 * j * spin * spin;
+            }
+            let vl = Vector2::new(-v[2] * ul[1] + ud[0], v[2] * ul[0] + ud[1]);
+            let vel = rd + rot_a * vl;
+            let r = Vector2::new(q[0], q[1]) + rot_a * ul;
+            t += 0.5 * pt.mass * vel.norm_squared();
+            u -= pt.mass * (g[0] * r[0] + g[1] * r[1]);
+        }
+        (t, u)
     }
 
     /// The linear floating frame instead: ū = [x; w] inside the segment, strain energy
@@ -331,12 +534,19 @@ impl ModalBody {
             self.fields_f64(q, v, a, &mut out.buf);
             self.add_nonlinear_fields(v, a, g, sc, out.res.as_mut_slice(), &mut out.buf);
         }
+        if !self.points.is_empty() {
+            let sc = (rot_a[(1, 0)], rot_a[(0, 0)]);
+            self.add_point_forces((q, v, a), g, sc, out.res.as_mut_slice());
+        }
         if !matrices {
             return;
         }
         self.linear_matrices(q, v, &lt, out);
         if self.nonlinear {
             self.add_nonlinear_matrices(q, v, a, g, out);
+        }
+        if !self.points.is_empty() {
+            self.add_point_matrices(q, v, a, g, out);
         }
     }
 
@@ -661,8 +871,15 @@ impl ModalBody {
         }
         // the foreshortening's part: |V⁰ + (ċ, θ̇c)|² − |V⁰|² at the quadrature points, V⁰ the
         // linear frame's local point velocity
+        let tp = |t: f64| {
+            if self.points.is_empty() {
+                t
+            } else {
+                t + self.point_energies(q, v, [0.0; 2]).0
+            }
+        };
         if !self.nonlinear {
-            return 0.5 * t;
+            return tp(0.5 * t);
         }
         let mut buf = Vec::new();
         self.fields(q, v, &vec![0.0; q.len()], &mut buf);
@@ -675,7 +892,7 @@ impl ModalBody {
             let dv = (cd, v[2] * c);
             t += ml * self.nl.w[p] * (2.0 * (v0x * dv.0 + v0y * dv.1) + dv.0 * dv.0 + dv.1 * dv.1);
         }
-        0.5 * t
+        tp(0.5 * t)
     }
 
     /// Strain energy ½EI∫κ²dx with κ = w″(1 + ½w′²): ½ aᵀ K a plus ½EI∫w″²(w′² + ¼w′⁴)dx on
@@ -722,7 +939,12 @@ impl ModalBody {
             * self.length;
         let first = self.mass() * Vector2::new(q[0], q[1])
             + rot(q[2]) * Vector2::new(s0 + short, self.dot_sf(&q[3..]));
-        -(g[0] * first[0] + g[1] * first[1])
+        let u = -(g[0] * first[0] + g[1] * first[1]);
+        if self.points.is_empty() {
+            u
+        } else {
+            u + self.point_energies(q, &vec![0.0; q.len()], g).1
+        }
     }
 
     /// (G a)_k / L: gradient of the tip foreshortening ½ aᵀ G a / L with respect to a_k [-].

@@ -26,7 +26,7 @@
 //! Newton block ([`ModalBody3::newton_block`]).
 
 use super::basis::ModalBasis;
-use super::nonlinear::{panels, point_fields, Nonlinear};
+use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
 use crate::math;
 use crate::model::sample::{minimal_frame, ShapePoint};
 use crate::model::vector::{add, cross, dot, scale, Real, V3};
@@ -199,6 +199,8 @@ pub struct ModalBody3 {
     pub nonlinear: bool,
     nl: Nonlinear,
     damped: bool,
+    /// Point masses on the body ([`ModalBody3::with_points`]).
+    points: Vec<BodyPoint>,
 }
 
 /// Slots per quadrature point of [`ModalBody3::fields`]: v, v̇, v̈, v′, v̇′, v̈′, v″ (0..7), the
@@ -280,7 +282,89 @@ impl ModalBody3 {
             nonlinear: true,
             nl,
             damped,
+            points: Vec::new(),
         }
+    }
+
+    /// The body carrying point masses `points`: (x from the root [m], mass [kg]), each a point
+    /// of the body's kinematics r = R + A ū(x), ū = (x + c, v, w) (c = 0 on a linear body) with
+    /// its own mass: its inertia and weight enter every term on the body's shapes (Ritz). Call
+    /// after [`ModalBody3::linear`] and [`ModalBody3::with_panels`].
+    pub fn with_points(mut self, points: &[(f64, f64)]) -> Self {
+        let l = self.props.length;
+        self.points = points
+            .iter()
+            .map(|&p| BodyPoint::new(&self.basis, &self.nl, l, self.nonlinear, p))
+            .collect();
+        self
+    }
+
+    /// The point masses' inertia and weight Σ m (∂r/∂q)ᵀ(r̈ − g) added to `out`, the p rows as
+    /// the body's (Ḡᵀ times the body-frame moment about the frame origin): with the local
+    /// acceleration α = Z + ω̄̇ × ū + ω̄ × (ω̄ × ū) + 2ω̄ × u̇ + ü (Z = Aᵀ(R̈ − g)), F_R = m Aα,
+    /// F_p = 2Ēᵀ(ū × mα), F_a = m(φ α_{y,z} − G_m a α_x). `frame` = (A, Ē, ω̄, ω̄̇, Z).
+    #[allow(clippy::type_complexity)]
+    fn add_point_forces<T: Real>(
+        &self,
+        (q, v, a): (&[T], &[T], &[T]),
+        frame: (&[V3<T>; 3], &[[T; 4]; 3], V3<T>, V3<T>, V3<T>),
+        out: &mut [T],
+    ) {
+        let nb = self.modes();
+        let (rot, eb, w, wd, z) = frame;
+        let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
+        let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
+        let (ky, kz) = (&a[7..7 + nb], &a[7 + nb..7 + 2 * nb]);
+        for pt in &self.points {
+            let (cy, py) = pt.plane(ay, vy, ky);
+            let (cz, pz) = pt.plane(az, vz, kz);
+            let u = [cy[0] + cz[0] + pt.x, py[0], pz[0]];
+            let ud = [cy[1] + cz[1], py[1], pz[1]];
+            let udd = [cy[2] + cz[2], py[2], pz[2]];
+            let al = add(
+                add(z, cross(wd, u)),
+                add(
+                    add(cross(w, cross(w, u)), scale(cross(w, ud), T::from(2.0))),
+                    udd,
+                ),
+            );
+            let f = scale(al, T::from(pt.mass));
+            let fw = mul(rot, f);
+            for i in 0..3 {
+                out[i] += fw[i];
+            }
+            let mo = cross(u, f);
+            for k in 0..4 {
+                out[3 + k] += (eb[0][k] * mo[0] + eb[1][k] * mo[1] + eb[2][k] * mo[2]) * 2.0;
+            }
+            for k in 0..nb {
+                out[7 + k] += f[1] * pt.phi[k] - f[0] * pt.ga(ay, k);
+                out[7 + nb + k] += f[2] * pt.phi[k] - f[0] * pt.ga(az, k);
+            }
+        }
+    }
+
+    /// The point masses' kinetic energy Σ ½m|ṙ|² and gravity potential −Σ m gᵀr [J].
+    fn point_energies(&self, q: &[f64], v: &[f64], g: [f64; 3]) -> (f64, f64) {
+        let nb = self.modes();
+        let p = [q[3], q[4], q[5], q[6]];
+        let rot = euler_rotation(p);
+        let w = g_mul(&e_bar(p), &v[3..7]);
+        let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
+        let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
+        let z = vec![0.0; nb];
+        let (mut t, mut e) = (0.0, 0.0);
+        for pt in &self.points {
+            let (cy, py) = pt.plane(ay, vy, &z);
+            let (cz, pz) = pt.plane(az, vz, &z);
+            let u = [cy[0] + cz[0] + pt.x, py[0], pz[0]];
+            let ud = [cy[1] + cz[1], py[1], pz[1]];
+            let vel = add([v[0], v[1], v[2]], mul(&rot, add(cross(w, u), ud)));
+            let r = add([q[0], q[1], q[2]], mul(&rot, u));
+            t += 0.5 * pt.mass * dot(vel, vel);
+            e -= pt.mass * dot(g, r);
+        }
+        (t, e)
     }
 
     /// The nonlinear terms' quadrature (composite 5-point Gauss on `panels` panels, shapes
@@ -534,6 +618,9 @@ impl ModalBody3 {
                 f += vt[0] * self.d_t[m][0] + vt[1] * self.d_t[m][1];
             }
             out[7 + 2 * nb + m] = f;
+        }
+        if !self.points.is_empty() {
+            self.add_point_forces((q, v, a), (&rot, &eb, w, wd, z), out);
         }
     }
 
@@ -799,14 +886,19 @@ impl ModalBody3 {
         let mt = &self.m_t;
         let tors = vt[0] * (mt[0][0] * vt[0] + mt[0][1] * vt[1])
             + vt[1] * (mt[1][0] * vt[0] + mt[1][1] * vt[1]);
-        self.nonlinear_energies(q, v, [0.0; 3])[0]
+        let t = self.nonlinear_energies(q, v, [0.0; 3])[0]
             + 0.5 * mu * dot(rd, rd)
             + dot(rd, mul(&rot, add(cross(w, cbar), sv)))
             + 0.5 * dot(w, mul(&ibar, w))
             + dot(w, us)
             + 0.5 * ml * (sum(vy, vy) + sum(vz, vz))
             + w[0] * (self.c_t[0] * vt[0] + self.c_t[1] * vt[1])
-            + 0.5 * tors
+            + 0.5 * tors;
+        if self.points.is_empty() {
+            t
+        } else {
+            t + self.point_energies(q, v, [0.0; 3]).0
+        }
     }
 
     /// Strain energy ½ aᵀ K a [J].
@@ -839,7 +931,12 @@ impl ModalBody3 {
             scale([q[0], q[1], q[2]], self.mass()),
             mul(&euler_rotation([q[3], q[4], q[5], q[6]]), cbar),
         );
-        -dot(g, first) + self.nonlinear_energies(q, &vec![0.0; q.len()], g)[2]
+        let u = -dot(g, first) + self.nonlinear_energies(q, &vec![0.0; q.len()], g)[2];
+        if self.points.is_empty() {
+            u
+        } else {
+            u + self.point_energies(q, &vec![0.0; q.len()], g).1
+        }
     }
 
     /// Tip deflections (φ(1)ᵀa_y, φ(1)ᵀa_z) [m], tip slopes (v′, w′) = φ′(1)ᵀ(a_y, a_z)/L [-]

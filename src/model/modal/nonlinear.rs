@@ -148,3 +148,126 @@ impl Nonlinear {
 pub(super) fn panels(n: usize) -> usize {
     n.div_ceil(4).max(2)
 }
+
+impl Nonlinear {
+    /// Weights V_p of the cumulative rule at ξ ∈ [0, 1]: ∫₀^ξ f dξ ≈ Σ_p V_p f_p, the panels
+    /// before ξ's whole, ξ's own by the degree-4 interpolant through its five points (the rule of
+    /// [`Nonlinear::s`] at any ξ; at ξ = 1 the weights W_p, at a point of the rule its row of
+    /// `s`).
+    pub(super) fn cumulative_weights(&self, xi: f64) -> Vec<f64> {
+        let panels = self.w.len() / 5;
+        let h = 1.0 / panels as f64;
+        let b = ((xi / h).floor().max(0.0) as usize).min(panels - 1);
+        let t = (2.0 * (xi - b as f64 * h) / h - 1.0).clamp(-1.0, 1.0);
+        let mut v = vec![0.0; self.w.len()];
+        v[..5 * b].copy_from_slice(&self.w[..5 * b]);
+        for (j, &(xj, _)) in GAUSS5.iter().enumerate() {
+            let mut acc = 0.0;
+            for (tg, wt) in GAUSS5 {
+                let tt = -1.0 + 0.5 * (t + 1.0) * (tg + 1.0);
+                let mut l = 1.0;
+                for (m, &(xm, _)) in GAUSS5.iter().enumerate() {
+                    if m != j {
+                        l *= (tt - xm) / (xj - xm);
+                    }
+                }
+                acc += 0.5 * (t + 1.0) * wt * l;
+            }
+            v[5 * b + j] = 0.5 * h * acc;
+        }
+        v
+    }
+}
+
+/// A point mass on a modal body (docs/references.md §10): a point of the body's kinematics with
+/// its own mass, r = R + A ū(x), ū = (x + c, w(, v)), c = −½ aᵀ G_m a (per bending plane), so
+/// that its inertia and weight enter the reduced matrices and the nonlinear terms exactly on
+/// the body's shapes (Ritz).
+#[derive(Debug, Clone)]
+pub(super) struct BodyPoint {
+    /// Mass [kg].
+    pub(super) mass: f64,
+    /// Distance from the body's root x [m].
+    pub(super) x: f64,
+    /// φ_k(x/L) [-].
+    pub(super) phi: Vec<f64>,
+    /// G_m = ∫₀ˣ φ′φ′ᵀ dx (row-major n × n, x-derivatives) [1/m] on the body's cumulative
+    /// rule (the tip's ½aᵀGa/L at x = L); zero on a linear body (ū = (x, w)).
+    pub(super) gram: Vec<f64>,
+    /// A rigid body on the section (planar): rotary inertia J about its centre [kg m²], its
+    /// centre's offset o (along the tangent, along the normal) [m] and φ_k′(x) [1/m]; `None`
+    /// for a point.
+    pub(super) body: Option<(f64, [f64; 2], Vec<f64>)>,
+}
+
+impl BodyPoint {
+    /// The point of mass `mass` at x [m] of a body of length `l` with shapes `basis` and
+    /// tables `nl` (scaled to x-derivatives); `nonlinear` false: no foreshortening.
+    pub(super) fn new(
+        basis: &ModalBasis,
+        nl: &Nonlinear,
+        l: f64,
+        nonlinear: bool,
+        (x, mass): (f64, f64),
+    ) -> Self {
+        let n = basis.len();
+        let xi = (x / l).clamp(0.0, 1.0);
+        let mut buf = Vec::new();
+        basis.eval_all(xi, &mut buf);
+        let phi = buf.iter().map(|f| f[0]).collect();
+        let mut gram = vec![0.0; n * n];
+        if nonlinear {
+            for (p, v) in nl.cumulative_weights(xi).iter().enumerate() {
+                let ph = &nl.phi[p * n..(p + 1) * n];
+                for i in 0..n {
+                    for j in 0..n {
+                        gram[i * n + j] += l * v * ph[i][1] * ph[j][1];
+                    }
+                }
+            }
+        }
+        Self {
+            mass,
+            x,
+            phi,
+            gram,
+            body: None,
+        }
+    }
+
+    /// The same point as a rigid body on the section of rotary inertia `inertia` [kg m²] and
+    /// offset `offset` [m] (planar), `dphi` = φ′(x) [1/m].
+    pub(super) fn with_body(mut self, inertia: f64, offset: [f64; 2], dphi: Vec<f64>) -> Self {
+        self.body = Some((inertia, offset, dphi));
+        self
+    }
+
+    /// (G_m a)_k.
+    #[inline]
+    pub(super) fn ga<T: Real>(&self, a: &[T], k: usize) -> T {
+        let n = self.phi.len();
+        let mut s = T::zero();
+        for (g, &x) in self.gram[k * n..(k + 1) * n].iter().zip(a) {
+            s += x * *g;
+        }
+        s
+    }
+
+    /// (ū, u̇, ü) of one bending plane's amplitudes (a, ȧ, ä): (c, ċ, c̈) of the
+    /// foreshortening and (w, ẇ, ẅ).
+    #[inline]
+    pub(super) fn plane<T: Real>(&self, a: &[T], v: &[T], acc: &[T]) -> ([T; 3], [T; 3]) {
+        let mut c = [T::zero(); 3];
+        let mut w = [T::zero(); 3];
+        for k in 0..self.phi.len() {
+            let (ga, gv) = (self.ga(a, k), self.ga(v, k));
+            c[0] += a[k] * ga * -0.5;
+            c[1] -= v[k] * ga;
+            c[2] -= v[k] * gv + acc[k] * ga;
+            w[0] += a[k] * self.phi[k];
+            w[1] += v[k] * self.phi[k];
+            w[2] += acc[k] * self.phi[k];
+        }
+        (c, w)
+    }
+}

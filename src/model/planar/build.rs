@@ -7,13 +7,13 @@ use super::ends::{ModalRootPort, ModalTipPort, NodePort, RootSupport};
 use super::joint::RigidJoint;
 use super::Planar;
 use crate::math;
-use crate::model::ancf::AncfProps;
+use crate::model::ancf::{AncfProps, SectionMass};
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody};
-use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentParts};
+use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SpaceKind};
 use std::sync::Arc;
 
@@ -37,6 +37,7 @@ impl SegmentParts<Planar> for PlanarParts {
         seg: &Segment,
         s: f64,
         held: bool,
+        masses: &SegmentMasses,
     ) -> Result<ModalSegment<Planar>, SceneError> {
         let (area, inertia) = seg.area_inertia();
         let basis = ModalBasis::new(seg.modes.unwrap_or(1), seg.interface_modes);
@@ -48,7 +49,9 @@ impl SegmentParts<Planar> for PlanarParts {
             seg.damping_ratio,
             seg.damping_time,
         );
-        let body = Arc::new(if seg.linear { body.linear() } else { body });
+        let body = if seg.linear { body.linear() } else { body };
+        let body = body.with_points(&masses.points).with_bodies(&masses.bodies);
+        let body = Arc::new(body);
         let first = si == 0;
         let root_pt = [s * self.dir[0], s * self.dir[1]];
         let mut c = Coords::default();
@@ -95,8 +98,17 @@ impl SegmentParts<Planar> for PlanarParts {
         })
     }
 
-    fn ancf_element(&self, props: &AncfProps) -> Box<dyn Element<Planar>> {
-        Box::new(AncfElement::new(*props))
+    fn ancf_element(
+        &self,
+        props: &AncfProps,
+        points: &[(f64, f64)],
+        bodies: &[SectionMass],
+    ) -> Box<dyn Element<Planar>> {
+        Box::new(
+            AncfElement::new(*props)
+                .with_points(points)
+                .with_bodies(bodies),
+        )
     }
 
     fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {

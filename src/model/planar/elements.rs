@@ -3,7 +3,7 @@
 
 use super::Planar;
 use crate::math;
-use crate::model::ancf::{AncfProps, Mat8, QuadTables, Vec8};
+use crate::model::ancf::{AncfProps, Mat8, QuadTables, SectionMass, Shape, Vec8};
 use crate::model::assembly::Model;
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
 use crate::model::modal::{BodyOut, ModalBody};
@@ -20,8 +20,29 @@ pub struct AncfElement {
     /// 4×4 scalar pattern of the mass matrix (M = M4 ⊗ I₂).
     mass4: [[f64; 4]; 4],
     tables: QuadTables,
-    /// ∫ρA Sᵀ g dx at the current gravity.
+    /// ∫ρA Sᵀ g dx at the current gravity (and the point masses' weight).
     gravity_force: Vec8,
+    /// Σ m S(ξ_m)ᵀ over the point masses on the element (scalar pattern) [kg, kg m]; `None`
+    /// without masses.
+    points: Option<[f64; 4]>,
+    /// Rigid bodies on the element's section (offset or rotary inertia) with S(ξ), S′(ξ).
+    bodies: Vec<(SectionMass, [f64; 4], [f64; 4])>,
+    /// The current gravity [m/s²].
+    g: [f64; 2],
+}
+
+/// The Newton coefficients (c_a, c_v, c_x) and the 8 × 8 block the section bodies add to.
+type BodyBlock<'a> = ((f64, f64, f64), &'a mut [[f64; 8]; 8]);
+
+/// Σ_k w_k e_{2k + c} for c = 0, 1.
+#[inline]
+fn comb2(w: &[f64; 4], e: &[f64; 8]) -> [f64; 2] {
+    let mut o = [0.0; 2];
+    for k in 0..4 {
+        o[0] += w[k] * e[2 * k];
+        o[1] += w[k] * e[2 * k + 1];
+    }
+    o
 }
 
 impl AncfElement {
@@ -40,7 +61,98 @@ impl AncfElement {
             mass4,
             tables: props.tables(),
             gravity_force: Vec8::zeros(),
+            points: None,
+            bodies: Vec::new(),
+            g: [0.0; 2],
         }
+    }
+
+    /// The element carrying rigid bodies on its section ([`SectionMass`]: an offset or a
+    /// rotary inertia).
+    pub fn with_bodies(mut self, bodies: &[SectionMass]) -> Self {
+        let l = self.props.length;
+        self.bodies = bodies
+            .iter()
+            .map(|b| {
+                let sh = Shape::at(b.xi, l);
+                (*b, sh.s, sh.ds)
+            })
+            .collect();
+        self
+    }
+
+    /// Adds the section bodies' forces at (e, ė, ë) under gravity `g` to `res`, and with
+    /// `matrix` = (c_a, c_v, c_x) their Newton block (8 × 8, row-major) to `block`.
+    fn add_bodies(
+        &self,
+        (e, ed, ea): (&[f64; 8], &[f64; 8], &[f64; 8]),
+        g: [f64; 2],
+        res: &mut [f64; 8],
+        mut block: Option<BodyBlock<'_>>,
+    ) {
+        use num_dual::Dual64;
+        for (b, sv, dv) in &self.bodies {
+            let x = [comb2(sv, ea), comb2(dv, e), comb2(dv, ed), comb2(dv, ea)];
+            let f = b.forces(x[0], x[1], x[2], x[3], g);
+            for k in 0..4 {
+                for c in 0..2 {
+                    res[2 * k + c] += sv[k] * f[c] + dv[k] * f[2 + c];
+                }
+            }
+            let Some(((ca, cv, cx), blk)) = block.as_mut() else {
+                continue;
+            };
+            // ∂f/∂(r̈, d, ḋ, d̈) column by column, then through S (r̈ = Së) and S′ (d = S′e)
+            let lift = |v: [f64; 2]| v.map(Dual64::from_re);
+            for input in 0..4 {
+                let (coef, w) = match input {
+                    0 => (*ca, sv),
+                    1 => (*cx, dv),
+                    2 => (*cv, dv),
+                    _ => (*ca, dv),
+                };
+                if coef == 0.0 {
+                    continue;
+                }
+                for cc in 0..2 {
+                    let mut xd = x.map(lift);
+                    xd[input][cc].eps = 1.0;
+                    let fd = b.forces(xd[0], xd[1], xd[2], xd[3], g);
+                    for k in 0..4 {
+                        for c in 0..2 {
+                            let row = sv[k] * fd[c].eps + dv[k] * fd[2 + c].eps;
+                            for l in 0..4 {
+                                blk[2 * k + c][2 * l + cc] += coef * row * w[l];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The element carrying point masses `points` (ξ ∈ [0, 1], mass [kg]): a point at ξ is at
+    /// r = S(ξ)e, so it adds m S(ξ)ᵀS(ξ) to the constant mass matrix and m S(ξ)ᵀg to the
+    /// gravity force.
+    pub fn with_points(mut self, points: &[(f64, f64)]) -> Self {
+        if points.is_empty() {
+            return self;
+        }
+        let mut w = [0.0; 4];
+        for &(xi, m) in points {
+            let s = Shape::at(xi, self.props.length).s;
+            for k in 0..4 {
+                w[k] += m * s[k];
+                for j in 0..4 {
+                    let mkj = m * s[k] * s[j];
+                    self.mass4[k][j] += mkj;
+                    self.mass[(2 * k, 2 * j)] += mkj;
+                    self.mass[(2 * k + 1, 2 * j + 1)] += mkj;
+                }
+            }
+        }
+        self.points = Some(w);
+        self
     }
 }
 
@@ -66,13 +178,23 @@ impl Element<Planar> for AncfElement {
             res[x] = mx + force[x] - env.load * gf[x];
             res[y] = my + force[y] - env.load * gf[y];
         }
+        let mut blk = [[0.0; 8]; 8];
+        if !self.bodies.is_empty() {
+            let g = [env.load * self.g[0], env.load * self.g[1]];
+            let b = out.matrix.map(|c| (c, &mut blk));
+            self.add_bodies((&e, &ed, &ea), g, &mut res, b);
+        }
         out.add_residual(&res);
         if let (Some((ca, cv, cx)), Some(m)) = (out.matrix, matrices) {
             let damped = cv != 0.0 && self.props.damping_time > 0.0;
+            let bodies = !self.bodies.is_empty();
             out.add_block(|r, c| {
                 let mut val = ca * self.mass[(r, c)] + cx * m.stiffness[(r, c)];
                 if damped {
                     val += cv * m.damping[(r, c)];
+                }
+                if bodies {
+                    val += blk[r][c];
                 }
                 val
             });
@@ -81,19 +203,33 @@ impl Element<Planar> for AncfElement {
 
     fn residual(&self, x: &LocalState<'_>, _env: &Env<Planar>, res: &mut [f64]) {
         let (e, ed, ea) = x.arrays::<8>();
-        let (e, ed, ea) = (Vec8::from(e), Vec8::from(ed), Vec8::from(ea));
-        let f = self.mass * ea + self.props.elastic(&e, &ed, false).force - self.gravity_force;
+        let (ev, edv, eav) = (Vec8::from(e), Vec8::from(ed), Vec8::from(ea));
+        let f = self.mass * eav + self.props.elastic(&ev, &edv, false).force - self.gravity_force;
         res.copy_from_slice(f.as_slice());
+        if !self.bodies.is_empty() {
+            let mut r = [0.0; 8];
+            self.add_bodies((&e, &ed, &ea), self.g, &mut r, None);
+            for (o, x) in res.iter_mut().zip(r) {
+                *o += x;
+            }
+        }
     }
 
     fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 2]) -> Energies {
         let (e, ed, _) = x.arrays::<8>();
-        let (e, ed) = (Vec8::from(e), Vec8::from(ed));
-        Energies {
-            kinetic: 0.5 * ed.dot(&(self.mass * ed)),
-            strain: self.props.strain_energy(&e),
-            potential: -self.gravity_force.dot(&e),
+        let (ev, edv) = (Vec8::from(e), Vec8::from(ed));
+        let mut out = Energies {
+            kinetic: 0.5 * edv.dot(&(self.mass * edv)),
+            strain: self.props.strain_energy(&ev),
+            potential: -self.gravity_force.dot(&ev),
+        };
+        for (b, sv, dv) in &self.bodies {
+            let (r, rd) = (comb2(sv, &e), comb2(sv, &ed));
+            let (t, u) = b.energies(r, rd, comb2(dv, &e), comb2(dv, &ed), self.g);
+            out.kinetic += t;
+            out.potential += u;
         }
+        out
     }
 
     fn length(&self) -> f64 {
@@ -108,6 +244,13 @@ impl Element<Planar> for AncfElement {
 
     fn set_gravity(&mut self, g: &[f64; 2]) {
         self.gravity_force = self.props.gravity_force(*g);
+        self.g = *g;
+        if let Some(w) = &self.points {
+            for k in 0..4 {
+                self.gravity_force[2 * k] += w[k] * g[0];
+                self.gravity_force[2 * k + 1] += w[k] * g[1];
+            }
+        }
     }
 
     fn is_damped(&self) -> bool {

@@ -4,7 +4,8 @@
 
 use super::kin::{EndKin3, Field3};
 use super::node::{
-    frame_duals, gravity_potential, moment_stiffness, rotation_of, rotation_second_along, NodeFrame,
+    add_point_weight, add_points, frame_duals, gravity_potential, moment_stiffness, rotation_of,
+    rotation_second_along, NodeFrame,
 };
 use super::Spatial;
 use crate::model::ancf3d::angle::{section_frame, Angle3, ANGLE_DOFS};
@@ -27,9 +28,15 @@ pub struct AngleElement3 {
     /// The cable part's mass patterns (the residual's M ë without the dense matrix).
     patterns: MassPatterns,
     tables: Tables3,
-    /// ∫ρA S_rᵀ g dx at the current gravity.
+    /// ∫ρA S_rᵀ g dx at the current gravity, and the point masses' weight.
     gravity_force: [f64; ANGLE_DOFS],
+    /// Σ m S(ξ_m) over the point masses on the element; `None` without.
+    points: Option<[f64; 4]>,
 }
+
+/// Starts of the r-blocks of S1..S4 (r0, r0_x, r1, r1_x) in the element's coordinates
+/// `[r, r_x, θ]` per node.
+const R_SLOTS: [usize; 4] = [0, 3, 7, 10];
 
 impl AngleElement3 {
     /// Element of the given properties (gravity zero until set).
@@ -40,7 +47,17 @@ impl AngleElement3 {
             patterns: props.cable.mass_patterns(),
             tables: props.tables(),
             gravity_force: [0.0; ANGLE_DOFS],
+            points: None,
         }
+    }
+
+    /// The element carrying point masses `points` (ξ ∈ [0, 1], mass [kg]): m S(ξ)ᵀS(ξ) on the
+    /// cable's mass pattern and the dense matrix's r-blocks.
+    pub fn with_points(mut self, points: &[(f64, f64)]) -> Self {
+        let l = self.props.cable.length;
+        let (pat, dense) = (&mut self.patterns, &mut self.mass);
+        self.points = add_points(points, l, pat, dense, ANGLE_DOFS, R_SLOTS);
+        self
     }
 
     /// `res += M ë` with the constant mass matrix.
@@ -118,6 +135,7 @@ impl Element<Spatial> for AngleElement3 {
 
     fn set_gravity(&mut self, g: &[f64; 3]) {
         self.gravity_force = self.props.gravity_force(*g);
+        add_point_weight(&self.points, g, R_SLOTS, &mut self.gravity_force);
     }
 
     fn is_damped(&self) -> bool {

@@ -12,6 +12,7 @@ use super::{
     AncfElement3, AngleElement3, AnglePort3, EulerNormalization, FrameSupport3, ModalElement3,
     ModalRootPort3, ModalTipPort3, NodePort3, NodeSupport3, Spatial,
 };
+use crate::model::ancf::SectionMass;
 use crate::model::ancf3d::angle::Angle3;
 use crate::model::ancf3d::Ancf3Props;
 use crate::model::assembly::Model;
@@ -19,7 +20,7 @@ use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
-use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentParts};
+use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind, TorsionElement};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use std::sync::Arc;
@@ -52,6 +53,7 @@ impl SegmentParts<Spatial> for SpatialParts {
         seg: &Segment,
         s: f64,
         held: bool,
+        masses: &SegmentMasses,
     ) -> Result<ModalSegment<Spatial>, SceneError> {
         let first = si == 0;
         let root_pt = s * self.ax;
@@ -66,7 +68,7 @@ impl SegmentParts<Spatial> for SpatialParts {
                 body = body.with_stiffening();
             }
         }
-        let body = Arc::new(body);
+        let body = Arc::new(body.with_points(&masses.points));
         let free_p = !held;
         let mut c = Coords::default();
         for k in 0..3 {
@@ -116,19 +118,27 @@ impl SegmentParts<Spatial> for SpatialParts {
         Ok(props)
     }
 
-    fn ancf_element(&self, props: &Ancf3Props) -> Box<dyn Element<Spatial>> {
+    fn ancf_element(
+        &self,
+        props: &Ancf3Props,
+        points: &[(f64, f64)],
+        _bodies: &[SectionMass],
+    ) -> Box<dyn Element<Spatial>> {
         if self.angle {
             // the axes of the root frame: unit and perpendicular (checked in `ancf_props`)
-            Box::new(AngleElement3::new(Angle3 {
-                cable: Ancf3Props {
-                    torsion: false,
-                    ..*props
-                },
-                t0: self.ax.into(),
-                d0: self.ay.into(),
-            }))
+            Box::new(
+                AngleElement3::new(Angle3 {
+                    cable: Ancf3Props {
+                        torsion: false,
+                        ..*props
+                    },
+                    t0: self.ax.into(),
+                    d0: self.ay.into(),
+                })
+                .with_points(points),
+            )
         } else {
-            Box::new(AncfElement3::new(*props))
+            Box::new(AncfElement3::new(*props).with_points(points))
         }
     }
 

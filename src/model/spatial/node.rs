@@ -24,8 +24,59 @@ pub struct AncfElement3 {
     mass: Vec<f64>,
     patterns: MassPatterns,
     tables: Tables3,
-    /// ∫ρA S_rᵀ g dx at the current gravity (first d entries).
+    /// ∫ρA S_rᵀ g dx at the current gravity (first d entries), and the point masses' weight.
     gravity_force: [f64; DIRECTOR_DOFS],
+    /// Σ m S(ξ_m) over the point masses on the element ([`add_points`]); `None` without.
+    points: Option<[f64; 4]>,
+}
+
+/// Adds point masses `points` (ξ ∈ [0, 1], mass [kg]) on an element of length `l` to its
+/// constant mass: a point at ξ is at r = S(ξ)e, so m S(ξ)ᵀS(ξ) on the Hermite pattern `pat`
+/// and on the r-blocks of the dense row-major d × d matrix `dense` starting at `slots`. Returns
+/// Σ m S(ξ) (the weight is Σ m S(ξ)ᵀ g, [`add_point_weight`]), `None` without points.
+pub(super) fn add_points(
+    points: &[(f64, f64)],
+    l: f64,
+    pat: &mut MassPatterns,
+    dense: &mut [f64],
+    d: usize,
+    slots: [usize; 4],
+) -> Option<[f64; 4]> {
+    if points.is_empty() {
+        return None;
+    }
+    let mut w = [0.0; 4];
+    for &(xi, m) in points {
+        let s = crate::model::ancf::Shape::at(xi, l).s;
+        for j in 0..4 {
+            w[j] += m * s[j];
+            for k in 0..4 {
+                let mjk = m * s[j] * s[k];
+                pat.hermite[j][k] += mjk;
+                for c in 0..3 {
+                    dense[(slots[j] + c) * d + slots[k] + c] += mjk;
+                }
+            }
+        }
+    }
+    Some(w)
+}
+
+/// Adds the point masses' weight Σ m S(ξ)ᵀ g (`w` from [`add_points`]) to the r-blocks at
+/// `slots` of a gravity force.
+pub(super) fn add_point_weight(
+    w: &Option<[f64; 4]>,
+    g: &[f64; 3],
+    slots: [usize; 4],
+    f: &mut [f64],
+) {
+    if let Some(w) = w {
+        for j in 0..4 {
+            for c in 0..3 {
+                f[slots[j] + c] += w[j] * g[c];
+            }
+        }
+    }
 }
 
 impl AncfElement3 {
@@ -38,7 +89,16 @@ impl AncfElement3 {
             patterns: props.mass_patterns(),
             tables: props.tables(),
             gravity_force: [0.0; DIRECTOR_DOFS],
+            points: None,
         }
+    }
+
+    /// The element carrying point masses `points` (ξ ∈ [0, 1], mass [kg], [`add_points`]).
+    pub fn with_points(mut self, points: &[(f64, f64)]) -> Self {
+        let (d, slots) = (self.props.dofs(), self.patterns.r_slots);
+        let l = self.props.length;
+        self.points = add_points(points, l, &mut self.patterns, &mut self.mass, d, slots);
+        self
     }
 
     fn eval_d<const D: usize>(
@@ -134,6 +194,12 @@ impl Element<Spatial> for AncfElement3 {
 
     fn set_gravity(&mut self, g: &[f64; 3]) {
         self.gravity_force = self.props.gravity_force(*g);
+        add_point_weight(
+            &self.points,
+            g,
+            self.patterns.r_slots,
+            &mut self.gravity_force,
+        );
     }
 
     fn is_damped(&self) -> bool {
