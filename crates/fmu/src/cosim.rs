@@ -220,7 +220,7 @@ impl CoSimModel for BeamFmu {
                 .outputs
                 .value(id)
                 .map(|x| self.feed.value(id, x, &self.sim)),
-            Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
+            Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) | Access::Mass(..) => {
                 access.parameter(&self.scene)
             }
             Access::View(setting) => Some(self.views.settings().get(setting)),
@@ -242,7 +242,7 @@ impl CoSimModel for BeamFmu {
             }
             Access::Output(_) => return Err(format!("{name} is an output and cannot be set")),
             Access::View(setting) => return self.views.set(setting, value),
-            Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) => {
+            Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) | Access::Mass(..) => {
                 let mut scene = self.scene.clone();
                 access.set_parameter(&mut scene, value);
                 scene
@@ -576,6 +576,33 @@ mod tests {
         assert!(e.contains("modal.length") && e.contains("> 0"), "{e}");
         assert!(m.set_real(at(&m, 10), 1.0).unwrap_err().contains("output"));
         assert!(m.set_real(at(&m, 1), f64::NAN).is_err());
+    }
+
+    /// `masses.<name>.mass` and `.at` are parameters a start takes (a sweep varies a payload):
+    /// the rebuilt simulator carries the value set; a value the scene refuses is refused
+    /// naming the mass's field.
+    #[test]
+    fn mass_parameters_reach_the_start() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/sprayer_boom.toml"
+        ))
+        .unwrap();
+        let mut m = BeamFmu::from_resource(&text).unwrap();
+        let mass = at(&m, 500_000 + 10 * 3 + 1);
+        assert_eq!(m.variables()[mass].name, "masses.nozzle_3.mass");
+        assert_eq!(m.get_real(mass).unwrap(), 0.4);
+        m.set_real(mass, 2.5).unwrap();
+        let place = at(&m, 500_000 + 10 * 3 + 2);
+        m.set_real(place, 1.5).unwrap();
+        m.initialize(0.0).unwrap();
+        let nozzle = &m.sim.scene().masses[3];
+        assert_eq!((nozzle.mass, nozzle.at), (2.5, 1.5));
+        let mut m = BeamFmu::from_resource(&text).unwrap();
+        let e = m.set_real(mass, -1.0).unwrap_err();
+        assert!(e.contains("masses.nozzle_3.mass = -1"), "{e}");
+        let e = m.set_real(place, 3.0).unwrap_err();
+        assert!(e.contains("masses.nozzle_3.at = 3"), "{e}");
     }
 
     /// Each kind of simulator failure maps to the FMI outcome the host needs, with the

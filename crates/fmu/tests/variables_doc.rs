@@ -9,7 +9,7 @@ use std::path::Path;
 use fmi2::{Causality, Variability, Variable};
 use hybeam::scene::Scene;
 use hybeam::simulator::InputKind;
-use hybeam_fmu::cosim::variables::{Access, Table, SEGMENT_FIELDS};
+use hybeam_fmu::cosim::variables::{Access, Table, MASS_FIELDS, SEGMENT_FIELDS};
 
 /// One documented row: name, VR, causality (inputs, outputs) or variability (parameters), unit.
 type Row = (String, String, String, String);
@@ -55,7 +55,17 @@ fn segment_row(name: &str, k: u32, u: Option<&str>) -> Row {
     )
 }
 
-/// The rows of the table of `scene`, segment parameters in the document's generic form.
+fn mass_row(name: &str, k: u32, u: Option<&str>) -> Row {
+    (
+        format!("masses.<name>.{name}"),
+        format!("500000 + 10i + {k}"),
+        "fixed".into(),
+        unit(u),
+    )
+}
+
+/// The rows of the table of `scene`, segment and mass parameters in the document's generic
+/// form.
 fn rows_of(scene: &Scene) -> BTreeSet<Row> {
     let table = Table::of(scene);
     table
@@ -66,6 +76,10 @@ fn rows_of(scene: &Scene) -> BTreeSet<Row> {
             Access::Segment(i, f) => {
                 assert_eq!(v.vr, 1000 * (i as u32 + 1) + f.k, "{}", v.name);
                 segment_row(f.name, f.k, v.unit)
+            }
+            Access::Mass(i, f) => {
+                assert_eq!(v.vr, 500_000 + 10 * i as u32 + f.k, "{}", v.name);
+                mass_row(f.name, f.k, v.unit)
             }
             // the partner model's inputs, written once each in a generic form
             Access::Input(id) if id.kind == InputKind::MountMobility => (
@@ -106,6 +120,7 @@ fn documented_variables_are_the_table() {
     let mut all: BTreeSet<Row> = SEGMENT_FIELDS
         .iter()
         .map(|f| segment_row(f.name, f.k, f.unit))
+        .chain(MASS_FIELDS.iter().map(|f| mass_row(f.name, f.k, f.unit)))
         .collect();
     for path in &scenes {
         let scene = Scene::from_toml(&std::fs::read_to_string(path).unwrap())

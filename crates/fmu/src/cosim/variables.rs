@@ -13,7 +13,7 @@
 //! checked against this table by `tests/variables_doc.rs`.
 
 use fmi2::{Causality, StringVariable, Variability, Variable};
-use hybeam::scene::{MotionInput, Root, Scene, Section, Segment, SegmentKind};
+use hybeam::scene::{Mass, MotionInput, Root, Scene, Section, Segment, SegmentKind};
 use hybeam::simulator::{InputId, InputKind, OutputId, Quantity};
 
 use super::view::{Setting, Settings};
@@ -31,6 +31,8 @@ pub enum Access {
     Scene(&'static SceneParameter),
     /// A field of the segment with this index (root = 0).
     Segment(usize, &'static SegmentField),
+    /// A field of the attached mass with this index (`[[masses]]` order).
+    Mass(usize, &'static MassField),
     /// A Real parameter of the FMU's views (owned by [`super::view::ViewState`], not the
     /// scene; not part of an FMU state).
     View(Setting),
@@ -43,6 +45,7 @@ impl Access {
             Access::Gravity(id) => Some(id.scene_value(scene)),
             Access::Scene(p) => Some((p.get)(scene)),
             Access::Segment(i, f) => Some((f.get)(&scene.segments[i])),
+            Access::Mass(i, f) => Some((f.get)(&scene.masses[i])),
             Access::Input(_) | Access::Output(_) | Access::View(_) => None,
         }
     }
@@ -53,6 +56,7 @@ impl Access {
             Access::Gravity(id) => id.set_in_scene(scene, x),
             Access::Scene(p) => (p.set)(scene, x),
             Access::Segment(i, f) => (f.set)(&mut scene.segments[i], x),
+            Access::Mass(i, f) => (f.set)(&mut scene.masses[i], x),
             Access::Input(_) | Access::Output(_) | Access::View(_) => {}
         }
     }
@@ -426,6 +430,41 @@ pub const SEGMENT_FIELDS: [SegmentField; 9] = [
     },
 ];
 
+/// A field of an attached mass exposed as a fixed parameter `masses.<name>.<field>` with value
+/// reference 500000 + 10·i + `k` (i its index in the scene's `[[masses]]`).
+#[derive(Debug)]
+pub struct MassField {
+    /// Field name (the scene's key).
+    pub name: &'static str,
+    /// Offset of the value reference within the mass's block.
+    pub k: u32,
+    /// Unit symbol.
+    pub unit: Option<&'static str>,
+    /// Reads it from a mass.
+    pub get: fn(&Mass) -> f64,
+    /// Writes it into a mass (not validated).
+    pub set: fn(&mut Mass, f64),
+}
+
+/// The attached masses' fields, in value-reference order: a sweep can vary a payload and
+/// where it sits.
+pub const MASS_FIELDS: [MassField; 2] = [
+    MassField {
+        name: "mass",
+        k: 1,
+        unit: Some("kg"),
+        get: |m| m.mass,
+        set: |m, x| m.mass = x,
+    },
+    MassField {
+        name: "at",
+        k: 2,
+        unit: Some("m"),
+        get: |m| m.at,
+        set: |m, x| m.at = x,
+    },
+];
+
 /// The String parameters (fmi2String, fixed, every scene): (name, VR, description). Declared
 /// after the Real variables in modelDescription.xml.
 pub const STRING_PARAMETERS: [Row; 1] = [(
@@ -598,6 +637,26 @@ impl Table {
                 Access::Scene(p),
             );
         }
+        for (i, mass) in scene.masses.iter().enumerate() {
+            for f in &MASS_FIELDS {
+                t.push(
+                    Variable {
+                        name: format!("masses.{}.{}", mass.name, f.name),
+                        vr: 500_000 + 10 * i as u32 + f.k,
+                        causality: Causality::Parameter,
+                        variability: Variability::Fixed,
+                        start: Some((f.get)(mass)),
+                        unit: f.unit,
+                        description: format!(
+                            "attached mass '{}' {} (segment '{}')",
+                            mass.name, f.name, mass.segment
+                        ),
+                        depends_on: Vec::new(),
+                    },
+                    Access::Mass(i, f),
+                );
+            }
+        }
         let defaults = Settings::default();
         for (row, setting) in &VIEW_PARAMETERS {
             let start = Some(defaults.get(*setting));
@@ -661,7 +720,7 @@ impl Table {
         self.access.iter().copied().filter(|a| {
             matches!(
                 a,
-                Access::Gravity(_) | Access::Scene(_) | Access::Segment(..)
+                Access::Gravity(_) | Access::Scene(_) | Access::Segment(..) | Access::Mass(..)
             )
         })
     }
