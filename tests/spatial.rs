@@ -120,6 +120,11 @@ fn b9_every_planar_scene_has_a_spatial_twin_with_the_same_history() {
         if planar.space != SpaceKind::Planar {
             continue;
         }
+        if planar.masses.iter().any(|m| !m.is_point()) {
+            // a spatial scene takes point masses only in this version (issue 39): no twin
+            eprintln!("{path:?}: no spatial twin (a mass with an offset or rotary inertia)");
+            continue;
+        }
         assert!(
             planar.solver.max_step >= h,
             "{path:?}: max_step below the test's step"
