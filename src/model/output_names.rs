@@ -29,7 +29,7 @@ pub enum Quantity {
     KineticEnergy,
     /// `energy.strain` [J].
     StrainEnergy,
-    /// `energy.potential` [J] (gravity, zero at the origin).
+    /// `energy.potential` [J] (gravity and the line loads' −∫qᵀr dx, zero at the origin).
     PotentialEnergy,
     /// `root.mass` [kg]: the beam's mass (mounted root).
     MountMass,

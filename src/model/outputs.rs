@@ -30,7 +30,8 @@ pub struct Outputs<S: Space> {
     pub kinetic: f64,
     /// Strain energy [J].
     pub strain: f64,
-    /// Gravity potential energy −∫ρA gᵀr dx [J] (zero at the origin).
+    /// Gravity potential energy −∫ρA gᵀr dx [J] (zero at the origin), with the point masses'
+    /// −Σ m gᵀr and the segments' line loads' −∫qᵀr dx (a conservative dead load).
     pub potential: f64,
     /// Force of the support on the beam at the root [N], global axes.
     pub root_force: S::Vec,

@@ -105,12 +105,14 @@ pub trait SegmentParts<S: Space> {
     fn ancf_props(&self, si: usize, seg: &Segment, le: f64) -> Result<Self::AncfProps, SceneError>;
     /// One ANCF element carrying the point masses `points`: (ξ ∈ [0, 1] along the element,
     /// mass [kg]) (empty: the element alone), and the rigid bodies `bodies` on its section
-    /// (offset or rotary inertia; the walk passes them to planar elements only).
+    /// (offset or rotary inertia; the walk passes them to planar elements only), under the
+    /// line load of its segment `seg` ([`Segment::line_load`]).
     fn ancf_element(
         &self,
         props: &Self::AncfProps,
         points: &[(f64, f64)],
         bodies: &[SectionMass],
+        seg: &Segment,
     ) -> Box<dyn Element<S>>;
     /// An ANCF node at arc length `s` [m], held as `hold` says, with the rigid groups it forms.
     fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords;
@@ -295,7 +297,7 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                             })
                         })
                         .collect();
-                    ancf.push((dofs, parts.ancf_element(&props, &on, &held), si));
+                    ancf.push((dofs, parts.ancf_element(&props, &on, &held, seg), si));
                     last = next;
                 }
                 prev = Some(End {

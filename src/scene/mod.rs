@@ -214,6 +214,11 @@ pub struct Segment {
     /// Strain model of the ANCF elements.
     #[serde(default)]
     pub strain: StrainModel,
+    /// Uniform distributed dead load on the segment [N/m], world axes: `[qx, qy]` or
+    /// `[qx, qy, qz]` (none: zero). It enters every element of the segment as gravity does (a
+    /// dead load of density q per unit length beside ρA g).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line_load: Option<Vec<f64>>,
 }
 
 /// Initial state.
@@ -387,6 +392,13 @@ pub struct Mass {
 }
 
 impl Segment {
+    /// The line load [N/m] with `N` components, `None` when the segment has none or a zero
+    /// one (so that a segment without a line load computes exactly as before).
+    pub fn line_load_vec<const N: usize>(&self) -> Option<[f64; N]> {
+        let q = self.line_load.as_ref()?;
+        q.iter().any(|x| *x != 0.0).then(|| padded(q))
+    }
+
     fn default_poisson_ratio() -> f64 {
         0.3
     }

@@ -295,6 +295,32 @@ impl Scene {
                     }
                 }
             }
+            if let Some(q) = &seg.line_load {
+                let f = format!("segments.{}.line_load", seg.name);
+                if q.len() != sp.dim() {
+                    return Err(SceneError(format!(
+                        "{f} = {q:?}: a {sp:?} scene takes {} components {axes} [N/m, world axes] (or leave it out for none)",
+                        sp.dim()
+                    ).replace("Planar", "planar").replace("Spatial", "spatial")));
+                }
+                // the static start under a mount is solved in the mount frame, where the
+                // world-axes line load would need turning
+                let turned = self.mount_start().is_some_and(|m| {
+                    m.angle != 0.0 || m.orientation.is_some_and(|o| o != [1.0, 0.0, 0.0, 0.0])
+                });
+                if turned && self.initial.state == InitialState::Static {
+                    return Err(SceneError(format!(
+                        "{f} = {q:?}: a line load with a turned mount (mount.angle or mount.orientation) and initial.state = \"static\" is not modelled yet; start straight (initial.state = \"straight\"), leave the mount unturned at the start, or remove the line load"
+                    )));
+                }
+                for x in q {
+                    if !x.is_finite() {
+                        return Err(SceneError(format!(
+                            "{f} = {q:?}: every component must be a finite number [N/m]; give finite values (or leave it out for none)"
+                        )));
+                    }
+                }
+            }
         }
         self.validate_masses()
     }

@@ -35,6 +35,7 @@
 
 use super::basis::ModalBasis;
 use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
+use super::BodyGravity;
 use crate::math;
 use crate::model::sample::ShapePoint;
 use crate::model::vector::Real;
@@ -83,6 +84,9 @@ pub struct ModalBody {
     nl: Nonlinear,
     /// Point masses on the body ([`ModalBody::with_points`]).
     points: Vec<BodyPoint>,
+    /// The segment's line load over ρA, q/(ρA) [m/s²] ([`ModalBody::with_line_load`]); `None`
+    /// without one.
+    line: Option<[f64; 2]>,
 }
 
 /// Slots per quadrature point of [`ModalBody::fields`].
@@ -204,7 +208,21 @@ impl ModalBody {
             nonlinear: true,
             nl,
             points: Vec::new(),
+            line: None,
         }
+    }
+
+    /// The body under the uniform dead line load `q` [N/m] (world axes; `None`: none): a load
+    /// of density q beside the weight ρA g, so its distributed mass feels g + q/(ρA) where it
+    /// feels gravity (forces, matrices, potential −∫qᵀr dx), its point masses g alone.
+    pub fn with_line_load(mut self, q: Option<[f64; 2]>) -> Self {
+        self.line = q.map(|q| q.map(|c| c / self.rho_a));
+        self
+    }
+
+    /// The gravity fields at load factor `load` of gravity `g` [m/s²] with the line load.
+    pub fn gravity(&self, g: [f64; 2], load: f64) -> BodyGravity<2> {
+        BodyGravity::of(g, load, self.line)
     }
 
     /// The body carrying point masses `points`: (x from the root [m], mass [kg]), each a point
@@ -484,10 +502,14 @@ impl ModalBody {
         q: &[f64],
         v: &[f64],
         a: &[f64],
-        g: [f64; 2],
+        g: impl Into<BodyGravity<2>>,
         matrices: bool,
         out: &mut BodyOut,
     ) {
+        let BodyGravity {
+            points: gp,
+            distributed: g,
+        } = g.into();
         let lt = self.linear_terms(q, v, a, g);
         let LinearTerms {
             n,
@@ -536,7 +558,7 @@ impl ModalBody {
         }
         if !self.points.is_empty() {
             let sc = (rot_a[(1, 0)], rot_a[(0, 0)]);
-            self.add_point_forces((q, v, a), g, sc, out.res.as_mut_slice());
+            self.add_point_forces((q, v, a), gp, sc, out.res.as_mut_slice());
         }
         if !matrices {
             return;
@@ -546,7 +568,7 @@ impl ModalBody {
             self.add_nonlinear_matrices(q, v, a, g, out);
         }
         if !self.points.is_empty() {
-            self.add_point_matrices(q, v, a, g, out);
+            self.add_point_matrices(q, v, a, gp, out);
         }
     }
 
@@ -922,8 +944,13 @@ impl ModalBody {
         lin + 0.5 * self.ei * self.length * nl
     }
 
-    /// Gravity potential −gᵀ∫ρA r dx [J] (the foreshortening on the body's quadrature).
-    pub fn potential_energy(&self, q: &[f64], g: [f64; 2]) -> f64 {
+    /// Gravity potential −gᵀ∫ρA r dx [J] (the foreshortening on the body's quadrature), with a
+    /// line load's −∫qᵀr dx when `g` carries one ([`ModalBody::gravity`]).
+    pub fn potential_energy(&self, q: &[f64], g: impl Into<BodyGravity<2>>) -> f64 {
+        let BodyGravity {
+            points: gp,
+            distributed: g,
+        } = g.into();
         let s0 = 0.5 * self.rho_a * self.length * self.length;
         let mut buf = Vec::new();
         let z = vec![0.0; q.len()];
@@ -943,7 +970,7 @@ impl ModalBody {
         if self.points.is_empty() {
             u
         } else {
-            u + self.point_energies(q, &vec![0.0; q.len()], g).1
+            u + self.point_energies(q, &vec![0.0; q.len()], gp).1
         }
     }
 

@@ -27,6 +27,7 @@
 
 use super::basis::ModalBasis;
 use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
+use super::BodyGravity;
 use crate::math;
 use crate::model::sample::{minimal_frame, ShapePoint};
 use crate::model::vector::{add, cross, dot, scale, Real, V3};
@@ -201,6 +202,9 @@ pub struct ModalBody3 {
     damped: bool,
     /// Point masses on the body ([`ModalBody3::with_points`]).
     points: Vec<BodyPoint>,
+    /// The segment's line load over ρA, q/(ρA) [m/s²] ([`ModalBody3::with_line_load`]);
+    /// `None` without one.
+    line: Option<[f64; 3]>,
 }
 
 /// Slots per quadrature point of [`ModalBody3::fields`]: v, v̇, v̈, v′, v̇′, v̈′, v″ (0..7), the
@@ -283,7 +287,21 @@ impl ModalBody3 {
             nl,
             damped,
             points: Vec::new(),
+            line: None,
         }
+    }
+
+    /// The body under the uniform dead line load `q` [N/m] (world axes; `None`: none): a load
+    /// of density q beside the weight ρA g, so its distributed mass feels g + q/(ρA) where it
+    /// feels gravity (forces, Newton block, potential −∫qᵀr dx), its point masses g alone.
+    pub fn with_line_load(mut self, q: Option<[f64; 3]>) -> Self {
+        self.line = q.map(|q| q.map(|c| c / self.props.rho_a));
+        self
+    }
+
+    /// The gravity fields at load factor `load` of gravity `g` [m/s²] with the line load.
+    pub fn gravity(&self, g: [f64; 3], load: f64) -> BodyGravity<3> {
+        BodyGravity::of(g, load, self.line)
     }
 
     /// The body carrying point masses `points`: (x from the root [m], mass [kg]), each a point
@@ -467,7 +485,18 @@ impl ModalBody3 {
     /// Residual `r = M q̈ − Q_v − Q_g + K a + D ȧ` at (q, q̇, q̈) for gravity g [m/s²] (world)
     /// into `out` (length [`ModalBody3::dim`]). Generic over the scalar; a nonlinear body
     /// allocates its per-point fields ([`FIELDS3`] per quadrature point) once per call.
-    pub fn residual<T: Real>(&self, q: &[T], v: &[T], a: &[T], g: [f64; 3], out: &mut [T]) {
+    pub fn residual<T: Real>(
+        &self,
+        q: &[T],
+        v: &[T],
+        a: &[T],
+        g: impl Into<BodyGravity<3>>,
+        out: &mut [T],
+    ) {
+        let BodyGravity {
+            points: gp,
+            distributed: g,
+        } = g.into();
         let nb = self.modes();
         let l = self.props.length;
         let mu = self.mass();
@@ -620,7 +649,13 @@ impl ModalBody3 {
             out[7 + 2 * nb + m] = f;
         }
         if !self.points.is_empty() {
-            self.add_point_forces((q, v, a), (&rot, &eb, w, wd, z), out);
+            // the point masses feel gravity alone (the line load is on the distributed mass)
+            let zp = if gp == g {
+                z
+            } else {
+                mul_t(&rot, [a[0] - gp[0], a[1] - gp[1], a[2] - gp[2]])
+            };
+            self.add_point_forces((q, v, a), (&rot, &eb, w, wd, zp), out);
         }
     }
 
@@ -830,10 +865,11 @@ impl ModalBody3 {
     pub fn newton_block(
         &self,
         (q, v, a): (&[f64], &[f64], &[f64]),
-        g: [f64; 3],
+        g: impl Into<BodyGravity<3>>,
         (ca, cv, cx): (f64, f64, f64),
         block: &mut [f64],
     ) {
+        let g = g.into();
         let d = self.dim();
         let lift = |x: &[f64]| -> Vec<Dual64> { x.iter().map(|&x| Dual64::from_re(x)).collect() };
         let (mut qd, mut vd, mut ad) = (lift(q), lift(v), lift(a));
@@ -917,8 +953,13 @@ impl ModalBody3 {
         0.5 * u + self.nonlinear_energies(q, &vec![0.0; q.len()], [0.0; 3])[1]
     }
 
-    /// Gravity potential −gᵀ∫ρA r dx = −gᵀ(m R + A c̄) [J].
-    pub fn potential_energy(&self, q: &[f64], g: [f64; 3]) -> f64 {
+    /// Gravity potential −gᵀ∫ρA r dx = −gᵀ(m R + A c̄) [J], with a line load's −∫qᵀr dx when
+    /// `g` carries one ([`ModalBody3::gravity`]).
+    pub fn potential_energy(&self, q: &[f64], g: impl Into<BodyGravity<3>>) -> f64 {
+        let BodyGravity {
+            points: gp,
+            distributed: g,
+        } = g.into();
         let nb = self.modes();
         let l = self.props.length;
         let sum = |c: &[f64], x: &[f64]| c.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
@@ -935,7 +976,7 @@ impl ModalBody3 {
         if self.points.is_empty() {
             u
         } else {
-            u + self.point_energies(q, &vec![0.0; q.len()], g).1
+            u + self.point_energies(q, &vec![0.0; q.len()], gp).1
         }
     }
 

@@ -51,6 +51,7 @@ impl SegmentParts<Planar> for PlanarParts {
         );
         let body = if seg.linear { body.linear() } else { body };
         let body = body.with_points(&masses.points).with_bodies(&masses.bodies);
+        let body = body.with_line_load(seg.line_load_vec());
         let body = Arc::new(body);
         let first = si == 0;
         let root_pt = [s * self.dir[0], s * self.dir[1]];
@@ -103,11 +104,13 @@ impl SegmentParts<Planar> for PlanarParts {
         props: &AncfProps,
         points: &[(f64, f64)],
         bodies: &[SectionMass],
+        seg: &Segment,
     ) -> Box<dyn Element<Planar>> {
         Box::new(
             AncfElement::new(*props)
                 .with_points(points)
-                .with_bodies(bodies),
+                .with_bodies(bodies)
+                .with_line_load(seg.line_load_vec()),
         )
     }
 

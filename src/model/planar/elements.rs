@@ -29,6 +29,8 @@ pub struct AncfElement {
     bodies: Vec<(SectionMass, [f64; 4], [f64; 4])>,
     /// The current gravity [m/s²].
     g: [f64; 2],
+    /// The segment's line load over ρA, q/(ρA) [m/s²]; `None` without one.
+    line: Option<[f64; 2]>,
 }
 
 /// The Newton coefficients (c_a, c_v, c_x) and the 8 × 8 block the section bodies add to.
@@ -64,7 +66,16 @@ impl AncfElement {
             points: None,
             bodies: Vec::new(),
             g: [0.0; 2],
+            line: None,
         }
+    }
+
+    /// The element under the uniform dead line load `q` [N/m] (world axes; `None`: none): a
+    /// load of density q beside the weight ρA g, so ∫Sᵀ(ρA g + q) dx is the distributed force
+    /// (and −∫qᵀr dx joins the potential); the point masses and section bodies keep g.
+    pub fn with_line_load(mut self, q: Option<[f64; 2]>) -> Self {
+        self.line = q.map(|q| q.map(|c| c / self.props.rho_a));
+        self
     }
 
     /// The element carrying rigid bodies on its section ([`SectionMass`]: an offset or a
@@ -243,7 +254,10 @@ impl Element<Planar> for AncfElement {
     }
 
     fn set_gravity(&mut self, g: &[f64; 2]) {
-        self.gravity_force = self.props.gravity_force(*g);
+        self.gravity_force = match self.line {
+            Some(b) => self.props.gravity_force([g[0] + b[0], g[1] + b[1]]),
+            None => self.props.gravity_force(*g),
+        };
         self.g = *g;
         if let Some(w) = &self.points {
             for k in 0..4 {
@@ -356,14 +370,15 @@ fn add_stiffening(
 
 impl Element<Planar> for ModalElement {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, mut out: ElementOut<'_>) {
-        let g = [env.load * env.gravity[0], env.load * env.gravity[1]];
+        let g = self.body.gravity(env.gravity, env.load);
         let [q, v, a] = &mut self.x;
         x.gather(q, v, a);
         let body = &mut self.out;
         self.body.eval(q, v, a, g, out.matrix.is_some(), body);
         if let Some(grams) = &self.stiffening {
             let k = out.matrix.is_some().then_some(&mut body.k);
-            add_stiffening(&self.body, grams, (q, v, a), g, body.res.as_mut_slice(), k);
+            let gd = g.distributed;
+            add_stiffening(&self.body, grams, (q, v, a), gd, body.res.as_mut_slice(), k);
         }
         out.add_residual(body.res.as_slice());
         if let Some((ca, cv, cx)) = out.matrix {
@@ -374,10 +389,11 @@ impl Element<Planar> for ModalElement {
     fn residual(&self, x: &LocalState<'_>, env: &Env<Planar>, res: &mut [f64]) {
         let (q, v, a) = x.vectors();
         let mut out = BodyOut::new(self.body.dim());
-        self.body.eval(&q, &v, &a, env.gravity, false, &mut out);
+        let g = self.body.gravity(env.gravity, 1.0);
+        self.body.eval(&q, &v, &a, g, false, &mut out);
         if let Some(grams) = &self.stiffening {
             let r = out.res.as_mut_slice();
-            add_stiffening(&self.body, grams, (&q, &v, &a), env.gravity, r, None);
+            add_stiffening(&self.body, grams, (&q, &v, &a), g.distributed, r, None);
         }
         res.copy_from_slice(out.res.as_slice());
     }
@@ -387,7 +403,9 @@ impl Element<Planar> for ModalElement {
         Energies {
             kinetic: self.body.kinetic_energy(&q, &v),
             strain: self.body.strain_energy(&q),
-            potential: self.body.potential_energy(&q, *gravity),
+            potential: self
+                .body
+                .potential_energy(&q, self.body.gravity(*gravity, 1.0)),
         }
     }
 

@@ -5,7 +5,7 @@
 use super::kin::{EndKin3, Field3};
 use super::node::{
     add_point_weight, add_points, frame_duals, gravity_potential, moment_stiffness, rotation_of,
-    rotation_second_along, NodeFrame,
+    rotation_second_along, with_line, NodeFrame,
 };
 use super::Spatial;
 use crate::model::ancf3d::angle::{section_frame, Angle3, ANGLE_DOFS};
@@ -32,6 +32,8 @@ pub struct AngleElement3 {
     gravity_force: [f64; ANGLE_DOFS],
     /// Σ m S(ξ_m) over the point masses on the element; `None` without.
     points: Option<[f64; 4]>,
+    /// The segment's line load over ρA, q/(ρA) [m/s²]; `None` without one.
+    line: Option<[f64; 3]>,
 }
 
 /// Starts of the r-blocks of S1..S4 (r0, r0_x, r1, r1_x) in the element's coordinates
@@ -48,7 +50,15 @@ impl AngleElement3 {
             tables: props.tables(),
             gravity_force: [0.0; ANGLE_DOFS],
             points: None,
+            line: None,
         }
+    }
+
+    /// The element under the uniform dead line load `q` [N/m] (world axes; `None`: none), as
+    /// [`super::node::AncfElement3::with_line_load`].
+    pub fn with_line_load(mut self, q: Option<[f64; 3]>) -> Self {
+        self.line = q.map(|q| q.map(|c| c / self.props.cable.rho_a));
+        self
     }
 
     /// The element carrying point masses `points` (ξ ∈ [0, 1], mass [kg]): m S(ξ)ᵀS(ξ) on the
@@ -134,7 +144,7 @@ impl Element<Spatial> for AngleElement3 {
     }
 
     fn set_gravity(&mut self, g: &[f64; 3]) {
-        self.gravity_force = self.props.gravity_force(*g);
+        self.gravity_force = self.props.gravity_force(with_line(g, self.line));
         add_point_weight(&self.points, g, R_SLOTS, &mut self.gravity_force);
     }
 

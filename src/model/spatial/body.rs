@@ -258,7 +258,7 @@ impl ModalElement3 {
 
 impl Element<Spatial> for ModalElement3 {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Spatial>, mut out: ElementOut<'_>) {
-        let g = env.gravity.map(|c| env.load * c);
+        let g = self.body.gravity(env.gravity, env.load);
         let [q, v, a, r] = &mut self.x;
         x.gather(q, v, a);
         self.body.residual(q, v, a, g, r);
@@ -273,7 +273,8 @@ impl Element<Spatial> for ModalElement3 {
 
     fn residual(&self, x: &LocalState<'_>, env: &Env<Spatial>, res: &mut [f64]) {
         let (q, v, a) = x.vectors();
-        self.body.residual(&q, &v, &a, env.gravity, res);
+        self.body
+            .residual(&q, &v, &a, self.body.gravity(env.gravity, 1.0), res);
     }
 
     fn energies(&self, x: &LocalState<'_>, gravity: &[f64; 3]) -> Energies {
@@ -281,7 +282,9 @@ impl Element<Spatial> for ModalElement3 {
         Energies {
             kinetic: self.body.kinetic_energy(&q, &v),
             strain: self.body.strain_energy(&q),
-            potential: self.body.potential_energy(&q, *gravity),
+            potential: self
+                .body
+                .potential_energy(&q, self.body.gravity(*gravity, 1.0)),
         }
     }
 

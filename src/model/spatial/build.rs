@@ -68,7 +68,8 @@ impl SegmentParts<Spatial> for SpatialParts {
                 body = body.with_stiffening();
             }
         }
-        let body = Arc::new(body.with_points(&masses.points));
+        let body = body.with_points(&masses.points);
+        let body = Arc::new(body.with_line_load(seg.line_load_vec()));
         let free_p = !held;
         let mut c = Coords::default();
         for k in 0..3 {
@@ -123,7 +124,9 @@ impl SegmentParts<Spatial> for SpatialParts {
         props: &Ancf3Props,
         points: &[(f64, f64)],
         _bodies: &[SectionMass],
+        seg: &Segment,
     ) -> Box<dyn Element<Spatial>> {
+        let line = seg.line_load_vec();
         if self.angle {
             // the axes of the root frame: unit and perpendicular (checked in `ancf_props`)
             Box::new(
@@ -135,10 +138,15 @@ impl SegmentParts<Spatial> for SpatialParts {
                     t0: self.ax.into(),
                     d0: self.ay.into(),
                 })
-                .with_points(points),
+                .with_points(points)
+                .with_line_load(line),
             )
         } else {
-            Box::new(AncfElement3::new(*props).with_points(points))
+            Box::new(
+                AncfElement3::new(*props)
+                    .with_points(points)
+                    .with_line_load(line),
+            )
         }
     }
 

@@ -127,7 +127,7 @@ pub const OUTPUTS: [Row; 23] = [
     ("root.moment.z", 17, Some("N.m"), "moment of the support on the beam about the root, global z (counter-clockwise in the plane)"),
     ("energy.kinetic", 18, Some("J"), "kinetic energy"),
     ("energy.strain", 19, Some("J"), "elastic strain energy"),
-    ("energy.potential", 20, Some("J"), "gravity potential energy (zero at the origin)"),
+    ("energy.potential", 20, Some("J"), "potential energy of gravity and the line loads (zero at the origin)"),
     ("tip.angular_velocity.x", 28, Some("rad/s"), "angular velocity of the tip section, global x"),
     ("tip.angular_velocity.y", 29, Some("rad/s"), "angular velocity of the tip section, global y"),
     ("tip.angular_velocity.z", 21, Some("rad/s"), "angular velocity of the tip section, global z (counter-clockwise in the plane)"),
