@@ -65,6 +65,26 @@ impl Access {
 /// A named variable of the simulator: (name, value reference, unit, description).
 pub type Row = (&'static str, u32, Option<&'static str>, &'static str);
 
+/// A fixed parameter's declaration (`causality = parameter`, `variability = fixed`).
+fn fixed_parameter(
+    name: String,
+    vr: u32,
+    start: f64,
+    unit: Option<&'static str>,
+    description: String,
+) -> Variable {
+    Variable {
+        name,
+        vr,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        start: Some(start),
+        unit,
+        description,
+        depends_on: Vec::new(),
+    }
+}
+
 /// Inputs of both spaces (the plane has `tip.force.{x,y}` and `tip.moment.z`).
 pub const INPUTS: [Row; 6] = [
     (
@@ -623,38 +643,23 @@ impl Table {
             t.push(v, Access::Gravity(id));
         }
         for p in &SCENE_PARAMETERS {
-            t.push(
-                Variable {
-                    name: p.name.into(),
-                    vr: p.vr,
-                    causality: Causality::Parameter,
-                    variability: Variability::Fixed,
-                    start: Some((p.get)(scene)),
-                    unit: p.unit,
-                    description: p.description.into(),
-                    depends_on: Vec::new(),
-                },
-                Access::Scene(p),
-            );
+            let start = (p.get)(scene);
+            let v = fixed_parameter(p.name.into(), p.vr, start, p.unit, p.description.into());
+            t.push(v, Access::Scene(p));
         }
         for (i, mass) in scene.masses.iter().enumerate() {
             for f in &MASS_FIELDS {
-                t.push(
-                    Variable {
-                        name: format!("masses.{}.{}", mass.name, f.name),
-                        vr: 500_000 + 10 * i as u32 + f.k,
-                        causality: Causality::Parameter,
-                        variability: Variability::Fixed,
-                        start: Some((f.get)(mass)),
-                        unit: f.unit,
-                        description: format!(
-                            "attached mass '{}' {} (segment '{}')",
-                            mass.name, f.name, mass.segment
-                        ),
-                        depends_on: Vec::new(),
-                    },
-                    Access::Mass(i, f),
+                let v = fixed_parameter(
+                    format!("masses.{}.{}", mass.name, f.name),
+                    500_000 + 10 * i as u32 + f.k,
+                    (f.get)(mass),
+                    f.unit,
+                    format!(
+                        "attached mass '{}' {} (segment '{}')",
+                        mass.name, f.name, mass.segment
+                    ),
                 );
+                t.push(v, Access::Mass(i, f));
             }
         }
         let defaults = Settings::default();
@@ -665,19 +670,14 @@ impl Table {
         }
         for (i, seg) in scene.segments.iter().enumerate() {
             for f in SEGMENT_FIELDS.iter().filter(|f| (f.applies)(seg)) {
-                t.push(
-                    Variable {
-                        name: format!("{}.{}", seg.name, f.name),
-                        vr: 1000 * (i as u32 + 1) + f.k,
-                        causality: Causality::Parameter,
-                        variability: Variability::Fixed,
-                        start: Some((f.get)(seg)),
-                        unit: f.unit,
-                        description: format!("segment '{}' {}", seg.name, f.name),
-                        depends_on: Vec::new(),
-                    },
-                    Access::Segment(i, f),
+                let v = fixed_parameter(
+                    format!("{}.{}", seg.name, f.name),
+                    1000 * (i as u32 + 1) + f.k,
+                    (f.get)(seg),
+                    f.unit,
+                    format!("segment '{}' {}", seg.name, f.name),
                 );
+                t.push(v, Access::Segment(i, f));
             }
         }
         t
