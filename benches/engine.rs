@@ -295,7 +295,7 @@ fn bench_props(torsion: bool) -> Ancf3Props {
         ei_z: 0.165,
         gj: 0.127,
         damping_time: 0.0,
-        torsion,
+        director: torsion,
     }
 }
 

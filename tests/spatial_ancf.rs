@@ -39,7 +39,7 @@ fn props(elements: usize, torsion: bool) -> Ancf3Props {
         ei_z: E * i,
         gj: E / (2.0 * (1.0 + NU)) * 2.0 * i,
         damping_time: 0.0,
-        torsion,
+        director: torsion,
     }
 }
 
@@ -80,7 +80,7 @@ fn chain(n: usize, torsion: bool, frame: Matrix3<f64>, damping_time: f64) -> Mod
 
 /// A clamped chain of `n` elements of properties `p` along the axis of `frame`.
 fn chain_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Model<Spatial> {
-    let torsion = p.torsion;
+    let torsion = p.director;
     let node = |num: &mut Numbering, s: f64, free: bool| {
         let mut v: Vec<f64> = (frame.column(0) * s).iter().copied().collect();
         v.extend(frame.column(0).iter());
@@ -162,7 +162,7 @@ fn modes(n: usize, torsion: bool, frame: Matrix3<f64>) -> Vec<(Kind, Vec<f64>)> 
 
 /// [`modes`] of a chain of elements of properties `p`.
 fn modes_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Vec<(Kind, Vec<f64>)> {
-    let torsion = p.torsion;
+    let torsion = p.director;
     let mut model = chain_of(p, n, frame);
     let (m, k) = (dense(&mut model, 1.0, 0.0), dense(&mut model, 0.0, 1.0));
     let dim = m.nrows();
@@ -591,7 +591,7 @@ fn end_moment_gives_the_closed_form_helix() {
             ei_z: ei,
             gj,
             damping_time: 0.0,
-            torsion: true,
+            director: true,
         };
         let mut model = chain_of(p, n, frame);
         model.set_tip_moment((frame * m_local).into());
@@ -637,7 +637,7 @@ fn oblique_tip_force_gives_the_elastica_in_its_plane() {
             ei_z: 1.0,
             gj: 0.7,
             damping_time: 0.0,
-            torsion,
+            director: torsion,
         };
         let mut model = chain_of(p, n, Matrix3::identity());
         model.set_tip_force([0.0, 1.0, 2.0]);

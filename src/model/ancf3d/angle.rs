@@ -69,7 +69,7 @@ impl Angle3 {
     /// `t0`).
     pub fn new(props: Ancf3Props, t0: [f64; 3], d0: [f64; 3]) -> Result<Self, String> {
         let cable = Ancf3Props {
-            torsion: false,
+            director: false,
             ..props
         };
         if cable.check().is_err() {

@@ -77,7 +77,7 @@ impl Ancf3Props {
         ea: &[f64; D],
     ) -> [f64; D] {
         let mut f = [0.0; D];
-        if !self.torsion {
+        if !self.director {
             return f;
         }
         // at the nodes the point's r_x and r_y are the nodal slots themselves (the tables'
@@ -108,7 +108,7 @@ impl Ancf3Props {
     ) -> ([f64; D], Box<[[f64; D]; D]>) {
         let mut f = [0.0; D];
         let mut m = Box::new([[0.0; D]; D]);
-        if !self.torsion {
+        if !self.director {
             return (f, m);
         }
         // at the nodes the point's r_x and r_y are the nodal slots themselves (as in
@@ -133,7 +133,7 @@ impl Ancf3Props {
     /// nodes of ½wρI_p(|v|² − |ṙ_y|²) ([`Ancf3Props::director_inertia`]); 0 without
     /// torsion.
     pub fn director_kinetic(&self, tab: &Tables3, e: &[f64], ed: &[f64]) -> f64 {
-        if !self.torsion {
+        if !self.director {
             return 0.0;
         }
         let (rs, ys) = self.slots();

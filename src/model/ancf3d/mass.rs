@@ -12,8 +12,8 @@ pub struct MassPatterns {
     pub r_slots: [usize; 4],
     /// Starts of the r_y blocks (r0_y, r1_y).
     pub y_slots: [usize; 2],
-    /// Whether the r_y blocks exist.
-    pub torsion: bool,
+    /// Whether the r_y blocks exist (the director element).
+    pub director: bool,
 }
 
 impl MassPatterns {
@@ -29,7 +29,7 @@ impl MassPatterns {
                 }
             }
         }
-        if self.torsion {
+        if self.director {
             for j in 0..2 {
                 for k in 0..2 {
                     let m = self.twist[j][k];
@@ -45,13 +45,13 @@ impl MassPatterns {
 /// Coordinates of a straight, unstretched element from `p0` with section frame `frame`
 /// (columns: axis x̄, section ȳ, z̄ in global axes), d entries (d = 18 for the director
 /// element, 12 for the 3D cable).
-pub fn straight(p0: [f64; 3], frame: [[f64; 3]; 3], l: f64, torsion: bool) -> Vec<f64> {
+pub fn straight(p0: [f64; 3], frame: [[f64; 3]; 3], l: f64, director: bool) -> Vec<f64> {
     let [x, y, _] = frame;
     let mut e = Vec::with_capacity(18);
     for s in [0.0, l] {
         e.extend((0..3).map(|c| p0[c] + s * x[c]));
         e.extend(x);
-        if torsion {
+        if director {
             e.extend(y);
         }
     }

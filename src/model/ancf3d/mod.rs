@@ -7,7 +7,7 @@
 //! * the angle element (14 coordinates, nodes `[r, r_x, θ]`, θ the nodal twist angle;
 //!   `torsion_element = "angle"`): the 3D cable plus the twist angle ([`angle`]).
 //!
-//! The 3D cable and the director element share [`Ancf3Props`] (its `torsion` flag chooses):
+//! The 3D cable and the director element share [`Ancf3Props`] (its `director` flag chooses):
 //! this file holds their common parts (properties, quadrature tables, mass, gravity, the
 //! stretching, the assembly of the element force and its tangent), `cable.rs` and
 //! `director.rs` each family's own terms; the angle element ([`angle::Angle3`]) is built
@@ -84,7 +84,7 @@ pub struct Ancf3Props {
     pub damping_time: f64,
     /// True: the director element, nodes [r, r_x, r_y] (18 coordinates); false: the 3D cable,
     /// nodes [r, r_x] (12). The scene's `torsion`, the public key, keeps its name.
-    pub torsion: bool,
+    pub director: bool,
 }
 
 /// Quadrature tables of an element (shape functions at the points, weights times the Jacobian
@@ -118,7 +118,7 @@ impl Ancf3Props {
     /// scene's `torsion`). Refuses
     /// what this element cannot represent, naming the segment, field and fix: the paper's
     /// simplified strain model, and E·I_y ≠ E·I_z without torsion ([`Ancf3Props::check`]).
-    pub fn of_segment(segment: &Segment, torsion: bool) -> Result<Self, String> {
+    pub fn of_segment(segment: &Segment, director: bool) -> Result<Self, String> {
         let name = &segment.name;
         if segment.strain != StrainModel::Exact {
             return Err(format!(
@@ -138,7 +138,7 @@ impl Ancf3Props {
             ei_z: e * sec.i_z,
             gj: segment.shear_modulus() * sec.torsion,
             damping_time: segment.damping_time,
-            torsion,
+            director,
         };
         props
             .check()
@@ -148,7 +148,7 @@ impl Ancf3Props {
 
     /// Number of element coordinates (18 for the director element, 12 for the 3D cable).
     pub fn dofs(&self) -> usize {
-        if self.torsion {
+        if self.director {
             DIRECTOR_DOFS
         } else {
             CABLE_DOFS
@@ -158,7 +158,7 @@ impl Ancf3Props {
     /// Whether the element can represent these properties: the cable (no torsion) has one
     /// bending stiffness, so E·I_y must equal E·I_z (relative 1e-12).
     pub fn check(&self) -> Result<(), String> {
-        if !self.torsion
+        if !self.director
             && (self.ei_y - self.ei_z).abs() > 1e-12 * self.ei_y.abs().max(self.ei_z.abs())
         {
             return Err(format!(
@@ -172,7 +172,7 @@ impl Ancf3Props {
 
     /// Start of each node's blocks: (r-slots of the Hermite functions S1..S4, r_y slots).
     fn slots(&self) -> ([usize; 4], [usize; 2]) {
-        let st = if self.torsion { 9 } else { 6 };
+        let st = if self.director { 9 } else { 6 };
         ([0, 3, st, st + 3], [6, 15])
     }
 
@@ -192,7 +192,7 @@ impl Ancf3Props {
                 }
             }
         }
-        if self.torsion {
+        if self.director {
             let y = self.twist_mass();
             for j in 0..2 {
                 for k in 0..2 {
@@ -224,14 +224,14 @@ impl Ancf3Props {
         let (rs, ys) = self.slots();
         MassPatterns {
             hermite: self.hermite_mass(),
-            twist: if self.torsion {
+            twist: if self.director {
                 self.twist_mass()
             } else {
                 [[0.0; 2]; 2]
             },
             r_slots: rs,
             y_slots: ys,
-            torsion: self.torsion,
+            director: self.director,
         }
     }
 
@@ -356,7 +356,7 @@ impl Ancf3Props {
                 }
             }
         }
-        if self.torsion {
+        if self.director {
             let one = [1.0];
             let sl = TWIST_SLOTS.map(|s| [s]);
             let [m0, m1, m2, m3] = sl.each_ref().map(|s| Map::new(&one, s));
@@ -428,7 +428,7 @@ impl Ancf3Props {
                 scatter(&mut f, &p.dds, &rs, &gb);
             }
         }
-        if self.torsion {
+        if self.director {
             let vecs = |x: &[T; D]| {
                 let [a, b, c, d] = TWIST_SLOTS.map(|s| [x[s], x[s + 1], x[s + 2]]);
                 [a, b, c, d, comb(&tab.mid, &rs, x)]
@@ -485,7 +485,7 @@ impl Ancf3Props {
         for p in &tab.bending {
             let a = v(&p.ds, &rs);
             let b = v(&p.dds, &rs);
-            if self.torsion {
+            if self.director {
                 let c = v(&p.ny, &ys);
                 let [_, k2, k3] = strains(a, b, c);
                 u += 0.5 * p.w * (self.ei_y * k2 * k2 + self.ei_z * k3 * k3);
@@ -495,7 +495,7 @@ impl Ancf3Props {
                 u += 0.5 * p.w * self.cable_ei() * dot(&bv, &bv) / (n2 * n2);
             }
         }
-        if self.torsion {
+        if self.director {
             let tau = self.twist_rate(e);
             u += 0.5 * self.gj * self.length * tau * tau;
             let kp = 0.5 * self.length * self.penalty_stiffness();
@@ -542,7 +542,7 @@ impl Ancf3Props {
             axial_strain: dot(&a, &a).sqrt() - 1.0,
             ..ShapePoint::default()
         };
-        if self.torsion {
+        if self.director {
             let c = combine(&[1.0 - xi, xi], &ys, e);
             let [_, k2, k3] = strains(a, b, c);
             p.frame = director_frame(a, c);

@@ -132,7 +132,7 @@ impl SegmentParts<Spatial> for SpatialParts {
             Box::new(
                 AngleElement3::new(Angle3 {
                     cable: Ancf3Props {
-                        torsion: false,
+                        director: false,
                         ..*props
                     },
                     t0: self.ax.into(),

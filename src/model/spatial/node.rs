@@ -153,7 +153,7 @@ impl AncfElement3 {
         out.add_residual(&res);
         if let (Some((ca, cv, cx)), Some((k, c, mi))) = (out.matrix, matrices) {
             // the director inertia has velocity terms whether damped or not
-            let rated = cv != 0.0 && (p.damping_time > 0.0 || p.torsion);
+            let rated = cv != 0.0 && (p.damping_time > 0.0 || p.director);
             let m = &self.mass;
             out.add_block(|r, col| {
                 let mut v = ca * (m[r * D + col] + mi[r][col]) + cx * k[r][col];
@@ -179,7 +179,7 @@ impl AncfElement3 {
 
 impl Element<Spatial> for AncfElement3 {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Spatial>, out: ElementOut<'_>) {
-        if self.props.torsion {
+        if self.props.director {
             self.eval_d::<18>(x, env, out)
         } else {
             self.eval_d::<12>(x, env, out)
@@ -187,7 +187,7 @@ impl Element<Spatial> for AncfElement3 {
     }
 
     fn residual(&self, x: &LocalState<'_>, _env: &Env<Spatial>, res: &mut [f64]) {
-        if self.props.torsion {
+        if self.props.director {
             self.residual_d::<18>(x, res)
         } else {
             self.residual_d::<12>(x, res)
@@ -230,7 +230,7 @@ impl Element<Spatial> for AncfElement3 {
         Validity {
             axial_strain: self.props.max_axial_strain(&self.tables, q),
             modal_deflection: None,
-            section: self.props.torsion.then(|| self.props.section_measures(q)),
+            section: self.props.director.then(|| self.props.section_measures(q)),
             chart_margin: None,
         }
     }
@@ -254,17 +254,21 @@ pub(super) fn gravity_potential(e: &[f64], f_g: &[f64]) -> f64 {
 /// Rotation per local coordinate: ½ Σ_i d_i × ∂d_i/∂q_k (exact, forward-mode AD).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodePort3 {
-    /// Whether the node carries r_y (9 local coordinates) or not (6).
-    pub torsion: bool,
+    /// Whether the node carries r_y (9 local coordinates: the director element) or not (6:
+    /// the 3D cable).
+    pub director: bool,
     /// Section frame → world of the node's straight initial configuration (columns x̄, ȳ, z̄ in
     /// global axes); only the cable's frame uses it.
     pub reference: Matrix3<f64>,
 }
 
 impl NodePort3 {
-    /// Port of a node with (`torsion`) or without r_y, initial section frame `reference`.
-    pub fn new(torsion: bool, reference: Matrix3<f64>) -> Self {
-        Self { torsion, reference }
+    /// Port of a node with (`director`) or without r_y, initial section frame `reference`.
+    pub fn new(director: bool, reference: Matrix3<f64>) -> Self {
+        Self {
+            director,
+            reference,
+        }
     }
 }
 
@@ -289,7 +293,7 @@ impl NodeFrame for NodePort3 {
         };
         let inv = dot(&a, &a).sqrt().recip();
         let t = a.map(|v| v * inv);
-        if self.torsion {
+        if self.director {
             let c = [x[3], x[4], x[5]];
             let tc = dot(&t, &c);
             let u = [0, 1, 2].map(|i| c[i] - t[i] * tc);
@@ -412,7 +416,7 @@ impl Port<Spatial> for NodePort3 {
     fn kinematics(&self, q: &[f64]) -> EndKin3 {
         let d = q.len();
         let mut rotation = vec![Vector3::zeros(); d];
-        let frame = if self.torsion {
+        let frame = if self.director {
             let (f, r) = frame_rotation::<_, 6>(self, q);
             rotation[3..9].copy_from_slice(&r);
             f
@@ -426,7 +430,7 @@ impl Port<Spatial> for NodePort3 {
             frame,
             rotation,
             tangent: Field3::coordinates(q, 3, d),
-            section: self.torsion.then(|| Field3::coordinates(q, 6, d)),
+            section: self.director.then(|| Field3::coordinates(q, 6, d)),
             normals: None,
         }
     }
@@ -437,7 +441,7 @@ impl Port<Spatial> for NodePort3 {
         m: &[f64; 3],
         add: &mut dyn FnMut(usize, usize, f64),
     ) {
-        if self.torsion {
+        if self.director {
             moment_stiffness::<_, 6>(self, q, m, add)
         } else {
             moment_stiffness::<_, 3>(self, q, m, add)
@@ -447,7 +451,7 @@ impl Port<Spatial> for NodePort3 {
     /// One directional evaluation (hyper-dual numbers along `dir` on the director
     /// coordinates) instead of the default's three Hessians.
     fn rotation_second_derivative_along(&self, q: &[f64], dir: &[f64]) -> [f64; 3] {
-        if self.torsion {
+        if self.director {
             rotation_second_along::<_, 6>(self, q, dir)
         } else {
             rotation_second_along::<_, 3>(self, q, dir)
