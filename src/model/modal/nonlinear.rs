@@ -46,6 +46,24 @@ pub(super) fn point_fields<T: Real>(phi: &[[f64; 3]], q: &[T], v: &[T], a: &[T])
     acc
 }
 
+/// ∫ from −1 to `x` of the Lagrange polynomial ℓ_j through the 5 Gauss points (degree 4: the
+/// 5-point rule on [−1, x] is exact).
+fn lagrange_integral(x: f64, j: usize) -> f64 {
+    let xj = GAUSS5[j].0;
+    let mut acc = 0.0;
+    for (t, wt) in GAUSS5 {
+        let tt = -1.0 + 0.5 * (x + 1.0) * (t + 1.0);
+        let mut l = 1.0;
+        for (m, &(xm, _)) in GAUSS5.iter().enumerate() {
+            if m != j {
+                l *= (tt - xm) / (xj - xm);
+            }
+        }
+        acc += 0.5 * (x + 1.0) * wt * l;
+    }
+    acc
+}
+
 impl Nonlinear {
     /// The foreshortening's axial force at every point, N_p = Σ_q m_q V_qp (V the cumulative
     /// rule: the panels after p whole, p's own panel by `s`), m_q the point's axial inertia
@@ -92,19 +110,8 @@ impl Nonlinear {
         let half = 0.5 / panels as f64;
         let mut s = [[0.0; 5]; 5];
         for (i, &(xi, _)) in GAUSS5.iter().enumerate() {
-            for (j, &(xj, _)) in GAUSS5.iter().enumerate() {
-                let mut acc = 0.0;
-                for (t, wt) in GAUSS5 {
-                    let tt = -1.0 + 0.5 * (xi + 1.0) * (t + 1.0);
-                    let mut l = 1.0;
-                    for (m, &(xm, _)) in GAUSS5.iter().enumerate() {
-                        if m != j {
-                            l *= (tt - xm) / (xj - xm);
-                        }
-                    }
-                    acc += 0.5 * (xi + 1.0) * wt * l;
-                }
-                s[i][j] = half * acc;
+            for (j, sij) in s[i].iter_mut().enumerate() {
+                *sij = half * lagrange_integral(xi, j);
             }
         }
         Self {
@@ -161,19 +168,8 @@ impl Nonlinear {
         let t = (2.0 * (xi - b as f64 * h) / h - 1.0).clamp(-1.0, 1.0);
         let mut v = vec![0.0; self.w.len()];
         v[..5 * b].copy_from_slice(&self.w[..5 * b]);
-        for (j, &(xj, _)) in GAUSS5.iter().enumerate() {
-            let mut acc = 0.0;
-            for (tg, wt) in GAUSS5 {
-                let tt = -1.0 + 0.5 * (t + 1.0) * (tg + 1.0);
-                let mut l = 1.0;
-                for (m, &(xm, _)) in GAUSS5.iter().enumerate() {
-                    if m != j {
-                        l *= (tt - xm) / (xj - xm);
-                    }
-                }
-                acc += 0.5 * (t + 1.0) * wt * l;
-            }
-            v[5 * b + j] = 0.5 * h * acc;
+        for j in 0..GAUSS5.len() {
+            v[5 * b + j] = 0.5 * h * lagrange_integral(t, j);
         }
         v
     }
