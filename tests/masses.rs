@@ -46,10 +46,9 @@ fn scene_with(header: &str, segments: &[String], tail: &str) -> hybeam::scene::S
     hybeam::scene::Scene::from_toml(&text).unwrap_or_else(|e| panic!("{e}\n{text}"))
 }
 
-/// The lowest two roots β of 1 + cos β cosh β + μβ(cos β sinh β − sin β cosh β) = 0 (a scan
-/// for sign changes, then bisection to rounding).
-fn tip_mass_roots(mu: f64) -> [f64; 2] {
-    let f = |b: f64| 1.0 + b.cos() * b.cosh() + mu * b * (b.cos() * b.sinh() - b.sin() * b.cosh());
+/// The lowest two roots β > 0.05 of `f` (a scan for sign changes in steps of 1e-3, then
+/// bisection to rounding).
+fn lowest_two_roots(f: impl Fn(f64) -> f64) -> [f64; 2] {
     let mut roots = Vec::new();
     let mut b0 = 0.05;
     while roots.len() < 2 {
@@ -69,6 +68,11 @@ fn tip_mass_roots(mu: f64) -> [f64; 2] {
         b0 = b1;
     }
     [roots[0], roots[1]]
+}
+/// The lowest two roots β of 1 + cos β cosh β + μβ(cos β sinh β − sin β cosh β) = 0.
+fn tip_mass_roots(mu: f64) -> [f64; 2] {
+    let f = |b: f64| 1.0 + b.cos() * b.cosh() + mu * b * (b.cos() * b.sinh() - b.sin() * b.cosh());
+    lowest_two_roots(f)
 }
 
 /// The exact first two bending frequencies [Hz] of the rod with tip mass ratio μ.
@@ -452,25 +456,7 @@ fn end_body_roots(mu: f64, j: f64, eps: f64) -> [f64; 2] {
         let ((a1, a2), (b1, b2)) = (rows(f1), rows(f2));
         (a1 * b2 - b1 * a2) / b.powi(5)
     };
-    let mut roots = Vec::new();
-    let mut b0 = 0.05;
-    while roots.len() < 2 {
-        let b1 = b0 + 1e-3;
-        if det(b0).signum() != det(b1).signum() {
-            let (mut lo, mut hi) = (b0, b1);
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if det(lo).signum() == det(mid).signum() {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            roots.push(0.5 * (lo + hi));
-        }
-        b0 = b1;
-    }
-    [roots[0], roots[1]]
+    lowest_two_roots(det)
 }
 
 #[test]
@@ -641,25 +627,7 @@ fn mid_mass_roots(mu: f64, alpha: f64) -> [f64; 2] {
         }
         m.determinant()
     };
-    let mut roots = Vec::new();
-    let mut b0 = 0.05;
-    while roots.len() < 2 {
-        let b1 = b0 + 1e-3;
-        if det(b0).signum() != det(b1).signum() {
-            let (mut lo, mut hi) = (b0, b1);
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if det(lo).signum() == det(mid).signum() {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            roots.push(0.5 * (lo + hi));
-        }
-        b0 = b1;
-    }
-    [roots[0], roots[1]]
+    lowest_two_roots(det)
 }
 
 #[test]
