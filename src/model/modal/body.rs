@@ -130,7 +130,8 @@ pub struct BodyOut {
     ad: AdScratch,
 }
 
-/// The dual-number buffers of [`ModalBody::add_nonlinear_matrices`], kept between calls.
+/// The dual-number buffers of [`ModalBody::add_nonlinear_matrices`] and
+/// `add_point_matrices`, kept between calls.
 #[derive(Debug, Clone, Default)]
 struct AdScratch {
     /// q, q̇, q̈ lifted.
@@ -141,6 +142,18 @@ struct AdScratch {
     buf: Vec<Dual64>,
     /// The fields' values.
     base: Vec<f64>,
+}
+
+impl AdScratch {
+    /// q, q̇, q̈ lifted to duals (no derivative seeded) and a zero residual of `d` entries.
+    fn lift(&mut self, (q, v, a): (&[f64], &[f64], &[f64]), d: usize) {
+        for (x, y) in self.x.iter_mut().zip([q, v, a]) {
+            x.clear();
+            x.extend(y.iter().map(|&y| Dual64::from_re(y)));
+        }
+        self.r.clear();
+        self.r.resize(d, Dual64::from_re(0.0));
+    }
 }
 
 impl BodyOut {
@@ -363,12 +376,7 @@ impl ModalBody {
         let d = self.dim();
         let zero = Dual64::from_re(0.0);
         let ad = &mut out.ad;
-        for (x, y) in ad.x.iter_mut().zip([q, v, a]) {
-            x.clear();
-            x.extend(y.iter().map(|&y| Dual64::from_re(y)));
-        }
-        ad.r.clear();
-        ad.r.resize(d, zero);
+        ad.lift((q, v, a), d);
         for j in 0..d {
             for which in 0..3 {
                 if which < 2 && j < 2 {
@@ -827,12 +835,7 @@ impl ModalBody {
         let n = self.modes();
         let zero = Dual64::from_re(0.0);
         let ad = &mut out.ad;
-        for (x, y) in ad.x.iter_mut().zip([q, v, a]) {
-            x.clear();
-            x.extend(y.iter().map(|&y| Dual64::from_re(y)));
-        }
-        ad.r.clear();
-        ad.r.resize(d, zero);
+        ad.lift((q, v, a), d);
         self.fields_f64(q, v, a, &mut ad.base);
         for j in 0..d {
             for which in 0..3 {
