@@ -308,23 +308,26 @@ pub struct SceneParameter {
     pub set: fn(&mut Scene, f64),
 }
 
-/// A segment field exposed as a fixed parameter `<segment>.<name>` with value reference
-/// 1000·(i + 1) + `k`.
+/// A field of a scene item (a segment, an attached mass) exposed as a fixed parameter: its
+/// block of value references is the item's, `k` its offset in it.
 #[derive(Debug)]
-pub struct SegmentField {
+pub struct Field<T> {
     /// Field name (the scene's key).
     pub name: &'static str,
-    /// Offset of the value reference within the segment's block.
+    /// Offset of the value reference within the item's block.
     pub k: u32,
     /// Unit symbol, `None` for dimensionless.
     pub unit: Option<&'static str>,
-    /// Whether a segment has this parameter.
-    pub applies: fn(&Segment) -> bool,
-    /// Reads it from a segment.
-    pub get: fn(&Segment) -> f64,
-    /// Writes it into a segment (not validated).
-    pub set: fn(&mut Segment, f64),
+    /// Whether an item has this parameter.
+    pub applies: fn(&T) -> bool,
+    /// Reads it from an item.
+    pub get: fn(&T) -> f64,
+    /// Writes it into an item (not validated).
+    pub set: fn(&mut T, f64),
 }
+
+/// A segment field, the parameter `<segment>.<name>` with value reference 1000·(i + 1) + `k`.
+pub type SegmentField = Field<Segment>;
 
 /// Scene-wide fixed parameters: solver 110–113.
 const SCENE_PARAMETERS: [SceneParameter; 4] = [
@@ -450,21 +453,9 @@ pub const SEGMENT_FIELDS: [SegmentField; 9] = [
     },
 ];
 
-/// A field of an attached mass exposed as a fixed parameter `masses.<name>.<field>` with value
-/// reference 500000 + 10·i + `k` (i its index in the scene's `[[masses]]`).
-#[derive(Debug)]
-pub struct MassField {
-    /// Field name (the scene's key).
-    pub name: &'static str,
-    /// Offset of the value reference within the mass's block.
-    pub k: u32,
-    /// Unit symbol.
-    pub unit: Option<&'static str>,
-    /// Reads it from a mass.
-    pub get: fn(&Mass) -> f64,
-    /// Writes it into a mass (not validated).
-    pub set: fn(&mut Mass, f64),
-}
+/// A field of an attached mass, the parameter `masses.<name>.<field>` with value reference
+/// 500000 + 10·i + `k` (i its index in the scene's `[[masses]]`).
+pub type MassField = Field<Mass>;
 
 /// The attached masses' fields, in value-reference order: a sweep can vary a payload and
 /// where it sits.
@@ -473,6 +464,7 @@ pub const MASS_FIELDS: [MassField; 2] = [
         name: "mass",
         k: 1,
         unit: Some("kg"),
+        applies: |_| true,
         get: |m| m.mass,
         set: |m, x| m.mass = x,
     },
@@ -480,6 +472,7 @@ pub const MASS_FIELDS: [MassField; 2] = [
         name: "at",
         k: 2,
         unit: Some("m"),
+        applies: |_| true,
         get: |m| m.at,
         set: |m, x| m.at = x,
     },
@@ -648,7 +641,7 @@ impl Table {
             t.push(v, Access::Scene(p));
         }
         for (i, mass) in scene.masses.iter().enumerate() {
-            for f in &MASS_FIELDS {
+            for f in MASS_FIELDS.iter().filter(|f| (f.applies)(mass)) {
                 let v = fixed_parameter(
                     format!("masses.{}.{}", mass.name, f.name),
                     500_000 + 10 * i as u32 + f.k,
