@@ -381,6 +381,34 @@ def run_hybeam(
 # ----------------------------------------------------------------------------------- Exudyn
 
 
+def exudyn_settings(t_end: float, h: float):
+    """Exudyn's simulation settings of every peer run: index-3 generalized-alpha at RHO_INF and
+    the fixed step h, Newton on the increments at EXUDYN_NEWTON_TOL, sparse LU, the tip sampled
+    every OUTPUT_STEP, no files and no console output."""
+    import exudyn as exu
+
+    settings = exu.SimulationSettings()
+    ti = settings.timeIntegration
+    ti.endTime = t_end
+    ti.numberOfSteps = int(round(t_end / h))
+    ti.verboseMode = 0
+    ti.newton.residualMode = 1
+    ti.newton.relativeTolerance = EXUDYN_NEWTON_TOL
+    ti.newton.absoluteTolerance = EXUDYN_NEWTON_TOL
+    ga = ti.generalizedAlpha
+    ga.spectralRadius = RHO_INF
+    ga.useIndex2Constraints = False
+    ga.useNewmark = False
+    ga.computeInitialAccelerations = True
+    settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    settings.solution.file.write = False
+    settings.solution.sensors.writePeriod = OUTPUT_STEP
+    settings.show.computationTime = False
+    settings.show.statistics = False
+    settings.show.globalTimers = False
+    return settings
+
+
 def run_exudyn(
     n: int, h: float, t_end: float, spatial: bool, rod: tuple[Section, ...]
 ) -> tuple[float, np.ndarray, np.ndarray]:
@@ -446,25 +474,7 @@ def run_exudyn(
     )
     mbs.Assemble()
 
-    settings = exu.SimulationSettings()
-    ti = settings.timeIntegration
-    ti.endTime = t_end
-    ti.numberOfSteps = int(round(t_end / h))
-    ti.verboseMode = 0
-    ti.newton.residualMode = 1
-    ti.newton.relativeTolerance = EXUDYN_NEWTON_TOL
-    ti.newton.absoluteTolerance = EXUDYN_NEWTON_TOL
-    ga = ti.generalizedAlpha
-    ga.spectralRadius = RHO_INF
-    ga.useIndex2Constraints = False
-    ga.useNewmark = False
-    ga.computeInitialAccelerations = True
-    settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
-    settings.solution.file.write = False
-    settings.solution.sensors.writePeriod = OUTPUT_STEP
-    settings.show.computationTime = False
-    settings.show.statistics = False
-    settings.show.globalTimers = False
+    settings = exudyn_settings(t_end, h)
 
     start = time.perf_counter()
     ok = exu.SolveDynamic(mbs, settings)

@@ -24,12 +24,13 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from peers import EXUDYN_NEWTON_TOL as NEWTON_TOL
+from peers import OUTPUT_STEP, exudyn_settings
 
 HERE = Path(__file__).resolve().parent
 SCENE = HERE / "stretch_rod.toml"
 LENGTH, DIAMETER, DENSITY, GRAVITY = 0.5, 0.05, 1100.0, 9.81
 YOUNG = 1.5e5  # Pa
-RHO_INF, NEWTON_TOL, OUTPUT_STEP = 0.9, 1e-10, 1e-3
 
 
 def hybeam(binary: Path, n: int, h: float, t_end: float) -> tuple[np.ndarray, float]:
@@ -93,22 +94,7 @@ def exudyn(n: int, h: float, t_end: float) -> np.ndarray:
         )
     )
     mbs.Assemble()
-    settings = exu.SimulationSettings()
-    ti = settings.timeIntegration
-    ti.endTime = t_end
-    ti.numberOfSteps = int(round(t_end / h))
-    ti.verboseMode = 0
-    ti.newton.residualMode = 1
-    ti.newton.relativeTolerance = NEWTON_TOL
-    ti.newton.absoluteTolerance = NEWTON_TOL
-    ga = ti.generalizedAlpha
-    ga.spectralRadius = RHO_INF
-    ga.useIndex2Constraints = False
-    ga.useNewmark = False
-    ga.computeInitialAccelerations = True
-    settings.linearSolver.solverType = exu.LinearSolverType.EigenSparse
-    settings.solution.file.write = False
-    settings.solution.sensors.writePeriod = OUTPUT_STEP
+    settings = exudyn_settings(t_end, h)
     if exu.SolveDynamic(mbs, settings) is False:
         raise RuntimeError(f"Exudyn SolveDynamic failed (n={n}, h={h})")
     data = np.asarray(mbs.GetSensorStoredData(sensor))
