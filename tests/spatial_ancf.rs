@@ -107,6 +107,7 @@ fn chain_of(p: Ancf3Props, n: usize, frame: Matrix3<f64>) -> Model<Spatial> {
         gravity: [0.0; 3],
         tip_force: [0.0; 3],
         tip_moment: [0.0; 3],
+        line_loads: Vec::new(),
         mounted: false,
     })
 }
@@ -446,6 +447,7 @@ fn planar_chain(n: usize) -> Model<Planar> {
         gravity: [0.0, -9.81],
         tip_force: [0.0; 2],
         tip_moment: 0.0,
+        line_loads: Vec::new(),
         mounted: false,
     })
 }

@@ -872,6 +872,7 @@ fn precession(h: f64, t_end: f64) -> Precession {
         gravity: [0.0; 3],
         tip_force: [0.0; 3],
         tip_moment: [0.0; 3],
+        line_loads: Vec::new(),
         mounted: false,
     });
     let (n, m) = (model.coordinates(), model.constraints());
@@ -1018,6 +1019,7 @@ fn clamped_segment_statics_match_beam_theory_in_both_planes_and_torsion() {
         gravity: [0.0; 3],
         tip_force: f.into(),
         tip_moment: m.into(),
+        line_loads: Vec::new(),
         mounted: false,
     });
     assert!(std::ptr::eq(model.modal_body(0), &*body));

@@ -19,6 +19,7 @@ use super::load::{moment_residual, point_force_residual, point_force_stiffness};
 use super::space::{is_nonzero, is_nonzero_moment, scaled, Space};
 use crate::integrator::{EvalRequest, Integrable, StateRef};
 use crate::linalg::{LuMethod, NewtonLu, SingularMatrix, SparsePattern};
+use crate::scene::MAX_LINE_LOADS;
 
 /// A component on its local coordinates.
 #[derive(Debug)]
@@ -63,6 +64,9 @@ pub struct Parts<S: Space> {
     pub tip_force: S::Vec,
     /// Dead tip moment at build (the scene's) [N m], global axes.
     pub tip_moment: S::Moment,
+    /// The segments that declare a line load (zero included), in segment order, with the line
+    /// load at build [N/m], global axes: slot k of [`Model::set_line_load`] is the k-th.
+    pub line_loads: Vec<(usize, S::Vec)>,
     /// Whether the held root coordinates follow a moving mount (`root = "mounted"`); the
     /// numbering's rigid groups say how. Built in the mount frame: the held values at build are
     /// the mount-frame ones.
@@ -104,6 +108,10 @@ pub struct Model<S: Space> {
     pub(crate) tip_force: S::Vec,
     /// The one total dead tip moment [N m], global axes, owned like the tip force.
     pub(crate) tip_moment: S::Moment,
+    /// The scene segment of each line-load slot ([`Parts::line_loads`]).
+    line_segments: Vec<usize>,
+    /// The line load of each slot [N/m], global axes (zero beyond `line_segments`).
+    line_loads: [S::Vec; MAX_LINE_LOADS],
     scale: Vec<f64>,
     q0: Vec<f64>,
     lu: NewtonLu,
@@ -135,8 +143,14 @@ impl<S: Space> Model<S> {
             gravity,
             tip_force,
             tip_moment,
+            line_loads: lines,
             mounted,
         } = parts;
+        let mut line_loads = [S::Vec::default(); MAX_LINE_LOADS];
+        for (slot, (_, q)) in line_loads.iter_mut().zip(&lines) {
+            *slot = *q;
+        }
+        let line_segments = lines.iter().map(|(seg, _)| *seg).collect();
         let groups = numbering.take_groups();
         let (q0, scale, held) = numbering.finish();
         let (held_ref, held_v, held_a, mount) = if mounted {
@@ -239,6 +253,8 @@ impl<S: Space> Model<S> {
             gravity,
             tip_force,
             tip_moment,
+            line_segments,
+            line_loads,
             scale,
             q0,
             lu: NewtonLu::new(pattern),
@@ -288,6 +304,31 @@ impl<S: Space> Model<S> {
     /// Sets the total tip force [N], global axes (replaces the scene's).
     pub fn set_tip_force(&mut self, f: S::Vec) {
         self.tip_force = f;
+    }
+
+    /// The line loads of the slots [N/m], global axes ([`Parts::line_loads`]; zero beyond the
+    /// scene's).
+    pub fn line_loads(&self) -> [S::Vec; MAX_LINE_LOADS] {
+        self.line_loads
+    }
+
+    /// The number of line-load slots (segments that declare `line_load`).
+    pub fn line_load_slots(&self) -> usize {
+        self.line_segments.len()
+    }
+
+    /// Sets the line load of slot `slot` [N/m], global axes, on every element of its segment
+    /// (a slot the scene does not have is ignored).
+    pub fn set_line_load(&mut self, slot: usize, q: S::Vec) {
+        let Some(&segment) = self.line_segments.get(slot) else {
+            return;
+        };
+        self.line_loads[slot] = q;
+        let g = self.gravity;
+        for e in self.elements.iter_mut().filter(|e| e.segment == segment) {
+            e.at.part.set_line_load(&q);
+            e.at.part.set_gravity(&g);
+        }
     }
 
     /// The total dead tip moment [N m], global axes.
@@ -596,6 +637,7 @@ mod tests {
             gravity: [0.0, -G],
             tip_force: [0.0, 0.0],
             tip_moment: 0.0,
+            line_loads: Vec::new(),
             mounted: false,
         })
     }

@@ -184,6 +184,10 @@ pub trait Element<S: Space>: Debug + Send + Sync + 'static {
     /// Called when gravity changes (elements may cache their gravity force).
     fn set_gravity(&mut self, _gravity: &S::Vec) {}
 
+    /// Sets the line load of the element's segment [N/m], global axes (the model calls
+    /// [`Element::set_gravity`] after it, for elements that cache their gravity force).
+    fn set_line_load(&mut self, _q: &S::Vec) {}
+
     /// Whether the element carries damping.
     fn is_damped(&self) -> bool;
 

@@ -323,6 +323,16 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
         gravity: vec_from::<S>(&scene.gravity),
         tip_force: vec_from::<S>(&scene.tip.force),
         tip_moment: moment_from::<S>(&scene.tip.moment),
+        line_loads: scene
+            .line_load_segments()
+            .into_iter()
+            .map(|i| {
+                (
+                    i,
+                    vec_from::<S>(scene.segments[i].line_load.as_deref().unwrap_or(&[])),
+                )
+            })
+            .collect(),
         mounted: scene.root == Root::Mounted,
     }))
 }

@@ -216,7 +216,9 @@ pub struct Segment {
     pub strain: StrainModel,
     /// Uniform distributed dead load on the segment [N/m], world axes: `[qx, qy]` or
     /// `[qx, qy, qz]` (none: zero). It enters every element of the segment as gravity does (a
-    /// dead load of density q per unit length beside ρA g).
+    /// dead load of density q per unit length beside ρA g). A segment that sets it (zero
+    /// allowed) gets the FMU input `<segment>.line_load.<axis>`, at most [`MAX_LINE_LOADS`]
+    /// segments per scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub line_load: Option<Vec<f64>>,
 }
@@ -296,6 +298,10 @@ impl Default for Simulation {
         }
     }
 }
+
+/// The most segments of a scene that may carry a `line_load` (each is an FMU input
+/// `<segment>.line_load.<axis>`, held in a fixed-size slot so that a step allocates nothing).
+pub const MAX_LINE_LOADS: usize = 8;
 
 /// A beam set-up.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -399,12 +405,27 @@ impl Segment {
         q.iter().any(|x| *x != 0.0).then(|| padded(q))
     }
 
+    /// The line load as declared [N/m] with `N` components (zero ones included): `None`
+    /// when the segment sets none.
+    pub fn line_load_declared<const N: usize>(&self) -> Option<[f64; N]> {
+        self.line_load.as_ref().map(|q| padded(q))
+    }
+
     fn default_poisson_ratio() -> f64 {
         0.3
     }
 }
 
 impl Scene {
+    /// The segments that declare a `line_load` (zero included), in segment order: slot k of the
+    /// line-load inputs belongs to segment `line_load_segments()[k]`.
+    pub fn line_load_segments(&self) -> Vec<usize> {
+        (self.segments.iter().enumerate())
+            .filter(|(_, s)| s.line_load.is_some())
+            .map(|(i, _)| i)
+            .collect()
+    }
+
     /// Parses and validates a scene.
     pub fn from_toml(text: &str) -> Result<Self, SceneError> {
         Self::from_toml_with_overrides(text, &[])

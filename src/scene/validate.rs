@@ -322,6 +322,18 @@ impl Scene {
                 }
             }
         }
+        let lines = self.line_load_segments();
+        if lines.len() > MAX_LINE_LOADS {
+            let names: Vec<&str> = lines
+                .iter()
+                .map(|&i| self.segments[i].name.as_str())
+                .collect();
+            return Err(SceneError(format!(
+                "segments.*.line_load: {} segments ({}) set a line load, at most {MAX_LINE_LOADS} may; merge segments or remove the line load of those that carry none",
+                lines.len(),
+                names.join(", ")
+            )));
+        }
         self.validate_masses()
     }
 

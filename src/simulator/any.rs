@@ -11,6 +11,9 @@ use crate::scene::{Scene, SpaceKind};
 
 /// A simulator of either space, chosen by the scene's `space`: the one type the FMU and the
 /// command-line runner hold.
+// both variants hold a few kB of fixed-size inputs and load rates (the line-load slots); the
+// spatial one's are larger by its third components, which boxing would not save
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug)]
 pub enum AnySimulator {
     /// `space = "planar"`.
@@ -171,11 +174,10 @@ impl AnySimulator {
         each!(self, s => s.set_partner(partner))
     }
 
-    /// Writes the inputs set for the next step (tip loads, gravity and, on a mounted scene, the
-    /// mount's; not the partner model's, which a scene does not hold) that differ from the scene's into `scene`: where a start of the scene begins.
+    /// Writes the inputs set for the next step (tip loads, gravity, line loads and, on a mounted
+    /// scene, the mount's; not the partner model's, which a scene does not hold) that differ from the scene's into `scene`: where a start of the scene begins.
     pub fn inputs_into(&self, scene: &mut Scene) {
-        let mounted = scene.mount_start().is_some();
-        for (_, id) in InputId::named_with(self.space(), mounted) {
+        for (_, id) in InputId::of_scene(scene) {
             if let Some(x) = self.input(id).filter(|x| *x != id.scene_value(scene)) {
                 id.set_in_scene(scene, x);
             }
@@ -298,6 +300,7 @@ mod tests {
             tip_force: [0.0; 3],
             tip_moment: [0.0; 3],
             gravity: [0.0; 3],
+            line_loads: Default::default(),
         };
         let named = InputId::named(SpaceKind::Spatial);
         for (k, (_, id)) in named.iter().enumerate() {
@@ -311,6 +314,7 @@ mod tests {
             tip_force: [0.0; 2],
             tip_moment: 0.0,
             gravity: [0.0; 2],
+            line_loads: Default::default(),
         };
         let mz = InputId {
             kind: InputKind::TipMoment,

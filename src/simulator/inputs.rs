@@ -5,6 +5,7 @@
 //! ones, and the step (`step.rs`) is the one place that moves the pending ones into it.
 
 use super::*;
+use crate::scene::MAX_LINE_LOADS;
 
 /// The inputs of the equations a host may change between communication steps.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -16,6 +17,9 @@ pub struct Inputs<S: Space> {
     pub tip_moment: S::Moment,
     /// Gravity [m/s²], global axes.
     pub gravity: S::Vec,
+    /// The line load of each slot [N/m], global axes: slot k belongs to the k-th segment that
+    /// declares `line_load` ([`crate::scene::Scene::line_load_segments`]; zero beyond them).
+    pub line_loads: [S::Vec; MAX_LINE_LOADS],
 }
 
 impl<S: Space> Inputs<S> {
@@ -25,6 +29,7 @@ impl<S: Space> Inputs<S> {
             tip_force: model.tip_force(),
             tip_moment: model.tip_moment(),
             gravity: model.gravity(),
+            line_loads: model.line_loads(),
         }
     }
 
@@ -33,6 +38,12 @@ impl<S: Space> Inputs<S> {
         model.set_tip_moment(self.tip_moment);
         if model.gravity() != self.gravity {
             model.set_gravity(self.gravity);
+        }
+        let held = model.line_loads();
+        for (slot, q) in self.line_loads.iter().enumerate() {
+            if held[slot] != *q {
+                model.set_line_load(slot, *q);
+            }
         }
     }
 }
@@ -47,6 +58,8 @@ pub struct LoadRates<S: Space> {
     pub force: [S::Vec; 2],
     /// Ṁ [N m/s], M̈ [N m/s²].
     pub moment: [S::Moment; 2],
+    /// q̇ [N/(m s)], q̈ [N/(m s²)] of each line-load slot, global axes.
+    pub line: [[S::Vec; 2]; MAX_LINE_LOADS],
 }
 
 impl<S: Space> LoadRates<S> {
@@ -59,6 +72,11 @@ impl<S: Space> LoadRates<S> {
                 .moment
                 .iter()
                 .any(|m| S::moment_components(m).iter().any(|x| *x != 0.0))
+            || self
+                .line
+                .iter()
+                .flatten()
+                .any(|q| q.as_ref().iter().any(|x| *x != 0.0))
     }
 
     /// The loads `tau` [s] after `at`, whose loads are the values at the start.
@@ -67,6 +85,11 @@ impl<S: Space> LoadRates<S> {
         let (c1, c2) = (tau, 0.5 * tau * tau);
         for k in 0..S::DIM {
             out.tip_force[k] += c1 * self.force[0][k] + c2 * self.force[1][k];
+        }
+        for (q, [d1, d2]) in out.line_loads.iter_mut().zip(&self.line) {
+            for k in 0..S::DIM {
+                q[k] += c1 * d1[k] + c2 * d2[k];
+            }
         }
         let (d1, d2) = (
             S::moment_components(&self.moment[0]),
@@ -154,6 +177,10 @@ impl<S: Space> Inputs<S> {
             InputKind::TipForce => self.tip_force.as_ref().get(k).copied(),
             InputKind::TipMoment => S::moment_components(&self.tip_moment).get(k).copied(),
             InputKind::Gravity => self.gravity.as_ref().get(k).copied(),
+            InputKind::LineLoad => {
+                let (slot, axis) = InputId::line_load_slot(k);
+                self.line_loads.get(slot)?.as_ref().get(axis).copied()
+            }
             _ => None,
         }
     }
@@ -165,6 +192,12 @@ impl<S: Space> Inputs<S> {
             InputKind::TipForce => self.tip_force.as_mut().get_mut(k),
             InputKind::TipMoment => S::moment_components_mut(&mut self.tip_moment).get_mut(k),
             InputKind::Gravity => self.gravity.as_mut().get_mut(k),
+            InputKind::LineLoad => {
+                let (slot, axis) = InputId::line_load_slot(k);
+                self.line_loads
+                    .get_mut(slot)
+                    .and_then(|q| q.as_mut().get_mut(axis))
+            }
             _ => None,
         };
         slot.map(|s| *s = x).is_some()
@@ -182,15 +215,28 @@ impl<S: Space> LoadRates<S> {
             InputKind::TipMoment => {
                 S::moment_components_mut(&mut rates.moment[o]).get_mut(id.component)
             }
+            InputKind::LineLoad => {
+                let (slot, axis) = InputId::line_load_slot(id.component);
+                rates.line.get_mut(slot)?[o].as_mut().get_mut(axis)
+            }
             _ => None,
         }
     }
 }
 
 impl<S: Space> Simulator<S> {
+    /// Whether the model has the slot of a line-load input (every other input: true).
+    fn has_slot(&self, id: InputId) -> bool {
+        id.kind != InputKind::LineLoad
+            || InputId::line_load_slot(id.component).0 < self.model.line_load_slots()
+    }
+
     /// The value of an input set for the next step; `None` for a component this space (or a
     /// fixed root) does not have.
     pub fn input(&self, id: InputId) -> Option<f64> {
+        if !self.has_slot(id) {
+            return None;
+        }
         if id.kind.is_partner() {
             let mounted = self.mount_accelerations_given().is_some();
             let mut p = self.partner();
@@ -207,6 +253,9 @@ impl<S: Space> Simulator<S> {
     /// forgets its derivatives (they held for one step). `false` (and no change) for a
     /// component this space (or a fixed root) does not have.
     pub fn set_input(&mut self, id: InputId, x: f64) -> bool {
+        if !self.has_slot(id) {
+            return false;
+        }
         if id.kind.is_partner() {
             let mut p = self.partner();
             return p.slot(id).map(|slot| *slot = x).is_some() && self.set_partner(p);
@@ -251,7 +300,7 @@ impl<S: Space> Simulator<S> {
     /// shape the base motion; derivatives of the pose, implied by the velocities, are accepted
     /// and not used. Tip loads: [`LoadRates`]. `false` for gravity.
     pub fn set_input_derivative(&mut self, id: InputId, order: u32, x: f64) -> bool {
-        if !(1..=2).contains(&order) {
+        if !(1..=2).contains(&order) || !self.has_slot(id) {
             return false;
         }
         if id.kind.is_partner() {

@@ -18,6 +18,10 @@ pub enum InputKind {
     TipMoment,
     /// `gravity.<axis>` [m/s²], global axes.
     Gravity,
+    /// `<segment>.line_load.<axis>` [N/m]: the uniform dead line load of a segment that
+    /// declares `line_load`, global axes; component 3·slot + axis
+    /// ([`InputId::line_load_slot`]).
+    LineLoad,
     /// `root.position.<axis>` [m]: the mount point, world axes (mounted root).
     MountPosition,
     /// The mount frame → world: `root.angle` [rad] in the plane, `root.orientation.e0`–`e3`
@@ -54,7 +58,7 @@ impl InputKind {
     pub fn is_mount(self) -> bool {
         !matches!(
             self,
-            InputKind::TipForce | InputKind::TipMoment | InputKind::Gravity
+            InputKind::TipForce | InputKind::TipMoment | InputKind::Gravity | InputKind::LineLoad
         )
     }
 }
@@ -85,6 +89,46 @@ impl InputId {
             (InputKind::Gravity, "gravity", S::AXES),
         ];
         named_components(&groups, |kind, component| InputId { kind, component })
+    }
+
+    /// The line-load input of slot `slot` ([`crate::scene::Scene::line_load_segments`]),
+    /// component `axis` of [`Space::AXES`].
+    pub fn line_load(slot: usize, axis: usize) -> Self {
+        InputId {
+            kind: InputKind::LineLoad,
+            component: 3 * slot + axis,
+        }
+    }
+
+    /// (slot, axis) of a line-load input's component.
+    pub fn line_load_slot(component: usize) -> (usize, usize) {
+        (component / 3, component % 3)
+    }
+
+    /// The line-load inputs of `scene`: `<segment>.line_load.<axis>` for each segment that
+    /// declares `line_load`, in segment order.
+    pub fn line_loads(scene: &Scene) -> Vec<(String, InputId)> {
+        let axes = match scene.space {
+            SpaceKind::Planar => Planar::AXES,
+            SpaceKind::Spatial => Spatial::AXES,
+        };
+        let mut out = Vec::new();
+        for (slot, seg) in scene.line_load_segments().into_iter().enumerate() {
+            for (axis, a) in axes.iter().enumerate() {
+                let name = format!("{}.line_load.{a}", scene.segments[seg].name);
+                out.push((name, InputId::line_load(slot, axis)));
+            }
+        }
+        out
+    }
+
+    /// Every input of `scene`: [`InputId::named_with`] (the mount's if mounted), then its
+    /// [`InputId::line_loads`].
+    pub fn of_scene(scene: &Scene) -> Vec<(String, InputId)> {
+        let mounted = scene.root == crate::scene::Root::Mounted;
+        let mut out = Self::named_with(scene.space, mounted);
+        out.extend(Self::line_loads(scene));
+        out
     }
 
     /// [`InputId::named`] and, for a mounted root, the mount inputs after them (planar:
@@ -168,6 +212,14 @@ impl InputId {
             InputKind::TipForce => get(&scene.tip.force),
             InputKind::TipMoment => get(&scene.tip.moment),
             InputKind::Gravity => get(&scene.gravity),
+            InputKind::LineLoad => {
+                let (slot, axis) = Self::line_load_slot(k);
+                scene
+                    .line_load_segments()
+                    .get(slot)
+                    .and_then(|&i| scene.segments[i].line_load.as_ref()?.get(axis).copied())
+                    .unwrap_or(0.0)
+            }
             InputKind::MountPosition => get(&mount().position),
             InputKind::MountAttitude => match scene.space {
                 SpaceKind::Planar => mount().angle,
@@ -223,6 +275,17 @@ impl InputId {
                 *slot = x;
             }
             scene.mount = Some(m);
+            return;
+        }
+        if self.kind == InputKind::LineLoad {
+            let (slot, axis) = Self::line_load_slot(k);
+            let Some(&i) = scene.line_load_segments().get(slot) else {
+                return;
+            };
+            if let Some(q) = scene.segments[i].line_load.as_mut() {
+                q.resize(space.dim().max(q.len()).max(axis + 1), 0.0);
+                q[axis] = x;
+            }
             return;
         }
         let (v, n) = match self.kind {

@@ -33,7 +33,7 @@ pub(super) const ATTITUDE_TOLERANCE: f64 = 1e-9;
 
 /// Format version of [`Simulator::snapshot`]; raise it when a field of [`Snapshot`] (or of the
 /// structs it holds) changes.
-pub const SNAPSHOT_VERSION: u32 = 6;
+pub const SNAPSHOT_VERSION: u32 = 7;
 
 /// The payload of [`Simulator::snapshot`], encoded with `postcard` (f64 as 8 little-endian
 /// bytes, so restored values are bit-identical).

@@ -217,8 +217,7 @@ pub fn check_newton_matrix<S: Space>(model: &mut Model<S>) -> f64 {
 
 /// The input of `sim` named `name`.
 pub fn input_id(sim: &AnySimulator, name: &str) -> InputId {
-    let mounted = sim.scene().mount_start().is_some();
-    InputId::named_with(sim.space(), mounted)
+    InputId::of_scene(sim.scene())
         .into_iter()
         .find(|(n, _)| n == name)
         .unwrap_or_else(|| panic!("no input {name}"))

@@ -313,7 +313,7 @@ impl CoSimModel for BeamFmu {
         match self.table.access(index) {
             Access::Input(id) if self.sim.set_input_derivative(id, order, value) => Ok(()),
             _ => Err(format!(
-                "{name}: input derivatives are taken for the mount inputs and the tip loads"
+                "{name}: input derivatives are taken for the mount inputs, the tip loads and the line loads"
             )),
         }
     }

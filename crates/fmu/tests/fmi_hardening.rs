@@ -399,7 +399,7 @@ fn restored_mount_orientations_must_be_usable() {
     still_steps(&i, 3e-3);
 }
 
-/// The prefix of the simulator's snapshot (format version 4) up to the held Newton matrix's
+/// The prefix of the simulator's snapshot (format version 7) up to the held Newton matrix's
 /// point, mirrored to craft one: the test fails loudly if the format changes.
 #[derive(serde::Serialize, serde::Deserialize)]
 struct Prefix {
@@ -407,8 +407,13 @@ struct Prefix {
     coordinates: u64,
     constraints: u64,
     scene: u64,
-    /// Planar inputs: tip force, tip moment, gravity.
-    inputs: ([f64; 2], f64, [f64; 2]),
+    /// Planar inputs: tip force, tip moment, gravity, the line-load slots.
+    inputs: (
+        [f64; 2],
+        f64,
+        [f64; 2],
+        [[f64; 2]; hybeam::scene::MAX_LINE_LOADS],
+    ),
     state: hybeam::integrator::State,
     eta: f64,
     jacobian: Option<hybeam::integrator::JacobianPoint>,

@@ -126,3 +126,75 @@ fn tip_moment_set_by_the_host_matches_an_fmu_built_with_it() {
     assert_eq!(changed.get1(mz).to_bits(), 0.01f64.to_bits());
     assert_eq!(built.get1(mz).to_bits(), 0.01f64.to_bits());
 }
+
+/// Case 1 with `line_load = [0.0, q]` on both segments (and the internal step of [`case1`]).
+fn case1_line(q: f64, h: f64) -> String {
+    let s = case1(0.0, h).replace(
+        "kind = \"modal\"",
+        &format!("kind = \"modal\"\nline_load = [0.0, {q:e}]"),
+    );
+    let s = s.replace(
+        "kind = \"ancf\"",
+        &format!("kind = \"ancf\"\nline_load = [0.0, {q:e}]"),
+    );
+    assert_eq!(s.matches("line_load").count(), 2);
+    s
+}
+
+/// The line-load inputs `<segment>.line_load.<axis>` (issue 39 item 4): set by the host right
+/// after initialization they run as an FMU built with them; ramped by fmi2SetRealInputDerivatives
+/// the FMU runs bit for bit as the simulator given the same ramp through its Rust API (whose
+/// physics `tests/line_load.rs` checks against the exact modal solution).
+#[test]
+fn line_loads_set_by_the_host_and_their_derivatives() {
+    let (h, dt, n, q) = (1e-4, 1e-3, 100, -0.05);
+    let scene = case1_line(0.0, h);
+    let changed = initialized(&scene, "line-changed");
+    let built = initialized(&case1_line(q, h), "line-built");
+    let names = ["modal.line_load.y", "ancf.line_load.y"];
+    let vrs: Vec<u32> = names.iter().map(|n| vr_in(&scene, n)).collect();
+    assert_eq!(vrs, [1021, 2021]);
+    assert_eq!(changed.set_real(&vrs, &[q, q]), OK);
+    let a = run(&changed, dt, n, |_| None);
+    let b = run(&built, dt, n, |_| None);
+    let diff = largest_difference(&a, &b);
+    let sag = (a[n - 1] - initialized(&scene, "line-free").get1(vr("tip.position.y"))).abs();
+    println!("line load set by the host vs built: {diff:.3e} m (sag {sag:.3e} m)");
+    assert!(diff <= 1e-12 && sag > 1e-4, "{diff:e} {sag:e}");
+    assert_eq!(changed.get_real(&vrs).unwrap(), vec![q, q]);
+
+    // a ramp q = q̇t through the input derivatives, against the simulator's own
+    let rate = -0.5;
+    let ramped = initialized(&scene, "line-ramped");
+    let mut sim =
+        hybeam::simulator::AnySimulator::new(hybeam::scene::Scene::from_toml(&scene).unwrap())
+            .unwrap();
+    let api = api();
+    for k in 0..n {
+        let t = k as f64 * dt;
+        assert_eq!(ramped.set_real(&vrs, &[rate * t, rate * t]), OK);
+        let order = [1, 1];
+        let status = unsafe {
+            api.set_real_input_derivatives.unwrap()(
+                ramped.c,
+                vrs.as_ptr(),
+                2,
+                order.as_ptr(),
+                [rate, rate].as_ptr(),
+            )
+        };
+        assert_eq!(status, OK, "{:?}", ramped.log.entries());
+        assert_eq!(ramped.do_step(t, dt), OK);
+        for slot in 0..2 {
+            let id = hybeam::simulator::InputId::line_load(slot, 1);
+            assert!(sim.set_input(id, rate * t) && sim.set_input_derivative(id, 1, rate));
+        }
+        sim.advance(t + dt).unwrap();
+        let (fmu, direct) = (tip_y(&ramped), sim.outputs().tip_position()[1]);
+        assert_eq!(
+            fmu.to_bits(),
+            direct.to_bits(),
+            "step {k}: {fmu:e} vs {direct:e}"
+        );
+    }
+}

@@ -8,8 +8,8 @@ use std::path::Path;
 
 use fmi2::{Causality, Variability, Variable};
 use hybeam::scene::Scene;
-use hybeam::simulator::InputKind;
-use hybeam_fmu::cosim::variables::{Access, Table, MASS_FIELDS, SEGMENT_FIELDS};
+use hybeam::simulator::{InputId, InputKind};
+use hybeam_fmu::cosim::variables::{Access, Table, LINE_LOAD_K, MASS_FIELDS, SEGMENT_FIELDS};
 
 /// One documented row: name, VR, causality (inputs, outputs) or variability (parameters), unit.
 type Row = (String, String, String, String);
@@ -80,6 +80,18 @@ fn rows_of(scene: &Scene) -> BTreeSet<Row> {
             Access::Mass(i, f) => {
                 assert_eq!(v.vr, 500_000 + 10 * i as u32 + f.k, "{}", v.name);
                 mass_row(f.name, f.k, v.unit)
+            }
+            // a segment's line-load inputs, in the segment parameters' generic form
+            Access::Input(id) if id.kind == InputKind::LineLoad => {
+                let axis = ["x", "y", "z"][InputId::line_load_slot(id.component).1];
+                let k = LINE_LOAD_K + InputId::line_load_slot(id.component).1 as u32;
+                assert_eq!(v.vr % 1000, k, "{}", v.name);
+                (
+                    format!("<segment>.line_load.{axis}"),
+                    format!("1000(i+1) + {k}"),
+                    kind(v),
+                    unit(v.unit),
+                )
             }
             // the partner model's inputs, written once each in a generic form
             Access::Input(id) if id.kind == InputKind::MountMobility => (

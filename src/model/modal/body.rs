@@ -86,7 +86,7 @@ pub struct ModalBody {
     points: Vec<BodyPoint>,
     /// The segment's line load over ρA, q/(ρA) [m/s²] ([`ModalBody::with_line_load`]); `None`
     /// without one.
-    line: Option<[f64; 2]>,
+    pub(crate) line: Option<[f64; 2]>,
 }
 
 /// Slots per quadrature point of [`ModalBody::fields`].

@@ -204,7 +204,7 @@ pub struct ModalBody3 {
     points: Vec<BodyPoint>,
     /// The segment's line load over ρA, q/(ρA) [m/s²] ([`ModalBody3::with_line_load`]);
     /// `None` without one.
-    line: Option<[f64; 3]>,
+    pub(crate) line: Option<[f64; 3]>,
 }
 
 /// Slots per quadrature point of [`ModalBody3::fields`]: v, v̇, v̈, v′, v̇′, v̈′, v″ (0..7), the

@@ -6,7 +6,7 @@ use crate::math;
 use crate::model::ancf::{AncfProps, Mat8, QuadTables, SectionMass, Shape, Vec8};
 use crate::model::assembly::Model;
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
-use crate::model::modal::{BodyOut, ModalBody};
+use crate::model::modal::{BodyGravity, BodyOut, ModalBody};
 use crate::model::sample::ShapePoint;
 use std::any::Any;
 use std::sync::Arc;
@@ -253,6 +253,10 @@ impl Element<Planar> for AncfElement {
         out.extend(xi.iter().map(|&s| self.props.sample(&e, &ed, s)));
     }
 
+    fn set_line_load(&mut self, q: &[f64; 2]) {
+        self.line = Some(q.map(|c| c / self.props.rho_a));
+    }
+
     fn set_gravity(&mut self, g: &[f64; 2]) {
         self.gravity_force = match self.line {
             Some(b) => self.props.gravity_force([g[0] + b[0], g[1] + b[1]]),
@@ -310,6 +314,9 @@ pub struct ModalElement {
     out: BodyOut,
     /// Local (q, q̇, q̈) of the last evaluation.
     x: [Vec<f64>; 3],
+    /// The segment's line load over ρA, q/(ρA) [m/s²] (the body's at build, then
+    /// [`Element::set_line_load`]'s); `None` without one.
+    line: Option<[f64; 2]>,
 }
 
 impl ModalElement {
@@ -318,6 +325,7 @@ impl ModalElement {
         let d = body.dim();
         let out = BodyOut::new(d);
         Self {
+            line: body.line,
             body,
             stiffening: None,
             out,
@@ -370,7 +378,7 @@ fn add_stiffening(
 
 impl Element<Planar> for ModalElement {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, mut out: ElementOut<'_>) {
-        let g = self.body.gravity(env.gravity, env.load);
+        let g = BodyGravity::of(env.gravity, env.load, self.line);
         let [q, v, a] = &mut self.x;
         x.gather(q, v, a);
         let body = &mut self.out;
@@ -389,7 +397,7 @@ impl Element<Planar> for ModalElement {
     fn residual(&self, x: &LocalState<'_>, env: &Env<Planar>, res: &mut [f64]) {
         let (q, v, a) = x.vectors();
         let mut out = BodyOut::new(self.body.dim());
-        let g = self.body.gravity(env.gravity, 1.0);
+        let g = BodyGravity::of(env.gravity, 1.0, self.line);
         self.body.eval(&q, &v, &a, g, false, &mut out);
         if let Some(grams) = &self.stiffening {
             let r = out.res.as_mut_slice();
@@ -405,8 +413,12 @@ impl Element<Planar> for ModalElement {
             strain: self.body.strain_energy(&q),
             potential: self
                 .body
-                .potential_energy(&q, self.body.gravity(*gravity, 1.0)),
+                .potential_energy(&q, BodyGravity::of(*gravity, 1.0, self.line)),
         }
+    }
+
+    fn set_line_load(&mut self, q: &[f64; 2]) {
+        self.line = Some(q.map(|c| c / self.body.rho_a));
     }
 
     fn length(&self) -> f64 {

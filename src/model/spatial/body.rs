@@ -16,7 +16,7 @@ use crate::model::component::{
     Validity,
 };
 use crate::model::modal::body3d::{self, euler_rotation};
-use crate::model::modal::ModalBody3;
+use crate::model::modal::{BodyGravity, ModalBody3};
 use crate::model::sample::ShapePoint;
 use crate::model::vector::{self, cross, Real, V3};
 use nalgebra::{Matrix3, Vector3};
@@ -243,6 +243,9 @@ pub struct ModalElement3 {
     pub body: Arc<ModalBody3>,
     /// Local (q, q̇, q̈, r) of the last evaluation (reused: no allocation per iteration).
     x: [Vec<f64>; 4],
+    /// The segment's line load over ρA, q/(ρA) [m/s²] (the body's at build, then
+    /// [`Element::set_line_load`]'s); `None` without one.
+    line: Option<[f64; 3]>,
 }
 
 impl ModalElement3 {
@@ -250,6 +253,7 @@ impl ModalElement3 {
     pub fn new(body: Arc<ModalBody3>) -> Self {
         let d = body.dim();
         Self {
+            line: body.line,
             body,
             x: [vec![0.0; d], vec![0.0; d], vec![0.0; d], vec![0.0; d]],
         }
@@ -258,7 +262,7 @@ impl ModalElement3 {
 
 impl Element<Spatial> for ModalElement3 {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Spatial>, mut out: ElementOut<'_>) {
-        let g = self.body.gravity(env.gravity, env.load);
+        let g = BodyGravity::of(env.gravity, env.load, self.line);
         let [q, v, a, r] = &mut self.x;
         x.gather(q, v, a);
         self.body.residual(q, v, a, g, r);
@@ -273,8 +277,13 @@ impl Element<Spatial> for ModalElement3 {
 
     fn residual(&self, x: &LocalState<'_>, env: &Env<Spatial>, res: &mut [f64]) {
         let (q, v, a) = x.vectors();
-        self.body
-            .residual(&q, &v, &a, self.body.gravity(env.gravity, 1.0), res);
+        self.body.residual(
+            &q,
+            &v,
+            &a,
+            BodyGravity::of(env.gravity, 1.0, self.line),
+            res,
+        );
     }
 
     fn energies(&self, x: &LocalState<'_>, gravity: &[f64; 3]) -> Energies {
@@ -284,8 +293,12 @@ impl Element<Spatial> for ModalElement3 {
             strain: self.body.strain_energy(&q),
             potential: self
                 .body
-                .potential_energy(&q, self.body.gravity(*gravity, 1.0)),
+                .potential_energy(&q, BodyGravity::of(*gravity, 1.0, self.line)),
         }
+    }
+
+    fn set_line_load(&mut self, q: &[f64; 3]) {
+        self.line = Some(q.map(|c| c / self.body.props.rho_a));
     }
 
     fn length(&self) -> f64 {

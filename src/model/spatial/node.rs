@@ -212,6 +212,10 @@ impl Element<Spatial> for AncfElement3 {
         }
     }
 
+    fn set_line_load(&mut self, q: &[f64; 3]) {
+        self.line = Some(q.map(|c| c / self.props.rho_a));
+    }
+
     fn set_gravity(&mut self, g: &[f64; 3]) {
         self.gravity_force = self.props.gravity_force(with_line(g, self.line));
         add_point_weight(

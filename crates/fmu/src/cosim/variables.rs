@@ -7,7 +7,8 @@
 //! description. Value references belong to the name, the same in both spaces, never to an
 //! enumeration order that could shift: inputs 1–6, outputs 10–32, gravity 100–102, solver
 //! 110–113, and segment i's field k at 1000·(i + 1) + k (k: length 1, diameter 2, width 3,
-//! height 4, youngs_modulus 5, density 6, damping_time 7, damping_ratio 8, inner_diameter 9). A scene only gets
+//! height 4, youngs_modulus 5, density 6, damping_time 7, damping_ratio 8, inner_diameter 9;
+//! the inputs `<segment>.line_load.<axis>` at 20–22). A scene only gets
 //! the variables it needs: no z or quaternion in the plane, no `tip.angle` in space, no damping
 //! parameters without damping, no width/height on a round section, an inner diameter on a tube only. `docs/fmu-variables.md` is
 //! checked against this table by `tests/variables_doc.rs`.
@@ -326,6 +327,10 @@ pub struct Field<T> {
     pub set: fn(&mut T, f64),
 }
 
+/// The offset of a segment's line-load inputs `<segment>.line_load.<axis>` in its block of value
+/// references: 1000·(i + 1) + 20 + axis (x 0, y 1, z 2).
+pub const LINE_LOAD_K: u32 = 20;
+
 /// A segment field, the parameter `<segment>.<name>` with value reference 1000·(i + 1) + `k`.
 pub type SegmentField = Field<Segment>;
 
@@ -582,6 +587,25 @@ impl Table {
         for (row, id) in rows.filter(|(_, id)| !estimated(id)) {
             let start = Some(id.scene_value(scene));
             let v = variable(row, Causality::Input, Variability::Continuous, start);
+            t.push(v, Access::Input(id));
+        }
+        let line_segments = scene.line_load_segments();
+        for (name, id) in InputId::line_loads(scene) {
+            let (slot, axis) = InputId::line_load_slot(id.component);
+            let seg = &scene.segments[line_segments[slot]];
+            let v = Variable {
+                name,
+                vr: 1000 * (line_segments[slot] as u32 + 1) + LINE_LOAD_K + axis as u32,
+                causality: Causality::Input,
+                variability: Variability::Continuous,
+                start: Some(id.scene_value(scene)),
+                unit: Some("N/m"),
+                description: format!(
+                    "uniform dead line load on segment '{}', global axes (takes input derivatives)",
+                    seg.name
+                ),
+                depends_on: Vec::new(),
+            };
             t.push(v, Access::Input(id));
         }
         for (name, id) in inputs.iter().filter(|(_, id)| id.kind.is_partner()) {
