@@ -1,0 +1,461 @@
+//! Initially curved ANCF segments (`initial_curvature`), each check against an independent
+//! reference:
+//! * the planar quarter-circle cantilever under a small tip load against Castigliano's theorem
+//!   (closed form, below);
+//! * the unloaded curved cantilever stays exactly at rest (a stress-free reference);
+//! * the spatial 45° bend cantilever of Bathe & Bolourchi (1979) loaded out of its plane
+//!   against the tip positions of Simo & Vu-Quoc (1986) (docs/references.md §11);
+//! * the segment after a curved one starts on its end position and tangent (the arc's closed
+//!   form), planar and spatial;
+//! * every refusal of a bad `initial_curvature`.
+
+mod common;
+use common::*;
+use hybeam::integrator::{EvalRequest, Integrable, StateRef};
+use hybeam::model::{Model, Planar, Spatial};
+use hybeam::scene::{rectangle_torsion_constant, Scene};
+use hybeam::simulator::Simulator;
+use std::f64::consts::PI;
+
+/// Radius of the planar quarter circle [m] and the side of its square section [m].
+const R: f64 = 1.0;
+const B: f64 = 0.02;
+
+fn ei() -> f64 {
+    E_STEEL * B.powi(4) / 12.0
+}
+fn ea() -> f64 {
+    E_STEEL * B * B
+}
+
+/// Castigliano's tip compliance of a planar clamped quarter circle (radius R, clamped at the
+/// origin with tangent +x, curving counter-clockwise about the centre (0, R); the tip at
+/// (R, R) with tangent +y) under a tip force F = (F_x, F_y) (F_x radial outward, F_y
+/// tangential): with the section at angle φ ∈ [0, π/2] at P(φ) = R(sin φ, 1 − cos φ),
+/// M(φ) = R(1 − sin φ)F_y − R cos φ F_x, N(φ) = F_x cos φ + F_y sin φ and
+/// U = ∫₀^{π/2} [M²/(2EI) + N²/(2EA)] R dφ (the slender curved beam: bending and stretching,
+/// no shear), δ = ∂U/∂F:
+///   δ_x = (R³/EI)(π/4 F_x − ½F_y) + (R/EA)(π/4 F_x + ½F_y),
+///   δ_y = (R³/EI)(−½F_x + (3π/4 − 2)F_y) + (R/EA)(½F_x + π/4 F_y).
+fn castigliano_quarter(f: [f64; 2]) -> [f64; 2] {
+    let (b, a) = (R.powi(3) / ei(), R / ea());
+    [
+        b * (PI / 4.0 * f[0] - 0.5 * f[1]) + a * (PI / 4.0 * f[0] + 0.5 * f[1]),
+        b * (-0.5 * f[0] + (0.75 * PI - 2.0) * f[1]) + a * (0.5 * f[0] + PI / 4.0 * f[1]),
+    ]
+}
+
+fn header_planar(force: [f64; 2]) -> String {
+    format!("[tip]\nforce = [{:e}, {:e}]", force[0], force[1])
+}
+
+/// The static tip displacement of the quarter circle on `elements` ANCF elements.
+fn quarter_tip(force: [f64; 2], elements: usize) -> [f64; 2] {
+    let seg = ancf(
+        "arc",
+        0.5 * PI * R,
+        &square(B),
+        elements,
+        &format!("initial_curvature = {:e}", 1.0 / R),
+    );
+    let mut sim = Simulator::<Planar>::new(scene(&header_planar(force), &[seg])).unwrap();
+    sim.solve_static().unwrap();
+    let p = sim.outputs().tip_position;
+    [p[0] - R, p[1] - R]
+}
+
+/// Planar quarter-circle cantilever, 32 elements, tip force 2e-6·EI/R² (radial, then
+/// tangential): relative error of the tip displacement vector against
+/// [`castigliano_quarter`] ≤ 1e-4. Seen: `cargo test --release -p hybeam --test curved --
+/// --nocapture quarter`.
+#[test]
+fn quarter_circle_matches_castigliano() {
+    let f0 = 2e-6 * ei() / (R * R);
+    for (label, f) in [("radial", [f0, 0.0]), ("tangential", [0.0, f0])] {
+        let want = castigliano_quarter(f);
+        for n in [8, 32] {
+            let got = quarter_tip(f, n);
+            let err = ((got[0] - want[0]).powi(2) + (got[1] - want[1]).powi(2)).sqrt()
+                / (want[0].powi(2) + want[1].powi(2)).sqrt();
+            eprintln!("quarter circle, {label} load, {n} elements: tip {got:?} Castigliano {want:?}, relative error {err:.2e}");
+            if n == 32 {
+                assert!(err <= 1e-4, "{label}: relative error {err:e}");
+            }
+        }
+    }
+}
+
+/// The unloaded curved cantilever is its own stress-free reference: the residual at the initial
+/// coordinates is zero to rounding (relative to EA), the static solution does not move the tip,
+/// and a dynamic run stays at rest.
+#[test]
+fn unloaded_curved_cantilever_stays_at_rest() {
+    for (k, n) in [(1.0 / R, 8), (-2.0 / R, 5)] {
+        let seg = ancf(
+            "arc",
+            1.3 * R,
+            &square(B),
+            n,
+            &format!("initial_curvature = {k:e}"),
+        );
+        let s = scene("", &[seg]);
+        let mut model = Model::<Planar>::from_scene(&s).unwrap();
+        let nq = model.coordinates();
+        let m = model.constraints();
+        let q = model.initial_coordinates().to_vec();
+        let zeros = vec![0.0; nq];
+        let lam = vec![0.0; m];
+        let mut res = vec![0.0; nq + m];
+        let req = EvalRequest {
+            sd: 1.0,
+            matrix: None,
+            lambda_hessian: false,
+        };
+        model.eval(
+            StateRef::new(&q, &zeros, &zeros, &lam).with_load(1.0),
+            req,
+            &mut res,
+        );
+        let worst = res.iter().fold(0.0f64, |a, r| a.max(r.abs()));
+        eprintln!(
+            "κ = {k}: largest residual {worst:.2e} N (EA = {:.2e} N)",
+            ea()
+        );
+        assert!(worst <= 1e-13 * ea(), "κ = {k}: residual {worst:e}");
+        // the arc's closed-form tip
+        let a = k * 1.3 * R;
+        let want = [a.sin() / k, (1.0 - a.cos()) / k];
+        let mut sim = Simulator::<Planar>::new(s).unwrap();
+        let p0 = sim.outputs().tip_position;
+        sim.solve_static().unwrap();
+        let p1 = sim.outputs().tip_position;
+        sim.advance(0.01).unwrap();
+        let p2 = sim.outputs().tip_position;
+        for p in [p0, p1, p2] {
+            let d = ((p[0] - want[0]).powi(2) + (p[1] - want[1]).powi(2)).sqrt();
+            assert!(d <= 1e-12 * R, "κ = {k}: tip {p:?}, arc end {want:?}");
+        }
+        let ang = sim.outputs().tip_angle;
+        assert!((ang - a).abs() < 1e-12, "tip angle {ang} vs {a}");
+    }
+}
+
+/// A curved ANCF segment followed by a straight modal segment (and, alike, a straight ANCF
+/// one): the second starts on the arc's end position and tangent (positions and angle
+/// continuous at the joint, the tip on the straight continuation from the arc's closed-form
+/// end), and under a small tip load the tip moves as Castigliano's theorem says for the arc and
+/// its straight tangent leg of length L₂ (U = ∫M²/2EI + N²/2EA over both: on the leg, at
+/// distance u from its root, M = −(L₂ − u)F_x, N = F_y; on the arc
+/// M = R(1 − sin φ)F_y − (L₂ + R cos φ)F_x, N = F_x cos φ + F_y sin φ; integrated by composite
+/// Simpson). The modal leg is inextensible (its N²/2EA is left out for it).
+#[test]
+fn the_next_segment_starts_on_the_end_tangent_planar() {
+    let l2 = 0.5 * R;
+    let f0 = 2e-6 * ei() / (R * R);
+    let arc = ancf(
+        "arc",
+        0.5 * PI * R,
+        &square(B),
+        32,
+        &format!("initial_curvature = {:e}", 1.0 / R),
+    );
+    for (label, leg, axial_leg) in [
+        ("modal", modal("leg", l2, &square(B), 2, true, ""), false),
+        ("ancf", ancf("leg", l2, &square(B), 8, ""), true),
+    ] {
+        let s = scene("", &[arc.clone(), leg.clone()]);
+        let sim = Simulator::<Planar>::new(s).unwrap();
+        let o = sim.outputs();
+        let want = [R, R + l2];
+        let d =
+            ((o.tip_position[0] - want[0]).powi(2) + (o.tip_position[1] - want[1]).powi(2)).sqrt();
+        eprintln!(
+            "{label} leg: initial tip {:?} (want {want:?}), angle {}",
+            o.tip_position, o.tip_angle
+        );
+        assert!(d < 1e-12, "{label}: initial tip {:?}", o.tip_position);
+        assert!(
+            (o.tip_angle - 0.5 * PI).abs() < 1e-12,
+            "{label}: tip angle {}",
+            o.tip_angle
+        );
+        for f in [[f0, 0.0], [0.0, f0]] {
+            let s = scene(&header_planar(f), &[arc.clone(), leg.clone()]);
+            let mut sim = Simulator::<Planar>::new(s).unwrap();
+            sim.solve_static().unwrap();
+            let p = sim.outputs().tip_position;
+            let got = [p[0] - want[0], p[1] - want[1]];
+            let exp = castigliano_arc_leg(f, l2, axial_leg);
+            let err = ((got[0] - exp[0]).powi(2) + (got[1] - exp[1]).powi(2)).sqrt()
+                / (exp[0].powi(2) + exp[1].powi(2)).sqrt();
+            eprintln!("{label} leg, force {f:?}: tip displacement {got:?}, Castigliano {exp:?}, relative error {err:.2e}");
+            assert!(err <= 2e-4, "{label} leg {f:?}: relative error {err:e}");
+        }
+    }
+}
+
+/// The composite Simpson rule of `f` on [a, b] with 2000 panels.
+fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
+    let n = 2000;
+    let h = (b - a) / n as f64;
+    let mut s = f(a) + f(b);
+    for k in 1..n {
+        s += f(a + k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    s * h / 3.0
+}
+
+/// Castigliano's tip displacement of the quarter circle with a straight tangent leg of length
+/// `l2` ([`the_next_segment_starts_on_the_end_tangent_planar`]); `axial_leg`: count the leg's
+/// stretching.
+fn castigliano_arc_leg(f: [f64; 2], l2: f64, axial_leg: bool) -> [f64; 2] {
+    // ∂M/∂F_i and ∂N/∂F_i are the unit-load fields; δ_i = Σ ∫ (M m_i/EI + N n_i/EA) ds
+    let arc_m = |phi: f64, g: [f64; 2]| R * (1.0 - phi.sin()) * g[1] - (l2 + R * phi.cos()) * g[0];
+    let arc_n = |phi: f64, g: [f64; 2]| g[0] * phi.cos() + g[1] * phi.sin();
+    let leg_m = |u: f64, g: [f64; 2]| -(l2 - u) * g[0];
+    let leg_n = |_: f64, g: [f64; 2]| g[1];
+    let mut d = [0.0; 2];
+    for (i, unit) in [[1.0, 0.0], [0.0, 1.0]].into_iter().enumerate() {
+        d[i] = simpson(
+            |phi| {
+                (arc_m(phi, f) * arc_m(phi, unit) / ei() + arc_n(phi, f) * arc_n(phi, unit) / ea())
+                    * R
+            },
+            0.0,
+            0.5 * PI,
+        ) + simpson(
+            |u| {
+                leg_m(u, f) * leg_m(u, unit) / ei()
+                    + if axial_leg {
+                        leg_n(u, f) * leg_n(u, unit) / ea()
+                    } else {
+                        0.0
+                    }
+            },
+            0.0,
+            l2,
+        );
+    }
+    d
+}
+
+/// The Simpson integration of [`castigliano_arc_leg`] with no leg is the closed form
+/// [`castigliano_quarter`] (the two references agree).
+#[test]
+fn castigliano_references_agree() {
+    for f in [[1.0, 0.0], [0.0, 1.0], [0.3, -0.7]] {
+        let a = castigliano_quarter(f);
+        let b = castigliano_arc_leg(f, 0.0, true);
+        for k in 0..2 {
+            assert!(
+                (a[k] - b[k]).abs() <= 1e-12 * a[0].abs().max(a[1].abs()),
+                "{f:?}: {a:?} {b:?}"
+            );
+        }
+    }
+}
+
+// ---- spatial ----
+
+/// The 45° bend cantilever of Bathe & Bolourchi (1979): R = 100, square section A = 1,
+/// I = 1/12, E = 1e7, G = E/2 (torsion J = 1/6 in the literature: here the Saint-Venant J of
+/// the unit square, 0.1406, with the Poisson ratio set so that GJ = (E/2)(1/6)), in the x–y
+/// plane from the origin along x, curving towards +y (κ_z = 1/R); the tip force P along +z.
+fn bend_scene(p: f64, elements: usize, header_extra: &str) -> Scene {
+    let e = 1e7;
+    let j = rectangle_torsion_constant(1.0, 1.0);
+    let g = 0.5 * e / 6.0 / j; // G·J = (E/2)(1/6)
+    let nu = e / (2.0 * g) - 1.0;
+    let seg = format!(
+        "name = \"bend\"\nkind = \"ancf\"\nlength = {:e}\nsection = \"rectangle\"\nwidth = 1.0\nheight = 1.0\nyoungs_modulus = {e:e}\npoisson_ratio = {nu:e}\ndensity = 1.0\nelements = {elements}\ninitial_curvature = [0.0, 0.01]\n",
+        0.25 * PI * 100.0
+    );
+    scene(
+        &format!("space = \"spatial\"\n{header_extra}\n[tip]\nforce = [0.0, 0.0, {p:e}]"),
+        &[seg],
+    )
+}
+
+/// Tip positions of the 45° bend under the out-of-plane tip force P: Simo & Vu-Quoc (1986),
+/// Table 1 (8 elements), as quoted e.g. by Crivelli & Felippa (1993) and by Cardona & Géradin
+/// (1988): P = 300: (58.84, 22.33, 40.08); P = 600: (47.23, 15.79, 53.37); within 1 % of the
+/// radius (1.0). Statics by the solver's load stepping. Seen: `cargo test --release -p hybeam
+/// --test curved -- --nocapture bend`.
+#[test]
+fn bend_45_degree_matches_simo_vu_quoc() {
+    for (p, want) in [
+        (300.0, [58.84, 22.33, 40.08]),
+        (600.0, [47.23, 15.79, 53.37]),
+    ] {
+        let mut sim = Simulator::<Spatial>::new(bend_scene(p, 16, "")).unwrap();
+        let t0 = sim.outputs().tip_position;
+        let r = 100.0 / 2f64.sqrt();
+        assert!(
+            (t0[0] - r).abs() < 1e-9 && (t0[1] - (100.0 - r)).abs() < 1e-9 && t0[2].abs() < 1e-12,
+            "initial tip {t0:?}"
+        );
+        sim.solve_static().unwrap();
+        let got = sim.outputs().tip_position;
+        let d = (0..3)
+            .map(|k| (got[k] - want[k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        eprintln!("45° bend, P = {p}: tip {got:?}, Simo & Vu-Quoc {want:?}, distance {d:.3} (1 % of R = 1.0)");
+        assert!(d <= 1.0, "P = {p}: tip {got:?} vs {want:?}");
+    }
+}
+
+/// The unloaded spatial bend stays at rest: the residual at the initial coordinates is zero to
+/// rounding (relative to EA), the static solution does not move the tip.
+#[test]
+fn unloaded_spatial_bend_stays_at_rest() {
+    let s = bend_scene(0.0, 6, "");
+    let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+    let nq = model.coordinates();
+    let m = model.constraints();
+    let q = model.initial_coordinates().to_vec();
+    let zeros = vec![0.0; nq];
+    let lam = vec![0.0; m];
+    let mut res = vec![0.0; nq + m];
+    let req = EvalRequest {
+        sd: 1.0,
+        matrix: None,
+        lambda_hessian: false,
+    };
+    model.eval(
+        StateRef::new(&q, &zeros, &zeros, &lam).with_load(1.0),
+        req,
+        &mut res,
+    );
+    let worst = res.iter().fold(0.0f64, |a, r| a.max(r.abs()));
+    eprintln!("spatial bend: largest residual {worst:.2e} (EA = 1e7)");
+    assert!(worst <= 1e-13 * 1e7, "residual {worst:e}");
+}
+
+/// Spatial: a curved director segment bent out of the root's x–y plane ([κ_y, κ_z] = [0.4, 0.3]
+/// 1/m, 1 m) followed by a straight modal segment and by a straight ANCF segment: the tip is at
+/// the arc's closed-form end plus the leg along the end tangent (the frame R(s) = exp(s[k]×),
+/// k = (0, κ_y, κ_z), position e₁ sin(|k|s)/|k| + (n × e₁)(1 − cos(|k|s))/|k|, n = k/|k|), and
+/// the unloaded model stays there under the static solver.
+#[test]
+fn the_next_segment_starts_on_the_end_tangent_spatial() {
+    let (ky, kz, l1, l2): (f64, f64, f64, f64) = (0.4, 0.3, 1.0, 0.5);
+    let w = (ky * ky + kz * kz).sqrt();
+    let n = [0.0, ky / w, kz / w];
+    let (sn, cs) = (w * l1).sin_cos();
+    // n × e₁ = (0, n_z, −n_y); tangent R e₁ = e₁ cos + (n × e₁) sin
+    let end = [sn / w, n[2] * (1.0 - cs) / w, -n[1] * (1.0 - cs) / w];
+    let t = [cs, n[2] * sn, -n[1] * sn];
+    let want = [0, 1, 2].map(|k| end[k] + l2 * t[k]);
+    let arc = ancf(
+        "arc",
+        l1,
+        &round(0.02),
+        8,
+        &format!("initial_curvature = [{ky:e}, {kz:e}]"),
+    );
+    for (label, leg) in [
+        ("modal", modal("leg", l2, &round(0.02), 2, true, "")),
+        ("ancf", ancf("leg", l2, &round(0.02), 4, "")),
+    ] {
+        let s = scene("space = \"spatial\"", &[arc.clone(), leg]);
+        let mut sim = Simulator::<Spatial>::new(s).unwrap();
+        let p0 = sim.outputs().tip_position;
+        sim.solve_static().unwrap();
+        let p1 = sim.outputs().tip_position;
+        eprintln!("spatial {label} leg: tip {p0:?}, after statics {p1:?}, want {want:?}");
+        for p in [p0, p1] {
+            let d = (0..3).map(|k| (p[k] - want[k]).powi(2)).sum::<f64>().sqrt();
+            assert!(d < 1e-10, "{label}: tip {p:?} vs {want:?}");
+        }
+    }
+}
+
+// ---- refusals ----
+
+fn refused(text: &str) -> String {
+    match Scene::from_toml(text) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn one_segment(header: &str, kind: &str, extra: &str) -> String {
+    let seg = match kind {
+        "modal" => modal("s", 1.0, &square(0.02), 2, false, extra),
+        _ => ancf("s", 1.0, &square(0.02), 4, extra),
+    };
+    format!("name = \"t\"\n{header}\n[[segments]]\n{seg}")
+}
+
+#[test]
+fn bad_curvatures_are_refused() {
+    let cases: [(&str, &str, &str, &[&str]); 8] = [
+        (
+            "",
+            "modal",
+            "initial_curvature = 1.0",
+            &["initial_curvature = 1", "make the segment ANCF"],
+        ),
+        (
+            "",
+            "ancf",
+            "initial_curvature = 60.0",
+            &["initial_curvature = 60", "radius", "depth 0.02"],
+        ),
+        (
+            "",
+            "ancf",
+            "initial_curvature = [0.0, 1.0]",
+            &["initial_curvature = [0.0, 1.0]", "one number"],
+        ),
+        (
+            "space = \"spatial\"",
+            "ancf",
+            "initial_curvature = 1.0",
+            &["initial_curvature = 1", "[κ_y, κ_z]"],
+        ),
+        (
+            "space = \"spatial\"",
+            "ancf",
+            "initial_curvature = [1.0]",
+            &["initial_curvature = [1.0]", "[κ_y, κ_z]"],
+        ),
+        (
+            "space = \"spatial\"",
+            "ancf",
+            "initial_curvature = [60.0, 0.0]",
+            &["initial_curvature = [60.0, 0.0]", "radius"],
+        ),
+        (
+            "",
+            "ancf",
+            "initial_curvature = 1.0\nstrain = \"paper\"",
+            &["initial_curvature = 1", "strain = \"paper\""],
+        ),
+        (
+            "space = \"spatial\"\ntorsion_element = \"angle\"",
+            "ancf",
+            "initial_curvature = [0.0, 1.0]",
+            &["torsion_element = \"angle\"", "director"],
+        ),
+    ];
+    for (header, kind, extra, needles) in cases {
+        let e = refused(&one_segment(header, kind, extra));
+        eprintln!("{e}");
+        for n in needles {
+            assert!(e.contains(n), "{e:?} lacks {n:?}");
+        }
+    }
+    let e = refused(&one_segment(
+        "space = \"spatial\"\ntorsion = false",
+        "ancf",
+        "initial_curvature = [0.0, 1.0]",
+    ));
+    assert!(e.contains("torsion = false"), "{e}");
+    let e = refused(&one_segment("", "ancf", "initial_curvature = nan"));
+    assert!(e.contains("finite"), "{e}");
+    // a curvature just inside the depth limit is accepted, as is zero on a modal segment
+    Scene::from_toml(&one_segment("", "ancf", "initial_curvature = 49.0")).unwrap();
+    Scene::from_toml(&one_segment("", "modal", "initial_curvature = 0.0")).unwrap();
+}
