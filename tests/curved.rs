@@ -368,7 +368,51 @@ fn the_next_segment_starts_on_the_end_tangent_spatial() {
             let d = (0..3).map(|k| (p[k] - want[k]).powi(2)).sum::<f64>().sqrt();
             assert!(d < 1e-10, "{label}: tip {p:?} vs {want:?}");
         }
+        // the tip's section frame is the arc's end frame R e_i = e_i cos + (n × e_i) sin +
+        // n (n·e_i)(1 − cos)
+        let frame = rotation_of(sim.outputs().tip_angle);
+        for (i, e) in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            .iter()
+            .enumerate()
+        {
+            let ne = [
+                n[1] * e[2] - n[2] * e[1],
+                n[2] * e[0] - n[0] * e[2],
+                n[0] * e[1] - n[1] * e[0],
+            ];
+            let nd = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
+            let col = [0, 1, 2].map(|k| e[k] * cs + ne[k] * sn + n[k] * nd * (1.0 - cs));
+            for k in 0..3 {
+                assert!(
+                    (frame[k][i] - col[k]).abs() < 1e-10,
+                    "{label}: tip frame column {i}: {:?} vs {col:?}",
+                    frame.map(|r| r[i])
+                );
+            }
+        }
     }
+}
+
+/// The rotation matrix (rows) of unit Euler parameters [e0, e1, e2, e3].
+fn rotation_of(e: [f64; 4]) -> [[f64; 3]; 3] {
+    let [w, x, y, z] = e;
+    [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y - w * z),
+            2.0 * (x * z + w * y),
+        ],
+        [
+            2.0 * (x * y + w * z),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z - w * x),
+        ],
+        [
+            2.0 * (x * z - w * y),
+            2.0 * (y * z + w * x),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ]
 }
 
 // ---- refusals ----
