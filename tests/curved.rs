@@ -305,6 +305,55 @@ fn bend_45_degree_matches_simo_vu_quoc() {
     }
 }
 
+/// The spatial quarter circle (the planar one's geometry, R = 1 m, square 2 cm, x–y plane,
+/// κ_z = 1/R, director elements) under a small tip force F_z out of its plane, against
+/// Castigliano's theorem with bending and torsion: at the section φ the arm to the tip is
+/// d = R(1 − sin φ, cos φ, 0), the moment d × F = R F_z(cos φ, −(1 − sin φ), 0); its torsion
+/// T = R F_z(1 − sin φ) about the tangent (cos φ, sin φ, 0) and bending M = −R F_z cos φ about
+/// the in-plane normal, so U = ∫₀^{π/2}[M²/(2EI) + T²/(2GJ)] R dφ and
+///   δ_z = R³F_z [π/(4EI) + (3π/4 − 2)/(GJ)],
+/// J the square's Saint-Venant constant, G = E/(2(1 + ν)), ν = 0.3. The element's error is
+/// second order in the element length (the one twist rate per element): ≤ 1e-4 relative with
+/// 128 elements, and the error ratio 64 → 128 elements ≈ 4. Seen (8, 16, 32, 64, 128
+/// elements): 6.7e-3, 1.7e-3, 4.2e-4, 1.05e-4, 2.6e-5.
+#[test]
+fn spatial_quarter_circle_out_of_plane_matches_castigliano() {
+    let gj = E_STEEL / 2.6 * rectangle_torsion_constant(B, B);
+    let fz = 2e-6 * ei() / (R * R);
+    let want = R.powi(3) * fz * (PI / (4.0 * ei()) + (0.75 * PI - 2.0) / gj);
+    let errors = [64, 128].map(|ne| {
+        let seg = ancf(
+            "arc",
+            0.5 * PI * R,
+            &square(B),
+            ne,
+            &format!("initial_curvature = [0.0, {:e}]", 1.0 / R),
+        );
+        let s = scene(
+            &format!("space = \"spatial\"\n[tip]\nforce = [0.0, 0.0, {fz:e}]"),
+            &[seg],
+        );
+        let mut sim = Simulator::<Spatial>::new(s).unwrap();
+        sim.solve_static().unwrap();
+        let p = sim.outputs().tip_position;
+        let got = [p[0] - R, p[1] - R, p[2]];
+        let err = (got[2] - want).abs() / want;
+        eprintln!("spatial quarter circle, {ne} elements, out-of-plane load: tip displacement {got:?}, Castigliano δ_z = {want:e}, relative error {err:.2e}");
+        assert!(got[0].abs().max(got[1].abs()) <= 1e-3 * want, "in-plane motion {got:?}");
+        err
+    });
+    assert!(
+        errors[1] <= 1e-4,
+        "128 elements: relative error {:e}",
+        errors[1]
+    );
+    let ratio = errors[0] / errors[1];
+    assert!(
+        (3.0..5.0).contains(&ratio),
+        "error ratio 64 → 128 elements {ratio}"
+    );
+}
+
 /// The unloaded spatial bend stays at rest: the residual at the initial coordinates is zero to
 /// rounding (relative to EA), the static solution does not move the tip.
 #[test]
