@@ -192,7 +192,7 @@ impl Ancf3Props {
         let (phi, g) = twist_gradient(u);
         let mut s = phi;
         if let Some(r) = &self.reference {
-            s = s - r.twist;
+            s -= r.twist;
         }
         if let Some(ud) = ud {
             let mut rate = T::from(0.0);

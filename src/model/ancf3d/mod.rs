@@ -579,7 +579,7 @@ impl Ancf3Props {
         let g = [a[0] * inv, a[1] * inv, a[2] * inv];
         let mut stress = n - 1.0;
         if let Some(r) = &self.reference {
-            stress = stress - r.axial[q];
+            stress -= r.axial[q];
         }
         if let Some(ud) = ud {
             stress += dot(&g, &ud[0]) * self.damping_time;
