@@ -194,6 +194,40 @@ fn the_next_segment_starts_on_the_end_tangent_planar() {
     }
 }
 
+/// The layout turns with `initial.angle`: a quarter circle (8 elements) and a straight modal leg
+/// at root angle 0.4 rad have their tip at the rotated closed-form point R(0.4)(R, R + L₂) and tip
+/// angle 0.4 + π/2, and the unloaded static solution keeps them.
+#[test]
+fn curved_layout_turns_with_the_root_angle() {
+    let (a, l2) = (0.4f64, 0.5 * R);
+    let arc = ancf(
+        "arc",
+        0.5 * PI * R,
+        &square(B),
+        8,
+        &format!("initial_curvature = {:e}", 1.0 / R),
+    );
+    let leg = modal("leg", l2, &square(B), 2, true, "");
+    let s = scene(&format!("[initial]\nangle = {a:e}"), &[arc, leg]);
+    let (sa, ca) = a.sin_cos();
+    let want = [ca * R - sa * (R + l2), sa * R + ca * (R + l2)];
+    let mut sim = Simulator::<Planar>::new(s).unwrap();
+    for stage in ["initial", "static"] {
+        if stage == "static" {
+            sim.solve_static().unwrap();
+        }
+        let o = sim.outputs();
+        let d =
+            ((o.tip_position[0] - want[0]).powi(2) + (o.tip_position[1] - want[1]).powi(2)).sqrt();
+        assert!(d < 1e-12, "{stage}: tip {:?} vs {want:?}", o.tip_position);
+        assert!(
+            (o.tip_angle - (a + 0.5 * PI)).abs() < 1e-12,
+            "{stage}: tip angle {}",
+            o.tip_angle
+        );
+    }
+}
+
 /// The composite Simpson rule of `f` on [a, b] with 2000 panels.
 fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
     let n = 2000;
@@ -394,8 +428,9 @@ fn unloaded_spatial_bend_stays_at_rest() {
 /// Spatial: a curved director segment bent out of the root's x–y plane ([κ_y, κ_z] = [0.4, 0.3]
 /// 1/m, 1 m) followed by a straight modal segment and by a straight ANCF segment: the tip is at
 /// the arc's closed-form end plus the leg along the end tangent (the frame R(s) = exp(s[k]×),
-/// k = (0, κ_y, κ_z), position e₁ sin(|k|s)/|k| + (n × e₁)(1 − cos(|k|s))/|k|, n = k/|k|), and
-/// the unloaded model stays there under the static solver.
+/// k = (0, κ_y, κ_z), position e₁ sin(|k|s)/|k| + (n × e₁)(1 − cos(|k|s))/|k|, n = k/|k|), the
+/// tip frame is the arc's end frame, both turned with the root frame (`initial.orientation`),
+/// and the unloaded model stays there under the static solver.
 #[test]
 fn the_next_segment_starts_on_the_end_tangent_spatial() {
     let (ky, kz, l1, l2): (f64, f64, f64, f64) = (0.4, 0.3, 1.0, 0.5);
@@ -413,11 +448,30 @@ fn the_next_segment_starts_on_the_end_tangent_spatial() {
         8,
         &format!("initial_curvature = [{ky:e}, {kz:e}]"),
     );
-    for (label, leg) in [
-        ("modal", modal("leg", l2, &round(0.02), 2, true, "")),
-        ("ancf", ancf("leg", l2, &round(0.02), 4, "")),
+    // the root frame: the identity, and turned by Q = 90° about z, (x, y, z) → (−y, x, z)
+    let h = 0.5f64.sqrt();
+    for (label, leg, turned) in [
+        ("modal", modal("leg", l2, &round(0.02), 2, true, ""), false),
+        ("ancf", ancf("leg", l2, &round(0.02), 4, ""), false),
+        (
+            "modal, turned root",
+            modal("leg", l2, &round(0.02), 2, true, ""),
+            true,
+        ),
+        (
+            "ancf, turned root",
+            ancf("leg", l2, &round(0.02), 4, ""),
+            true,
+        ),
     ] {
-        let s = scene("space = \"spatial\"", &[arc.clone(), leg]);
+        let q = |v: [f64; 3]| if turned { [-v[1], v[0], v[2]] } else { v };
+        let want = q(want);
+        let header = if turned {
+            format!("space = \"spatial\"\n[initial]\norientation = [{h:e}, 0.0, 0.0, {h:e}]")
+        } else {
+            "space = \"spatial\"".to_string()
+        };
+        let s = scene(&header, &[arc.clone(), leg]);
         let mut sim = Simulator::<Spatial>::new(s).unwrap();
         let p0 = sim.outputs().tip_position;
         sim.solve_static().unwrap();
@@ -440,7 +494,7 @@ fn the_next_segment_starts_on_the_end_tangent_spatial() {
                 n[0] * e[1] - n[1] * e[0],
             ];
             let nd = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
-            let col = [0, 1, 2].map(|k| e[k] * cs + ne[k] * sn + n[k] * nd * (1.0 - cs));
+            let col = q([0, 1, 2].map(|k| e[k] * cs + ne[k] * sn + n[k] * nd * (1.0 - cs)));
             for k in 0..3 {
                 assert!(
                     (frame[k][i] - col[k]).abs() < 1e-10,
