@@ -9,6 +9,11 @@
 //! 5 Gauss points for the axial part and 3 for bending (as Exudyn `ObjectANCFCable2D`).
 //! [`StrainModel::Paper`] uses ε = ½(r′ᵀr′ − 1) and κ ≈ |r″| (constant bending stiffness).
 //! Kelvin–Voigt damping (retardation time τ) adds EAτ ε̇ δε + EIτ K̇ δK.
+//!
+//! An initially curved element ([`AncfProps::reference`], a segment's `initial_curvature`)
+//! counts its strains from its unstressed arc: U = ½∫EA (ε − ε₀)² dx + ½∫EI (K − K₀)² dx, with
+//! ε₀, K₀ the arc's own measures at each quadrature point ([`AncfReference`]); x is then the
+//! arc length of the curved reference. Without a reference the code path is the straight one.
 
 use crate::math;
 use crate::model::sample::ShapePoint;

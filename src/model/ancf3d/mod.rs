@@ -21,6 +21,11 @@
 //! Inertia ρA ∫|ṙ|² dx (the constant Hermite mass, [`MassPatterns`]) and, in the director
 //! element, the director's twist inertia ([`director`]).
 //!
+//! An initially curved director element ([`Ancf3Props::reference`], a segment's
+//! `initial_curvature`) counts ε, κ2, κ3 and the element twist from its unstressed arc
+//! ([`Reference3`]: the arc's own measures at each quadrature point through the same
+//! interpolation); x is then the arc length of the curved reference.
+//!
 //! The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays; the
 //! tangent and damping matrices ([`Ancf3Props::tangent`]) are the exact Jacobians of the same
 //! generic code by forward-mode AD (`num-dual`).

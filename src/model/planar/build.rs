@@ -220,7 +220,8 @@ impl SegmentParts<Planar> for PlanarParts {
 }
 
 impl Model<Planar> {
-    /// Builds the model of a validated scene, straight at `initial.angle` from the origin.
+    /// Builds the model of a validated scene from the origin at `initial.angle`: straight, each
+    /// segment after a curved one (`initial_curvature`) on that one's end position and tangent.
     /// Scales for Newton norms: the total length for positions and modal amplitudes, 1 for
     /// slopes and angles.
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {

@@ -3,8 +3,9 @@
 //!
 //! Geometry: the root frame → world rotation A₀ is `scene.root_orientation()`; the beam starts
 //! straight at the origin along A₀x̄ with its section axes A₀ȳ, A₀z̄, every segment in that
-//! frame. ANCF nodes are `[r, r_x, r_y]` (the director element), `[r, r_x, θ]` (the angle
-//! element) or `[r, r_x]` (the 3D cable); modal bodies `[R, p, a_y, a_z, a_t]` with p = A₀'s
+//! frame, each segment after a curved one on that one's end frame. ANCF nodes are
+//! `[r, r_x, r_y]` (the director element), `[r, r_x, θ]` (the angle element) or `[r, r_x]`
+//! (the 3D cable); modal bodies `[R, p, a_y, a_z, a_t]` with p = A₀'s
 //! Euler parameters. A joint's DOT1 rows are scaled by the length of its upstream segment.
 
 use super::joint::RigidJoint3;
@@ -316,8 +317,9 @@ fn frame_of(e: [f64; 4]) -> [Vector3<f64>; 3] {
 }
 
 impl Model<Spatial> {
-    /// Builds the model of a validated spatial scene (`space = "spatial"`), straight from the
-    /// origin along the root frame's x axis. Scales for Newton norms: the total length for
+    /// Builds the model of a validated spatial scene (`space = "spatial"`) from the origin
+    /// along the root frame's x axis: straight, each segment after a curved one
+    /// (`initial_curvature`, [`arc_frame`]) on that one's end position and section frame. Scales for Newton norms: the total length for
     /// positions and bending amplitudes, 1 for slopes, directors, Euler parameters and twist
     /// amplitudes [rad].
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
