@@ -528,6 +528,82 @@ fn rotation_of(e: [f64; 4]) -> [[f64; 3]; 3] {
     ]
 }
 
+/// Outputs that count strain count it from the arc: a coarse curved segment (half circles of
+/// radius 1 m on 2 elements, planar cable and spatial director element), unloaded, under
+/// `solver.max_axial_strain = 1e-6`, which the arc's own interpolated stretch ε₀ exceeds
+/// (|ε₀| up to ~1e-2 on these elements, asserted): 10 ms of steps are not refused, and the
+/// viewer's samples (`Simulator::shape`) show zero strain and curvature change (≤ 1e-9) while
+/// the centreline lies on the circle (the nodes to 1e-12 m; between them ≤ 2e-2 m, the cubic
+/// Hermite's own error on a quarter circle with unit slopes: 1.5e-2 m).
+#[test]
+fn strain_outputs_count_from_the_arc() {
+    use hybeam::model::ancf::AncfReference;
+    use hybeam::model::ancf3d::{Ancf3Props, Reference3};
+    let le = 0.5 * PI;
+    let e0_planar = AncfReference::arc(le, 1.0)
+        .axial
+        .iter()
+        .fold(0.0f64, |a, e| a.max(e.abs()));
+    let e0_spatial = {
+        let mut s =
+            hybeam::scene::Scene::from_toml(&one_segment("space = \"spatial\"", "ancf", ""))
+                .unwrap();
+        s.segments[0].length = PI;
+        s.segments[0].elements = Some(2);
+        let p = Ancf3Props::of_segment(&s.segments[0], true).unwrap();
+        Reference3::arc(&p, [0.0, 1.0])
+            .axial
+            .iter()
+            .fold(0.0f64, |a, e| a.max(e.abs()))
+    };
+    eprintln!("largest |ε₀| on a quarter-circle element: planar {e0_planar:.2e}, spatial {e0_spatial:.2e}");
+    assert!(e0_planar > 1e-4 && e0_spatial > 1e-4);
+    for (space, curv) in [("", "1.0"), ("space = \"spatial\"", "[0.0, 1.0]")] {
+        let seg = ancf(
+            "arc",
+            PI,
+            &round(0.02),
+            2,
+            &format!("initial_curvature = {curv}"),
+        );
+        let s = scene(
+            &format!("{space}\n[solver]\nmax_axial_strain = 1e-6"),
+            &[seg],
+        );
+        let spatial = !space.is_empty();
+        let shape = if spatial {
+            let mut sim = Simulator::<Spatial>::new(s).unwrap();
+            sim.advance(0.01).unwrap_or_else(|e| panic!("spatial: {e}"));
+            sim.shape(8)
+        } else {
+            let mut sim = Simulator::<Planar>::new(s).unwrap();
+            sim.advance(0.01).unwrap_or_else(|e| panic!("planar: {e}"));
+            sim.shape(8)
+        };
+        let mut worst = [0.0f64; 3];
+        for (k, p) in shape.points.iter().enumerate() {
+            worst[0] = worst[0].max(p.axial_strain.abs());
+            worst[1] = worst[1].max(p.bending()).max(p.twist.abs());
+            // distance from the circle of centre (0, 1)
+            let r = (p.position[0].powi(2) + (p.position[1] - 1.0).powi(2) + p.position[2].powi(2))
+                .sqrt();
+            worst[2] = worst[2].max((r - 1.0).abs());
+            if k % 8 == 0 {
+                assert!((r - 1.0).abs() <= 1e-12, "node {}: {:?}", k / 8, p.position);
+            }
+        }
+        eprintln!(
+            "{}: samples' largest |ε| {:.1e}, |κ|, |τ| {:.1e}, off the circle {:.1e} m",
+            if spatial { "spatial" } else { "planar" },
+            worst[0],
+            worst[1],
+            worst[2]
+        );
+        assert!(worst[0] <= 1e-9 && worst[1] <= 1e-9, "{space}: {worst:?}");
+        assert!(worst[2] <= 2e-2, "{space}: {worst:?}");
+    }
+}
+
 // ---- refusals ----
 
 fn refused(text: &str) -> String {
