@@ -604,6 +604,48 @@ fn strain_outputs_count_from_the_arc() {
     }
 }
 
+/// The Newton matrix of curved segments (stiffness with the reference measures subtracted,
+/// Kelvin–Voigt damping, the joint to a modal leg on the arc's end frame) against central
+/// differences of the residual ([`check_newton_matrix`]: 1e-6·(1 + |entry|)), planar (cable,
+/// exact strain) and spatial (director element).
+#[test]
+fn newton_matrix_of_curved_segments() {
+    let planar = scene(
+        "",
+        &[
+            ancf(
+                "arc",
+                1.0,
+                &round(0.02),
+                3,
+                "initial_curvature = 1.2\ndamping_time = 1e-3",
+            ),
+            modal("leg", 0.4, &round(0.02), 2, true, ""),
+        ],
+    );
+    let mut model = Model::<Planar>::from_scene(&planar).unwrap();
+    model.set_tip_force([0.3, -0.7]);
+    let worst = check_newton_matrix(&mut model);
+    eprintln!("planar: worst error {worst:.2e} of the tolerance");
+    let spatial = scene(
+        "space = \"spatial\"",
+        &[
+            ancf(
+                "arc",
+                1.0,
+                &round(0.02),
+                3,
+                "initial_curvature = [0.4, -0.9]\ndamping_time = 1e-3",
+            ),
+            modal("leg", 0.4, &round(0.02), 2, true, ""),
+        ],
+    );
+    let mut model = Model::<Spatial>::from_scene(&spatial).unwrap();
+    model.set_tip_force([0.3, -0.7, 0.2]);
+    let worst = check_newton_matrix(&mut model);
+    eprintln!("spatial: worst error {worst:.2e} of the tolerance");
+}
+
 // ---- refusals ----
 
 fn refused(text: &str) -> String {
