@@ -228,6 +228,41 @@ fn curved_layout_turns_with_the_root_angle() {
     }
 }
 
+/// A tiny curvature loses no digits in the layout: κ = 1e-9 1/m over 2 m (planar) and
+/// [κ_y, κ_z] = [0, 1e-9] (spatial): the tip at (L − κ²L³/6, κL²/2) within 1e-15 m, its lateral
+/// offset to 1e-6 relative (a (sin φ₁ − sin φ₀)/κ form would lose ~7 digits here).
+#[test]
+fn tiny_curvature_keeps_its_digits() {
+    let (k, l) = (1e-9f64, 2.0f64);
+    let want = [l - k * k * l.powi(3) / 6.0, k * l * l / 2.0];
+    for space in ["", "space = \"spatial\""] {
+        let curv = if space.is_empty() {
+            format!("{k:e}")
+        } else {
+            format!("[0.0, {k:e}]")
+        };
+        let seg = ancf(
+            "arc",
+            l,
+            &round(0.02),
+            4,
+            &format!("initial_curvature = {curv}"),
+        );
+        let s = scene(space, &[seg]);
+        let p = if space.is_empty() {
+            let t = Simulator::<Planar>::new(s).unwrap().outputs().tip_position;
+            [t[0], t[1]]
+        } else {
+            let t = Simulator::<Spatial>::new(s).unwrap().outputs().tip_position;
+            assert!(t[2].abs() <= 1e-15, "z {}", t[2]);
+            [t[0], t[1]]
+        };
+        eprintln!("κ = 1e-9 {space}: tip {p:?}, want {want:?}");
+        assert!((p[0] - want[0]).abs() <= 1e-15, "{space}: {p:?}");
+        assert!((p[1] - want[1]).abs() <= 1e-6 * want[1], "{space}: {p:?}");
+    }
+}
+
 /// The composite Simpson rule of `f` on [a, b] with 2000 panels.
 fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
     let n = 2000;

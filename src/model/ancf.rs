@@ -649,16 +649,19 @@ pub fn arc(p0: [f64; 2], angle: f64, l: f64, kappa: f64) -> Vec8 {
 }
 
 /// The end (position [m], tangent angle [rad]) of an arc of length `s` [m] from `p0` at
-/// tangent angle `angle` with curvature `kappa` [1/m]: p = p0 + (sin φ₁ − sin φ₀, cos φ₀ −
-/// cos φ₁)/κ, φ₁ = φ₀ + κs (a straight line for κ = 0).
+/// tangent angle `angle` with curvature `kappa` [1/m] (positive: counter-clockwise):
+/// p = p0 + (sin φ₁ − sin φ₀, cos φ₀ − cos φ₁)/κ, φ₁ = φ₀ + κs, written as the chord
+/// s·sin(h)/h along the mid angle φ₀ + h, h = κs/2, so that a small κ loses no digits (a
+/// straight line for κ = 0).
 pub fn arc_end(p0: [f64; 2], angle: f64, s: f64, kappa: f64) -> ([f64; 2], f64) {
-    let (s0, c0) = math::sin_cos(angle);
     if kappa == 0.0 {
+        let (s0, c0) = math::sin_cos(angle);
         return ([p0[0] + s * c0, p0[1] + s * s0], angle);
     }
-    let a1 = angle + kappa * s;
-    let (s1, c1) = math::sin_cos(a1);
-    ([p0[0] + (s1 - s0) / kappa, p0[1] + (c0 - c1) / kappa], a1)
+    let h = 0.5 * kappa * s;
+    let chord = if h == 0.0 { s } else { s * math::sin(h) / h };
+    let (sm, cm) = math::sin_cos(angle + h);
+    ([p0[0] + chord * cm, p0[1] + chord * sm], angle + kappa * s)
 }
 
 /// Coordinates of a straight, unstretched element from `p0` along `angle`.

@@ -115,8 +115,9 @@ pub struct Reference3 {
 /// The section frame [t, d2, d3] (columns, start-frame axes) at arc length `s` [m] along an arc
 /// of curvature k = (0, κ_y, κ_z) [1/m] about the section axes, and the position [m]: the frame
 /// R(s) = exp(s [k]×) (Rodrigues, axis n = k/|k|, angle |k| s), the position
-/// ∫₀ˢ R e₁ = e₁ sin(|k|s)/|k| + (n × e₁)(1 − cos(|k|s))/|k| (straight for k = 0). The world
-/// frame is R₀ R(s), the world position p₀ + R₀ p(s).
+/// ∫₀ˢ R e₁ = e₁ sin(|k|s)/|k| + (n × e₁)(1 − cos(|k|s))/|k| (straight for k = 0; 1 − cos
+/// as 2 sin²(|k|s/2), so that a small |k| loses no digits). The world frame is R₀ R(s), the
+/// world position p₀ + R₀ p(s).
 pub fn arc_frame(curvature: [f64; 2], s: f64) -> ([f64; 3], [[f64; 3]; 3]) {
     let [ky, kz] = curvature;
     let w = (ky * ky + kz * kz).sqrt();
@@ -135,7 +136,9 @@ pub fn arc_frame(curvature: [f64; 2], s: f64) -> ([f64; 3], [[f64; 3]; 3]) {
         [0, 1, 2].map(|i| v[i] * cs + nv[i] * sn + n[i] * d)
     };
     let ne1 = cross(&n, &[1.0, 0.0, 0.0]);
-    let p = [sn / w, ne1[1] * (1.0 - cs) / w, ne1[2] * (1.0 - cs) / w];
+    let half = math::sin(0.5 * w * s);
+    let vers = 2.0 * half * half / w; // (1 − cos(|k|s))/|k|
+    let p = [sn / w, ne1[1] * vers, ne1[2] * vers];
     (
         p,
         [
