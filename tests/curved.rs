@@ -765,6 +765,14 @@ fn bad_curvatures_are_refused() {
     assert!(e.contains("torsion = false"), "{e}");
     let e = refused(&one_segment("", "ancf", "initial_curvature = nan"));
     assert!(e.contains("finite"), "{e}");
+    // a curved scene round-trips through its TOML text (the number and the list forms)
+    for (header, curv) in [("", "1.5"), ("space = \"spatial\"", "[0.25, -1.5]")] {
+        let text = one_segment(header, "ancf", &format!("initial_curvature = {curv}"));
+        let s = Scene::from_toml(&text).unwrap();
+        let back = Scene::from_toml(&s.to_toml()).unwrap();
+        assert_eq!(back, s, "{}", s.to_toml());
+        assert!(back.segments[0].curvature().is_some());
+    }
     // a curvature just inside the depth limit is accepted, as is zero on a modal segment
     Scene::from_toml(&one_segment("", "ancf", "initial_curvature = 49.0")).unwrap();
     Scene::from_toml(&one_segment("", "modal", "initial_curvature = 0.0")).unwrap();
