@@ -9,6 +9,11 @@
 //! 5 Gauss points for the axial part and 3 for bending (as Exudyn `ObjectANCFCable2D`).
 //! [`StrainModel::Paper`] uses ε = ½(r′ᵀr′ − 1) and κ ≈ |r″| (constant bending stiffness).
 //! Kelvin–Voigt damping (retardation time τ) adds EAτ ε̇ δε + EIτ K̇ δK.
+//!
+//! An initially curved element ([`AncfProps::reference`], a segment's `initial_curvature`)
+//! counts its strains from its unstressed arc: U = ½∫EA (ε − ε₀)² dx + ½∫EI (K − K₀)² dx, with
+//! ε₀, K₀ the arc's own measures at each quadrature point ([`AncfReference`]); x is then the
+//! arc length of the curved reference. Without a reference the code path is the straight one.
 
 use crate::math;
 use crate::model::sample::ShapePoint;
@@ -191,6 +196,46 @@ pub struct AncfProps {
     pub damping_time: f64,
     /// Strain measures.
     pub strain: StrainModel,
+    /// The measures of a curved unstressed configuration, subtracted at each quadrature point
+    /// (`None`: straight, ε and K count from zero).
+    pub reference: Option<AncfReference>,
+}
+
+/// The strain measures of an element's unstressed (curved) configuration at its quadrature
+/// points: ε₀ at the 5 axial points and K₀ [1/m] at the 3 bending points, computed from the
+/// reference nodal coordinates through the element's own interpolation, so that the
+/// reference configuration is exactly stress-free ([`StrainModel::Exact`] only).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AncfReference {
+    /// ε₀ at the [`GAUSS5`] points [-].
+    pub axial: [f64; 5],
+    /// K₀ = e₃·(r′×r″)/|r′|² at the [`GAUSS3`] points [1/m].
+    pub bending: [f64; 3],
+    /// The arc's curvature κ [1/m] (the samples' reference between the points).
+    pub kappa: f64,
+}
+
+impl AncfReference {
+    /// The measures of an element of length `l` [m] whose nodes lie on an arc of curvature
+    /// `kappa` [1/m] (positive: counter-clockwise) with unit tangent slopes ([`arc`]); they
+    /// are invariant under rigid motions, so one table serves every element of a segment.
+    pub fn arc(l: f64, kappa: f64) -> Self {
+        let e = arc([0.0, 0.0], 0.0, l, kappa);
+        let mut r = Self {
+            axial: [0.0; 5],
+            bending: [0.0; 3],
+            kappa,
+        };
+        for (k, (xg, _)) in GAUSS5.iter().enumerate() {
+            r.axial[k] = Shape::at(0.5 * (xg + 1.0), l).r1(&e).norm() - 1.0;
+        }
+        for (k, (xg, _)) in GAUSS3.iter().enumerate() {
+            let sh = Shape::at(0.5 * (xg + 1.0), l);
+            let (r1, r2) = (sh.r1(&e), sh.r2(&e));
+            r.bending[k] = cross(&r1, &r2) / r1.norm_squared();
+        }
+        r
+    }
 }
 
 /// Quadrature weights (times EA or EI and the Jacobian l/2) and shape derivatives of an
@@ -262,21 +307,27 @@ impl AncfProps {
     pub fn strain_energy(&self, e: &Vec8) -> f64 {
         let l = self.length;
         let mut u = 0.0;
-        for (xg, wg) in GAUSS5 {
+        for (q, (xg, wg)) in GAUSS5.into_iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
             let r1 = sh.r1(e);
-            let eps = match self.strain {
+            let mut eps = match self.strain {
                 StrainModel::Exact => r1.norm() - 1.0,
                 StrainModel::Paper => 0.5 * (r1.norm_squared() - 1.0),
             };
+            if let Some(r) = &self.reference {
+                eps -= r.axial[q];
+            }
             u += 0.5 * wg * 0.5 * l * self.ea * eps * eps;
         }
-        for (xg, wg) in GAUSS3 {
+        for (q, (xg, wg)) in GAUSS3.into_iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
             let (r1, r2) = (sh.r1(e), sh.r2(e));
             let k2 = match self.strain {
                 StrainModel::Exact => {
-                    let k = cross(&r1, &r2) / r1.norm_squared();
+                    let mut k = cross(&r1, &r2) / r1.norm_squared();
+                    if let Some(r) = &self.reference {
+                        k -= r.bending[q];
+                    }
                     k * k
                 }
                 StrainModel::Paper => r2.norm_squared(),
@@ -293,7 +344,23 @@ impl AncfProps {
         let sh = Shape::at(xi, self.length);
         let (r, r1, r2, v) = (sh.r(e), sh.r1(e), sh.r2(e), sh.r(ed));
         let (eps, k) = match self.strain {
-            StrainModel::Exact => (r1.norm() - 1.0, cross(&r1, &r2) / r1.norm_squared()),
+            StrainModel::Exact => match &self.reference {
+                None => (r1.norm() - 1.0, cross(&r1, &r2) / r1.norm_squared()),
+                Some(_) => {
+                    // the arc's own measures at ξ through the same interpolation
+                    let e0 = arc(
+                        [0.0, 0.0],
+                        0.0,
+                        self.length,
+                        self.reference.map_or(0.0, |r| r.kappa),
+                    );
+                    let (a0, b0) = (sh.r1(&e0), sh.r2(&e0));
+                    (
+                        r1.norm() - a0.norm(),
+                        cross(&r1, &r2) / r1.norm_squared() - cross(&a0, &b0) / a0.norm_squared(),
+                    )
+                }
+            },
             StrainModel::Paper => (
                 0.5 * (r1.norm_squared() - 1.0),
                 r2.norm().copysign(cross(&r1, &r2)),
@@ -347,10 +414,10 @@ impl AncfProps {
             }
             r
         };
-        for (w, ds) in &tab.axial {
+        for (q, (w, ds)) in tab.axial.iter().enumerate() {
             let r1 = comb(ds, e);
             // stress (per EA) and dε/dr′
-            let (eps, g) = match self.strain {
+            let (mut eps, g) = match self.strain {
                 StrainModel::Exact => {
                     let n = (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
                     let inv = 1.0 / n;
@@ -358,6 +425,9 @@ impl AncfProps {
                 }
                 StrainModel::Paper => (0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0), r1),
             };
+            if let Some(r) = &self.reference {
+                eps -= r.axial[q];
+            }
             let mut stress = eps;
             if tau > 0.0 {
                 let r1d = comb(ds, ed);
@@ -369,7 +439,7 @@ impl AncfProps {
                 f[2 * k + 1] += c * ds[k] * g[1];
             }
         }
-        for (w, ds, dds) in &tab.bending {
+        for (q, (w, ds, dds)) in tab.bending.iter().enumerate() {
             let r2 = comb(dds, e);
             match self.strain {
                 StrainModel::Paper => {
@@ -394,6 +464,9 @@ impl AncfProps {
                     ];
                     let dk2 = [-r1[1] * inv, r1[0] * inv];
                     let mut moment = kappa;
+                    if let Some(r) = &self.reference {
+                        moment -= r.bending[q];
+                    }
                     if tau > 0.0 {
                         let r1d = comb(ds, ed);
                         let r2d = comb(dds, ed);
@@ -425,7 +498,7 @@ impl AncfProps {
             damping: Mat8::zeros(),
         };
         // Axial part.
-        for (xg, wg) in GAUSS5 {
+        for (q, (xg, wg)) in GAUSS5.into_iter().enumerate() {
             let w = wg * 0.5 * l * self.ea;
             let sh = Shape::at(0.5 * (xg + 1.0), l);
             let r1 = sh.r1(e);
@@ -452,7 +525,10 @@ impl AncfProps {
                 de[2 * k + 1] = sh.ds[k] * g[1];
             }
             let eps_dot = if damped { de.dot(ed) } else { 0.0 };
-            let stress = eps + tau * eps_dot;
+            let mut stress = eps + tau * eps_dot;
+            if let Some(r) = &self.reference {
+                stress -= r.axial[q];
+            }
             out.force += w * stress * de;
             if with_matrices {
                 let pat = outer4(&sh.ds, &sh.ds);
@@ -469,7 +545,7 @@ impl AncfProps {
             }
         }
         // Bending part.
-        for (xg, wg) in GAUSS3 {
+        for (q, (xg, wg)) in GAUSS3.into_iter().enumerate() {
             let w = wg * 0.5 * l * self.ei;
             let sh = Shape::at(0.5 * (xg + 1.0), l);
             match self.strain {
@@ -511,7 +587,10 @@ impl AncfProps {
                         dk[2 * k + 1] = v[1];
                     }
                     let k_dot = if damped { dk.dot(ed) } else { 0.0 };
-                    let moment = kappa + tau * k_dot;
+                    let mut moment = kappa + tau * k_dot;
+                    if let Some(r) = &self.reference {
+                        moment -= r.bending[q];
+                    }
                     out.force += w * moment * dk;
                     if with_matrices {
                         // Hessian of K in (r′, r″): blocks H11, H12, H21, H22.
@@ -556,6 +635,35 @@ pub fn cross(a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
+/// Coordinates of an element of arc length `l` [m] on the arc from `p0` [m] with start tangent
+/// angle `angle` [rad] and curvature `kappa` [1/m] (positive: counter-clockwise): nodal
+/// positions on the arc, slopes its unit tangents; [`straight`] for κ = 0.
+pub fn arc(p0: [f64; 2], angle: f64, l: f64, kappa: f64) -> Vec8 {
+    if kappa == 0.0 {
+        return straight(p0, angle, l);
+    }
+    let (p1, a1) = arc_end(p0, angle, l, kappa);
+    let (s0, c0) = math::sin_cos(angle);
+    let (s1, c1) = math::sin_cos(a1);
+    Vec8::from_column_slice(&[p0[0], p0[1], c0, s0, p1[0], p1[1], c1, s1])
+}
+
+/// The end (position [m], tangent angle [rad]) of an arc of length `s` [m] from `p0` at
+/// tangent angle `angle` with curvature `kappa` [1/m] (positive: counter-clockwise):
+/// p = p0 + (sin φ₁ − sin φ₀, cos φ₀ − cos φ₁)/κ, φ₁ = φ₀ + κs, written as the chord
+/// s·sin(h)/h along the mid angle φ₀ + h, h = κs/2, so that a small κ loses no digits (a
+/// straight line for κ = 0).
+pub fn arc_end(p0: [f64; 2], angle: f64, s: f64, kappa: f64) -> ([f64; 2], f64) {
+    if kappa == 0.0 {
+        let (s0, c0) = math::sin_cos(angle);
+        return ([p0[0] + s * c0, p0[1] + s * s0], angle);
+    }
+    let h = 0.5 * kappa * s;
+    let chord = if h == 0.0 { s } else { s * math::sin(h) / h };
+    let (sm, cm) = math::sin_cos(angle + h);
+    ([p0[0] + chord * cm, p0[1] + chord * sm], angle + kappa * s)
+}
+
 /// Coordinates of a straight, unstretched element from `p0` along `angle`.
 pub fn straight(p0: [f64; 2], angle: f64, l: f64) -> Vec8 {
     let (s, c) = math::sin_cos(angle);
@@ -574,6 +682,7 @@ mod tests {
             ei: 0.165,
             damping_time: tau,
             strain,
+            reference: None,
         }
     }
 

@@ -8,8 +8,8 @@ use super::vector::{cross, dot};
 pub struct ShapePoint {
     /// Scene segment index.
     pub segment: usize,
-    /// Arc length of the material point in the straight reference configuration, from the
-    /// root [m].
+    /// Arc length of the material point in the unstressed reference configuration (straight,
+    /// or the arc of a segment's `initial_curvature`), from the root [m].
     pub arc: f64,
     /// Position [m], world axes.
     pub position: [f64; 3],
@@ -18,10 +18,12 @@ pub struct ShapePoint {
     /// The section frame, world axes: `[t, d2, d3]`, t the unit tangent, d2 and d3 the section
     /// y and z axes (right-handed, orthonormal).
     pub frame: [[f64; 3]; 3],
-    /// Axial strain ε = |∂r/∂x| − 1 [-] (0 on a modal segment, which does not stretch).
+    /// Axial strain ε = |∂r/∂x| − 1 [-] (0 on a modal segment, which does not stretch), from
+    /// the unstressed configuration's (a curved segment's ε₀ subtracted).
     pub axial_strain: f64,
     /// Bending curvature [1/m] about the section axes `[d2, d3]` (plane: `[0, K]` with K the
-    /// signed curvature, counter-clockwise positive).
+    /// signed curvature, counter-clockwise positive), from the unstressed configuration's (a
+    /// curved segment's initial curvature subtracted: the elastic change).
     pub curvature: [f64; 2],
     /// Twist rate [rad/m] (0 in the plane and on a cable without torsion).
     pub twist: f64,

@@ -89,6 +89,14 @@ pub trait SegmentParts<S: Space> {
     /// The properties shared by the elements of an ANCF segment.
     type AncfProps;
 
+    /// Segment `seg` begins, its root at arc length `s` [m] from the beam's root: the space
+    /// lays it out on the end frame of the segment before (an arc for an
+    /// [`Segment::initial_curvature`]); [`SegmentParts::modal`] and [`SegmentParts::node`]
+    /// then place on it.
+    fn begin_segment(&mut self, seg: &Segment, s: f64);
+    /// Segment `seg` ends: the next one starts on its end position, tangent and section frame.
+    fn end_segment(&mut self, seg: &Segment);
+
     /// A modal segment `si` whose root is at arc length `s` [m]; `held` when its frame is the
     /// support's (the first segment of a clamped or mounted root); carrying the attached
     /// masses `masses`.
@@ -114,8 +122,9 @@ pub trait SegmentParts<S: Space> {
         bodies: &[SectionMass],
         seg: &Segment,
     ) -> Box<dyn Element<S>>;
-    /// An ANCF node at arc length `s` [m], held as `hold` says, with the rigid groups it forms.
-    fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords;
+    /// An ANCF node at arc length `s` [m] (on the current segment's layout), held as `hold`
+    /// says, with the rigid groups it forms.
+    fn node(&mut self, num: &mut Numbering, s: f64, hold: Hold) -> Coords;
     /// The held normals of a clamped root node's slope direction (rigid directions, turning
     /// with a mount) and the rows holding the slope `node`'s r_x to that direction
     /// ([`super::direction::SlopeDirection`]) on their local coordinates.
@@ -194,6 +203,7 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
     for (si, seg) in scene.segments.iter().enumerate() {
         let first = si == 0;
         let points = scene.point_masses(si);
+        parts.begin_segment(seg, s_pos);
         match seg.kind {
             SegmentKind::Modal => {
                 let masses = SegmentMasses {
@@ -308,6 +318,7 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                 });
             }
         }
+        parts.end_segment(seg);
         s_pos += seg.length;
         prev_len = seg.length;
     }

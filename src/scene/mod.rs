@@ -221,6 +221,35 @@ pub struct Segment {
     /// segments per scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub line_load: Option<Vec<f64>>,
+    /// Initial curvature of the unstressed segment [1/m], constant along it (ANCF segments
+    /// only; none: straight). Planar: a number κ, the segment an arc turning counter-clockwise
+    /// (towards +y of its start tangent, about +z) for κ > 0. Spatial: `[κ_y, κ_z]` about the
+    /// section axes y, z of the segment's start frame, right-handed: κ_z > 0 turns the tangent
+    /// towards +y, κ_y > 0 towards −z. The segment is that arc and strains count from it; the
+    /// next segment starts on its end position, end tangent and end section frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_curvature: Option<Curvature>,
+}
+
+/// A segment's initial curvature as written in the scene: a number (planar) or a list
+/// `[κ_y, κ_z]` (spatial) [1/m] ([`Segment::initial_curvature`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Curvature {
+    /// Planar: κ [1/m], positive counter-clockwise.
+    Number(f64),
+    /// Spatial: `[κ_y, κ_z]` [1/m] about the section axes.
+    List(Vec<f64>),
+}
+
+impl Curvature {
+    /// The components as written (one for a number).
+    pub fn values(&self) -> Vec<f64> {
+        match self {
+            Curvature::Number(k) => vec![*k],
+            Curvature::List(v) => v.clone(),
+        }
+    }
 }
 
 /// Initial state.
@@ -405,10 +434,17 @@ impl Segment {
         q.iter().any(|x| *x != 0.0).then(|| padded(q))
     }
 
-    /// The line load as declared [N/m] with `N` components (zero ones included): `None`
-    /// when the segment sets none.
-    pub fn line_load_declared<const N: usize>(&self) -> Option<[f64; N]> {
-        self.line_load.as_ref().map(|q| padded(q))
+    /// The segment's initial curvature as `[κ_y, κ_z]` about the section axes [1/m] (planar:
+    /// `[0, κ]`, bending in the x–y plane about z), `None` when straight (absent or all zero).
+    /// Valid after `validate`.
+    pub fn curvature(&self) -> Option<[f64; 2]> {
+        let v = self.initial_curvature.as_ref()?.values();
+        let k = match v.as_slice() {
+            [k] => [0.0, *k],
+            [ky, kz] => [*ky, *kz],
+            _ => return None,
+        };
+        (k != [0.0, 0.0]).then_some(k)
     }
 
     fn default_poisson_ratio() -> f64 {

@@ -321,6 +321,7 @@ impl Scene {
                     }
                 }
             }
+            self.validate_curvature(i, seg)?;
         }
         let lines = self.line_load_segments();
         if lines.len() > MAX_LINE_LOADS {
@@ -335,6 +336,88 @@ impl Scene {
             )));
         }
         self.validate_masses()
+    }
+
+    /// A segment's `initial_curvature`: the scene's number of components, finite, on an ANCF
+    /// segment with the exact strain measures and an element family that takes it (the
+    /// director element in spatial scenes), and a radius 1/|κ| no shorter than the section's
+    /// depth in the bending direction.
+    fn validate_curvature(&self, i: usize, seg: &Segment) -> Result<(), SceneError> {
+        let Some(c) = &seg.initial_curvature else {
+            return Ok(());
+        };
+        let f = format!("segments[{i}].initial_curvature");
+        let v = c.values();
+        let shown = match c {
+            Curvature::Number(k) => format!("{k}"),
+            Curvature::List(v) => format!("{v:?}"),
+        };
+        let (want, how) = match self.space {
+            SpaceKind::Planar => (
+                1,
+                "a planar scene takes one number κ [1/m] (positive: counter-clockwise)",
+            ),
+            SpaceKind::Spatial => (
+                2,
+                "a spatial scene takes [κ_y, κ_z] [1/m] about the section axes",
+            ),
+        };
+        if v.len() != want
+            || (self.space == SpaceKind::Spatial && matches!(c, Curvature::Number(_)))
+        {
+            return Err(SceneError(format!(
+                "{f} = {shown}: {how}; give {} (or leave it out for a straight segment)",
+                if want == 1 { "a number" } else { "two numbers" }
+            )));
+        }
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(SceneError(format!(
+                "{f} = {shown}: every component must be a finite number [1/m]"
+            )));
+        }
+        let Some([ky, kz]) = seg.curvature() else {
+            return Ok(()); // all zero: straight
+        };
+        if seg.kind == SegmentKind::Modal {
+            return Err(SceneError(format!(
+                "{f} = {shown}: a modal segment is straight (its modes are a straight beam's); make the segment ANCF (kind = \"ancf\", elements = N) or remove initial_curvature"
+            )));
+        }
+        if seg.strain != StrainModel::Exact {
+            return Err(SceneError(format!(
+                "{f} = {shown} with strain = \"paper\": the paper's bending measure |r″| has no stress-free arc; remove `strain` (the exact measures) or remove initial_curvature"
+            )));
+        }
+        if self.space == SpaceKind::Spatial {
+            if !self.torsion {
+                return Err(SceneError(format!(
+                    "{f} = {shown} with torsion = false: the 3D cable's bending measure has no section frame to hold a curved reference; use torsion = true (the director element) or remove initial_curvature"
+                )));
+            }
+            if self.torsion_element != TorsionElement::Director {
+                return Err(SceneError(format!(
+                    "{f} = {shown} with torsion_element = \"angle\": the angle element's twist is taken from the straight beam's axis; use torsion_element = \"director\" or remove initial_curvature"
+                )));
+            }
+        }
+        // depth of the section in the bending direction (the curvature normal (κ_z, −κ_y) in
+        // section axes y, z): a rectangle's extent along it, a round section's diameter
+        let k = (ky * ky + kz * kz).sqrt();
+        let depth = match seg.section {
+            Section::Round | Section::Tube => seg.diameter.unwrap_or(0.0),
+            Section::Rectangle => {
+                let (b, h) = (seg.width.unwrap_or(0.0), seg.height.unwrap_or(0.0));
+                (h * kz.abs() + b * ky.abs()) / k
+            }
+        };
+        if 1.0 / k < depth {
+            return Err(SceneError(format!(
+                "{f} = {shown}: the radius of curvature 1/|κ| = {} m is shorter than the section's depth {depth} m in the bending direction; use |κ| <= {} 1/m (a thinner section or a gentler arc)",
+                1.0 / k,
+                1.0 / depth
+            )));
+        }
+        Ok(())
     }
 
     /// The `[[masses]]` tables: names, segments, positions, masses, inertia and offset lengths.

@@ -27,7 +27,7 @@ impl Ancf3Props {
     /// turns with the twist (the cable's do not).
     pub fn cable_bending(&self) -> bool {
         let round = (self.ei_y - self.ei_z).abs() <= 1e-12 * self.ei_y.abs().max(self.ei_z.abs());
-        !self.director || (round && self.damping_time == 0.0)
+        !self.director || (round && self.damping_time == 0.0 && self.reference.is_none())
     }
 
     /// Local forces on (r_x, r_xx) of a cable bending point (weight `w` [m]).

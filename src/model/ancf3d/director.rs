@@ -153,6 +153,7 @@ impl Ancf3Props {
     pub(super) fn bend_point<T: Real>(
         &self,
         w: f64,
+        q: usize,
         u: &[V<T>; 3],
         ud: Option<&[V<T>; 3]>,
     ) -> [V<T>; 3] {
@@ -160,6 +161,10 @@ impl Ancf3Props {
         let (m, g) = bend(a, b, c);
         let stiff = [self.ei_y, self.ei_z];
         let mut s = m;
+        if let Some(r) = &self.reference {
+            // curvatures from the reference's (κ2₀, κ3₀) at bending point q
+            s = [0, 1].map(|i| s[i] - r.bending[q][i]);
+        }
         if let Some([ad, bd, cd]) = ud {
             for i in 0..2 {
                 let gi = &g[i];
@@ -186,6 +191,9 @@ impl Ancf3Props {
     ) -> [V<T>; 5] {
         let (phi, g) = twist_gradient(u);
         let mut s = phi;
+        if let Some(r) = &self.reference {
+            s -= r.twist;
+        }
         if let Some(ud) = ud {
             let mut rate = T::from(0.0);
             for (ga, va) in g.iter().zip(ud) {
@@ -197,14 +205,18 @@ impl Ancf3Props {
         g.map(|ga| [ga[0] * s, ga[1] * s, ga[2] * s])
     }
 
-    /// Twist rate of the element τ_e = φ/l [rad/m] at `e` (18 entries): [`twist_angle`] of the
-    /// nodal frames (and the midpoint tangent) over the element length, constant over the
-    /// element.
+    /// Twist rate of the element τ_e = (φ − φ₀)/l [rad/m] at `e` (18 entries): [`twist_angle`]
+    /// of the nodal frames (and the midpoint tangent) over the element length, constant over
+    /// the element, from the reference's φ₀ (0 when straight).
     pub fn twist_rate(&self, e: &[f64]) -> f64 {
         let [a, b, c, d] = TWIST_SLOTS.map(|s| [e[s], e[s + 1], e[s + 2]]);
         let (rs, _) = self.slots();
         let mid = combine(&hermite(0.5, self.length).1, &rs, e);
-        twist_angle(&[a, b, c, d, mid]) / self.length
+        let phi = twist_angle(&[a, b, c, d, mid]);
+        match &self.reference {
+            None => phi / self.length,
+            Some(r) => (phi - r.twist) / self.length,
+        }
     }
 
     /// Local forces on (r_x, r_y) of a node's penalty ½(l/2)k[(½(|y|² − 1))² + γ²], γ = t·y.
@@ -266,7 +278,13 @@ impl Ancf3Props {
         let a = comb(&ds, &rs, e);
         let b = comb(&dds, &rs, e);
         let c = comb(&[1.0 - xi, xi], &ys, e);
-        let [eps, k2, k3] = strains(a, b, c);
+        let [mut eps, mut k2, mut k3] = strains(a, b, c);
+        if let Some(r) = &self.reference {
+            let e0 = arc_element(l, r.curvature);
+            let (a0, b0) = (comb(&ds, &rs, &e0), comb(&dds, &rs, &e0));
+            let [eps0, k20, k30] = strains(a0, b0, comb(&[1.0 - xi, xi], &ys, &e0));
+            (eps, k2, k3) = (eps - eps0, k2 - k20, k3 - k30);
+        }
         [eps, k2, k3, self.twist_rate(e)]
     }
 }

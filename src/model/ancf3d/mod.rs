@@ -21,6 +21,11 @@
 //! Inertia ρA ∫|ṙ|² dx (the constant Hermite mass, [`MassPatterns`]) and, in the director
 //! element, the director's twist inertia ([`director`]).
 //!
+//! An initially curved director element ([`Ancf3Props::reference`], a segment's
+//! `initial_curvature`) counts ε, κ2, κ3 and the element twist from its unstressed arc
+//! ([`Reference3`]: the arc's own measures at each quadrature point through the same
+//! interpolation); x is then the arc length of the curved reference.
+//!
 //! The residual path ([`Ancf3Props::internal_force`]) is plain f64 on fixed-size arrays; the
 //! tangent and damping matrices ([`Ancf3Props::tangent`]) are the exact Jacobians of the same
 //! generic code by forward-mode AD (`num-dual`).
@@ -85,6 +90,116 @@ pub struct Ancf3Props {
     /// True: the director element, nodes [r, r_x, r_y] (18 coordinates); false: the 3D cable,
     /// nodes [r, r_x] (12). The scene's `torsion`, the public key, keeps its name.
     pub director: bool,
+    /// The measures of a curved unstressed configuration (the director element only),
+    /// subtracted from ε, κ2, κ3 and the element twist φ; `None`: straight, the measures count
+    /// from zero.
+    pub reference: Option<Reference3>,
+}
+
+/// The strain measures of a director element's unstressed configuration, an arc of constant
+/// curvature `[κ_y, κ_z]` [1/m] about the section axes (its nodal r, r_x, r_y on the arc,
+/// [`arc_element`]), through the element's own interpolation, so that this configuration is
+/// exactly stress-free; invariant under rigid motions (one table per segment).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reference3 {
+    /// ε₀ at the 5 axial points [-].
+    pub axial: [f64; 5],
+    /// (κ2₀, κ3₀) at the 3 bending points [1/m].
+    pub bending: [[f64; 2]; 3],
+    /// The element twist angle φ₀ [rad] ([`twist_angle`]).
+    pub twist: f64,
+    /// The arc's curvature [κ_y, κ_z] [1/m].
+    pub curvature: [f64; 2],
+}
+
+/// The section frame [t, d2, d3] (columns, start-frame axes) at arc length `s` [m] along an arc
+/// of curvature k = (0, κ_y, κ_z) [1/m] about the section axes, and the position [m]: the frame
+/// R(s) = exp(s [k]×) (Rodrigues, axis n = k/|k|, angle |k| s), the position
+/// ∫₀ˢ R e₁ = e₁ sin(|k|s)/|k| + (n × e₁)(1 − cos(|k|s))/|k| (straight for k = 0; 1 − cos
+/// as 2 sin²(|k|s/2), so that a small |k| loses no digits). The world frame is R₀ R(s), the
+/// world position p₀ + R₀ p(s).
+pub fn arc_frame(curvature: [f64; 2], s: f64) -> ([f64; 3], [[f64; 3]; 3]) {
+    let [ky, kz] = curvature;
+    let w = (ky * ky + kz * kz).sqrt();
+    if w == 0.0 {
+        return (
+            [s, 0.0, 0.0],
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        );
+    }
+    let n = [0.0, ky / w, kz / w];
+    let (sn, cs) = math::sin_cos(w * s);
+    // Rodrigues: R v = v cos + (n × v) sin + n (n·v)(1 − cos)
+    let rot = |v: [f64; 3]| {
+        let nv = cross(&n, &v);
+        let d = dot(&n, &v) * (1.0 - cs);
+        [0, 1, 2].map(|i| v[i] * cs + nv[i] * sn + n[i] * d)
+    };
+    let ne1 = cross(&n, &[1.0, 0.0, 0.0]);
+    let half = math::sin(0.5 * w * s);
+    let vers = 2.0 * half * half / w; // (1 − cos(|k|s))/|k|
+    let p = [sn / w, ne1[1] * vers, ne1[2] * vers];
+    (
+        p,
+        [
+            rot([1.0, 0.0, 0.0]),
+            rot([0.0, 1.0, 0.0]),
+            rot([0.0, 0.0, 1.0]),
+        ],
+    )
+}
+
+/// The director element's 18 coordinates of length `l` [m] on an arc of curvature
+/// `[κ_y, κ_z]` from the origin, start frame the identity (nodes [r, r_x = t, r_y = d2]).
+pub fn arc_element(l: f64, curvature: [f64; 2]) -> [f64; DIRECTOR_DOFS] {
+    let (p, f) = arc_frame(curvature, l);
+    let mut e = [0.0; DIRECTOR_DOFS];
+    e[3] = 1.0;
+    e[7] = 1.0;
+    e[9..12].copy_from_slice(&p);
+    e[12..15].copy_from_slice(&f[0]);
+    e[15..18].copy_from_slice(&f[1]);
+    e
+}
+
+impl Reference3 {
+    /// The measures of the director element `props` (its length, no reference yet) on the arc
+    /// of curvature `[κ_y, κ_z]` [1/m].
+    pub fn arc(props: &Ancf3Props, curvature: [f64; 2]) -> Self {
+        let p = Ancf3Props {
+            director: true,
+            reference: None,
+            ..*props
+        };
+        let e = arc_element(p.length, curvature);
+        let tab = p.tables();
+        let (rs, ys) = p.slots();
+        let mut r = Self {
+            axial: [0.0; 5],
+            bending: [[0.0; 2]; 3],
+            twist: twist_angle(&[
+                [e[3], e[4], e[5]],
+                [e[6], e[7], e[8]],
+                [e[12], e[13], e[14]],
+                [e[15], e[16], e[17]],
+                combine(&tab.mid, &rs, &e),
+            ]),
+            curvature,
+        };
+        for (k, (_, ds)) in tab.axial.iter().enumerate() {
+            let a = combine(ds, &rs, &e);
+            r.axial[k] = dot(&a, &a).sqrt() - 1.0;
+        }
+        for (k, b) in tab.bending.iter().enumerate() {
+            let [_, k2, k3] = strains(
+                combine(&b.ds, &rs, &e),
+                combine(&b.dds, &rs, &e),
+                combine(&b.ny, &ys, &e),
+            );
+            r.bending[k] = [k2, k3];
+        }
+        r
+    }
 }
 
 /// Quadrature tables of an element (shape functions at the points, weights times the Jacobian
@@ -139,6 +254,7 @@ impl Ancf3Props {
             gj: segment.shear_modulus() * sec.torsion,
             damping_time: segment.damping_time,
             director,
+            reference: None,
         };
         props
             .check()
@@ -314,20 +430,20 @@ impl Ancf3Props {
         let damped = self.damping_time > 0.0;
         let (rs, ys) = self.slots();
         let mats = (&mut *k, &mut *c);
-        for (w, ds) in &tab.axial {
+        for (q, (w, ds)) in tab.axial.iter().enumerate() {
             let maps = [Map::new(ds, &rs)];
             if damped {
                 point_tangent::<1, 6, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
-                    self.axial_point(*w, u, Some(ud))
+                    self.axial_point(*w, q, u, Some(ud))
                 });
             } else {
                 point_tangent::<1, 3, D>(&maps, e, ed, mats.0, None, |u, _| {
-                    self.axial_point(*w, u, None)
+                    self.axial_point(*w, q, u, None)
                 });
             }
         }
         let cable = self.cable_bending();
-        for p in &tab.bending {
+        for (q, p) in tab.bending.iter().enumerate() {
             if !cable {
                 let maps = [
                     Map::new(&p.ds, &rs),
@@ -336,11 +452,11 @@ impl Ancf3Props {
                 ];
                 if damped {
                     point_tangent::<3, 18, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
-                        self.bend_point(p.w, u, Some(ud))
+                        self.bend_point(p.w, q, u, Some(ud))
                     });
                 } else {
                     point_tangent::<3, 9, D>(&maps, e, ed, mats.0, None, |u, _| {
-                        self.bend_point(p.w, u, None)
+                        self.bend_point(p.w, q, u, None)
                     });
                 }
             } else {
@@ -401,13 +517,13 @@ impl Ancf3Props {
         let damped = self.damping_time > 0.0;
         let (rs, ys) = self.slots();
         let mut f = [T::from(0.0); D];
-        for (w, ds) in &tab.axial {
+        for (q, (w, ds)) in tab.axial.iter().enumerate() {
             let ud = damped.then(|| [comb(ds, &rs, ed)]);
-            let [g] = self.axial_point(*w, &[comb(ds, &rs, e)], ud.as_ref());
+            let [g] = self.axial_point(*w, q, &[comb(ds, &rs, e)], ud.as_ref());
             scatter(&mut f, ds, &rs, &g);
         }
         let cable = self.cable_bending();
-        for p in &tab.bending {
+        for (q, p) in tab.bending.iter().enumerate() {
             let (a, b) = (comb(&p.ds, &rs, e), comb(&p.dds, &rs, e));
             let (ad, bd) = if damped {
                 (comb(&p.ds, &rs, ed), comb(&p.dds, &rs, ed))
@@ -417,7 +533,7 @@ impl Ancf3Props {
             if !cable {
                 let c = comb(&p.ny, &ys, e);
                 let ud = damped.then(|| [ad, bd, comb(&p.ny, &ys, ed)]);
-                let [ga, gb, gc] = self.bend_point(p.w, &[a, b, c], ud.as_ref());
+                let [ga, gb, gc] = self.bend_point(p.w, q, &[a, b, c], ud.as_ref());
                 scatter(&mut f, &p.ds, &rs, &ga);
                 scatter(&mut f, &p.dds, &rs, &gb);
                 scatter(&mut f, &p.ny, &ys, &gc);
@@ -455,15 +571,24 @@ impl Ancf3Props {
         f
     }
 
-    /// Local force of an axial point (weight `w`·EA): ∂/∂r_x of ½w ε², Kelvin–Voigt stress
-    /// ε + τ_d ε̇ with the rate `ud`.
+    /// Local force of axial point `q` (weight `w`·EA): ∂/∂r_x of ½w (ε − ε₀)², Kelvin–Voigt
+    /// stress ε − ε₀ + τ_d ε̇ with the rate `ud` (ε₀ the reference's, none when straight).
     #[inline(always)]
-    fn axial_point<T: Real>(&self, w: f64, u: &[V<T>; 1], ud: Option<&[V<T>; 1]>) -> [V<T>; 1] {
+    fn axial_point<T: Real>(
+        &self,
+        w: f64,
+        q: usize,
+        u: &[V<T>; 1],
+        ud: Option<&[V<T>; 1]>,
+    ) -> [V<T>; 1] {
         let a = &u[0];
         let n = dot(a, a).sqrt();
         let inv = n.recip();
         let g = [a[0] * inv, a[1] * inv, a[2] * inv];
         let mut stress = n - 1.0;
+        if let Some(r) = &self.reference {
+            stress -= r.axial[q];
+        }
         if let Some(ud) = ud {
             stress += dot(&g, &ud[0]) * self.damping_time;
         }
@@ -477,17 +602,24 @@ impl Ancf3Props {
         let (rs, ys) = self.slots();
         let v = |w: &[f64], slots: &[usize]| combine(w, slots, e);
         let mut u = 0.0;
-        for (w, ds) in &tab.axial {
+        for (q, (w, ds)) in tab.axial.iter().enumerate() {
             let a = v(ds, &rs);
-            let eps = dot(&a, &a).sqrt() - 1.0;
+            let mut eps = dot(&a, &a).sqrt() - 1.0;
+            if let Some(r) = &self.reference {
+                eps -= r.axial[q];
+            }
             u += 0.5 * w * eps * eps;
         }
-        for p in &tab.bending {
+        for (q, p) in tab.bending.iter().enumerate() {
             let a = v(&p.ds, &rs);
             let b = v(&p.dds, &rs);
             if self.director {
                 let c = v(&p.ny, &ys);
-                let [_, k2, k3] = strains(a, b, c);
+                let [_, mut k2, mut k3] = strains(a, b, c);
+                if let Some(r) = &self.reference {
+                    k2 -= r.bending[q][0];
+                    k3 -= r.bending[q][1];
+                }
                 u += 0.5 * p.w * (self.ei_y * k2 * k2 + self.ei_z * k3 * k3);
             } else {
                 let bv = cross(&a, &b);
@@ -514,14 +646,15 @@ impl Ancf3Props {
     pub fn max_axial_strain(&self, tab: &Tables3, e: &[f64]) -> f64 {
         let (rs, _) = self.slots();
         let mut worst: f64 = 0.0;
-        for (_, ds) in &tab.axial {
+        for (q, (_, ds)) in tab.axial.iter().enumerate() {
             let mut a = [0.0; 3];
             for j in 0..4 {
                 for c in 0..3 {
                     a[c] += ds[j] * e[rs[j] + c];
                 }
             }
-            worst = worst.max((dot(&a, &a).sqrt() - 1.0).abs());
+            let e0 = self.reference.map_or(0.0, |r| r.axial[q]);
+            worst = worst.max((dot(&a, &a).sqrt() - 1.0 - e0).abs());
         }
         worst
     }
@@ -547,6 +680,14 @@ impl Ancf3Props {
             let [_, k2, k3] = strains(a, b, c);
             p.frame = director_frame(a, c);
             p.curvature = [k2, k3];
+            if let Some(r) = &self.reference {
+                // the arc's own measures at ξ through the same interpolation
+                let e0 = arc_element(l, r.curvature);
+                let (a0, b0) = (combine(&ds, &rs, &e0), combine(&dds, &rs, &e0));
+                let [_, k20, k30] = strains(a0, b0, combine(&[1.0 - xi, xi], &ys, &e0));
+                p.axial_strain -= dot(&a0, &a0).sqrt() - 1.0;
+                p.curvature = [k2 - k20, k3 - k30];
+            }
             p.twist = self.twist_rate(e);
         } else {
             p.frame = minimal_frame(a);

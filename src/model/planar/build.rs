@@ -7,17 +7,18 @@ use super::ends::{ModalRootPort, ModalTipPort, NodePort, RootSupport};
 use super::joint::RigidJoint;
 use super::Planar;
 use crate::math;
-use crate::model::ancf::{AncfProps, SectionMass};
+use crate::model::ancf::{arc_end, AncfProps, AncfReference, SectionMass};
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody};
 use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
-use crate::scene::{Scene, SceneError, Segment, SpaceKind};
+use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind};
 use std::sync::Arc;
 
-/// The planar parts of a scene: the beam's direction and reference length.
+/// The planar parts of a scene: the beam's direction and reference length, and the layout of
+/// the current segment.
 struct PlanarParts {
     /// Unit direction of the straight beam at `initial.angle`.
     dir: [f64; 2],
@@ -25,10 +26,46 @@ struct PlanarParts {
     angle: f64,
     /// Newton scale of positions and modal amplitudes: the total length [m].
     lref: f64,
+    /// The current segment's root (position [m], tangent angle [rad]) once a curved segment
+    /// came before it; `None` while every segment so far is straight (positions s·dir from
+    /// the origin, exactly as a straight beam's).
+    start: Option<([f64; 2], f64)>,
+    /// Arc length of the current segment's root [m].
+    s0: f64,
+    /// The current segment's initial curvature κ [1/m] (0: straight).
+    kappa: f64,
+    /// The last node placed (position, tangent angle): an ANCF segment's end.
+    last: ([f64; 2], f64),
+}
+
+impl PlanarParts {
+    /// The current segment's root (position, tangent angle).
+    fn root(&self) -> ([f64; 2], f64) {
+        self.start
+            .unwrap_or(([self.s0 * self.dir[0], self.s0 * self.dir[1]], self.angle))
+    }
 }
 
 impl SegmentParts<Planar> for PlanarParts {
     type AncfProps = AncfProps;
+
+    fn begin_segment(&mut self, seg: &Segment, s: f64) {
+        self.s0 = s;
+        self.kappa = seg.curvature().map_or(0.0, |k| k[1]);
+    }
+
+    fn end_segment(&mut self, seg: &Segment) {
+        if self.start.is_none() && self.kappa == 0.0 {
+            return; // still the straight layout
+        }
+        self.start = Some(match seg.kind {
+            SegmentKind::Ancf => self.last,
+            SegmentKind::Modal => {
+                let (p0, a0) = self.root();
+                arc_end(p0, a0, seg.length, 0.0)
+            }
+        });
+    }
 
     fn modal(
         &mut self,
@@ -54,11 +91,14 @@ impl SegmentParts<Planar> for PlanarParts {
         let body = body.with_line_load(seg.line_load_vec());
         let body = Arc::new(body);
         let first = si == 0;
-        let root_pt = [s * self.dir[0], s * self.dir[1]];
+        let (root_pt, angle) = match self.start {
+            None => ([s * self.dir[0], s * self.dir[1]], self.angle),
+            Some(r) => r,
+        };
         let mut c = Coords::default();
         c.push(num, !first, root_pt[0], self.lref);
         c.push(num, !first, root_pt[1], self.lref);
-        c.push(num, !held, self.angle, 1.0);
+        c.push(num, !held, angle, 1.0);
         num.rigid(Rigid::Point, &c.dofs[..2]);
         num.rigid(Rigid::Angle, &c.dofs[2..3]);
         for _ in 0..body.modes() {
@@ -96,6 +136,7 @@ impl SegmentParts<Planar> for PlanarParts {
             ei: seg.youngs_modulus * inertia,
             damping_time: seg.damping_time,
             strain: seg.strain,
+            reference: seg.curvature().map(|k| AncfReference::arc(le, k[1])),
         })
     }
 
@@ -114,9 +155,18 @@ impl SegmentParts<Planar> for PlanarParts {
         )
     }
 
-    fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {
+    fn node(&mut self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {
         let d = self.dir;
-        let v = [s * d[0], s * d[1], d[0], d[1]];
+        let v = if self.start.is_none() && self.kappa == 0.0 {
+            self.last = ([s * d[0], s * d[1]], self.angle);
+            [s * d[0], s * d[1], d[0], d[1]]
+        } else {
+            let (p0, a0) = self.root();
+            let (p, a) = arc_end(p0, a0, s - self.s0, self.kappa);
+            self.last = (p, a);
+            let (sa, ca) = math::sin_cos(a);
+            [p[0], p[1], ca, sa]
+        };
         let free_r = hold == Hold::Free;
         let free = [free_r, free_r, true, true];
         let scale = [self.lref, self.lref, 1.0, 1.0];
@@ -170,7 +220,8 @@ impl SegmentParts<Planar> for PlanarParts {
 }
 
 impl Model<Planar> {
-    /// Builds the model of a validated scene, straight at `initial.angle` from the origin.
+    /// Builds the model of a validated scene from the origin at `initial.angle`: straight, each
+    /// segment after a curved one (`initial_curvature`) on that one's end position and tangent.
     /// Scales for Newton norms: the total length for positions and modal amplitudes, 1 for
     /// slopes and angles.
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
@@ -185,6 +236,10 @@ impl Model<Planar> {
             dir: [ca, sa],
             angle: scene.initial.angle,
             lref: scene.total_length(),
+            start: None,
+            s0: 0.0,
+            kappa: 0.0,
+            last: ([0.0; 2], scene.initial.angle),
         };
         walk(scene, &mut parts)
     }

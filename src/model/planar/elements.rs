@@ -277,13 +277,15 @@ impl Element<Planar> for AncfElement {
 
     fn validity(&self, q: &[f64]) -> Validity {
         let mut worst: f64 = 0.0;
-        for (_, ds) in &self.tables.axial {
+        for (i, (_, ds)) in self.tables.axial.iter().enumerate() {
             let (mut x, mut y) = (0.0, 0.0);
             for k in 0..4 {
                 x += ds[k] * q[2 * k];
                 y += ds[k] * q[2 * k + 1];
             }
-            worst = worst.max(((x * x + y * y).sqrt() - 1.0).abs());
+            // from the curved reference's ε₀ (the strain the element's stress counts)
+            let e0 = self.props.reference.map_or(0.0, |r| r.axial[i]);
+            worst = worst.max(((x * x + y * y).sqrt() - 1.0 - e0).abs());
         }
         Validity {
             axial_strain: worst,

@@ -3,8 +3,9 @@
 //!
 //! Geometry: the root frame → world rotation A₀ is `scene.root_orientation()`; the beam starts
 //! straight at the origin along A₀x̄ with its section axes A₀ȳ, A₀z̄, every segment in that
-//! frame. ANCF nodes are `[r, r_x, r_y]` (the director element), `[r, r_x, θ]` (the angle
-//! element) or `[r, r_x]` (the 3D cable); modal bodies `[R, p, a_y, a_z, a_t]` with p = A₀'s
+//! frame, each segment after a curved one on that one's end frame. ANCF nodes are
+//! `[r, r_x, r_y]` (the director element), `[r, r_x, θ]` (the angle element) or `[r, r_x]`
+//! (the 3D cable); modal bodies `[R, p, a_y, a_z, a_t]` with p = A₀'s
 //! Euler parameters. A joint's DOT1 rows are scaled by the length of its upstream segment.
 
 use super::joint::RigidJoint3;
@@ -14,7 +15,7 @@ use super::{
 };
 use crate::model::ancf::SectionMass;
 use crate::model::ancf3d::angle::Angle3;
-use crate::model::ancf3d::Ancf3Props;
+use crate::model::ancf3d::{arc_frame, Ancf3Props, Reference3};
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
@@ -22,7 +23,7 @@ use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
 use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind, TorsionElement};
-use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Quaternion, Rotation3, UnitQuaternion, Vector3};
 use std::sync::Arc;
 
 /// The spatial parts of a scene: the root frame and the element family.
@@ -41,10 +42,61 @@ struct SpatialParts {
     angle: bool,
     /// Newton scale of positions and bending amplitudes: the total length [m].
     lref: f64,
+    /// The current segment's root frame (position [m], section frame → world, columns t, d2,
+    /// d3) once a curved segment came before it; `None` while every segment so far is
+    /// straight (positions s·x̄ in the root frame, exactly as a straight beam's).
+    start: Option<(Vector3<f64>, Matrix3<f64>)>,
+    /// Arc length of the current segment's root [m].
+    s0: f64,
+    /// The current segment's initial curvature [κ_y, κ_z] [1/m] (zero: straight).
+    curvature: [f64; 2],
+    /// The last node placed (position, frame): an ANCF segment's end.
+    last: (Vector3<f64>, Matrix3<f64>),
+}
+
+impl SpatialParts {
+    /// The current segment's root (position, frame).
+    fn root(&self) -> (Vector3<f64>, Matrix3<f64>) {
+        self.start.unwrap_or((self.s0 * self.ax, self.reference))
+    }
+
+    /// Whether the current segment is laid out as the straight beam's.
+    fn straight_layout(&self) -> bool {
+        self.start.is_none() && self.curvature == [0.0, 0.0]
+    }
+
+    /// The frame (position, frame) at arc length `s` along the current segment.
+    fn frame_at(&self, s: f64) -> (Vector3<f64>, Matrix3<f64>) {
+        let (p0, r0) = self.root();
+        let (p, f) = arc_frame(self.curvature, s - self.s0);
+        let col = |v: [f64; 3]| r0 * Vector3::from(v);
+        (
+            p0 + col(p),
+            Matrix3::from_columns(&[col(f[0]), col(f[1]), col(f[2])]),
+        )
+    }
 }
 
 impl SegmentParts<Spatial> for SpatialParts {
     type AncfProps = Ancf3Props;
+
+    fn begin_segment(&mut self, seg: &Segment, s: f64) {
+        self.s0 = s;
+        self.curvature = seg.curvature().unwrap_or([0.0, 0.0]);
+    }
+
+    fn end_segment(&mut self, seg: &Segment) {
+        if self.straight_layout() {
+            return;
+        }
+        self.start = Some(match seg.kind {
+            SegmentKind::Ancf => self.last,
+            SegmentKind::Modal => {
+                let (p0, r0) = self.root();
+                (p0 + seg.length * r0.column(0), r0)
+            }
+        });
+    }
 
     fn modal(
         &mut self,
@@ -56,7 +108,13 @@ impl SegmentParts<Spatial> for SpatialParts {
         masses: &SegmentMasses,
     ) -> Result<ModalSegment<Spatial>, SceneError> {
         let first = si == 0;
-        let root_pt = s * self.ax;
+        let (root_pt, e0) = match self.start {
+            None => (s * self.ax, self.e0),
+            Some((p, r)) => {
+                let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r));
+                (p, [q.w, q.i, q.j, q.k])
+            }
+        };
         let basis = ModalBasis::new(seg.modes.unwrap_or(1), seg.interface_modes);
         let mut body = ModalBody3::new(basis, ModalProps3::of_segment(seg));
         if seg.linear {
@@ -76,7 +134,7 @@ impl SegmentParts<Spatial> for SpatialParts {
             c.push(num, !first, root_pt[k], self.lref);
         }
         for k in 0..4 {
-            c.push(num, free_p, self.e0[k], 1.0);
+            c.push(num, free_p, e0[k], 1.0);
         }
         num.rigid(Rigid::Point, &c.dofs[..3]);
         num.rigid(Rigid::Euler, &c.dofs[3..7]);
@@ -110,7 +168,11 @@ impl SegmentParts<Spatial> for SpatialParts {
 
     fn ancf_props(&self, si: usize, seg: &Segment, _le: f64) -> Result<Ancf3Props, SceneError> {
         let err = |m: String| SceneError(format!("segments[{si}]: {m}"));
-        let props = Ancf3Props::of_segment(seg, self.torsion).map_err(err)?;
+        let mut props = Ancf3Props::of_segment(seg, self.torsion).map_err(err)?;
+        // a curved segment (the director element only: `Scene::validate`)
+        if let Some(k) = seg.curvature().filter(|_| props.director) {
+            props.reference = Some(Reference3::arc(&props, k));
+        }
         if self.angle {
             // the angle element bends as the cable: one bending stiffness
             Angle3::new(props, self.ax.into(), self.ay.into())
@@ -151,15 +213,21 @@ impl SegmentParts<Spatial> for SpatialParts {
     }
 
     /// Node coordinates r, r_x (, r_y) at arc length `s`, held as the root asks.
-    fn node(&self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {
+    fn node(&mut self, num: &mut Numbering, s: f64, hold: Hold) -> Coords {
         let mut c = Coords::default();
-        let r = s * self.ax;
+        let (r, ax, ay) = if self.straight_layout() {
+            (s * self.ax, self.ax, self.ay)
+        } else {
+            let (p, f) = self.frame_at(s);
+            self.last = (p, f);
+            (p, f.column(0).into_owned(), f.column(1).into_owned())
+        };
         let free_r = hold == Hold::Free;
         for k in 0..3 {
             c.push(num, free_r, r[k], self.lref);
         }
         for k in 0..3 {
-            c.push(num, true, self.ax[k], 1.0);
+            c.push(num, true, ax[k], 1.0);
         }
         if self.angle {
             // a clamp holds the twist angle [rad]; not a rigid group (a mount would turn the
@@ -168,7 +236,7 @@ impl SegmentParts<Spatial> for SpatialParts {
         } else if self.torsion {
             // a clamp holds the section director r_y
             for k in 0..3 {
-                c.push(num, hold != Hold::Clamp, self.ay[k], 1.0);
+                c.push(num, hold != Hold::Clamp, ay[k], 1.0);
             }
         }
         num.rigid(Rigid::Point, &c.dofs[..3]);
@@ -249,8 +317,9 @@ fn frame_of(e: [f64; 4]) -> [Vector3<f64>; 3] {
 }
 
 impl Model<Spatial> {
-    /// Builds the model of a validated spatial scene (`space = "spatial"`), straight from the
-    /// origin along the root frame's x axis. Scales for Newton norms: the total length for
+    /// Builds the model of a validated spatial scene (`space = "spatial"`) from the origin
+    /// along the root frame's x axis: straight, each segment after a curved one
+    /// (`initial_curvature`, [`arc_frame`]) on that one's end position and section frame. Scales for Newton norms: the total length for
     /// positions and bending amplitudes, 1 for slopes, directors, Euler parameters and twist
     /// amplitudes [rad].
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
@@ -282,6 +351,10 @@ impl Model<Spatial> {
             torsion: scene.torsion,
             angle: scene.torsion && scene.torsion_element == TorsionElement::Angle,
             lref: scene.total_length(),
+            start: None,
+            s0: 0.0,
+            curvature: [0.0, 0.0],
+            last: (Vector3::zeros(), Matrix3::from_columns(&[ax, ay, az])),
         };
         walk(scene, &mut parts)
     }
