@@ -13,7 +13,7 @@
 //! checked against this table by `tests/variables_doc.rs`.
 
 use fmi2::{Causality, StringVariable, Variability, Variable};
-use hybeam::scene::{Mass, MotionInput, Root, Scene, Section, Segment, SegmentKind};
+use hybeam::scene::{Dim, Mass, MotionInput, Root, Scene, Section, Segment, SegmentKind};
 use hybeam::simulator::{InputId, InputKind, OutputId, Quantity};
 
 use super::view::{Setting, Settings};
@@ -392,24 +392,33 @@ pub const SEGMENT_FIELDS: [SegmentField; 9] = [
         k: 2,
         unit: Some("m"),
         applies: round,
-        get: |s| s.diameter.unwrap_or(0.0),
-        set: |s, x| s.diameter = Some(x),
+        get: |s| s.diameter.as_ref().map_or(0.0, Dim::start),
+        set: |s, x| match &mut s.diameter {
+            Some(d) => d.set_start(x),
+            None => s.diameter = Some(Dim::Uniform(x)),
+        },
     },
     SegmentField {
         name: "width",
         k: 3,
         unit: Some("m"),
         applies: rectangle,
-        get: |s| s.width.unwrap_or(0.0),
-        set: |s, x| s.width = Some(x),
+        get: |s| s.width.as_ref().map_or(0.0, Dim::start),
+        set: |s, x| match &mut s.width {
+            Some(d) => d.set_start(x),
+            None => s.width = Some(Dim::Uniform(x)),
+        },
     },
     SegmentField {
         name: "height",
         k: 4,
         unit: Some("m"),
         applies: rectangle,
-        get: |s| s.height.unwrap_or(0.0),
-        set: |s, x| s.height = Some(x),
+        get: |s| s.height.as_ref().map_or(0.0, Dim::start),
+        set: |s, x| match &mut s.height {
+            Some(d) => d.set_start(x),
+            None => s.height = Some(Dim::Uniform(x)),
+        },
     },
     SegmentField {
         name: "youngs_modulus",
@@ -448,8 +457,11 @@ pub const SEGMENT_FIELDS: [SegmentField; 9] = [
         k: 9,
         unit: Some("m"),
         applies: tube,
-        get: |s| s.inner_diameter.unwrap_or(0.0),
-        set: |s, x| s.inner_diameter = Some(x),
+        get: |s| s.inner_diameter.as_ref().map_or(0.0, Dim::start),
+        set: |s, x| match &mut s.inner_diameter {
+            Some(d) => d.set_start(x),
+            None => s.inner_diameter = Some(Dim::Uniform(x)),
+        },
     },
 ];
 
