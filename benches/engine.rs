@@ -34,6 +34,7 @@ fn element(c: &mut Criterion) {
         ei: 0.165,
         damping_time: 0.0,
         strain: StrainModel::Exact,
+        taper: None,
     };
     let mut e = straight([0.0, 0.0], 0.1, p.length);
     e[3] += 0.01;
@@ -296,6 +297,7 @@ fn bench_props(torsion: bool) -> Ancf3Props {
         gj: 0.127,
         damping_time: 0.0,
         director: torsion,
+        taper: None,
     }
 }
 

@@ -40,6 +40,7 @@ fn props(elements: usize, torsion: bool) -> Ancf3Props {
         gj: E / (2.0 * (1.0 + NU)) * 2.0 * i,
         damping_time: 0.0,
         director: torsion,
+        taper: None,
     }
 }
 
@@ -422,6 +423,7 @@ fn planar_chain(n: usize) -> Model<Planar> {
         ei: p3.ei_z,
         damping_time: 7e-4,
         strain: StrainModel::Exact,
+        taper: None,
     };
     let node = |num: &mut Numbering, s: f64, free: bool| {
         LocalDofs::new(
@@ -487,6 +489,7 @@ fn residual_cost_against_the_planar_element() {
             ei: 0.165,
             damping_time: tau,
             strain: StrainModel::Exact,
+            taper: None,
         };
         let tab2 = p2.tables();
         let mut e2 = hybeam::model::ancf::straight([0.0, 0.0], 0.3, 0.05);
@@ -592,6 +595,7 @@ fn end_moment_gives_the_closed_form_helix() {
             gj,
             damping_time: 0.0,
             director: true,
+            taper: None,
         };
         let mut model = chain_of(p, n, frame);
         model.set_tip_moment((frame * m_local).into());
@@ -638,6 +642,7 @@ fn oblique_tip_force_gives_the_elastica_in_its_plane() {
             gj: 0.7,
             damping_time: 0.0,
             director: torsion,
+            taper: None,
         };
         let mut model = chain_of(p, n, Matrix3::identity());
         model.set_tip_force([0.0, 1.0, 2.0]);

@@ -149,9 +149,14 @@ impl Segment {
 
     /// Whether any section dimension is a taper `[at_start, at_end]` ([`Dim`]).
     pub fn is_tapered(&self) -> bool {
-        [&self.diameter, &self.inner_diameter, &self.width, &self.height]
-            .iter()
-            .any(|d| d.as_ref().is_some_and(Dim::is_taper))
+        [
+            &self.diameter,
+            &self.inner_diameter,
+            &self.width,
+            &self.height,
+        ]
+        .iter()
+        .any(|d| d.as_ref().is_some_and(Dim::is_taper))
     }
 
     /// Properties of the cross-section (valid after `validate`) at the segment's start (of the
