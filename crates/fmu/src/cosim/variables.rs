@@ -781,4 +781,22 @@ mod tests {
         vrs.dedup();
         assert_eq!(vrs.len(), n, "duplicate value references");
     }
+
+    /// A tapered dimension's parameter is its start value; setting it scales both ends
+    /// (docs/fmu-variables.md); a uniform one is its value.
+    #[test]
+    fn a_tapered_dimension_parameter_scales_both_ends() {
+        let text = "name = \"t\"\n[[segments]]\nname = \"a\"\nkind = \"ancf\"\nlength = 0.5\n\
+                    section = \"tube\"\ndiameter = [0.004, 0.002]\ninner_diameter = 0.001\n\
+                    youngs_modulus = 2.1e11\ndensity = 7850\nelements = 4\n";
+        let mut seg = Scene::from_toml(text).unwrap().segments[0].clone();
+        let field = |name: &str| SEGMENT_FIELDS.iter().find(|f| f.name == name).unwrap();
+        let (d, di) = (field("diameter"), field("inner_diameter"));
+        assert_eq!((d.get)(&seg), 0.004);
+        (d.set)(&mut seg, 0.006);
+        assert_eq!(seg.diameter, Some(Dim::Taper(vec![0.006, 0.003])));
+        assert_eq!((di.get)(&seg), 0.001);
+        (di.set)(&mut seg, 0.0015);
+        assert_eq!(seg.inner_diameter, Some(Dim::Uniform(0.0015)));
+    }
 }
