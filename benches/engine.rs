@@ -35,6 +35,7 @@ fn element(c: &mut Criterion) {
         damping_time: 0.0,
         strain: StrainModel::Exact,
         reference: None,
+        taper: None,
     };
     let mut e = straight([0.0, 0.0], 0.1, p.length);
     e[3] += 0.01;
@@ -298,6 +299,7 @@ fn bench_props(torsion: bool) -> Ancf3Props {
         damping_time: 0.0,
         director: torsion,
         reference: None,
+        taper: None,
     }
 }
 

@@ -400,8 +400,15 @@ fn line_load_inputs_set_at_run_time_run_as_the_scene_line_load() {
     // q set through the input at t = 0 (the scene declares zero) against the scene's q: the
     // same run (the input is a jump at the start, applied as the scene's load is)
     let q = 0.7;
-    for (label, segs) in rods("line_load = [0.0, 0.0]") {
-        let scene_q: Vec<String> = rods(&format!("line_load = [0.0, {q:e}]"))
+    // the test rods and a tapered ANCF rod (d = 1 cm → 5 mm), whose elements keep q per metre
+    let with_taper = |extra: &str| {
+        let mut r = rods(extra);
+        let taper = "section = \"round\"\ndiameter = [0.01, 0.005]";
+        r.push(("tapered ANCF", vec![ancf("a", L, taper, 8, extra)]));
+        r
+    };
+    for (label, segs) in with_taper("line_load = [0.0, 0.0]") {
+        let scene_q: Vec<String> = with_taper(&format!("line_load = [0.0, {q:e}]"))
             .into_iter()
             .find(|(l, _)| *l == label)
             .unwrap()

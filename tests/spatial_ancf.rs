@@ -41,6 +41,7 @@ fn props(elements: usize, torsion: bool) -> Ancf3Props {
         damping_time: 0.0,
         director: torsion,
         reference: None,
+        taper: None,
     }
 }
 
@@ -425,6 +426,7 @@ fn planar_chain(n: usize) -> Model<Planar> {
         damping_time: 7e-4,
         strain: StrainModel::Exact,
         reference: None,
+        taper: None,
     };
     let node = |num: &mut Numbering, s: f64, free: bool| {
         LocalDofs::new(
@@ -492,6 +494,7 @@ fn residual_cost_against_the_planar_element() {
             damping_time: tau,
             strain: StrainModel::Exact,
             reference: None,
+            taper: None,
         };
         let tab2 = p2.tables();
         let mut e2 = hybeam::model::ancf::straight([0.0, 0.0], 0.3, 0.05);
@@ -598,6 +601,7 @@ fn end_moment_gives_the_closed_form_helix() {
             damping_time: 0.0,
             director: true,
             reference: None,
+            taper: None,
         };
         let mut model = chain_of(p, n, frame);
         model.set_tip_moment((frame * m_local).into());
@@ -645,6 +649,7 @@ fn oblique_tip_force_gives_the_elastica_in_its_plane() {
             damping_time: 0.0,
             director: torsion,
             reference: None,
+            taper: None,
         };
         let mut model = chain_of(p, n, Matrix3::identity());
         model.set_tip_force([0.0, 1.0, 2.0]);

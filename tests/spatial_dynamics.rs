@@ -483,6 +483,7 @@ fn twist_and_director_measures_match_constructed_frames() {
         damping_time: 0.0,
         director: true,
         reference: None,
+        taper: None,
     };
     let frame0 =
         Rotation3::from_axis_angle(&Unit::new_normalize(Vector3::new(0.2, -0.7, 0.4)), 1.1);

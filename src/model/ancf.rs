@@ -181,6 +181,34 @@ impl SectionMass {
     }
 }
 
+/// The section properties of a tapered element at its quadrature points (a segment whose
+/// dimensions vary, [`crate::scene::Dim`]): the stiffness integrals use them point by point on
+/// the element's own rules (EA on the 5 axial Gauss points, EI on the 3 bending points), the
+/// mass matrix and gravity ρA on the 5 points (exact: ρA(x) is at most quadratic in x, the mass
+/// integrand of degree 8).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionTable {
+    /// EA [N] at the [`GAUSS5`] points.
+    pub ea: [f64; 5],
+    /// EI [N m²] at the [`GAUSS3`] points.
+    pub ei: [f64; 3],
+    /// ρA [kg/m] at the [`GAUSS5`] points.
+    pub rho_a: [f64; 5],
+}
+
+impl SectionTable {
+    /// The table of an element from arc length `x0` to `x0 + l` [m] of a segment whose EA, EI and
+    /// ρA at arc length x [m] from its start are `props(x)` = (EA [N], EI [N m²], ρA [kg/m]).
+    pub fn of(x0: f64, l: f64, props: impl Fn(f64) -> (f64, f64, f64)) -> Self {
+        let at = |xg: f64| props(x0 + 0.5 * (xg + 1.0) * l);
+        Self {
+            ea: GAUSS5.map(|(xg, _)| at(xg).0),
+            ei: GAUSS3.map(|(xg, _)| at(xg).1),
+            rho_a: GAUSS5.map(|(xg, _)| at(xg).2),
+        }
+    }
+}
+
 /// Element properties (constant).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AncfProps {
@@ -199,6 +227,9 @@ pub struct AncfProps {
     /// The measures of a curved unstressed configuration, subtracted at each quadrature point
     /// (`None`: straight, ε and K count from zero).
     pub reference: Option<AncfReference>,
+    /// A tapered element's section properties at its quadrature points (they then replace
+    /// `rho_a`, `ea`, `ei`, which hold the values at mid-element); `None`: uniform.
+    pub taper: Option<SectionTable>,
 }
 
 /// The strain measures of an element's unstressed (curved) configuration at its quadrature
@@ -279,6 +310,21 @@ impl AncfProps {
     /// Consistent mass matrix (paper eq. 7), constant [kg, kg m, kg m²].
     pub fn mass_matrix(&self) -> Mat8 {
         let l = self.length;
+        if let Some(t) = &self.taper {
+            // ∫ρA(x) S_j S_k dx on 5 Gauss points (exact for ρA quadratic in x)
+            let mut p = [[0.0; 4]; 4];
+            for ((xg, wg), ra) in GAUSS5.iter().zip(t.rho_a) {
+                let sh = Shape::at(0.5 * (xg + 1.0), l);
+                for j in 0..4 {
+                    for k in 0..4 {
+                        p[j][k] += wg * 0.5 * l * ra * sh.s[j] * sh.s[k];
+                    }
+                }
+            }
+            let mut m = Mat8::zeros();
+            expand(&p, &nalgebra::Matrix2::identity(), &mut m, 1.0);
+            return m;
+        }
         let c = self.rho_a * l / 420.0;
         let p = [
             [156.0, 22.0 * l, 54.0, -13.0 * l],
@@ -294,13 +340,49 @@ impl AncfProps {
     /// Generalized gravity force ∫ρA Sᵀ g dx (paper eq. 8) [N, N m].
     pub fn gravity_force(&self, g: [f64; 2]) -> Vec8 {
         let l = self.length;
-        let w = [0.5, l / 12.0, 0.5, -l / 12.0];
         let mut f = Vec8::zeros();
+        if let Some(t) = &self.taper {
+            for ((xg, wg), ra) in GAUSS5.iter().zip(t.rho_a) {
+                let sh = Shape::at(0.5 * (xg + 1.0), l);
+                for k in 0..4 {
+                    let c = wg * 0.5 * l * ra * sh.s[k];
+                    f[2 * k] += c * g[0];
+                    f[2 * k + 1] += c * g[1];
+                }
+            }
+            return f;
+        }
+        let w = [0.5, l / 12.0, 0.5, -l / 12.0];
         for k in 0..4 {
             f[2 * k] = self.rho_a * l * w[k] * g[0];
             f[2 * k + 1] = self.rho_a * l * w[k] * g[1];
         }
         f
+    }
+
+    /// Generalized force ∫Sᵀ q dx of a uniform load `q` per unit length [N/m] (independent of
+    /// the section) [N, N m].
+    pub fn line_force(&self, q: [f64; 2]) -> Vec8 {
+        let l = self.length;
+        let w = [0.5, l / 12.0, 0.5, -l / 12.0];
+        let mut f = Vec8::zeros();
+        for k in 0..4 {
+            f[2 * k] = l * w[k] * q[0];
+            f[2 * k + 1] = l * w[k] * q[1];
+        }
+        f
+    }
+
+    /// EA [N] at axial Gauss point `k`.
+    #[inline]
+    fn ea_at(&self, k: usize) -> f64 {
+        self.taper.as_ref().map_or(self.ea, |t| t.ea[k])
+    }
+
+    /// EI [N m²] at bending Gauss point `k`.
+    #[inline]
+    fn ei_at(&self, k: usize) -> f64 {
+        self.taper.as_ref().map_or(self.ei, |t| t.ei[k])
     }
 
     /// Strain energy [J].
@@ -317,7 +399,7 @@ impl AncfProps {
             if let Some(r) = &self.reference {
                 eps -= r.axial[q];
             }
-            u += 0.5 * wg * 0.5 * l * self.ea * eps * eps;
+            u += 0.5 * wg * 0.5 * l * self.ea_at(q) * eps * eps;
         }
         for (q, (xg, wg)) in GAUSS3.into_iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
@@ -332,7 +414,7 @@ impl AncfProps {
                 }
                 StrainModel::Paper => r2.norm_squared(),
             };
-            u += 0.5 * wg * 0.5 * l * self.ei * k2;
+            u += 0.5 * wg * 0.5 * l * self.ei_at(q) * k2;
         }
         u
     }
@@ -387,11 +469,11 @@ impl AncfProps {
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
-            t.axial[k] = (wg * 0.5 * l * self.ea, sh.ds);
+            t.axial[k] = (wg * 0.5 * l * self.ea_at(k), sh.ds);
         }
         for (k, (xg, wg)) in GAUSS3.iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
-            t.bending[k] = (wg * 0.5 * l * self.ei, sh.ds, sh.dds);
+            t.bending[k] = (wg * 0.5 * l * self.ei_at(k), sh.ds, sh.dds);
         }
         t
     }
@@ -499,7 +581,7 @@ impl AncfProps {
         };
         // Axial part.
         for (q, (xg, wg)) in GAUSS5.into_iter().enumerate() {
-            let w = wg * 0.5 * l * self.ea;
+            let w = wg * 0.5 * l * self.ea_at(q);
             let sh = Shape::at(0.5 * (xg + 1.0), l);
             let r1 = sh.r1(e);
             // ε, dε/dr′ (2-vector), d²ε/dr′² (2×2)
@@ -546,7 +628,7 @@ impl AncfProps {
         }
         // Bending part.
         for (q, (xg, wg)) in GAUSS3.into_iter().enumerate() {
-            let w = wg * 0.5 * l * self.ei;
+            let w = wg * 0.5 * l * self.ei_at(q);
             let sh = Shape::at(0.5 * (xg + 1.0), l);
             match self.strain {
                 StrainModel::Paper => {
@@ -683,6 +765,7 @@ mod tests {
             damping_time: tau,
             strain,
             reference: None,
+            taper: None,
         }
     }
 

@@ -114,10 +114,12 @@ pub trait SegmentParts<S: Space> {
     /// One ANCF element carrying the point masses `points`: (ξ ∈ [0, 1] along the element,
     /// mass [kg]) (empty: the element alone), and the rigid bodies `bodies` on its section
     /// (offset or rotary inertia; the walk passes them to planar elements only), under the
-    /// line load of its segment `seg` ([`Segment::line_load`]).
+    /// line load of its segment `seg` ([`Segment::line_load`]); the element starts at arc length
+    /// `x0` [m] from the segment's start (a tapered segment's section there).
     fn ancf_element(
         &self,
         props: &Self::AncfProps,
+        x0: f64,
         points: &[(f64, f64)],
         bodies: &[SectionMass],
         seg: &Segment,
@@ -307,7 +309,11 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                             })
                         })
                         .collect();
-                    ancf.push((dofs, parts.ancf_element(&props, &on, &held, seg), si));
+                    ancf.push((
+                        dofs,
+                        parts.ancf_element(&props, k as f64 * le, &on, &held, seg),
+                        si,
+                    ));
                     last = next;
                 }
                 prev = Some(End {

@@ -14,7 +14,7 @@ use std::fmt;
 
 pub use crate::integrator::{IntegrationParameters, MIN_STEP, MIN_TOLERANCE};
 pub use overrides::apply_override;
-pub use section::{rectangle_torsion_constant, Section, SectionProps};
+pub use section::{rectangle_torsion_constant, Dim, Section, SectionProps};
 pub use validate::{MAX_ELEMENTS, MAX_MODES};
 
 /// A scene error: a message that names the field and what to change.
@@ -169,18 +169,19 @@ pub struct Segment {
     /// Cross-section shape.
     #[serde(default)]
     pub section: Section,
-    /// Diameter of a round section [m].
+    /// Diameter of a round section [m]. This and the other dimensions: a number, or
+    /// `[at_start, at_end]` for a linear taper along the segment ([`Dim`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub diameter: Option<f64>,
+    pub diameter: Option<Dim>,
     /// Width of a rectangle, out of the bending plane [m].
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub width: Option<f64>,
+    pub width: Option<Dim>,
     /// Height of a rectangle, in the bending plane [m].
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub height: Option<f64>,
+    pub height: Option<Dim>,
     /// Inner diameter of a tube [m].
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub inner_diameter: Option<f64>,
+    pub inner_diameter: Option<Dim>,
     /// Young's modulus E [Pa].
     pub youngs_modulus: f64,
     /// Poisson's ratio ν [-]: shear modulus G = E/(2(1 + ν)) (torsion in spatial scenes).

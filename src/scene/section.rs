@@ -3,7 +3,107 @@
 
 use super::Segment;
 use crate::math;
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// One section dimension [m]: a number (uniform along the segment) or `[at_start, at_end]`, a
+/// linear taper of the dimension along the segment's arc length (the section properties then
+/// follow from the dimensions at each point: A ∝ d², I ∝ d⁴, not an interpolation of the
+/// properties). A number serializes as a number, a taper as a list.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Dim {
+    /// The same value along the segment [m].
+    Uniform(f64),
+    /// `[at_start, at_end]` [m], linear in the arc length (valid after `validate`: two entries).
+    Taper(Vec<f64>),
+}
+
+impl Dim {
+    /// The dimension at the fraction `t` ∈ [0, 1] of the segment's length from its start [m]
+    /// (a uniform dimension: its value, for every `t`).
+    pub fn at(&self, t: f64) -> f64 {
+        match self {
+            Dim::Uniform(v) => *v,
+            Dim::Taper(v) => {
+                let a = v.first().copied().unwrap_or(0.0);
+                let b = v.get(1).copied().unwrap_or(a);
+                a + t * (b - a)
+            }
+        }
+    }
+
+    /// The value at the segment's start [m].
+    pub fn start(&self) -> f64 {
+        self.at(0.0)
+    }
+
+    /// Whether the dimension varies along the segment (a list, even with equal ends).
+    pub fn is_taper(&self) -> bool {
+        matches!(self, Dim::Taper(_))
+    }
+
+    /// Sets the start value to `x` [m]: a uniform dimension becomes `x`, a taper is scaled by
+    /// x / start at both ends (its shape kept; the FMU parameters `<segment>.diameter` etc.).
+    pub fn set_start(&mut self, x: f64) {
+        match self {
+            Dim::Uniform(v) => *v = x,
+            Dim::Taper(v) => {
+                let s = v.first().copied().unwrap_or(0.0);
+                if s != 0.0 && s.is_finite() {
+                    let f = x / s;
+                    for c in v.iter_mut() {
+                        *c *= f;
+                    }
+                } else {
+                    v.iter_mut().for_each(|c| *c = x);
+                }
+            }
+        }
+    }
+}
+
+impl From<f64> for Dim {
+    fn from(v: f64) -> Self {
+        Dim::Uniform(v)
+    }
+}
+
+impl Serialize for Dim {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Dim::Uniform(v) => s.serialize_f64(*v),
+            Dim::Taper(v) => v.serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Dim {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = Dim;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a number of metres or a taper [at_start, at_end] in metres")
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Dim, E> {
+                Ok(Dim::Uniform(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Dim, E> {
+                Ok(Dim::Uniform(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Dim, E> {
+                Ok(Dim::Uniform(v as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut a: A) -> Result<Dim, A::Error> {
+                let mut v = Vec::new();
+                while let Some(x) = a.next_element::<f64>()? {
+                    v.push(x);
+                }
+                Ok(Dim::Taper(v))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
 
 /// Cross-section shape. Section axes: y (the bending plane of a planar scene) and z.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -47,18 +147,38 @@ impl Segment {
         self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
     }
 
-    /// Properties of the cross-section (valid after `validate`).
+    /// Whether any section dimension is a taper `[at_start, at_end]` ([`Dim`]).
+    pub fn is_tapered(&self) -> bool {
+        [
+            &self.diameter,
+            &self.inner_diameter,
+            &self.width,
+            &self.height,
+        ]
+        .iter()
+        .any(|d| d.as_ref().is_some_and(Dim::is_taper))
+    }
+
+    /// Properties of the cross-section (valid after `validate`) at the segment's start (of the
+    /// whole segment unless [`Segment::is_tapered`]; then [`Segment::section_props_at`]).
     pub fn section_props(&self) -> SectionProps {
+        self.section_props_at(0.0)
+    }
+
+    /// Properties of the cross-section at arc length x = `t`·L from the segment's start
+    /// (`t` ∈ [0, 1]), from the dimensions there (valid after `validate`).
+    pub fn section_props_at(&self, t: f64) -> SectionProps {
         use std::f64::consts::PI;
+        let dim = |d: &Option<Dim>| d.as_ref().map_or(0.0, |d| d.at(t));
         let round = |d: f64| {
             let a = PI * d * d / 4.0;
             (a, a * d * d / 16.0)
         };
         match self.section {
             Section::Round | Section::Tube => {
-                let (ao, io) = round(self.diameter.unwrap_or(0.0));
+                let (ao, io) = round(dim(&self.diameter));
                 let (ai, ii) = match self.section {
-                    Section::Tube => round(self.inner_diameter.unwrap_or(0.0)),
+                    Section::Tube => round(dim(&self.inner_diameter)),
                     _ => (0.0, 0.0),
                 };
                 let i = io - ii;
@@ -71,7 +191,7 @@ impl Segment {
                 }
             }
             Section::Rectangle => {
-                let (b, h) = (self.width.unwrap_or(0.0), self.height.unwrap_or(0.0));
+                let (b, h) = (dim(&self.width), dim(&self.height));
                 let (i_y, i_z) = (h * b * b * b / 12.0, b * h * h * h / 12.0);
                 SectionProps {
                     area: b * h,

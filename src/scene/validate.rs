@@ -23,6 +23,38 @@ fn check_nonnegative(field: &str, v: f64, what: &str) -> Result<(), SceneError> 
     }
 }
 
+/// A section dimension `field` [m]: a number > 0, or a taper `[at_start, at_end]` of two
+/// numbers > 0.
+fn check_dim(field: &str, d: &Dim) -> Result<(), SceneError> {
+    match d {
+        Dim::Uniform(v) => check_positive(field, *v, "metres"),
+        Dim::Taper(v) => {
+            if v.len() != 2 {
+                return Err(SceneError(format!(
+                    "{field} = {}: a taper is a list of two numbers [at_start, at_end] in metres \
+                     (a uniform section: one number)",
+                    show_dim(d)
+                )));
+            }
+            if v.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
+                return Err(SceneError(format!(
+                    "{field} = {}: both ends of a taper must be finite numbers > 0 (metres)",
+                    show_dim(d)
+                )));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// A dimension as the scene writes it.
+fn show_dim(d: &Dim) -> String {
+    match d {
+        Dim::Uniform(v) => format!("{v}"),
+        Dim::Taper(v) => format!("{v:?}"),
+    }
+}
+
 fn check_finite(field: &str, v: f64) -> Result<(), SceneError> {
     if v.is_finite() {
         Ok(())
@@ -211,38 +243,76 @@ impl Scene {
             }
             match seg.section {
                 Section::Round | Section::Tube => {
-                    let d = seg.diameter.ok_or_else(|| {
+                    let d = seg.diameter.as_ref().ok_or_else(|| {
                         SceneError(format!(
                             "{p}.diameter is missing: a round section or a tube needs diameter = <metres> (outer)"
                         ))
                     })?;
-                    check_positive(&format!("{p}.diameter"), d, "metres")?;
+                    check_dim(&format!("{p}.diameter"), d)?;
                     if seg.section == Section::Tube {
-                        let di = seg.inner_diameter.ok_or_else(|| {
+                        let di = seg.inner_diameter.as_ref().ok_or_else(|| {
                             SceneError(format!(
                                 "{p}.inner_diameter is missing: a tube needs inner_diameter = <metres>, below diameter"
                             ))
                         })?;
-                        if !(di.is_finite() && di >= 0.0 && di < d) {
-                            return Err(SceneError(format!(
-                                "{p}.inner_diameter = {di}: must be in [0, diameter = {d}) metres"
-                            )));
+                        if let Dim::Taper(_) = di {
+                            check_dim(&format!("{p}.inner_diameter"), di)?;
+                        }
+                        for (t, end) in [(0.0, "start"), (1.0, "end")] {
+                            let (o, i) = (d.at(t), di.at(t));
+                            if !(i.is_finite() && i >= 0.0 && i < o) {
+                                return Err(SceneError(if d.is_taper() || di.is_taper() {
+                                    format!(
+                                        "{p}.inner_diameter = {}: at the segment's {end} it is {i}, must be in [0, diameter = {o}) metres (give a smaller inner diameter or a larger diameter there)",
+                                        show_dim(di)
+                                    )
+                                } else {
+                                    format!("{p}.inner_diameter = {i}: must be in [0, diameter = {o}) metres")
+                                }));
+                            }
                         }
                     }
                 }
                 Section::Rectangle => {
-                    for (f, v) in [("width", seg.width), ("height", seg.height)] {
-                        let v = v.ok_or_else(|| {
+                    for (f, v) in [("width", &seg.width), ("height", &seg.height)] {
+                        let v = v.as_ref().ok_or_else(|| {
                             SceneError(format!(
                                 "{p}.{f} is missing: a rectangle section needs width and height in metres"
                             ))
                         })?;
-                        check_positive(&format!("{p}.{f}"), v, "metres")?;
+                        check_dim(&format!("{p}.{f}"), v)?;
+                    }
+                }
+            }
+            for (f, v) in [
+                ("diameter", &seg.diameter),
+                ("width", &seg.width),
+                ("height", &seg.height),
+            ] {
+                let used = match seg.section {
+                    Section::Round | Section::Tube => f == "diameter",
+                    Section::Rectangle => f != "diameter",
+                };
+                if !used && v.is_some() {
+                    // ignored before tapers existed; a taper there must not pass unnoticed
+                    if let Some(d @ Dim::Taper(_)) = v {
+                        return Err(SceneError(format!(
+                            "{p}.{f} = {}: a section = \"{}\" has no {f}; remove it",
+                            show_dim(d),
+                            format!("{:?}", seg.section).to_lowercase()
+                        )));
                     }
                 }
             }
             match seg.kind {
                 SegmentKind::Modal => {
+                    if seg.is_tapered() {
+                        return Err(SceneError(format!(
+                            "{p}: a tapered section (a dimension [at_start, at_end]) is not yet \
+                             supported on a modal segment; use kind = \"ancf\" with elements, or \
+                             one number per dimension"
+                        )));
+                    }
                     let n = seg.modes.ok_or_else(|| {
                         SceneError(format!(
                             "{p}.modes is missing: a modal segment needs modes = 1..={MAX_MODES}"
@@ -401,12 +471,14 @@ impl Scene {
             }
         }
         // depth of the section in the bending direction (the curvature normal (κ_z, −κ_y) in
-        // section axes y, z): a rectangle's extent along it, a round section's diameter
+        // section axes y, z): a rectangle's extent along it, a round section's diameter (the
+        // larger end's on a taper)
         let k = (ky * ky + kz * kz).sqrt();
+        let largest = |d: &Option<Dim>| d.as_ref().map_or(0.0, |d| d.at(0.0).max(d.at(1.0)));
         let depth = match seg.section {
-            Section::Round | Section::Tube => seg.diameter.unwrap_or(0.0),
+            Section::Round | Section::Tube => largest(&seg.diameter),
             Section::Rectangle => {
-                let (b, h) = (seg.width.unwrap_or(0.0), seg.height.unwrap_or(0.0));
+                let (b, h) = (largest(&seg.width), largest(&seg.height));
                 (h * kz.abs() + b * ky.abs()) / k
             }
         };

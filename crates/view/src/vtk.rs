@@ -59,19 +59,20 @@ impl ViewError {
 }
 
 /// The section's outer radius of each scene segment [m] (a tube of it shows the real section;
-/// a rectangle by half its larger side).
+/// a rectangle by half its larger side); a tapered segment ([`hybeam::scene::Dim`]) by its
+/// radius at mid-length (the tube is drawn at one radius per segment).
 pub fn segment_radii(scene: &hybeam::scene::Scene) -> Vec<f64> {
     use hybeam::scene::Section;
     scene
         .segments
         .iter()
         .map(|s| match s.section {
-            Section::Round | Section::Tube => 0.5 * s.diameter.unwrap_or(0.0),
+            Section::Round | Section::Tube => 0.5 * s.diameter.as_ref().map_or(0.0, |d| d.at(0.5)),
             _ => {
                 let p = s.section_props();
                 // rectangles: half the larger side; any other shape: the equal-area circle
-                match (s.width, s.height) {
-                    (Some(w), Some(h)) => 0.5 * w.max(h),
+                match (&s.width, &s.height) {
+                    (Some(w), Some(h)) => 0.5 * w.at(0.5).max(h.at(0.5)),
                     _ => (p.area / std::f64::consts::PI).sqrt(),
                 }
             }

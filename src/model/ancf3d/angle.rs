@@ -133,6 +133,13 @@ impl Angle3 {
         from_cable(&std::array::from_fn(|k| fc[k]))
     }
 
+    /// Gravity `g` [m/s²] and the line load `line` q [N/m] ([`Ancf3Props::load_force`] of the
+    /// cable) [N, N m].
+    pub fn load_force(&self, g: [f64; 3], line: Option<[f64; 3]>) -> [f64; 14] {
+        let fc = self.cable.load_force(g, line);
+        from_cable(&std::array::from_fn(|k| fc[k]))
+    }
+
     /// `res += M ë` with the constant mass matrix: the cable's patterns `pat`
     /// ([`Ancf3Props::mass_patterns`] of [`Self::cable`]) on the r-blocks, ρI_p l/2 on each θ.
     pub fn add_mass_product(&self, pat: &MassPatterns, ea: &[f64; 14], res: &mut [f64; 14]) {

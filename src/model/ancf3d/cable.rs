@@ -30,11 +30,13 @@ impl Ancf3Props {
         !self.director || (round && self.damping_time == 0.0 && self.reference.is_none())
     }
 
-    /// Local forces on (r_x, r_xx) of a cable bending point (weight `w` [m]).
+    /// Local forces on (r_x, r_xx) of a cable bending point (weight `w` [m], (E·I_y, E·I_z)
+    /// `ei` [N m²] there; the cable's stiffness is their mean as in [`Ancf3Props::cable_ei`]).
     #[inline(always)]
     pub(super) fn cable_point<T: Real>(
         &self,
         w: f64,
+        ei: [f64; 2],
         u: &[V<T>; 2],
         ud: Option<&[V<T>; 2]>,
     ) -> [V<T>; 2] {
@@ -54,7 +56,7 @@ impl Ancf3Props {
                 mv[c] += (r1[c] + r2[c] - r3[c] - kap[c] * ada) * (inv * self.damping_time);
             }
         }
-        let s = w * self.cable_ei();
+        let s = w * (0.5 * (ei[0] + ei[1]));
         let mv = [mv[0] * s, mv[1] * s, mv[2] * s];
         // Jᵀμ of κ̇_rel = J ė (J = ∂κ/∂e on the elastic part, κ·a = 0):
         // a-part [b × μ − 2(κ·μ) a + (a·μ) κ]/|a|², b-part (μ × a)/|a|²

@@ -148,18 +148,20 @@ impl Ancf3Props {
         t
     }
 
-    /// Local forces on (r_x, r_xx, r_y) of a bending point (weight `w` [m]).
+    /// Local forces on (r_x, r_xx, r_y) of a bending point (weight `w` [m], (E·I_y, E·I_z) `ei`
+    /// [N m²] there).
     #[inline(always)]
     pub(super) fn bend_point<T: Real>(
         &self,
         w: f64,
         q: usize,
+        ei: [f64; 2],
         u: &[V<T>; 3],
         ud: Option<&[V<T>; 3]>,
     ) -> [V<T>; 3] {
         let [a, b, c] = u;
         let (m, g) = bend(a, b, c);
-        let stiff = [self.ei_y, self.ei_z];
+        let stiff = ei;
         let mut s = m;
         if let Some(r) = &self.reference {
             // curvatures from the reference's (κ2₀, κ3₀) at bending point q

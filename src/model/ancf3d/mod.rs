@@ -94,6 +94,11 @@ pub struct Ancf3Props {
     /// subtracted from ε, κ2, κ3 and the element twist φ; `None`: straight, the measures count
     /// from zero.
     pub reference: Option<Reference3>,
+    /// A tapered element's section properties at its quadrature points ([`SectionTable3`]);
+    /// `None`: uniform. With a table, `ea`, `ei_y`, `ei_z`, `rho_a` hold the mid-element values
+    /// and `gj`, `rho_ip` the element's means (1/l)∫GJ dx, (1/l)∫ρI_p dx (the element twist is
+    /// one rate per element, its twist inertia lumped at the nodes).
+    pub taper: Option<SectionTable3>,
 }
 
 /// The strain measures of a director element's unstressed configuration, an arc of constant
@@ -202,6 +207,20 @@ impl Reference3 {
     }
 }
 
+/// The section properties of a tapered spatial element at its quadrature points (a segment
+/// whose dimensions vary, [`crate::scene::Dim`]): EA on the 5 axial Gauss points, (E·I_y, E·I_z)
+/// on the 3 bending points, ρA on the 5 points for the mass matrix and gravity (exact: ρA(x) is
+/// at most quadratic in x).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionTable3 {
+    /// EA [N] at the [`GAUSS5`] points.
+    pub ea: [f64; 5],
+    /// (E·I_y, E·I_z) [N m²] at the [`GAUSS3`] points.
+    pub ei: [[f64; 2]; 3],
+    /// ρA [kg/m] at the [`GAUSS5`] points.
+    pub rho_a: [f64; 5],
+}
+
 /// Quadrature tables of an element (shape functions at the points, weights times the Jacobian
 /// l/2), computed once per element length.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -221,6 +240,8 @@ pub struct Tables3 {
 struct BendPoint {
     /// Gauss weight × l/2 [m].
     w: f64,
+    /// (E·I_y, E·I_z) at the point [N m²] (the element's constants unless tapered).
+    ei: [f64; 2],
     ds: [f64; 4],
     dds: [f64; 4],
     /// Linear shape functions of r_y (the director inertia and the bending frame).
@@ -234,6 +255,13 @@ impl Ancf3Props {
     /// what this element cannot represent, naming the segment, field and fix: the paper's
     /// simplified strain model, and E·I_y ≠ E·I_z without torsion ([`Ancf3Props::check`]).
     pub fn of_segment(segment: &Segment, director: bool) -> Result<Self, String> {
+        Self::of_element(segment, director, 0.0)
+    }
+
+    /// [`Ancf3Props::of_segment`] for the element starting at arc length `x0` [m] from the
+    /// segment's start: on a tapered segment ([`Segment::is_tapered`]) the element's section
+    /// table ([`Ancf3Props::taper`]); on a uniform one the same as `of_segment`.
+    pub fn of_element(segment: &Segment, director: bool, x0: f64) -> Result<Self, String> {
         let name = &segment.name;
         if segment.strain != StrainModel::Exact {
             return Err(format!(
@@ -255,11 +283,63 @@ impl Ancf3Props {
             damping_time: segment.damping_time,
             director,
             reference: None,
+            taper: None,
         };
         props
             .check()
             .map_err(|m| format!("segment {name:?}: {m}"))?;
+        if segment.is_tapered() {
+            // I_y − I_z is zero along the segment iff it is at both ends (b = h, linear in x)
+            for t in [0.0, 1.0] {
+                let p = segment.section_props_at(t);
+                Self {
+                    ei_y: e * p.i_y,
+                    ei_z: e * p.i_z,
+                    ..props
+                }
+                .check()
+                .map_err(|m| format!("segment {name:?}: {m} (at x/L = {t})"))?;
+            }
+            return Ok(props.tapered(segment, x0));
+        }
         Ok(props)
+    }
+
+    /// These properties with the section table of the element [x0, x0 + l] of the tapered
+    /// `segment` (x0 [m] from its start).
+    pub fn tapered(self, segment: &Segment, x0: f64) -> Self {
+        let (e, g, rho) = (
+            segment.youngs_modulus,
+            segment.shear_modulus(),
+            segment.density,
+        );
+        let l = self.length;
+        let at = |xg: f64| segment.section_props_at((x0 + 0.5 * (xg + 1.0) * l) / segment.length);
+        let mid = at(0.0);
+        // element means of GJ and ρI_p: quartic in x at most, exact on 3 Gauss points
+        let mean = |f: &dyn Fn(&crate::scene::SectionProps) -> f64| {
+            GAUSS3
+                .iter()
+                .map(|(xg, wg)| 0.5 * wg * f(&at(*xg)))
+                .sum::<f64>()
+        };
+        Self {
+            rho_a: rho * mid.area,
+            rho_ip: rho * mean(&|p| p.polar),
+            ea: e * mid.area,
+            ei_y: e * mid.i_y,
+            ei_z: e * mid.i_z,
+            gj: g * mean(&|p| p.torsion),
+            taper: Some(SectionTable3 {
+                ea: GAUSS5.map(|(xg, _)| e * at(xg).area),
+                ei: GAUSS3.map(|(xg, _)| {
+                    let p = at(xg);
+                    [e * p.i_y, e * p.i_z]
+                }),
+                rho_a: GAUSS5.map(|(xg, _)| rho * at(xg).area),
+            }),
+            ..self
+        }
     }
 
     /// Number of element coordinates (18 for the director element, 12 for the 3D cable).
@@ -324,6 +404,19 @@ impl Ancf3Props {
     /// The 4×4 Hermite mass pattern ρA l/420 [156, 22l, 54, −13l; …].
     fn hermite_mass(&self) -> [[f64; 4]; 4] {
         let l = self.length;
+        if let Some(t) = &self.taper {
+            // ∫ρA(x) S_j S_k dx on 5 Gauss points (exact for ρA quadratic in x)
+            let mut p = [[0.0; 4]; 4];
+            for ((xg, wg), ra) in GAUSS5.iter().zip(t.rho_a) {
+                let (sh, _, _) = hermite(0.5 * (xg + 1.0), l);
+                for j in 0..4 {
+                    for k in 0..4 {
+                        p[j][k] += wg * 0.5 * l * ra * sh[j] * sh[k];
+                    }
+                }
+            }
+            return p;
+        }
         let c = self.rho_a * l / 420.0;
         [
             [156.0, 22.0 * l, 54.0, -13.0 * l],
@@ -355,15 +448,59 @@ impl Ancf3Props {
     /// (first d entries used) [N, N m].
     pub fn gravity_force(&self, g: [f64; 3]) -> [f64; DIRECTOR_DOFS] {
         let l = self.length;
-        let w = [0.5, l / 12.0, 0.5, -l / 12.0];
         let (rs, _) = self.slots();
         let mut f = [0.0; DIRECTOR_DOFS];
+        if let Some(t) = &self.taper {
+            for ((xg, wg), ra) in GAUSS5.iter().zip(t.rho_a) {
+                let (sh, _, _) = hermite(0.5 * (xg + 1.0), l);
+                for j in 0..4 {
+                    for c in 0..3 {
+                        f[rs[j] + c] += wg * 0.5 * l * ra * sh[j] * g[c];
+                    }
+                }
+            }
+            return f;
+        }
+        let w = [0.5, l / 12.0, 0.5, -l / 12.0];
         for j in 0..4 {
             for c in 0..3 {
                 f[rs[j] + c] = self.rho_a * l * w[j] * g[c];
             }
         }
         f
+    }
+
+    /// The distributed dead load of gravity `g` [m/s²] and the line load `line` q [N/m] (world
+    /// axes; `None`: none): ∫Sᵀ(ρA g + q) dx on the r-blocks [N, N m]. A uniform element takes
+    /// it as gravity g + q/(ρA); a tapered one integrates ρA(x) g and adds q ∫Sᵀ dx, a load per
+    /// unit length whatever the section.
+    pub fn load_force(&self, g: [f64; 3], line: Option<[f64; 3]>) -> [f64; DIRECTOR_DOFS] {
+        match line {
+            None => self.gravity_force(g),
+            Some(q) if self.taper.is_none() => {
+                let b = q.map(|c| c / self.rho_a);
+                self.gravity_force([g[0] + b[0], g[1] + b[1], g[2] + b[2]])
+            }
+            Some(q) => {
+                let mut f = self.gravity_force(g);
+                let l = self.length;
+                let w = [0.5, l / 12.0, 0.5, -l / 12.0];
+                let (rs, _) = self.slots();
+                for j in 0..4 {
+                    for c in 0..3 {
+                        f[rs[j] + c] += l * w[j] * q[c];
+                    }
+                }
+                f
+            }
+        }
+    }
+
+    /// (E·I_y, E·I_z) [N m²] at bending Gauss point `k`.
+    fn ei_at(&self, k: usize) -> [f64; 2] {
+        self.taper
+            .as_ref()
+            .map_or([self.ei_y, self.ei_z], |t| t.ei[k])
     }
 
     /// Quadrature tables (weights × l/2 × EA for the axial points).
@@ -376,6 +513,7 @@ impl Ancf3Props {
                 let (_, ds, dds) = hermite(xi, l);
                 BendPoint {
                     w: 0.5 * l,
+                    ei: [0.0; 2],
                     ds,
                     dds,
                     ny: [1.0 - xi, xi],
@@ -385,13 +523,15 @@ impl Ancf3Props {
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
             let (_, ds, _) = hermite(0.5 * (xg + 1.0), l);
-            t.axial[k] = (wg * 0.5 * l * self.ea, ds);
+            let ea = self.taper.as_ref().map_or(self.ea, |t| t.ea[k]);
+            t.axial[k] = (wg * 0.5 * l * ea, ds);
         }
         for (k, (xg, wg)) in GAUSS3.iter().enumerate() {
             let xi = 0.5 * (xg + 1.0);
             let (_, ds, dds) = hermite(xi, l);
             t.bending[k] = BendPoint {
                 w: wg * 0.5 * l,
+                ei: self.ei_at(k),
                 ds,
                 dds,
                 ny: [1.0 - xi, xi],
@@ -452,22 +592,22 @@ impl Ancf3Props {
                 ];
                 if damped {
                     point_tangent::<3, 18, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
-                        self.bend_point(p.w, q, u, Some(ud))
+                        self.bend_point(p.w, q, p.ei, u, Some(ud))
                     });
                 } else {
                     point_tangent::<3, 9, D>(&maps, e, ed, mats.0, None, |u, _| {
-                        self.bend_point(p.w, q, u, None)
+                        self.bend_point(p.w, q, p.ei, u, None)
                     });
                 }
             } else {
                 let maps = [Map::new(&p.ds, &rs), Map::new(&p.dds, &rs)];
                 if damped {
                     point_tangent::<2, 12, D>(&maps, e, ed, mats.0, Some(&mut *mats.1), |u, ud| {
-                        self.cable_point(p.w, u, Some(ud))
+                        self.cable_point(p.w, p.ei, u, Some(ud))
                     });
                 } else {
                     point_tangent::<2, 6, D>(&maps, e, ed, mats.0, None, |u, _| {
-                        self.cable_point(p.w, u, None)
+                        self.cable_point(p.w, p.ei, u, None)
                     });
                 }
             }
@@ -533,13 +673,13 @@ impl Ancf3Props {
             if !cable {
                 let c = comb(&p.ny, &ys, e);
                 let ud = damped.then(|| [ad, bd, comb(&p.ny, &ys, ed)]);
-                let [ga, gb, gc] = self.bend_point(p.w, q, &[a, b, c], ud.as_ref());
+                let [ga, gb, gc] = self.bend_point(p.w, q, p.ei, &[a, b, c], ud.as_ref());
                 scatter(&mut f, &p.ds, &rs, &ga);
                 scatter(&mut f, &p.dds, &rs, &gb);
                 scatter(&mut f, &p.ny, &ys, &gc);
             } else {
                 let ud = damped.then_some([ad, bd]);
-                let [ga, gb] = self.cable_point(p.w, &[a, b], ud.as_ref());
+                let [ga, gb] = self.cable_point(p.w, p.ei, &[a, b], ud.as_ref());
                 scatter(&mut f, &p.ds, &rs, &ga);
                 scatter(&mut f, &p.dds, &rs, &gb);
             }
@@ -620,11 +760,11 @@ impl Ancf3Props {
                     k2 -= r.bending[q][0];
                     k3 -= r.bending[q][1];
                 }
-                u += 0.5 * p.w * (self.ei_y * k2 * k2 + self.ei_z * k3 * k3);
+                u += 0.5 * p.w * (p.ei[0] * k2 * k2 + p.ei[1] * k3 * k3);
             } else {
                 let bv = cross(&a, &b);
                 let n2 = dot(&a, &a);
-                u += 0.5 * p.w * self.cable_ei() * dot(&bv, &bv) / (n2 * n2);
+                u += 0.5 * p.w * (0.5 * (p.ei[0] + p.ei[1])) * dot(&bv, &bv) / (n2 * n2);
             }
         }
         if self.director {

@@ -20,6 +20,7 @@ pub(crate) fn props(torsion: bool, tau: f64, ei_ratio: f64) -> Ancf3Props {
         damping_time: tau,
         director: torsion,
         reference: None,
+        taper: None,
     }
 }
 
@@ -629,6 +630,7 @@ fn in_plane_element_equals_the_planar_element() {
         damping_time: 0.0,
         strain: StrainModel::Exact,
         reference: None,
+        taper: None,
     };
     let e2 = Vec8::from_column_slice(&[0.01, -0.02, 0.9, 0.3, 0.055, 0.01, 0.7, 0.75]);
     for torsion in [true, false] {

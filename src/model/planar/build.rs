@@ -7,7 +7,7 @@ use super::ends::{ModalRootPort, ModalTipPort, NodePort, RootSupport};
 use super::joint::RigidJoint;
 use super::Planar;
 use crate::math;
-use crate::model::ancf::{arc_end, AncfProps, AncfReference, SectionMass};
+use crate::model::ancf::{arc_end, AncfProps, AncfReference, SectionMass, SectionTable};
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
@@ -137,18 +137,31 @@ impl SegmentParts<Planar> for PlanarParts {
             damping_time: seg.damping_time,
             strain: seg.strain,
             reference: seg.curvature().map(|k| AncfReference::arc(le, k[1])),
+            taper: None,
         })
     }
 
     fn ancf_element(
         &self,
         props: &AncfProps,
+        x0: f64,
         points: &[(f64, f64)],
         bodies: &[SectionMass],
         seg: &Segment,
     ) -> Box<dyn Element<Planar>> {
+        let mut props = *props;
+        if seg.is_tapered() {
+            let (e, rho) = (seg.youngs_modulus, seg.density);
+            let at = |x: f64| {
+                let p = seg.section_props_at(x / seg.length);
+                (e * p.area, e * p.i_z, rho * p.area)
+            };
+            let l = props.length;
+            (props.ea, props.ei, props.rho_a) = at(x0 + 0.5 * l);
+            props.taper = Some(SectionTable::of(x0, l, at));
+        }
         Box::new(
-            AncfElement::new(*props)
+            AncfElement::new(props)
                 .with_points(points)
                 .with_bodies(bodies)
                 .with_line_load(seg.line_load_vec()),

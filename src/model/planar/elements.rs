@@ -29,7 +29,8 @@ pub struct AncfElement {
     bodies: Vec<(SectionMass, [f64; 4], [f64; 4])>,
     /// The current gravity [m/s²].
     g: [f64; 2],
-    /// The segment's line load over ρA, q/(ρA) [m/s²]; `None` without one.
+    /// The segment's line load over ρA, q/(ρA) [m/s²] on a uniform element; on a tapered one
+    /// ([`AncfProps::taper`]) the load q itself [N/m]; `None` without one.
     line: Option<[f64; 2]>,
 }
 
@@ -74,8 +75,14 @@ impl AncfElement {
     /// load of density q beside the weight ρA g, so ∫Sᵀ(ρA g + q) dx is the distributed force
     /// (and −∫qᵀr dx joins the potential); the point masses and section bodies keep g.
     pub fn with_line_load(mut self, q: Option<[f64; 2]>) -> Self {
-        self.line = q.map(|q| q.map(|c| c / self.props.rho_a));
+        self.line = q.map(|q| self.line_of(q));
         self
+    }
+
+    /// The stored form of the line load `q` [N/m] ([`AncfElement::line`]).
+    fn line_of(&self, q: [f64; 2]) -> [f64; 2] {
+        let tapered = self.props.taper.is_some();
+        q.map(|c| if tapered { c } else { c / self.props.rho_a })
     }
 
     /// The element carrying rigid bodies on its section ([`SectionMass`]: an offset or a
@@ -254,11 +261,14 @@ impl Element<Planar> for AncfElement {
     }
 
     fn set_line_load(&mut self, q: &[f64; 2]) {
-        self.line = Some(q.map(|c| c / self.props.rho_a));
+        self.line = Some(self.line_of(*q));
     }
 
     fn set_gravity(&mut self, g: &[f64; 2]) {
         self.gravity_force = match self.line {
+            Some(q) if self.props.taper.is_some() => {
+                self.props.gravity_force(*g) + self.props.line_force(q)
+            }
             Some(b) => self.props.gravity_force([g[0] + b[0], g[1] + b[1]]),
             None => self.props.gravity_force(*g),
         };

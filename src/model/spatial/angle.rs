@@ -5,7 +5,7 @@
 use super::kin::{EndKin3, Field3};
 use super::node::{
     add_point_weight, add_points, frame_duals, gravity_potential, moment_stiffness, rotation_of,
-    rotation_second_along, with_line, NodeFrame,
+    rotation_second_along, NodeFrame,
 };
 use super::Spatial;
 use crate::model::ancf3d::angle::{section_frame, Angle3, ANGLE_DOFS};
@@ -32,7 +32,7 @@ pub struct AngleElement3 {
     gravity_force: [f64; ANGLE_DOFS],
     /// Σ m S(ξ_m) over the point masses on the element; `None` without.
     points: Option<[f64; 4]>,
-    /// The segment's line load over ρA, q/(ρA) [m/s²]; `None` without one.
+    /// The segment's line load q [N/m] ([`Ancf3Props::load_force`]); `None` without one.
     line: Option<[f64; 3]>,
 }
 
@@ -57,7 +57,7 @@ impl AngleElement3 {
     /// The element under the uniform dead line load `q` [N/m] (world axes; `None`: none), as
     /// [`super::node::AncfElement3::with_line_load`].
     pub fn with_line_load(mut self, q: Option<[f64; 3]>) -> Self {
-        self.line = q.map(|q| q.map(|c| c / self.props.cable.rho_a));
+        self.line = q;
         self
     }
 
@@ -144,11 +144,11 @@ impl Element<Spatial> for AngleElement3 {
     }
 
     fn set_line_load(&mut self, q: &[f64; 3]) {
-        self.line = Some(q.map(|c| c / self.props.cable.rho_a));
+        self.line = Some(*q);
     }
 
     fn set_gravity(&mut self, g: &[f64; 3]) {
-        self.gravity_force = self.props.gravity_force(with_line(g, self.line));
+        self.gravity_force = self.props.load_force(*g, self.line);
         add_point_weight(&self.points, g, R_SLOTS, &mut self.gravity_force);
     }
 

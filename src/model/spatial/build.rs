@@ -184,11 +184,14 @@ impl SegmentParts<Spatial> for SpatialParts {
     fn ancf_element(
         &self,
         props: &Ancf3Props,
+        x0: f64,
         points: &[(f64, f64)],
         _bodies: &[SectionMass],
         seg: &Segment,
     ) -> Box<dyn Element<Spatial>> {
         let line = seg.line_load_vec();
+        let tapered = seg.is_tapered().then(|| props.tapered(seg, x0));
+        let props = tapered.as_ref().unwrap_or(props);
         if self.angle {
             // the axes of the root frame: unit and perpendicular (checked in `ancf_props`)
             Box::new(

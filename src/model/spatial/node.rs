@@ -28,17 +28,8 @@ pub struct AncfElement3 {
     gravity_force: [f64; DIRECTOR_DOFS],
     /// Σ m S(ξ_m) over the point masses on the element ([`add_points`]); `None` without.
     points: Option<[f64; 4]>,
-    /// The segment's line load over ρA, q/(ρA) [m/s²]; `None` without one.
+    /// The segment's line load q [N/m] ([`Ancf3Props::load_force`]); `None` without one.
     line: Option<[f64; 3]>,
-}
-
-/// The gravity the distributed mass of an element under the line load q/(ρA) `line` feels:
-/// g + q/(ρA) (a dead load of density q beside ρA g), `g` itself without one.
-pub(super) fn with_line(g: &[f64; 3], line: Option<[f64; 3]>) -> [f64; 3] {
-    match line {
-        Some(b) => [g[0] + b[0], g[1] + b[1], g[2] + b[2]],
-        None => *g,
-    }
 }
 
 /// Adds point masses `points` (ξ ∈ [0, 1], mass [kg]) on an element of length `l` to its
@@ -109,7 +100,7 @@ impl AncfElement3 {
     /// ∫S_rᵀ(ρA g + q) dx is the distributed force and −∫qᵀr dx joins the potential; the point
     /// masses keep g.
     pub fn with_line_load(mut self, q: Option<[f64; 3]>) -> Self {
-        self.line = q.map(|q| q.map(|c| c / self.props.rho_a));
+        self.line = q;
         self
     }
 
@@ -213,11 +204,11 @@ impl Element<Spatial> for AncfElement3 {
     }
 
     fn set_line_load(&mut self, q: &[f64; 3]) {
-        self.line = Some(q.map(|c| c / self.props.rho_a));
+        self.line = Some(*q);
     }
 
     fn set_gravity(&mut self, g: &[f64; 3]) {
-        self.gravity_force = self.props.gravity_force(with_line(g, self.line));
+        self.gravity_force = self.props.load_force(*g, self.line);
         add_point_weight(
             &self.points,
             g,

@@ -14,7 +14,7 @@
 //! checked against this table by `tests/variables_doc.rs`.
 
 use fmi2::{Causality, StringVariable, Variability, Variable};
-use hybeam::scene::{Mass, MotionInput, Root, Scene, Section, Segment, SegmentKind};
+use hybeam::scene::{Dim, Mass, MotionInput, Root, Scene, Section, Segment, SegmentKind};
 use hybeam::simulator::{InputId, InputKind, OutputId, Quantity};
 
 use super::view::{Setting, Settings};
@@ -397,24 +397,33 @@ pub const SEGMENT_FIELDS: [SegmentField; 9] = [
         k: 2,
         unit: Some("m"),
         applies: round,
-        get: |s| s.diameter.unwrap_or(0.0),
-        set: |s, x| s.diameter = Some(x),
+        get: |s| s.diameter.as_ref().map_or(0.0, Dim::start),
+        set: |s, x| match &mut s.diameter {
+            Some(d) => d.set_start(x),
+            None => s.diameter = Some(Dim::Uniform(x)),
+        },
     },
     SegmentField {
         name: "width",
         k: 3,
         unit: Some("m"),
         applies: rectangle,
-        get: |s| s.width.unwrap_or(0.0),
-        set: |s, x| s.width = Some(x),
+        get: |s| s.width.as_ref().map_or(0.0, Dim::start),
+        set: |s, x| match &mut s.width {
+            Some(d) => d.set_start(x),
+            None => s.width = Some(Dim::Uniform(x)),
+        },
     },
     SegmentField {
         name: "height",
         k: 4,
         unit: Some("m"),
         applies: rectangle,
-        get: |s| s.height.unwrap_or(0.0),
-        set: |s, x| s.height = Some(x),
+        get: |s| s.height.as_ref().map_or(0.0, Dim::start),
+        set: |s, x| match &mut s.height {
+            Some(d) => d.set_start(x),
+            None => s.height = Some(Dim::Uniform(x)),
+        },
     },
     SegmentField {
         name: "youngs_modulus",
@@ -453,8 +462,11 @@ pub const SEGMENT_FIELDS: [SegmentField; 9] = [
         k: 9,
         unit: Some("m"),
         applies: tube,
-        get: |s| s.inner_diameter.unwrap_or(0.0),
-        set: |s, x| s.inner_diameter = Some(x),
+        get: |s| s.inner_diameter.as_ref().map_or(0.0, Dim::start),
+        set: |s, x| match &mut s.inner_diameter {
+            Some(d) => d.set_start(x),
+            None => s.inner_diameter = Some(Dim::Uniform(x)),
+        },
     },
 ];
 
@@ -792,5 +804,23 @@ mod tests {
         let n = vrs.len();
         vrs.dedup();
         assert_eq!(vrs.len(), n, "duplicate value references");
+    }
+
+    /// A tapered dimension's parameter is its start value; setting it scales both ends
+    /// (docs/fmu-variables.md); a uniform one is its value.
+    #[test]
+    fn a_tapered_dimension_parameter_scales_both_ends() {
+        let text = "name = \"t\"\n[[segments]]\nname = \"a\"\nkind = \"ancf\"\nlength = 0.5\n\
+                    section = \"tube\"\ndiameter = [0.004, 0.002]\ninner_diameter = 0.001\n\
+                    youngs_modulus = 2.1e11\ndensity = 7850\nelements = 4\n";
+        let mut seg = Scene::from_toml(text).unwrap().segments[0].clone();
+        let field = |name: &str| SEGMENT_FIELDS.iter().find(|f| f.name == name).unwrap();
+        let (d, di) = (field("diameter"), field("inner_diameter"));
+        assert_eq!((d.get)(&seg), 0.004);
+        (d.set)(&mut seg, 0.006);
+        assert_eq!(seg.diameter, Some(Dim::Taper(vec![0.006, 0.003])));
+        assert_eq!((di.get)(&seg), 0.001);
+        (di.set)(&mut seg, 0.0015);
+        assert_eq!(seg.inner_diameter, Some(Dim::Uniform(0.0015)));
     }
 }
