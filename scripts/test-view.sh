@@ -12,7 +12,7 @@ git diff --exit-code --stat -- viewer/dist/viewer.js
 
 OUT=out/view-test
 rm -rf "$OUT" && mkdir -p "$OUT"
-for case in "case1 0.5" "strip_3d 0.3"; do
+for case in "case1 0.5" "strip_3d 0.3" "sprayer_boom_3d 0.2"; do
     set -- $case
     target/release/hybeam run "scenes/$1.toml" --t-end "$2" --out "$OUT/$1.csv" \
         --animate "$OUT/$1.html" --quiet

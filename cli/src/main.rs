@@ -339,14 +339,21 @@ fn animate(args: &AnimateArgs) -> Result<(), String> {
     .iter()
     .map(|a| format!("tip.position.{a}"))
     .collect();
-    // per-segment radii from the first piece's per-point radii
-    let radii: Vec<f64> = first
-        .shape
-        .segments
-        .iter()
-        .map(|r| first.radius.get(r.start).copied().unwrap_or(0.0))
-        .collect();
-    let mut rec = hybeam_view::Recorder::new(&title, gravity, radii, names.clone());
+    // the masses' spheres from the first piece (their centres from each piece)
+    let look = hybeam_view::Look {
+        radii: Vec::new(),
+        masses: first
+            .masses
+            .iter()
+            .map(|(_, radius)| hybeam_view::look::MassLook {
+                segment: 0,
+                at: 0.0,
+                offset: [0.0; 3],
+                radius: *radius,
+            })
+            .collect(),
+    };
+    let mut rec = hybeam_view::Recorder::new(&title, gravity, look, names.clone());
     if let Some(size) = args.body {
         rec = rec.with_body(hybeam_view::BodyBox {
             size,
@@ -360,7 +367,8 @@ fn animate(args: &AnimateArgs) -> Result<(), String> {
             .last()
             .map(|q| q.position)
             .unwrap_or_default();
-        rec.push(p.time, &p.shape, &tip[..names.len()]);
+        let centres: Vec<[f64; 3]> = p.masses.iter().map(|(c, _)| *c).collect();
+        rec.push_dressed(p.time, &p.shape, &p.radius, &centres, &tip[..names.len()]);
     }
     let out = args
         .out

@@ -1,6 +1,7 @@
 // The hybeam animation page: reads the run embedded in the page (<script id="hybeam-data">,
 // written by crates/view/src/animation.rs) and draws the beam as a tube of its section coloured
-// by strain, the root (mount) frame, the tip trace and, for a vehicle, the car body; with
+// by strain (its radius following a taper), the attached masses as spheres, the root (mount)
+// frame, the tip trace and, for a vehicle, the car body; with
 // play/pause, speed, a time scrubber, the time and the tip values, and an orbiting camera.
 // Bundled with three.js by esbuild into dist/viewer.js (npm run build), which the page embeds.
 
@@ -27,6 +28,8 @@ const root = floats(data.root, 32); // frames × 12 (origin, x, y, z axes)
 const tipValues = floats(data.tip.values, 64); // frames × names
 const tipNames = data.tip.names;
 const radius = floats(data.radius, 32); // n
+const massRadius = data.mass_radius || []; // per attached mass [m]
+const massCentres = data.masses ? floats(data.masses, 32) : new Float32Array(0); // frames × masses × 3
 const RING = 12;
 
 // ---- scene, camera, lights
@@ -137,6 +140,14 @@ const joints = data.segments.slice(1).map(([a]) => {
   return { index: a, mesh: m };
 });
 
+// the attached masses: spheres of their drawn radius (at least 1 % of the view)
+const masses = massRadius.map((r) => {
+  const m = new THREE.Mesh(new THREE.SphereGeometry(1, 20, 14), new THREE.MeshStandardMaterial({ color: 0xe0a030, roughness: 0.5 }));
+  m.scale.setScalar(Math.max(r, 0.01 * size));
+  scene.add(m);
+  return m;
+});
+
 // ---- one frame onto the geometry
 const t = new THREE.Vector3(), d2 = new THREE.Vector3(), d3 = new THREE.Vector3(), p = new THREE.Vector3();
 function tangent(f, i) {
@@ -197,6 +208,11 @@ function show(f) {
     j.mesh.position.set(pos[o + 3 * i], pos[o + 3 * i + 1], pos[o + 3 * i + 2]);
     j.mesh.scale.setScalar(1.8 * radius[i] * thickness);
   }
+  const nm = masses.length;
+  masses.forEach((m, k) => {
+    const c = 3 * (f * nm + k);
+    m.position.set(massCentres[c], massCentres[c + 1], massCentres[c + 2]);
+  });
   traceGeom.setDrawRange(0, f + 1);
   document.getElementById("time").textContent = `t = ${times[f].toFixed(4)} s`;
   const rows = tipNames.map((name, k) => `${name} = ${tipValues[f * tipNames.length + k].toExponential(6)}`);

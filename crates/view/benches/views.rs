@@ -8,7 +8,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use hybeam::scene::Scene;
 use hybeam::simulator::AnySimulator;
-use hybeam_view::{segment_radii, Recorder, Series};
+use hybeam_view::{Look, Recorder, Series};
 use std::path::PathBuf;
 
 fn case1() -> Scene {
@@ -28,7 +28,7 @@ fn run(scene: &Scene, mut view: impl FnMut(&AnySimulator)) {
 
 fn views(c: &mut Criterion) {
     let scene = case1();
-    let radii = segment_radii(&scene);
+    let radii = Look::of(&scene);
     let dir = std::env::temp_dir().join(format!("hybeam-bench-views-{}", std::process::id()));
     let mut g = c.benchmark_group("case1_0.2s_1ms_outputs");
     g.sample_size(20);

@@ -8,6 +8,7 @@
 //! and the tip values. Positions, axes and strains are stored as 32-bit floats (display only),
 //! times and tip values as 64-bit (shown as numbers).
 
+use crate::look::Look;
 use crate::vtk::ViewError;
 use base64::Engine as _;
 use hybeam::model::Shape;
@@ -37,10 +38,12 @@ pub struct Recorder {
     title: String,
     up: [f64; 3],
     tip_names: Vec<String>,
-    /// Outer radius of each segment [m].
-    segment_radii: Vec<f64>,
+    /// The tube's radius along the segments and the attached masses.
+    look: Look,
     /// Outer radius at each point [m] (from the first frame).
     radius: Vec<f32>,
+    /// The attached masses' centres per frame [m] (3 per mass).
+    masses: Vec<f32>,
     segments: Vec<[usize; 2]>,
     points: usize,
     times: Vec<f64>,
@@ -68,6 +71,9 @@ struct PageData<'a> {
     root: String,
     tip: TipData<'a>,
     body: Option<BodyBox>,
+    /// The attached masses' sphere radii [m] and their centres per frame.
+    mass_radius: Vec<f64>,
+    masses: String,
 }
 
 #[derive(Serialize)]
@@ -78,9 +84,10 @@ struct TipData<'a> {
 
 impl Recorder {
     /// A recorder titled `title`, `gravity` (world axes, 2 or 3 components) giving the up
-    /// direction (−g; y up without gravity in the plane, z in space), segments of outer radius
-    /// `radii` [m], tip values named `tip_names` given with each frame.
-    pub fn new(title: &str, gravity: &[f64], radii: Vec<f64>, tip_names: Vec<String>) -> Self {
+    /// direction (−g; y up without gravity in the plane, z in space), the beam dressed by
+    /// `look` (the tube's radius, the attached masses), tip values named `tip_names` given with
+    /// each frame.
+    pub fn new(title: &str, gravity: &[f64], look: Look, tip_names: Vec<String>) -> Self {
         let g: [f64; 3] = std::array::from_fn(|k| gravity.get(k).copied().unwrap_or(0.0));
         let norm = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
         let up = if norm > 0.0 {
@@ -94,8 +101,9 @@ impl Recorder {
             title: title.to_string(),
             up,
             tip_names,
-            segment_radii: radii,
+            look,
             radius: Vec::new(),
+            masses: Vec::new(),
             segments: Vec::new(),
             points: 0,
             times: Vec::new(),
@@ -129,6 +137,25 @@ impl Recorder {
     /// Beyond [`MAX_FRAMES`] every other frame is dropped (the first and the latest kept), so a
     /// long run's page stays a few tens of MB at most.
     pub fn push(&mut self, time: f64, shape: &Shape, tip: &[f64]) {
+        let radii = if self.times.is_empty() {
+            self.look.point_radii(shape)
+        } else {
+            Vec::new()
+        };
+        let centres = self.look.mass_centres(shape);
+        self.push_dressed(time, shape, &radii, &centres, tip);
+    }
+
+    /// [`Recorder::push`] with the tube's radius at each point [m] (used at the first frame
+    /// only) and the masses' centres [m] (one per mass of the look) given: a series read back.
+    pub fn push_dressed(
+        &mut self,
+        time: f64,
+        shape: &Shape,
+        radii: &[f64],
+        centres: &[[f64; 3]],
+        tip: &[f64],
+    ) {
         if self.times.len() >= MAX_FRAMES {
             self.thin();
         }
@@ -138,11 +165,8 @@ impl Recorder {
         if self.times.is_empty() {
             self.points = shape.points.len();
             self.segments = shape.segments.iter().map(|r| [r.start, r.end]).collect();
-            let radii = &self.segment_radii;
-            self.radius = shape
-                .points
-                .iter()
-                .map(|p| radii.get(p.segment).copied().unwrap_or(0.0) as f32)
+            self.radius = (0..shape.points.len())
+                .map(|i| radii.get(i).copied().unwrap_or(0.0) as f32)
                 .collect();
         }
         self.times.push(time);
@@ -152,6 +176,10 @@ impl Recorder {
             let c = self.radius.get(i).copied().unwrap_or(0.0) as f64;
             self.strain
                 .push((p.axial_strain.abs() + p.bending() * c) as f32);
+        }
+        for k in 0..self.look.masses.len() {
+            let c = centres.get(k).copied().unwrap_or_default();
+            self.masses.extend(c.map(|x| x as f32));
         }
         let r = &shape.root;
         self.root.extend(r.origin.map(|x| x as f32));
@@ -183,6 +211,7 @@ impl Recorder {
         retain(&mut self.strain, p, keep);
         retain(&mut self.root, 12, keep);
         retain(&mut self.tip, self.tip_names.len(), keep);
+        retain(&mut self.masses, 3 * self.look.masses.len(), keep);
     }
 
     fn pop(&mut self) {
@@ -193,6 +222,8 @@ impl Recorder {
         self.strain.truncate(self.strain.len() - n);
         self.root.truncate(self.root.len() - 12);
         self.tip.truncate(self.tip.len() - self.tip_names.len());
+        self.masses
+            .truncate(self.masses.len() - 3 * self.look.masses.len());
     }
 
     /// The page's HTML text.
@@ -222,6 +253,8 @@ impl Recorder {
                 values: f64s(&self.tip),
             },
             body: self.body,
+            mass_radius: self.look.mass_radii(),
+            masses: f32s(&self.masses),
         };
         let json = serde_json::to_string(&data).expect("plain data serializes");
         // inside <script>: no "</" may end the element early

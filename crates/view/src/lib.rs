@@ -5,10 +5,12 @@
 //! (`visualization.directory`). Knows the engine's shape, not FMI.
 
 pub mod animation;
+pub mod look;
 pub mod read;
 pub mod recording;
 pub mod vtk;
 
 pub use animation::{BodyBox, Recorder};
+pub use look::Look;
 pub use recording::Views;
-pub use vtk::{segment_radii, Series, ViewError};
+pub use vtk::{Series, ViewError};

@@ -15,6 +15,8 @@ pub struct Piece3 {
     pub shape: Shape,
     /// Outer section radius per point [m].
     pub radius: Vec<f64>,
+    /// The attached masses: centre [m] and sphere radius [m] ([`crate::look`]).
+    pub masses: Vec<([f64; 3], f64)>,
 }
 
 /// The pieces of the `.pvd` collection `pvd`, in order.
@@ -22,10 +24,11 @@ pub fn read_series(pvd: &Path) -> Result<Vec<Piece3>, ViewError> {
     read_collection(pvd)?
         .into_iter()
         .map(|(t, path)| {
-            read_piece(&path).map(|(shape, radius)| Piece3 {
+            read_dressed(&path).map(|(shape, radius, masses)| Piece3 {
                 time: t,
                 shape,
                 radius,
+                masses,
             })
         })
         .collect()
@@ -33,6 +36,13 @@ pub fn read_series(pvd: &Path) -> Result<Vec<Piece3>, ViewError> {
 
 /// The shape and radii of one `.vtu` piece written by [`crate::vtk::piece`].
 pub fn read_piece(path: &Path) -> Result<(Shape, Vec<f64>), ViewError> {
+    read_dressed(path).map(|(shape, radius, _)| (shape, radius))
+}
+
+/// The shape of one `.vtu` piece, the radius at each point and the attached masses (centre and
+/// sphere radius [m]).
+#[allow(clippy::type_complexity)]
+pub fn read_dressed(path: &Path) -> Result<(Shape, Vec<f64>, Vec<([f64; 3], f64)>), ViewError> {
     let bad = |message: String| ViewError::Format {
         path: path.to_path_buf(),
         message,
@@ -88,6 +98,7 @@ pub fn read_piece(path: &Path) -> Result<(Shape, Vec<f64>), ViewError> {
     let mut per_point = Vec::new();
     let mut start = 0u64;
     let mut root = None;
+    let mut masses = Vec::new();
     for (c, &end) in offsets.iter().enumerate() {
         let cell = &conn[start as usize..end as usize];
         start = end;
@@ -119,9 +130,13 @@ pub fn read_piece(path: &Path) -> Result<(Shape, Vec<f64>), ViewError> {
                     axes: [v3(&tangent, i), v3(&sy, i), v3(&sz, i)],
                 });
             }
+            Some(3.0) => {
+                let i = cell[0] as usize;
+                masses.push((v3(&points, i), radius[i]));
+            }
             _ => return Err(bad(format!("cell {c} of unknown kind"))),
         }
     }
     shape.root = root.ok_or_else(|| bad("no root frame vertex".into()))?;
-    Ok((shape, per_point))
+    Ok((shape, per_point, masses))
 }

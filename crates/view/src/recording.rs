@@ -3,7 +3,8 @@
 //! and the FMU's `visualization.directory` write.
 
 use crate::animation::Recorder;
-use crate::vtk::{segment_radii, Series, ViewError};
+use crate::look::Look;
+use crate::vtk::{Series, ViewError};
 use hybeam::scene::Scene;
 use hybeam::simulator::{AnyOutputs, AnySimulator, OutputId};
 use std::path::{Path, PathBuf};
@@ -30,14 +31,14 @@ impl Views {
         tip: Vec<(String, OutputId)>,
         samples: usize,
     ) -> Result<Self, ViewError> {
-        let radii = segment_radii(scene);
+        let look = Look::of(scene);
         let series = match series {
-            Some((dir, stem)) => Some(Series::create(dir, stem, radii.clone())?),
+            Some((dir, stem)) => Some(Series::create(dir, stem, look.clone())?),
             None => None,
         };
         let (names, tip): (Vec<String>, Vec<OutputId>) = tip.into_iter().unzip();
         let page =
-            page.map(|(path, title)| (Recorder::new(&title, &scene.gravity, radii, names), path));
+            page.map(|(path, title)| (Recorder::new(&title, &scene.gravity, look, names), path));
         Ok(Self {
             series,
             page,

@@ -3,15 +3,17 @@
 //! (encoded by `quick-xml`), each file written whole or not at all ([`write_atomic`]).
 //!
 //! Each `.vtu` holds the centreline samples of [`hybeam::model::Shape`] as points, one
-//! `VTK_POLY_LINE` cell per segment, a `VTK_VERTEX` at each joint and one at the root (mount)
-//! frame's origin. Point data: `velocity` [m/s], `tangent`, `section_y`, `section_z` (the
+//! `VTK_POLY_LINE` cell per segment, a `VTK_VERTEX` at each joint, one at the root (mount)
+//! frame's origin and one at each attached mass's centre ([`crate::look`]). Point data: `velocity` [m/s], `tangent`, `section_y`, `section_z` (the
 //! section frame, unit vectors; at the root vertex the root frame's x, y, z axes),
 //! `axial_strain` [-], `curvature` [1/m] (magnitude), `curvature_y`, `curvature_z` [1/m]
 //! (about the section axes), `twist` [rad/m], `arc` [m] (reference arc length from the root).
 //! Cell data: `segment` (scene index; −1 at the root vertex), `kind` (0 segment, 1 joint,
-//! 2 root frame). A Tube filter with radius `radius` (point data, the section's outer radius
-//! [m]) draws the real section.
+//! 2 root frame, 3 attached mass). A Tube filter with radius `radius` (point data, the section's
+//! outer radius [m], varying along a taper) draws the real section; at a mass's vertex `radius`
+//! is its sphere's (a Glyph filter scaled by it draws the masses).
 
+use crate::look::Look;
 use hybeam::model::Shape;
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, Event};
 use std::path::{Path, PathBuf};
@@ -58,43 +60,23 @@ impl ViewError {
     }
 }
 
-/// The section's outer radius of each scene segment [m] (a tube of it shows the real section;
-/// a rectangle by half its larger side); a tapered segment ([`hybeam::scene::Dim`]) by its
-/// radius at mid-length (the tube is drawn at one radius per segment).
-pub fn segment_radii(scene: &hybeam::scene::Scene) -> Vec<f64> {
-    use hybeam::scene::Section;
-    scene
-        .segments
-        .iter()
-        .map(|s| match s.section {
-            Section::Round | Section::Tube => 0.5 * s.diameter.as_ref().map_or(0.0, |d| d.at(0.5)),
-            _ => {
-                let p = s.section_props();
-                // rectangles: half the larger side; any other shape: the equal-area circle
-                match (&s.width, &s.height) {
-                    (Some(w), Some(h)) => 0.5 * w.at(0.5).max(h.at(0.5)),
-                    _ => (p.area / std::f64::consts::PI).sqrt(),
-                }
-            }
-        })
-        .collect()
-}
-
-/// The VTK data set of one shape (see the module doc); `radii` per segment [m].
-pub fn piece(shape: &Shape, radii: &[f64]) -> Vtk {
+/// The VTK data set of one shape (see the module doc) dressed by `look` (the tube's radius,
+/// the attached masses).
+pub fn piece(shape: &Shape, look: &Look) -> Vtk {
     let n = shape.points.len();
-    let extra = shape.joints.len() + 1;
-    let total = n + 1;
+    let masses = look.mass_centres(shape);
+    let extra = shape.joints.len() + 1 + masses.len();
+    let total = n + 1 + masses.len();
+    let radii = look.point_radii(shape);
     let mut points = Vec::with_capacity(3 * total);
     let mut vectors: [Vec<f64>; 4] = std::array::from_fn(|_| Vec::with_capacity(3 * total));
     let mut scalars: [Vec<f64>; 7] = std::array::from_fn(|_| Vec::with_capacity(total));
-    for p in &shape.points {
+    for (p, radius) in shape.points.iter().zip(radii) {
         points.extend_from_slice(&p.position);
         vectors[0].extend_from_slice(&p.velocity);
         for k in 0..3 {
             vectors[k + 1].extend_from_slice(&p.frame[k]);
         }
-        let radius = radii.get(p.segment).copied().unwrap_or(0.0);
         for (s, v) in scalars.iter_mut().zip([
             p.axial_strain,
             p.bending(),
@@ -115,6 +97,16 @@ pub fn piece(shape: &Shape, radii: &[f64]) -> Vtk {
     }
     for s in &mut scalars {
         s.push(0.0);
+    }
+    // the attached masses' centres as points, their spheres' radii in `radius`
+    for (c, r) in masses.iter().zip(look.mass_radii()) {
+        points.extend_from_slice(c);
+        for v in &mut vectors {
+            v.extend_from_slice(&[0.0; 3]);
+        }
+        for (k, s) in scalars.iter_mut().enumerate() {
+            s.push(if k == 6 { r } else { 0.0 });
+        }
     }
     // cells: polylines, joint vertices, the root vertex
     let (mut connectivity, mut offsets, mut types) = (Vec::new(), Vec::new(), Vec::new());
@@ -138,6 +130,13 @@ pub fn piece(shape: &Shape, radii: &[f64]) -> Vtk {
     types.push(CellType::Vertex);
     segment.push(-1);
     kind.push(2);
+    for (j, m) in look.masses.iter().enumerate() {
+        connectivity.push((n + 1 + j) as u64);
+        offsets.push(connectivity.len() as u64);
+        types.push(CellType::Vertex);
+        segment.push(m.segment as i32);
+        kind.push(3);
+    }
     debug_assert_eq!(types.len(), shape.segments.len() + extra);
     let vector = |name: &str, data: Vec<f64>| {
         Attribute::DataArray(DataArray {
@@ -200,7 +199,7 @@ pub fn piece(shape: &Shape, radii: &[f64]) -> Vtk {
 pub struct Series {
     dir: PathBuf,
     stem: String,
-    radii: Vec<f64>,
+    look: Look,
     /// The time [s] of each piece listed; piece `k` is `STEM_{k:06}.vtu`.
     times: Vec<f64>,
     writer: Option<Writer>,
@@ -230,13 +229,13 @@ struct Writer {
 const QUEUED_PIECES: usize = 64;
 
 impl Series {
-    /// A series in `dir` (created if missing) of files named `stem`, segments of `radii` [m].
-    pub fn create(dir: &Path, stem: &str, radii: Vec<f64>) -> Result<Self, ViewError> {
+    /// A series in `dir` (created if missing) of files named `stem`, dressed by `look`.
+    pub fn create(dir: &Path, stem: &str, look: Look) -> Result<Self, ViewError> {
         std::fs::create_dir_all(dir).map_err(ViewError::io(dir))?;
         Ok(Self {
             dir: dir.to_path_buf(),
             stem: stem.to_string(),
-            radii,
+            look,
             times: Vec::new(),
             writer: None,
             sizes: Vec::new(),
@@ -307,7 +306,7 @@ impl Series {
         if self.sizes.is_empty() {
             // the first piece in line: a directory or name that cannot be written fails now
             // (and it measures the pieces for the limit)
-            let n = write_piece(&path, shape, &self.radii)?;
+            let n = write_piece(&path, shape, &self.look)?;
             if n > self.limit {
                 let _ = std::fs::remove_file(&path);
                 self.full = true;
@@ -324,7 +323,7 @@ impl Series {
             let w = self.writer.as_ref().expect("started above");
             if w.send.send((k, path.clone(), shape.clone())).is_err() {
                 // the thread is gone: write in line
-                let n = write_piece(&path, shape, &self.radii)?;
+                let n = write_piece(&path, shape, &self.look)?;
                 self.sized(k, n);
             }
         }
@@ -345,12 +344,12 @@ impl Series {
     fn spawn(&self) -> Result<Writer, ViewError> {
         let (send, recv) = std::sync::mpsc::sync_channel::<(usize, PathBuf, Shape)>(QUEUED_PIECES);
         let (report, done) = std::sync::mpsc::channel();
-        let radii = self.radii.clone();
+        let look = self.look.clone();
         let thread = std::thread::Builder::new()
             .name("hybeam-vtk".into())
             .spawn(move || {
                 for (k, path, shape) in recv {
-                    let _ = report.send((k, write_piece(&path, &shape, &radii)));
+                    let _ = report.send((k, write_piece(&path, &shape, &look)));
                 }
             })
             .map_err(ViewError::io(&self.dir))?;
@@ -410,9 +409,9 @@ impl Drop for Series {
 }
 
 /// Writes one piece to `path` ([`write_atomic`]); returns its size [bytes].
-fn write_piece(path: &Path, shape: &Shape, radii: &[f64]) -> Result<u64, ViewError> {
+fn write_piece(path: &Path, shape: &Shape, look: &Look) -> Result<u64, ViewError> {
     let mut bytes = Vec::new();
-    piece(shape, radii)
+    piece(shape, look)
         .write_xml(&mut bytes)
         .map_err(|e| ViewError::Vtk {
             path: path.to_path_buf(),

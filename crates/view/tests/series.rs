@@ -4,7 +4,7 @@
 
 use hybeam::scene::Scene;
 use hybeam::simulator::AnySimulator;
-use hybeam_view::{read, segment_radii, Recorder, Series};
+use hybeam_view::{read, Look, Recorder, Series};
 use std::path::PathBuf;
 
 fn scene(name: &str) -> Scene {
@@ -22,7 +22,7 @@ fn tmp(name: &str) -> PathBuf {
 fn pieces_read_back_bit_for_bit() {
     for name in ["case1", "case1_3d", "strip_3d"] {
         let sc = scene(name);
-        let radii = segment_radii(&sc);
+        let radii = Look::of(&sc);
         let mut sim = AnySimulator::new(sc).unwrap();
         let dir = tmp(name);
         let mut series = Series::create(&dir, "beam", radii.clone()).unwrap();
@@ -48,7 +48,7 @@ fn pieces_read_back_bit_for_bit() {
             assert_eq!(p.time, *t, "{name}");
             assert_eq!(&p.shape, shape, "{name} at {t}");
             for (q, r) in p.shape.points.iter().zip(&p.radius) {
-                assert_eq!(*r, radii[q.segment], "{name}");
+                assert_eq!(*r, radii.radii[q.segment][0], "{name}");
             }
         }
         std::fs::remove_dir_all(&dir).unwrap();
@@ -58,7 +58,7 @@ fn pieces_read_back_bit_for_bit() {
 #[test]
 fn page_embeds_data_and_viewer() {
     let sc = scene("case1");
-    let radii = segment_radii(&sc);
+    let radii = Look::of(&sc);
     let mut sim = AnySimulator::new(sc.clone()).unwrap();
     let mut rec = Recorder::new(
         "case1 </script> & <b>",
@@ -97,7 +97,7 @@ fn page_embeds_data_and_viewer() {
 #[test]
 fn a_long_recording_is_thinned_keeping_the_ends() {
     let sc = scene("case1");
-    let radii = segment_radii(&sc);
+    let radii = Look::of(&sc);
     let sim = AnySimulator::new(sc.clone()).unwrap();
     let shape = sim.shape(1);
     let mut rec = Recorder::new("long", &sc.gravity, radii, vec!["k".into()]);
@@ -134,4 +134,75 @@ fn a_long_recording_is_thinned_keeping_the_ends() {
         .map(|b| f64::from_le_bytes(b.try_into().unwrap()))
         .collect();
     assert_eq!(tips, times, "each kept frame keeps its own tip value");
+}
+
+/// A tapered tube and attached masses, as written: the radius at each point is the section's
+/// outer radius d(s)/2 at its arc length (the taper's closed form), and each mass is a vertex
+/// at its centre (the straight start: root + (s₀ + at)·x + the offset in section axes) with its
+/// sphere's radius, read back by `read_dressed`.
+#[test]
+fn tapers_and_masses_are_drawn_where_they_are() {
+    let text = r#"name = "dressed"
+gravity = [0.0, -9.81]
+[[segments]]
+name = "root"
+kind = "modal"
+length = 0.5
+section = "round"
+diameter = 0.02
+youngs_modulus = 2.1e11
+density = 7850.0
+modes = 2
+[[segments]]
+name = "arm"
+kind = "ancf"
+length = 1.0
+section = "tube"
+diameter = [0.02, 0.01]
+inner_diameter = [0.016, 0.008]
+youngs_modulus = 2.1e11
+density = 7850.0
+elements = 4
+[[masses]]
+name = "lamp"
+segment = "root"
+at = 0.3
+mass = 1.2
+offset = [0.0, 0.05]
+[[masses]]
+name = "nozzle"
+segment = "arm"
+at = 0.6
+mass = 0.4
+"#;
+    let sc = hybeam::scene::Scene::from_toml(text).unwrap();
+    let look = Look::of(&sc);
+    let sim = AnySimulator::new(sc).unwrap();
+    let dir = tmp("dressed");
+    let mut series = Series::create(&dir, "beam", look.clone()).unwrap();
+    series.write(0.0, &sim.shape(4)).unwrap();
+    let pvd = series.finish().unwrap();
+    drop(series);
+    let piece = read::read_series(&pvd).unwrap().remove(0);
+    for (q, r) in piece.shape.points.iter().zip(&piece.radius) {
+        let want = if q.segment == 0 {
+            0.01
+        } else {
+            0.5 * (0.02 + (q.arc - 0.5) * (0.01 - 0.02))
+        };
+        assert!((r - want).abs() <= 1e-15, "at {}: {r} vs {want}", q.arc);
+    }
+    let sphere = |m: f64| (3.0 * m / (4.0 * std::f64::consts::PI * 2000.0)).cbrt();
+    let want = [
+        ([0.3, 0.05, 0.0], sphere(1.2)),
+        ([1.1, 0.0, 0.0], sphere(0.4)),
+    ];
+    assert_eq!(piece.masses.len(), 2);
+    for ((c, r), (wc, wr)) in piece.masses.iter().zip(want) {
+        for k in 0..3 {
+            assert!((c[k] - wc[k]).abs() <= 1e-12, "{c:?} vs {wc:?}");
+        }
+        assert!((r - wr).abs() <= 1e-15);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
