@@ -12,7 +12,7 @@
 
 use clap::{Args, Parser, Subcommand};
 use hybeam::scene::{Root, Scene, SpaceKind};
-use hybeam::simulator::{AnyOutputs, AnySimulator, OutputId};
+use hybeam::simulator::{AnyOutputs, AnySimulator, OutputId, Quantity};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -170,6 +170,19 @@ fn columns(space: SpaceKind, mounted: bool) -> Vec<(String, OutputId)> {
     }
 }
 
+/// The CSV columns after `time` of `scene`: [`columns`], then its stations' outputs
+/// (`station.<name>.force.*`, `.moment.*`, `.stress`).
+fn scene_columns(scene: &Scene) -> Vec<(String, OutputId)> {
+    let mut out = columns(scene.space, scene.root == Root::Mounted);
+    out.extend(OutputId::of_scene(scene).into_iter().filter(|(_, id)| {
+        matches!(
+            id.quantity,
+            Quantity::StationForce | Quantity::StationMoment | Quantity::StationStress
+        )
+    }));
+    out
+}
+
 /// The CSV header line.
 fn header(columns: &[(String, OutputId)]) -> String {
     std::iter::once("time")
@@ -236,7 +249,7 @@ fn run(args: &RunArgs) -> Result<(), String> {
     }
     let n_out = n_out as u64;
     let wall = Instant::now();
-    let columns = columns(scene.space, scene.root == Root::Mounted);
+    let columns = scene_columns(&scene);
     let mut views = views(args, &scene, &columns)?;
     let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     // the rows streamed to the file as they come: a run cut short keeps what it computed
@@ -387,7 +400,7 @@ fn animate(args: &AnimateArgs) -> Result<(), String> {
 fn statics(args: &SceneArgs) -> Result<(), String> {
     let scene = args.load()?;
     let wall = Instant::now();
-    let columns = columns(scene.space, scene.root == Root::Mounted);
+    let columns = scene_columns(&scene);
     let mut sim = AnySimulator::new(scene).map_err(|e| e.to_string())?;
     let it = sim.solve_static().map_err(|e| e.to_string())?;
     println!("{}", header(&columns));

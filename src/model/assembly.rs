@@ -112,6 +112,10 @@ pub struct Model<S: Space> {
     line_segments: Vec<usize>,
     /// The line load of each slot [N/m], global axes (zero beyond `line_segments`).
     line_loads: [S::Vec; MAX_LINE_LOADS],
+    /// The stations' cuts ([`Model::set_stations`]; none until set).
+    pub(crate) stations: Vec<super::stations::Cut>,
+    /// Each coordinate's rigid group, for the stations.
+    pub(crate) group_map: super::stations::GroupMap,
     scale: Vec<f64>,
     q0: Vec<f64>,
     lu: NewtonLu,
@@ -255,6 +259,8 @@ impl<S: Space> Model<S> {
             tip_moment,
             line_segments,
             line_loads,
+            stations: Vec::new(),
+            group_map: Default::default(),
             scale,
             q0,
             lu: NewtonLu::new(pattern),

@@ -24,10 +24,12 @@ pub fn build<S: Space>(scene: &Scene) -> Result<Model<S>, SceneError> {
             Box::new(Model::<Spatial>::from_scene(scene)?)
         }
     };
-    model.downcast::<Model<S>>().map(|m| *m).map_err(|_| {
+    let mut model = model.downcast::<Model<S>>().map(|m| *m).map_err(|_| {
         SceneError(format!(
             "internal: the {:?} build did not give a model of its space",
             S::KIND
         ))
-    })
+    })?;
+    model.set_stations(scene)?;
+    Ok(model)
 }

@@ -44,6 +44,7 @@ pub mod sample;
 pub mod shape;
 pub mod space;
 pub mod spatial;
+pub mod stations;
 pub mod vector;
 pub mod walk;
 
@@ -62,3 +63,4 @@ pub use sample::ShapePoint;
 pub use shape::{Frame, Shape};
 pub use space::{Motion, MotionRates, PortKin, Space};
 pub use spatial::Spatial;
+pub use stations::{SectionShape, StationLoads, StressSection};

@@ -45,6 +45,15 @@ pub enum Quantity {
     /// `root.moment_elastic.<moment axis>` [N m]: `root.moment` minus the rigid one, about
     /// the mount point (mounted root).
     ElasticMoment,
+    /// `station.<name>.force.<x|y|z>` [N]: the force of the part beyond the station on the
+    /// part before it, section frame (x axial); component 3·slot + axis.
+    StationForce,
+    /// `station.<name>.moment.<x|y|z>` [N m]: its moment about the cut, section frame (x
+    /// torsion; the plane: z); component 3·slot + axis.
+    StationMoment,
+    /// `station.<name>.stress` [Pa]: the largest von Mises stress over the section's boundary;
+    /// component = slot.
+    StationStress,
 }
 
 /// One scalar output: a quantity and the index of its component (in [`Space::AXES`],
@@ -82,6 +91,39 @@ pub(crate) fn named_components<T: Copy, I>(
 }
 
 impl OutputId {
+    /// Every output of `scene`: [`OutputId::named_with`] (the mount's if mounted), then each
+    /// station's `station.<name>.force.<axis>` (x, y; z in space), `.moment.<axis>` (z; x, y,
+    /// z in space) and `.stress`, in `[[stations]]` order.
+    pub fn of_scene(scene: &crate::scene::Scene) -> Vec<(String, OutputId)> {
+        let mounted = scene.root == crate::scene::Root::Mounted;
+        let mut out = Self::named_with(scene.space, mounted);
+        let (forces, moments): (&[usize], &[usize]) = match scene.space {
+            SpaceKind::Planar => (&[0, 1], &[2]),
+            SpaceKind::Spatial => (&[0, 1, 2], &[0, 1, 2]),
+        };
+        const AXES: [&str; 3] = ["x", "y", "z"];
+        for (slot, st) in scene.stations.iter().enumerate() {
+            let id = |quantity, axis: usize| OutputId {
+                quantity,
+                component: 3 * slot + axis,
+            };
+            for &a in forces {
+                let name = format!("station.{}.force.{}", st.name, AXES[a]);
+                out.push((name, id(Quantity::StationForce, a)));
+            }
+            for &a in moments {
+                let name = format!("station.{}.moment.{}", st.name, AXES[a]);
+                out.push((name, id(Quantity::StationMoment, a)));
+            }
+            let stress = OutputId {
+                quantity: Quantity::StationStress,
+                component: slot,
+            };
+            out.push((format!("station.{}.stress", st.name), stress));
+        }
+        out
+    }
+
     /// The scalar outputs of a space with their names, in this order: tip position, velocity,
     /// orientation, angular velocity, root force, root moment, energies.
     pub fn named(space: SpaceKind) -> Vec<(String, OutputId)> {
@@ -172,6 +214,9 @@ impl<S: Space> Outputs<S> {
             MountInertia => self
                 .mount
                 .and_then(|m| S::INERTIA_COMPONENTS.get(k).map(|&(_, i)| m.inertia[i])),
+            StationForce => self.stations.get(k / 3).map(|s| s.force[k % 3]),
+            StationMoment => self.stations.get(k / 3).map(|s| s.moment[k % 3]),
+            StationStress => self.stations.get(k).map(|s| s.stress),
         }
     }
 }

@@ -48,6 +48,9 @@ pub struct Outputs<S: Space> {
     /// The moment [N m] beyond the rigid inertia's, about the mount point (as
     /// `elastic_force`).
     pub elastic_moment: S::Moment,
+    /// The loads at each station of the scene, in `[[stations]]` order (zero beyond them;
+    /// [`Model::station_loads`]).
+    pub stations: [super::stations::StationLoads; crate::scene::MAX_STATIONS],
 }
 
 /// Validity measures of a model at one configuration.
@@ -125,6 +128,7 @@ impl<S: Space> Model<S> {
         }
         let r = self.held_residual((q, v, acc), lam, &mut buf);
         (o.root_force, o.root_moment) = self.support.reaction(&r, &self.held);
+        o.stations = self.station_loads((q, v, acc), (&o.root_force, &o.root_moment));
         o.mount = self.mount_inertia(q);
         if let (Some(mi), Some(m)) = (&o.mount, self.mount.as_deref()) {
             let (f, mo) = mi.rigid_reaction(m, &self.gravity);

@@ -382,6 +382,27 @@ pub struct Scene {
     /// Attached masses: rigid bodies riding on the centreline (`[[masses]]`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub masses: Vec<Mass>,
+    /// Stations: sections whose loads and stress are outputs (`[[stations]]`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stations: Vec<Station>,
+}
+
+/// The most stations a scene may have (their loads are held in fixed-size slots of the outputs).
+pub const MAX_STATIONS: usize = 16;
+
+/// A station: a cross-section of a segment whose section loads (the force and moment that the
+/// outboard part exerts on the inboard part, section frame) and largest von Mises stress are
+/// outputs (`station.<name>.force.*`, `.moment.*`, `.stress`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Station {
+    /// Unique name (letters, digits, `_`); prefixes its outputs.
+    pub name: String,
+    /// The segment it cuts (a segment name).
+    pub segment: String,
+    /// Arc length from that segment's start [m]: its start, its end, or (ANCF) a node
+    /// between two of its elements.
+    pub at: f64,
 }
 
 impl Mass {
@@ -446,6 +467,16 @@ impl Segment {
             _ => return None,
         };
         (k != [0.0, 0.0]).then_some(k)
+    }
+
+    /// The arc lengths [m] where a station may cut this segment: its ends and, on an ANCF
+    /// segment, the nodes between its elements (valid after `validate`).
+    pub fn station_cuts(&self) -> Vec<f64> {
+        let n = match self.kind {
+            SegmentKind::Modal => 1,
+            SegmentKind::Ancf => self.elements.unwrap_or(1).max(1),
+        };
+        (0..=n).map(|k| self.length * k as f64 / n as f64).collect()
     }
 
     fn default_poisson_ratio() -> f64 {

@@ -405,7 +405,80 @@ impl Scene {
                 names.join(", ")
             )));
         }
-        self.validate_masses()
+        self.validate_masses()?;
+        self.validate_stations()
+    }
+
+    /// The segment named `segment` of an item `p` (`masses[i]`, `stations[i]`) of kind `what`
+    /// named `name`, after checking the name (letters, digits, `_`; not among `earlier`).
+    fn named_item<'a>(
+        &self,
+        p: &str,
+        what: &str,
+        name: &str,
+        mut earlier: impl Iterator<Item = &'a str>,
+        segment: &str,
+    ) -> Result<&Segment, SceneError> {
+        if name.trim().is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+            return Err(SceneError(format!(
+                "{p}.name = {name:?}: must be non-empty and use only letters, digits and '_' (it prefixes FMU variable names)"
+            )));
+        }
+        if earlier.any(|o| o == name) {
+            return Err(SceneError(format!(
+                "{p}.name = {name:?}: {what} names must be unique; rename one of them"
+            )));
+        }
+        self.segments
+            .iter()
+            .find(|s| s.name == segment)
+            .ok_or_else(|| {
+                let names: Vec<&str> = self.segments.iter().map(|s| s.name.as_str()).collect();
+                SceneError(format!(
+                    "{p}.segment = {segment:?}: no segment has this name; use one of {names:?}"
+                ))
+            })
+    }
+
+    /// The `[[stations]]` tables: names, segments, positions (at a segment end or an ANCF node).
+    fn validate_stations(&self) -> Result<(), SceneError> {
+        if self.stations.len() > MAX_STATIONS {
+            return Err(SceneError(format!(
+                "stations: {} stations, at most {MAX_STATIONS}; remove some",
+                self.stations.len()
+            )));
+        }
+        for (i, st) in self.stations.iter().enumerate() {
+            let p = format!("stations[{i}]");
+            let earlier = self.stations[..i].iter().map(|o| o.name.as_str());
+            let seg = self.named_item(&p, "station", &st.name, earlier, &st.segment)?;
+            if self.space == SpaceKind::Spatial
+                && self.torsion
+                && self.torsion_element == TorsionElement::Angle
+            {
+                return Err(SceneError(format!(
+                    "{p}: stations are not computed with torsion_element = \"angle\" (its nodal twist angles do not turn with a rigid rotation of the part beyond the cut); use the director element (torsion_element = \"director\") or remove the station"
+                )));
+            }
+            let cuts = seg.station_cuts();
+            let at = st.at;
+            if !(at.is_finite() && cuts.iter().any(|c| (c - at).abs() <= 1e-9 * seg.length)) {
+                let shown: Vec<String> = cuts.iter().map(|c| format!("{c}")).collect();
+                let why = match seg.kind {
+                    SegmentKind::Modal => "a modal segment is cut at its ends".to_string(),
+                    SegmentKind::Ancf => format!(
+                        "an ANCF segment is cut at its ends and at the nodes between its {} elements",
+                        cuts.len() - 1
+                    ),
+                };
+                return Err(SceneError(format!(
+                    "{p}.at = {at}: not a cut of segment {:?} ({why}); use one of [{}] m, or change the segment's element count so that a node falls where you need it",
+                    seg.name,
+                    shown.join(", ")
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// A segment's `initial_curvature`: the scene's number of components, finite, on an ANCF
@@ -501,30 +574,8 @@ impl Scene {
         };
         for (i, m) in self.masses.iter().enumerate() {
             let p = format!("masses[{i}]");
-            if m.name.trim().is_empty()
-                || !m
-                    .name
-                    .chars()
-                    .all(|c| c.is_ascii_alphanumeric() || c == '_')
-            {
-                return Err(SceneError(format!(
-                    "{p}.name = {:?}: must be non-empty and use only letters, digits and '_' (it prefixes FMU variable names)",
-                    m.name
-                )));
-            }
-            if self.masses[..i].iter().any(|o| o.name == m.name) {
-                return Err(SceneError(format!(
-                    "{p}.name = {:?}: mass names must be unique; rename one of them",
-                    m.name
-                )));
-            }
-            let Some(seg) = self.segments.iter().find(|s| s.name == m.segment) else {
-                let names: Vec<&str> = self.segments.iter().map(|s| s.name.as_str()).collect();
-                return Err(SceneError(format!(
-                    "{p}.segment = {:?}: no segment has this name; use one of {names:?}",
-                    m.segment
-                )));
-            };
+            let earlier = self.masses[..i].iter().map(|o| o.name.as_str());
+            let seg = self.named_item(&p, "mass", &m.name, earlier, &m.segment)?;
             if !(m.at.is_finite() && m.at >= 0.0 && m.at <= seg.length) {
                 return Err(SceneError(format!(
                     "{p}.at = {}: must be in [0, {}] (the arc length from the start of segment {:?}, whose length is {} m); move the mass onto that segment or name the segment it sits on",

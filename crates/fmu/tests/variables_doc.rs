@@ -8,7 +8,7 @@ use std::path::Path;
 
 use fmi2::{Causality, Variability, Variable};
 use hybeam::scene::Scene;
-use hybeam::simulator::{InputId, InputKind};
+use hybeam::simulator::{InputId, InputKind, Quantity};
 use hybeam_fmu::cosim::variables::{Access, Table, LINE_LOAD_K, MASS_FIELDS, SEGMENT_FIELDS};
 
 /// One documented row: name, VR, causality (inputs, outputs) or variability (parameters), unit.
@@ -89,6 +89,22 @@ fn rows_of(scene: &Scene) -> BTreeSet<Row> {
                 (
                     format!("<segment>.line_load.{axis}"),
                     format!("1000(i+1) + {k}"),
+                    kind(v),
+                    unit(v.unit),
+                )
+            }
+            // a station's outputs, in the generic form 600000 + 10i + k
+            Access::Output(id)
+                if matches!(
+                    id.quantity,
+                    Quantity::StationForce | Quantity::StationMoment | Quantity::StationStress
+                ) =>
+            {
+                let k = v.vr % 10;
+                let field = v.name.splitn(3, '.').nth(2).unwrap_or_default();
+                (
+                    format!("station.<name>.{field}"),
+                    format!("600000 + 10i + {k}"),
                     kind(v),
                     unit(v.unit),
                 )

@@ -327,6 +327,10 @@ pub struct Field<T> {
     pub set: fn(&mut T, f64),
 }
 
+/// The first value reference of the stations' outputs: station i's field k at
+/// 600000 + 10·i + k (force x 1, y 2, z 3, moment x 4, y 5, z 6, stress 7).
+pub const STATION_VR: u32 = 600_000;
+
 /// The offset of a segment's line-load inputs `<segment>.line_load.<axis>` in its block of value
 /// references: 1000·(i + 1) + 20 + axis (x 0, y 1, z 2).
 pub const LINE_LOAD_K: u32 = 20;
@@ -664,6 +668,45 @@ impl Table {
             ) {
                 v.depends_on = drives.clone();
             }
+            t.push(v, Access::Output(id));
+        }
+        // the stations' loads: 600000 + 10·i + k (force x 1, y 2, z 3, moment x 4, y 5, z 6,
+        // stress 7), i the station's index in [[stations]]; they depend on the mount's
+        // accelerations as the reaction does
+        for (name, id) in OutputId::of_scene(scene) {
+            let (k, unit, what) = match id.quantity {
+                Quantity::StationForce => (
+                    1 + (id.component % 3) as u32,
+                    "N",
+                    "force of the part beyond the station on the part before it, section frame (x axial, tension positive; y, z shear)",
+                ),
+                Quantity::StationMoment => (
+                    4 + (id.component % 3) as u32,
+                    "N.m",
+                    "moment of the part beyond the station on the part before it about the cut, section frame (x torsion, y and z bending)",
+                ),
+                Quantity::StationStress => (
+                    7,
+                    "Pa",
+                    "largest von Mises stress over the section's boundary from the station's loads (docs/stations.md)",
+                ),
+                _ => continue,
+            };
+            let slot = match id.quantity {
+                Quantity::StationStress => id.component,
+                _ => id.component / 3,
+            };
+            let mut v = Variable {
+                name,
+                vr: STATION_VR + 10 * slot as u32 + k,
+                causality: Causality::Output,
+                variability: Variability::Continuous,
+                start: None,
+                unit: Some(unit),
+                description: format!("station '{}': {what}", scene.stations[slot].name),
+                depends_on: Vec::new(),
+            };
+            v.depends_on = drives.clone();
             t.push(v, Access::Output(id));
         }
         for (row, id) in present(&GRAVITY, &inputs) {
