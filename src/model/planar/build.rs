@@ -8,6 +8,7 @@ use super::joint::RigidJoint;
 use super::Planar;
 use crate::math;
 use crate::model::ancf::{arc_end, AncfProps, AncfReference, SectionMass, SectionTable};
+use crate::model::section3::SectionBody3;
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
@@ -147,6 +148,7 @@ impl SegmentParts<Planar> for PlanarParts {
         x0: f64,
         points: &[(f64, f64)],
         bodies: &[SectionMass],
+        _bodies3: &[SectionBody3],
         seg: &Segment,
     ) -> Box<dyn Element<Planar>> {
         let mut props = *props;

@@ -14,6 +14,7 @@ use super::{
     ModalRootPort3, ModalTipPort3, NodePort3, NodeSupport3, Spatial,
 };
 use crate::model::ancf::SectionMass;
+use crate::model::section3::SectionBody3;
 use crate::model::ancf3d::angle::Angle3;
 use crate::model::ancf3d::{arc_frame, Ancf3Props, Reference3};
 use crate::model::assembly::Model;
@@ -126,7 +127,9 @@ impl SegmentParts<Spatial> for SpatialParts {
                 body = body.with_stiffening();
             }
         }
-        let body = body.with_points(&masses.points);
+        let body = body
+            .with_points(&masses.points)
+            .with_bodies(&masses.bodies3);
         let body = Arc::new(body.with_line_load(seg.line_load_vec()));
         let free_p = !held;
         let mut c = Coords::default();
@@ -187,6 +190,7 @@ impl SegmentParts<Spatial> for SpatialParts {
         x0: f64,
         points: &[(f64, f64)],
         _bodies: &[SectionMass],
+        bodies3: &[SectionBody3],
         seg: &Segment,
     ) -> Box<dyn Element<Spatial>> {
         let line = seg.line_load_vec();
@@ -204,12 +208,14 @@ impl SegmentParts<Spatial> for SpatialParts {
                     d0: self.ay.into(),
                 })
                 .with_points(points)
+                .with_bodies(bodies3)
                 .with_line_load(line),
             )
         } else {
             Box::new(
                 AncfElement3::new(*props)
                     .with_points(points)
+                    .with_bodies(bodies3)
                     .with_line_load(line),
             )
         }
