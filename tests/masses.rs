@@ -817,10 +817,11 @@ fn spatial_end_body_frequencies_match_the_frequency_equation() {
                     &segs,
                     &tail,
                 );
-                let got =
-                    bending_frequencies(&mut Model::<Spatial>::from_scene(&s).unwrap(), true);
+                let got = bending_frequencies(&mut Model::<Spatial>::from_scene(&s).unwrap(), true);
                 worst = worst.max(check_frequencies(
-                    &format!("spatial {element} {label}, mu = {mu}, J/(rho A L^3) = {j}, e/L = {eps}"),
+                    &format!(
+                        "spatial {element} {label}, mu = {mu}, J/(rho A L^3) = {j}, e/L = {eps}"
+                    ),
                     got,
                     want,
                     1e-4,
@@ -855,11 +856,18 @@ fn tip_disk_torsion_frequency_matches_the_closed_form() {
     let beta = 0.5 * (lo + hi);
     let want = beta * (g_mod / RHO_STEEL).sqrt() / L / std::f64::consts::TAU;
     let r = round(D);
-    let tail = format!("{}inertia = [{jd:e}, 0.0, 0.0]\n", mass_table("disk", "s", L, 1e-6));
+    let tail = format!(
+        "{}inertia = [{jd:e}, 0.0, 0.0]\n",
+        mass_table("disk", "s", L, 1e-6)
+    );
     let mut worst = 0.0f64;
     for (label, seg, line) in [
         ("director", ancf("s", L, &r, 16, ""), "torsion = true"),
-        ("angle", ancf("s", L, &r, 16, ""), "torsion_element = \"angle\""),
+        (
+            "angle",
+            ancf("s", L, &r, 16, ""),
+            "torsion_element = \"angle\"",
+        ),
         ("modal", modal("s", L, &r, 4, true, ""), "torsion = true"),
     ] {
         let s = scene_with(
@@ -904,9 +912,21 @@ fn axial_offset_weight_adds_its_moment_to_the_tip_deflection() {
     let light = |s: String| s.replace(&format!("density = {RHO_STEEL:e}"), "density = 1e-9");
     let mut worst = 0.0f64;
     for (label, seg, line) in [
-        ("director", light(ancf("rod", l, &sec, 10, "")), "torsion = true"),
-        ("angle", light(ancf("rod", l, &sec, 10, "")), "torsion_element = \"angle\""),
-        ("modal", light(modal("rod", l, &sec, 4, true, "")), "torsion = true"),
+        (
+            "director",
+            light(ancf("rod", l, &sec, 10, "")),
+            "torsion = true",
+        ),
+        (
+            "angle",
+            light(ancf("rod", l, &sec, 10, "")),
+            "torsion_element = \"angle\"",
+        ),
+        (
+            "modal",
+            light(modal("rod", l, &sec, 4, true, "")),
+            "torsion = true",
+        ),
         (
             "modal linear",
             light(modal("rod", l, &sec, 4, true, "linear = true")),
@@ -914,7 +934,10 @@ fn axial_offset_weight_adds_its_moment_to_the_tip_deflection() {
         ),
     ] {
         let s = scene_with(
-            &format!("space = \"spatial\"\n{line}\ngravity = [0.0, 0.0, {:e}]", -g),
+            &format!(
+                "space = \"spatial\"\n{line}\ngravity = [0.0, 0.0, {:e}]",
+                -g
+            ),
             &[seg],
             &body,
         );
@@ -923,13 +946,23 @@ fn axial_offset_weight_adds_its_moment_to_the_tip_deflection() {
         let o = sim.outputs();
         let got = -o.tip_position[2];
         let rel = got / want - 1.0;
-        eprintln!("{label}: tip deflection {got:.9e} m, closed form {want:.9e} m, error {rel:+.2e}");
+        eprintln!(
+            "{label}: tip deflection {got:.9e} m, closed form {want:.9e} m, error {rel:+.2e}"
+        );
         worst = worst.max(rel.abs());
         assert!(rel.abs() < 1e-6, "{label}: {rel:e}");
         // the support carries the weight and its moment about y, m g (L + e)
-        assert!((o.root_force[2] / (m * g) - 1.0).abs() < 1e-9, "{:?}", o.root_force);
+        assert!(
+            (o.root_force[2] / (m * g) - 1.0).abs() < 1e-9,
+            "{:?}",
+            o.root_force
+        );
         let my = Spatial::moment_components(&o.root_moment)[1].abs();
-        assert!((my / (m * g * (l + e)) - 1.0).abs() < 1e-6, "{my} {:?}", o.root_moment);
+        assert!(
+            (my / (m * g * (l + e)) - 1.0).abs() < 1e-6,
+            "{my} {:?}",
+            o.root_moment
+        );
     }
     eprintln!("worst relative deflection error {worst:.2e}");
 }
@@ -959,13 +992,22 @@ fn newton_matrices_with_spatial_section_bodies_match_central_differences() {
     .concat();
     for lin in ["", "linear = true"] {
         let segs = [
-            modal("m1", 0.2, &r, 3, true, &format!("damping_ratio = 0.05\n{lin}")),
+            modal(
+                "m1",
+                0.2,
+                &r,
+                3,
+                true,
+                &format!("damping_ratio = 0.05\n{lin}"),
+            ),
             ancf("a", 0.2, &r, 2, "damping_time = 1e-3"),
             modal("m2", 0.2, &r, 2, false, lin),
         ];
         for (element, line) in SPATIAL_TORSION {
             let s = scene_with(
-                &format!("space = \"spatial\"\n{line}\nroot = \"ball\"\ngravity = [0.0, 1.0, -9.81]"),
+                &format!(
+                    "space = \"spatial\"\n{line}\nroot = \"ball\"\ngravity = [0.0, 1.0, -9.81]"
+                ),
                 &segs,
                 &tail,
             );

@@ -246,7 +246,11 @@ mod tests {
             qm[k] -= h;
             let dl_dq = (lag(&qp, &v) - lag(&qm, &v)) / (2.0 * h);
             let want = ddt - dl_dq;
-            assert!((f[k] - want).abs() < 1e-5 * (1.0 + want.abs()), "{k}: {} vs {want}", f[k]);
+            assert!(
+                (f[k] - want).abs() < 1e-5 * (1.0 + want.abs()),
+                "{k}: {} vs {want}",
+                f[k]
+            );
         }
     }
 
@@ -281,7 +285,10 @@ mod tests {
             let (p, m) = (res(h), res(-h));
             for i in 0..6 {
                 let want = (p[i] - m[i]) / (2.0 * h);
-                assert!((blk[i][j] - want).abs() < 1e-6 * (1.0 + want.abs()), "{i},{j}");
+                assert!(
+                    (blk[i][j] - want).abs() < 1e-6 * (1.0 + want.abs()),
+                    "{i},{j}"
+                );
             }
         }
     }

@@ -180,8 +180,8 @@ fn point_masses_are_points<S: Space>(scene: &Scene) -> Result<(), SceneError> {
         return Ok(());
     }
     for (i, m) in scene.masses.iter().enumerate() {
-        let on_cable = (scene.segments.iter())
-            .any(|s| s.name == m.segment && s.kind == SegmentKind::Ancf);
+        let on_cable =
+            (scene.segments.iter()).any(|s| s.name == m.segment && s.kind == SegmentKind::Ancf);
         if !on_cable {
             continue;
         }
@@ -197,6 +197,9 @@ fn point_masses_are_points<S: Space>(scene: &Scene) -> Result<(), SceneError> {
     Ok(())
 }
 
+/// Bodies with the index of the element carrying them.
+type Placed<B> = Vec<(usize, B)>;
+
 /// The section bodies (non-point masses) on segment `si` of length `length`, split onto `ne`
 /// equal elements (`None`: one modal body, ξ = at/L): (element, body) in scene order, in the
 /// space's form.
@@ -205,7 +208,7 @@ fn section_bodies<S: Space>(
     si: usize,
     length: f64,
     ne: Option<usize>,
-) -> (Vec<(usize, SectionMass)>, Vec<(usize, SectionBody3)>) {
+) -> (Placed<SectionMass>, Placed<SectionBody3>) {
     let (mut planar, mut spatial) = (Vec::new(), Vec::new());
     for m in scene.masses_on(si).filter(|m| !m.is_point()) {
         let (k, xi) = match ne {

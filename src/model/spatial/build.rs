@@ -14,7 +14,6 @@ use super::{
     ModalRootPort3, ModalTipPort3, NodePort3, NodeSupport3, Spatial,
 };
 use crate::model::ancf::SectionMass;
-use crate::model::section3::SectionBody3;
 use crate::model::ancf3d::angle::Angle3;
 use crate::model::ancf3d::{arc_frame, Ancf3Props, Reference3};
 use crate::model::assembly::Model;
@@ -22,6 +21,7 @@ use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
+use crate::model::section3::SectionBody3;
 use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind, TorsionElement};
 use nalgebra::{Matrix3, Quaternion, Rotation3, UnitQuaternion, Vector3};

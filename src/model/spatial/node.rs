@@ -53,9 +53,7 @@ pub struct DirectorPose {
 impl SectionPose for DirectorPose {
     fn pose<S: Real>(&self, q: impl Fn(usize) -> S) -> (V3<S>, [V3<S>; 3]) {
         let comb = |w: &[f64; 4]| -> V3<S> {
-            std::array::from_fn(|c| {
-                (0..4).fold(S::zero(), |s, j| s + q(self.rs[j] + c) * w[j])
-            })
+            std::array::from_fn(|c| (0..4).fold(S::zero(), |s, j| s + q(self.rs[j] + c) * w[j]))
         };
         let (r, a) = (comb(&self.sh), comb(&self.ds));
         let d: V3<S> = std::array::from_fn(|c| {
