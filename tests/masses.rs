@@ -398,8 +398,9 @@ fn swinging_beam_with_masses_keeps_its_energy() {
 }
 
 #[test]
-fn offset_and_rotary_inertia_are_refused_in_spatial_scenes() {
-    // modelled in planar scenes (ANCF and modal segments); refused in spatial ones
+fn offset_and_rotary_inertia_are_refused_on_spatial_cables_only() {
+    // modelled in planar scenes and on spatial sections (director, angle, modal); refused on
+    // the 3D cable (torsion = false), which has no section frame about its axis
     let segs = [
         ancf("a", 0.5 * L, &round(D), 2, ""),
         modal("m", 0.5 * L, &round(D), 2, true, ""),
@@ -407,27 +408,58 @@ fn offset_and_rotary_inertia_are_refused_in_spatial_scenes() {
     for (on, extra, spatial_extra) in [
         ("m", "inertia = [1e-4]", "inertia = [1e-4, 0.0, 0.0]"),
         ("a", "offset = [0.0, 0.01]", "offset = [0.0, 0.01, 0.0]"),
+        ("a", "inertia = [1e-4]", "inertia = [0.0, 2e-4, 2e-4]"),
     ] {
         let tail = format!("{}{extra}\n", mass_table("p", on, 0.1, 0.01));
         let s = scene_with("gravity = [0.0, -9.81]", &segs, &tail);
         assert!(Model::<Planar>::from_scene(&s).is_ok());
         let tail = format!("{}{spatial_extra}\n", mass_table("p", on, 0.1, 0.01));
+        for torsion in ["torsion = true", "torsion_element = \"angle\""] {
+            let s = scene_with(
+                &format!("space = \"spatial\"\n{torsion}\ngravity = [0.0, 0.0, -9.81]"),
+                &segs,
+                &tail,
+            );
+            assert!(Model::<Spatial>::from_scene(&s).is_ok(), "{torsion} {tail}");
+        }
+        // the cable: only the cable scene without the modal segment after it (no torque)
         let s = scene_with(
-            "space = \"spatial\"\ntorsion = true\ngravity = [0.0, 0.0, -9.81]",
-            &segs,
-            &tail,
+            "space = \"spatial\"\ntorsion = false\ngravity = [0.0, 0.0, -9.81]",
+            &segs[..1],
+            &tail.replace("segment = \"m\"", "segment = \"a\""),
         );
         let err = Model::<Spatial>::from_scene(&s).unwrap_err().0;
-        assert!(err.contains("masses[0]."), "{err}");
-        assert!(err.contains("planar scenes only"), "{err}");
+        let field = if spatial_extra.starts_with("offset") {
+            "masses[0].offset = [0.0, 0.01, 0.0]"
+        } else if spatial_extra.contains("1e-4") {
+            "masses[0].inertia = [0.0001, 0.0, 0.0]"
+        } else {
+            "masses[0].inertia = [0.0, 0.0002, 0.0002]"
+        };
+        eprintln!("{err}");
+        assert!(err.contains(field), "{err}");
+        assert!(err.contains("torsion = true"), "{err}");
+        assert!(err.contains("3D cable"), "{err}");
     }
+    // zeros are a point mass, on the cable too
     let tail = format!(
         "{}inertia = [0.0, 0.0, 0.0]\noffset = [0.0, 0.0, 0.0]\n",
+        mass_table("p", "a", 0.2, 0.01)
+    );
+    let s = scene_with(
+        "space = \"spatial\"\ntorsion = false\ngravity = [0.0, 0.0, -9.81]",
+        &segs[..1],
+        &tail,
+    );
+    assert!(Model::<Spatial>::from_scene(&s).is_ok());
+    // a modal segment of a cable scene carries a section body
+    let tail = format!(
+        "{}inertia = [1e-4, 2e-4, 3e-4]\noffset = [0.01, 0.0, 0.0]\n",
         mass_table("p", "m", 0.2, 0.01)
     );
     let s = scene_with(
-        "space = \"spatial\"\ntorsion = true\ngravity = [0.0, 0.0, -9.81]",
-        &segs,
+        "space = \"spatial\"\ntorsion = false\ngravity = [0.0, 0.0, -9.81]",
+        &[segs[1].clone()],
         &tail,
     );
     assert!(Model::<Spatial>::from_scene(&s).is_ok());
@@ -747,5 +779,316 @@ fn apparent_mass_along_the_axis_includes_the_masses() {
         };
         eprintln!("spatial {spatial}: dF_x/da_x = {got:.12e} kg, rho A L + m = {want:.12e} kg");
         assert!((got / want - 1.0).abs() < 1e-9, "{got} vs {want}");
+    }
+}
+
+/// The spatial twisting elements: (label, scene header line).
+const SPATIAL_TORSION: [(&str, &str); 2] = [
+    ("director", "torsion = true"),
+    ("angle", "torsion_element = \"angle\""),
+];
+
+#[test]
+fn spatial_end_body_frequencies_match_the_frequency_equation() {
+    // a spatial cantilever with a tip body of mass μρAL, rotary inertia J = jρAL³ about both
+    // bending axes (I_yy = I_zz, so each pair of planes is equal) and a polar I_xx, centre at
+    // e = εL beyond the tip on the axis: the planar end-body equation in each plane
+    let w = (ei() / (rho_a() * L.powi(4))).sqrt();
+    let mu = 0.5;
+    let m = mu * rho_a() * L;
+    let mut worst = 0.0f64;
+    for (j, eps) in [(0.01, 0.0), (0.0, 0.05), (0.01, 0.05), (0.02, -0.03)] {
+        let want = end_body_roots(mu, j, eps).map(|b| b * b * w / std::f64::consts::TAU);
+        let jj = j * rho_a() * L.powi(3);
+        for (label, segs, on) in rods() {
+            let len: f64 = if segs.len() == 1 { L } else { 0.5 * L };
+            let tail = format!(
+                "{}inertia = [{:e}, {jj:e}, {jj:e}]\noffset = [{:e}, 0.0, 0.0]\n",
+                mass_table("tip", on, len, m),
+                0.3 * jj,
+                eps * L
+            );
+            for (element, line) in SPATIAL_TORSION {
+                if element == "angle" && !segs.iter().any(|s| s.contains("ancf")) {
+                    continue; // an all-modal rod has no ANCF element
+                }
+                let s = scene_with(
+                    &format!("space = \"spatial\"\n{line}\ngravity = [0.0, 0.0, 0.0]"),
+                    &segs,
+                    &tail,
+                );
+                let got = bending_frequencies(&mut Model::<Spatial>::from_scene(&s).unwrap(), true);
+                worst = worst.max(check_frequencies(
+                    &format!(
+                        "spatial {element} {label}, mu = {mu}, J/(rho A L^3) = {j}, e/L = {eps}"
+                    ),
+                    got,
+                    want,
+                    1e-4,
+                ));
+            }
+        }
+    }
+    eprintln!("worst relative frequency error {worst:.2e}");
+}
+
+#[test]
+fn tip_disk_torsion_frequency_matches_the_closed_form() {
+    // a shaft (round d = 2 mm, L = 0.4 m, steel) clamped at the root with a tip disk of polar
+    // inertia J_d = 5 ρI_pL (mass 1e-6 kg, no bending inertia): the first torsion frequency
+    // ω = βc/L, β tan β = ρI_pL/J_d, c = √(G/ρ) (Blevins Table 8-19 / Timoshenko): the model's
+    // frequency nearest to it within 1e-4 (director: 16 elements; angle: 16; modal: 2 torsion
+    // shapes)
+    let nu = 0.3;
+    let g_mod = E_STEEL / (2.0 * (1.0 + nu));
+    let ip = std::f64::consts::PI * D.powi(4) / 32.0;
+    let jd = 5.0 * RHO_STEEL * ip * L;
+    let ratio = RHO_STEEL * ip * L / jd;
+    let (mut lo, mut hi) = (1e-6, std::f64::consts::FRAC_PI_2 - 1e-9);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid * mid.tan() < ratio {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let beta = 0.5 * (lo + hi);
+    let want = beta * (g_mod / RHO_STEEL).sqrt() / L / std::f64::consts::TAU;
+    let r = round(D);
+    let tail = format!(
+        "{}inertia = [{jd:e}, 0.0, 0.0]\n",
+        mass_table("disk", "s", L, 1e-6)
+    );
+    let mut worst = 0.0f64;
+    for (label, seg, line) in [
+        ("director", ancf("s", L, &r, 16, ""), "torsion = true"),
+        (
+            "angle",
+            ancf("s", L, &r, 16, ""),
+            "torsion_element = \"angle\"",
+        ),
+        ("modal", modal("s", L, &r, 4, true, ""), "torsion = true"),
+    ] {
+        let s = scene_with(
+            &format!("space = \"spatial\"\n{line}\ngravity = [0.0, 0.0, 0.0]"),
+            &[seg],
+            &tail,
+        );
+        let f: Vec<f64> = linearized_modes(&mut Model::<Spatial>::from_scene(&s).unwrap())
+            .iter()
+            .map(|m| m.0)
+            .collect();
+        let got = f
+            .iter()
+            .copied()
+            .min_by(|a, b| (a - want).abs().total_cmp(&(b - want).abs()))
+            .unwrap();
+        let rel = got / want - 1.0;
+        eprintln!("{label}: torsion f1 = {got:.6} Hz, closed form {want:.6} Hz (beta = {beta:.9}), error {rel:+.2e}");
+        worst = worst.max(rel.abs());
+        assert!(rel.abs() < 1e-4, "{label}: {rel:e}");
+    }
+    eprintln!("worst relative torsion frequency error {worst:.2e}");
+}
+
+#[test]
+fn axial_offset_weight_adds_its_moment_to_the_tip_deflection() {
+    // a weightless cantilever (ρ = 1e-9) with a tip mass whose centre is e beyond the tip on
+    // the axis: gravity along −z pulls P = m g at the tip and turns it by M = P e: tip
+    // deflection P L³/(3EI) + M L²/(2EI) (Roark Table 8.1 cases 1a and 3a)
+    let (l, b, g): (f64, f64, f64) = (1.0, 0.01, 9.81);
+    let ei = E_STEEL * b.powi(4) / 12.0;
+    // m: a tip deflection near 1.4e-4 L (the linear range: the arm's turn by the tip slope is
+    // of second order, ~1e-8)
+    let (m, e) = (0.005, 0.3);
+    let p = m * g;
+    let want = p * l.powi(3) / (3.0 * ei) + p * e * l * l / (2.0 * ei);
+    let sec = square(b);
+    let body = format!(
+        "{}offset = [{e:e}, 0.0, 0.0]\ninertia = [1e-5, 2e-5, 3e-5]\n",
+        mass_table("tip", "rod", l, m)
+    );
+    let light = |s: String| s.replace(&format!("density = {RHO_STEEL:e}"), "density = 1e-9");
+    let mut worst = 0.0f64;
+    for (label, seg, line) in [
+        (
+            "director",
+            light(ancf("rod", l, &sec, 10, "")),
+            "torsion = true",
+        ),
+        (
+            "angle",
+            light(ancf("rod", l, &sec, 10, "")),
+            "torsion_element = \"angle\"",
+        ),
+        (
+            "modal",
+            light(modal("rod", l, &sec, 4, true, "")),
+            "torsion = true",
+        ),
+        (
+            "modal linear",
+            light(modal("rod", l, &sec, 4, true, "linear = true")),
+            "torsion = true",
+        ),
+    ] {
+        let s = scene_with(
+            &format!(
+                "space = \"spatial\"\n{line}\ngravity = [0.0, 0.0, {:e}]",
+                -g
+            ),
+            &[seg],
+            &body,
+        );
+        let mut sim = Simulator::<Spatial>::new(s).unwrap();
+        sim.solve_static().unwrap();
+        let o = sim.outputs();
+        let got = -o.tip_position[2];
+        let rel = got / want - 1.0;
+        eprintln!(
+            "{label}: tip deflection {got:.9e} m, closed form {want:.9e} m, error {rel:+.2e}"
+        );
+        worst = worst.max(rel.abs());
+        assert!(rel.abs() < 1e-6, "{label}: {rel:e}");
+        // the support carries the weight and its moment about y, m g (L + e)
+        assert!(
+            (o.root_force[2] / (m * g) - 1.0).abs() < 1e-9,
+            "{:?}",
+            o.root_force
+        );
+        let my = Spatial::moment_components(&o.root_moment)[1].abs();
+        assert!(
+            (my / (m * g * (l + e)) - 1.0).abs() < 1e-6,
+            "{my} {:?}",
+            o.root_moment
+        );
+    }
+    eprintln!("worst relative deflection error {worst:.2e}");
+}
+
+#[test]
+fn newton_matrices_with_spatial_section_bodies_match_central_differences() {
+    let r = round(0.004);
+    let body = |name: &str, seg: &str, at: f64, i: [f64; 3], o: [f64; 3]| {
+        format!(
+            "{}inertia = [{:e}, {:e}, {:e}]\noffset = [{:e}, {:e}, {:e}]\n",
+            mass_table(name, seg, at, 0.02),
+            i[0],
+            i[1],
+            i[2],
+            o[0],
+            o[1],
+            o[2]
+        )
+    };
+    let tail = [
+        body("b1", "m1", 0.07, [1e-5, 2e-5, 3e-5], [0.01, -0.02, 0.03]),
+        body("b2", "a", 0.1, [2e-5, 1e-5, 1e-5], [0.0, 0.02, -0.01]),
+        mass_table("p", "a", 0.13, 0.005),
+        body("b3", "a", 0.2, [0.0, 3e-5, 1e-5], [-0.02, 0.0, 0.01]),
+        body("b4", "m2", 0.2, [1e-5, 1e-5, 2e-5], [0.02, 0.01, 0.0]),
+    ]
+    .concat();
+    for lin in ["", "linear = true"] {
+        let segs = [
+            modal(
+                "m1",
+                0.2,
+                &r,
+                3,
+                true,
+                &format!("damping_ratio = 0.05\n{lin}"),
+            ),
+            ancf("a", 0.2, &r, 2, "damping_time = 1e-3"),
+            modal("m2", 0.2, &r, 2, false, lin),
+        ];
+        for (element, line) in SPATIAL_TORSION {
+            let s = scene_with(
+                &format!(
+                    "space = \"spatial\"\n{line}\nroot = \"ball\"\ngravity = [0.0, 1.0, -9.81]"
+                ),
+                &segs,
+                &tail,
+            );
+            let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+            model.set_tip_force([0.3, -0.7, 0.2]);
+            let w = check_newton_matrix(&mut model);
+            eprintln!("spatial {element}, {lin:?}: worst error {w:.2e} of the tolerance");
+        }
+    }
+}
+
+#[test]
+fn mounted_spatial_rigid_inertia_includes_the_section_bodies() {
+    // a mounted rod along x (modal then director ANCF) with an offset body on each segment:
+    // mass, centre of mass and the inertia tensor about the mount point against the hand sum:
+    // the rod (ρAL, centre L/2, I_xx = ρI_pL, I_yy = I_zz = ρAL³/3) plus each body's
+    // I_c + m(|c|²1 − c cᵀ) (parallel axes), section axes = mount axes at rest
+    let r = round(D);
+    let segs = [
+        modal("m", 0.5 * L, &r, 3, true, ""),
+        ancf("a", 0.5 * L, &r, 4, ""),
+    ];
+    let bodies = [
+        ("m", 0.13, 0.01, [1e-6, 2e-6, 3e-6], [0.01, -0.02, 0.03]),
+        ("a", 0.1, 0.02, [4e-6, 1e-6, 2e-6], [-0.015, 0.025, -0.01]),
+    ];
+    let mut tail = String::new();
+    let mb = rho_a() * L;
+    let ip = std::f64::consts::PI * D.powi(4) / 32.0;
+    let mut mass = mb;
+    let mut first = [mb * L / 2.0, 0.0, 0.0];
+    let mut inertia = [[0.0; 3]; 3];
+    inertia[0][0] = RHO_STEEL * ip * L;
+    inertia[1][1] = mb * L * L / 3.0;
+    inertia[2][2] = mb * L * L / 3.0;
+    for (k, (seg, at, m, i, o)) in bodies.iter().enumerate() {
+        tail.push_str(&format!(
+            "{}inertia = [{:e}, {:e}, {:e}]\noffset = [{:e}, {:e}, {:e}]\n",
+            mass_table(&format!("b{k}"), seg, *at, *m),
+            i[0],
+            i[1],
+            i[2],
+            o[0],
+            o[1],
+            o[2]
+        ));
+        let x0 = if *seg == "a" { 0.5 * L } else { 0.0 };
+        let c = [x0 + at + o[0], o[1], o[2]];
+        mass += m;
+        let c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+        for a in 0..3 {
+            first[a] += m * c[a];
+            for b in 0..3 {
+                let delta = if a == b { 1.0 } else { 0.0 };
+                inertia[a][b] += m * (c2 * delta - c[a] * c[b]) + delta * i[a];
+            }
+        }
+    }
+    let com = first.map(|x| x / mass);
+    let s = scene_with(
+        "space = \"spatial\"\ntorsion = true\nroot = \"mounted\"\ngravity = [0.0, 0.0, 0.0]",
+        &segs,
+        &tail,
+    );
+    let sim = Simulator::<Spatial>::new(s).unwrap();
+    let mi = sim.outputs().mount.unwrap();
+    eprintln!("mass {:.12e} kg (hand sum {mass:.12e})", mi.mass);
+    assert!((mi.mass / mass - 1.0).abs() < 1e-12);
+    for a in 0..3 {
+        eprintln!(
+            "com[{a}] {:.12e} m (hand sum {:.12e})",
+            mi.center_of_mass[a], com[a]
+        );
+        assert!((mi.center_of_mass[a] - com[a]).abs() < 1e-12 * L, "com {a}");
+        for b in 0..3 {
+            let (got, want) = (mi.inertia[3 * a + b], inertia[a][b]);
+            eprintln!("I[{a}{b}] {got:.12e} kg m2 (hand sum {want:.12e})");
+            assert!(
+                (got - want).abs() < 1e-9 * inertia[1][1],
+                "I[{a}{b}] {got:e} vs {want:e}"
+            );
+        }
     }
 }

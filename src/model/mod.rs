@@ -41,6 +41,7 @@ pub mod output_names;
 pub mod outputs;
 pub mod planar;
 pub mod sample;
+pub mod section3;
 pub mod shape;
 pub mod space;
 pub mod spatial;

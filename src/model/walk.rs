@@ -10,6 +10,7 @@ use super::ancf::SectionMass;
 use super::assembly::{Model, Parts};
 use super::component::{Constraint, Element, Port, Support};
 use super::dofs::{Dof, LocalDofs, Numbering};
+use super::section3::SectionBody3;
 use super::space::{moment_from, vec_from, Space};
 use crate::scene::{Root, Scene, SceneError, Segment, SegmentKind, SpaceKind};
 
@@ -112,8 +113,8 @@ pub trait SegmentParts<S: Space> {
     /// The element properties of ANCF segment `si` (elements of length `le` [m]).
     fn ancf_props(&self, si: usize, seg: &Segment, le: f64) -> Result<Self::AncfProps, SceneError>;
     /// One ANCF element carrying the point masses `points`: (ξ ∈ [0, 1] along the element,
-    /// mass [kg]) (empty: the element alone), and the rigid bodies `bodies` on its section
-    /// (offset or rotary inertia; the walk passes them to planar elements only), under the
+    /// mass [kg]) (empty: the element alone), and the rigid bodies on its section (offset or
+    /// rotary inertia): `bodies` in a planar scene, `bodies3` in a spatial one, under the
     /// line load of its segment `seg` ([`Segment::line_load`]); the element starts at arc length
     /// `x0` [m] from the segment's start (a tapered segment's section there).
     fn ancf_element(
@@ -122,6 +123,7 @@ pub trait SegmentParts<S: Space> {
         x0: f64,
         points: &[(f64, f64)],
         bodies: &[SectionMass],
+        bodies3: &[SectionBody3],
         seg: &Segment,
     ) -> Box<dyn Element<S>>;
     /// An ANCF node at arc length `s` [m] (on the current segment's layout), held as `hold`
@@ -150,14 +152,15 @@ pub trait SegmentParts<S: Space> {
 }
 
 /// The attached masses of a modal segment: point masses (x from the segment's start [m], mass
-/// [kg]) and rigid bodies on the section (offset or rotary inertia; `xi` = x/L; the walk passes
-/// them in planar scenes only).
+/// [kg]) and rigid bodies on the section (offset or rotary inertia; `xi` = x/L).
 #[derive(Debug, Clone, Default)]
 pub struct SegmentMasses {
     /// Point masses (x [m], mass [kg]).
     pub points: Vec<(f64, f64)>,
-    /// Bodies with an offset or a rotary inertia.
+    /// Bodies with an offset or a rotary inertia (planar scenes).
     pub bodies: Vec<SectionMass>,
+    /// Bodies with an offset or a rotary inertia (spatial scenes).
+    pub bodies3: Vec<SectionBody3>,
 }
 
 /// The element of an ANCF segment of length `length` cut into `ne` equal elements that carries
@@ -169,22 +172,79 @@ pub fn element_of(at: f64, length: f64, ne: usize) -> (usize, f64) {
     (k, ((at - k as f64 * le) / le).clamp(0.0, 1.0))
 }
 
-/// Refuses attached masses with what the model does not carry yet: an offset or a rotary
-/// inertia (non-zero) in a spatial scene, naming the field and the fix.
+/// Refuses attached masses with what the model does not carry: an offset or a rotary inertia
+/// (non-zero) on an ANCF segment of a spatial scene without torsion (the 3D cable has no
+/// section frame about its axis), naming the field, its value and the fix.
 fn point_masses_are_points<S: Space>(scene: &Scene) -> Result<(), SceneError> {
+    if S::KIND == SpaceKind::Planar || scene.torsion {
+        return Ok(());
+    }
     for (i, m) in scene.masses.iter().enumerate() {
-        if S::KIND == SpaceKind::Planar {
+        let on_cable =
+            (scene.segments.iter()).any(|s| s.name == m.segment && s.kind == SegmentKind::Ancf);
+        if !on_cable {
             continue;
         }
         for (field, v) in [("inertia", &m.inertia), ("offset", &m.offset)] {
             if let Some(v) = v.as_ref().filter(|v| v.iter().any(|x| *x != 0.0)) {
                 return Err(SceneError(format!(
-                    "masses[{i}].{field} = {v:?}: a mass's {field} is modelled in planar scenes only in this version (spatial scenes take point masses); remove `{field}` or set it to zeros (a point mass)"
+                    "masses[{i}].{field} = {v:?}: segment {:?} is a 3D cable (torsion = false), whose section has no frame about its axis to carry a mass's {field}; set `torsion = true` (the director or angle element carries the section frame), put the mass on a modal segment, or remove `{field}` (a point mass)",
+                    m.segment
                 )));
             }
         }
     }
     Ok(())
+}
+
+/// Bodies with the index of the element carrying them.
+type Placed<B> = Vec<(usize, B)>;
+
+/// The section bodies (non-point masses) on segment `si` of length `length`, split onto `ne`
+/// equal elements (`None`: one modal body, ξ = at/L): (element, body) in scene order, in the
+/// space's form.
+fn section_bodies<S: Space>(
+    scene: &Scene,
+    si: usize,
+    length: f64,
+    ne: Option<usize>,
+) -> (Placed<SectionMass>, Placed<SectionBody3>) {
+    let (mut planar, mut spatial) = (Vec::new(), Vec::new());
+    for m in scene.masses_on(si).filter(|m| !m.is_point()) {
+        let (k, xi) = match ne {
+            Some(ne) => element_of(m.at, length, ne),
+            None => (0, m.at / length),
+        };
+        if S::KIND == SpaceKind::Planar {
+            let (inertia, offset) = m.planar_body();
+            planar.push((
+                k,
+                SectionMass {
+                    xi,
+                    mass: m.mass,
+                    inertia,
+                    offset,
+                },
+            ));
+        } else {
+            let (inertia, offset) = m.spatial_body();
+            spatial.push((
+                k,
+                SectionBody3 {
+                    xi,
+                    mass: m.mass,
+                    inertia,
+                    offset,
+                },
+            ));
+        }
+    }
+    (planar, spatial)
+}
+
+/// The bodies of `bodies` on element `k`.
+fn on_element<B: Copy>(bodies: &[(usize, B)], k: usize) -> Vec<B> {
+    bodies.iter().filter(|b| b.0 == k).map(|b| b.1).collect()
 }
 
 /// The model of a validated scene, its segments built by `parts`.
@@ -208,21 +268,11 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
         parts.begin_segment(seg, s_pos);
         match seg.kind {
             SegmentKind::Modal => {
+                let (planar, spatial) = section_bodies::<S>(scene, si, seg.length, None);
                 let masses = SegmentMasses {
                     points: points.clone(),
-                    bodies: scene
-                        .masses_on(si)
-                        .filter(|m| !m.is_point())
-                        .map(|m| {
-                            let (inertia, offset) = m.planar_body();
-                            SectionMass {
-                                xi: m.at / seg.length,
-                                mass: m.mass,
-                                inertia,
-                                offset,
-                            }
-                        })
-                        .collect(),
+                    bodies: planar.into_iter().map(|b| b.1).collect(),
+                    bodies3: spatial.into_iter().map(|b| b.1).collect(),
                 };
                 let m = parts.modal(&mut num, si, seg, s_pos, first && clamped, &masses)?;
                 if first {
@@ -251,6 +301,7 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                 let ne = seg.elements.unwrap_or(1);
                 let le = seg.length / ne as f64;
                 let props = parts.ancf_props(si, seg, le)?;
+                let (planar, spatial) = section_bodies::<S>(scene, si, seg.length, Some(ne));
                 // first node: shared with a previous ANCF segment, else new (held at the root)
                 let mut last = match prev.take() {
                     Some(up) if up.node => Coords {
@@ -295,23 +346,11 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                             (j == k).then_some((xi, m))
                         })
                         .collect();
-                    let held: Vec<SectionMass> = scene
-                        .masses_on(si)
-                        .filter(|m| !m.is_point())
-                        .filter_map(|m| {
-                            let (j, xi) = element_of(m.at, seg.length, ne);
-                            let (inertia, offset) = m.planar_body();
-                            (j == k).then_some(SectionMass {
-                                xi,
-                                mass: m.mass,
-                                inertia,
-                                offset,
-                            })
-                        })
-                        .collect();
+                    let held = on_element(&planar, k);
+                    let held3 = on_element(&spatial, k);
                     ancf.push((
                         dofs,
-                        parts.ancf_element(&props, k as f64 * le, &on, &held, seg),
+                        parts.ancf_element(&props, k as f64 * le, &on, &held, &held3, seg),
                         si,
                     ));
                     last = next;

@@ -412,6 +412,15 @@ impl Mass {
         zero(&self.inertia) && zero(&self.offset)
     }
 
+    /// Spatial: the rotary inertia [I_xx, I_yy, I_zz] about its centre [kg m²] and the offset
+    /// [x, y, z] [m], section axes (zeros where not given).
+    pub fn spatial_body(&self) -> ([f64; 3], [f64; 3]) {
+        let get = |v: &Option<Vec<f64>>| -> [f64; 3] {
+            std::array::from_fn(|k| v.as_ref().and_then(|v| v.get(k)).copied().unwrap_or(0.0))
+        };
+        (get(&self.inertia), get(&self.offset))
+    }
+
     /// Planar: the rotary inertia I_zz [kg m²] and the offset (along the tangent, along the
     /// section's y axis) [m] (zeros where not given).
     pub fn planar_body(&self) -> (f64, [f64; 2]) {
@@ -439,11 +448,12 @@ pub struct Mass {
     /// Mass [kg], > 0.
     pub mass: f64,
     /// Rotary inertia about its centre, section axes [kg m²]: `[Ixx, Iyy, Izz]` in a spatial
-    /// scene, `[Izz]` in a planar one (not modelled yet: a build refuses a non-zero value).
+    /// scene, `[Izz]` in a planar one (a spatial build refuses a non-zero value on a 3D cable,
+    /// `torsion = false`, whose section has no frame about its axis).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inertia: Option<Vec<f64>>,
-    /// Its centre from the centreline point, section axes [m] (`[x, y]` or `[x, y, z]`; not
-    /// modelled yet: a build refuses a non-zero value).
+    /// Its centre from the centreline point, section axes [m] (`[x, y]` or `[x, y, z]`; a
+    /// spatial build refuses a non-zero value on a 3D cable, as `inertia`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub offset: Option<Vec<f64>>,
 }

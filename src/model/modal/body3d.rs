@@ -30,6 +30,7 @@ use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
 use super::BodyGravity;
 use crate::math;
 use crate::model::sample::{minimal_frame, ShapePoint};
+use crate::model::section3::{self, SectionBody3, SectionPose};
 use crate::model::vector::{add, cross, dot, scale, Real, V3};
 use crate::scene::Segment;
 use nalgebra::{Matrix2, Vector2};
@@ -202,6 +203,8 @@ pub struct ModalBody3 {
     damped: bool,
     /// Point masses on the body ([`ModalBody3::with_points`]).
     points: Vec<BodyPoint>,
+    /// Rigid bodies on the body's sections ([`ModalBody3::with_bodies`]).
+    bodies: Vec<(SectionBody3, ModalPose)>,
     /// The segment's line load over ρA, q/(ρA) [m/s²] ([`ModalBody3::with_line_load`]);
     /// `None` without one.
     pub(crate) line: Option<[f64; 3]>,
@@ -287,6 +290,7 @@ impl ModalBody3 {
             nl,
             damped,
             points: Vec::new(),
+            bodies: Vec::new(),
             line: None,
         }
     }
@@ -314,6 +318,30 @@ impl ModalBody3 {
             .iter()
             .map(|&p| BodyPoint::new(&self.basis, &self.nl, l, self.nonlinear, p))
             .collect();
+        self
+    }
+
+    /// The body carrying rigid bodies `bodies` on its sections ([`SectionBody3`], `xi` = x/L:
+    /// an offset or a rotary inertia) on the section frame of [`ModalPose`]. Call after
+    /// [`ModalBody3::linear`] and [`ModalBody3::with_panels`].
+    pub fn with_bodies(mut self, bodies: &[SectionBody3]) -> Self {
+        let (l, nb) = (self.props.length, self.modes());
+        let mut buf = Vec::new();
+        for b in bodies {
+            let xi = b.xi.clamp(0.0, 1.0);
+            let pt = BodyPoint::new(&self.basis, &self.nl, l, self.nonlinear, (xi * l, b.mass));
+            self.basis.eval_all(xi, &mut buf);
+            let pose = ModalPose {
+                nb,
+                x: xi * l,
+                nonlinear: self.nonlinear,
+                phi: pt.phi,
+                dphi: buf.iter().take(nb).map(|f| f[1] / l).collect(),
+                gram: pt.gram,
+                chi: torsion_shapes(xi).0,
+            };
+            self.bodies.push((*b, pose));
+        }
         self
     }
 
@@ -657,6 +685,11 @@ impl ModalBody3 {
             };
             self.add_point_forces((q, v, a), (&rot, &eb, w, wd, zp), out);
         }
+        let d = self.dim();
+        for (b, pose) in &self.bodies {
+            // the section bodies feel gravity alone, as the point masses
+            b.add_forces(pose, d, (q, v, a), gp, out);
+        }
     }
 
     /// The per-point fields of the nonlinear terms into `buf` ([`FIELDS3`] slots per point of
@@ -930,11 +963,12 @@ impl ModalBody3 {
             + 0.5 * ml * (sum(vy, vy) + sum(vz, vz))
             + w[0] * (self.c_t[0] * vt[0] + self.c_t[1] * vt[1])
             + 0.5 * tors;
-        if self.points.is_empty() {
+        let t = if self.points.is_empty() {
             t
         } else {
             t + self.point_energies(q, v, [0.0; 3]).0
-        }
+        };
+        (self.bodies.iter()).fold(t, |t, (b, pose)| t + b.energies(pose, q, v, [0.0; 3]).0)
     }
 
     /// Strain energy ½ aᵀ K a [J].
@@ -973,11 +1007,13 @@ impl ModalBody3 {
             mul(&euler_rotation([q[3], q[4], q[5], q[6]]), cbar),
         );
         let u = -dot(g, first) + self.nonlinear_energies(q, &vec![0.0; q.len()], g)[2];
-        if self.points.is_empty() {
+        let u = if self.points.is_empty() {
             u
         } else {
             u + self.point_energies(q, &vec![0.0; q.len()], gp).1
-        }
+        };
+        let v = vec![0.0; q.len()];
+        (self.bodies.iter()).fold(u, |u, (b, pose)| u + b.energies(pose, q, &v, gp).1)
     }
 
     /// Tip deflections (φ(1)ᵀa_y, φ(1)ᵀa_z) [m], tip slopes (v′, w′) = φ′(1)ᵀ(a_y, a_z)/L [-]
@@ -1101,5 +1137,65 @@ impl ModalBody3 {
     pub fn deflection(&self, q: &[f64]) -> f64 {
         let (d, s, th) = self.tip_elastic(q);
         (d.norm() / self.props.length).max(s.norm()).max(th.abs())
+    }
+}
+
+/// The centreline point and section frame of a spatial modal body at x = ξL, as functions of
+/// its coordinates `[R, p, a_y, a_z, a_t]`: r = R + A ū, ū = (x + c, v, w) (c = −½Σ aᵀG_m a
+/// the foreshortening of both planes, zero on a linear body; the point masses' kinematics), and
+/// the frame A[t, d2, d3] of [`ModalBody3::sample`]: the smallest rotation of the body's
+/// section axes onto the field's tangent (1 + c′, v′, w′) (1 on a linear body), turned about
+/// it by the twist θ = χ(ξ)ᵀa_t.
+#[derive(Debug, Clone)]
+pub struct ModalPose {
+    nb: usize,
+    x: f64,
+    nonlinear: bool,
+    /// φ_k(ξ) [-].
+    phi: Vec<f64>,
+    /// φ_k′(x) [1/m].
+    dphi: Vec<f64>,
+    /// G_m (row-major nb × nb) [1/m], zero on a linear body.
+    gram: Vec<f64>,
+    /// χ_m(ξ) [-].
+    chi: [f64; 2],
+}
+
+impl SectionPose for ModalPose {
+    fn pose<S: Real>(&self, q: impl Fn(usize) -> S) -> (V3<S>, [V3<S>; 3]) {
+        let nb = self.nb;
+        let zero = S::zero();
+        let (mut v, mut w, mut sv, mut sw, mut c) = (zero, zero, zero, zero, zero);
+        for k in 0..nb {
+            let (ay, az) = (q(7 + k), q(7 + nb + k));
+            v += ay * self.phi[k];
+            w += az * self.phi[k];
+            sv += ay * self.dphi[k];
+            sw += az * self.dphi[k];
+            if self.nonlinear {
+                let (mut gy, mut gz) = (zero, zero);
+                for j in 0..nb {
+                    let g = self.gram[k * nb + j];
+                    gy += q(7 + j) * g;
+                    gz += q(7 + nb + j) * g;
+                }
+                c -= (ay * gy + az * gz) * 0.5;
+            }
+        }
+        let a = euler_rotation([q(3), q(4), q(5), q(6)]);
+        let u = [c + self.x, v, w];
+        let au = mul(&a, u);
+        let r = [q(0) + au[0], q(1) + au[1], q(2) + au[2]];
+        let tx = if self.nonlinear {
+            S::one() - (sv * sv + sw * sw) * 0.5
+        } else {
+            S::one()
+        };
+        let [t, d2, d3] = section3::minimal_frame([tx, sv, sw]);
+        let th = q(7 + 2 * nb) * self.chi[0] + q(8 + 2 * nb) * self.chi[1];
+        let (sn, cs) = math::sin_cos_dual(th);
+        let d2t: V3<S> = std::array::from_fn(|i| d2[i] * cs + d3[i] * sn);
+        let d3t: V3<S> = std::array::from_fn(|i| d3[i] * cs - d2[i] * sn);
+        (r, [mul(&a, t), mul(&a, d2t), mul(&a, d3t)])
     }
 }

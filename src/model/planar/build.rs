@@ -13,6 +13,7 @@ use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody};
+use crate::model::section3::SectionBody3;
 use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind};
 use std::sync::Arc;
@@ -147,6 +148,7 @@ impl SegmentParts<Planar> for PlanarParts {
         x0: f64,
         points: &[(f64, f64)],
         bodies: &[SectionMass],
+        _bodies3: &[SectionBody3],
         seg: &Segment,
     ) -> Box<dyn Element<Planar>> {
         let mut props = *props;

@@ -12,7 +12,8 @@ use crate::model::ancf3d::angle::{section_frame, Angle3, ANGLE_DOFS};
 use crate::model::ancf3d::{MassPatterns, Tables3};
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Port, Validity};
 use crate::model::sample::ShapePoint;
-use crate::model::vector::Real;
+use crate::model::section3::{gram_schmidt, SectionBody3, SectionPose};
+use crate::model::vector::{Real, V3};
 use nalgebra::{Const, Vector3};
 use num_dual::Dual2Vec;
 use std::any::Any;
@@ -34,6 +35,39 @@ pub struct AngleElement3 {
     points: Option<[f64; 4]>,
     /// The segment's line load q [N/m] ([`Ancf3Props::load_force`]); `None` without one.
     line: Option<[f64; 3]>,
+    /// Rigid bodies on the section (offset or rotary inertia) with their poses
+    /// ([`AnglePose`]).
+    bodies: Vec<(SectionBody3, AnglePose)>,
+    /// The current gravity [m/s²] (the bodies' weight).
+    g: [f64; 3],
+}
+
+/// The centreline point r = S(ξ)e and the section frame of the angle element at ξ: r_x =
+/// S′(ξ)e and the nodal section axes d2 of [`section_frame`] interpolated linearly, made ⟂ r_x
+/// (Gram–Schmidt), the frame of the element's samples ([`Angle3::sample`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnglePose {
+    sh: [f64; 4],
+    ds: [f64; 4],
+    xi: f64,
+    t0: [f64; 3],
+    d0: [f64; 3],
+}
+
+impl SectionPose for AnglePose {
+    fn pose<S: Real>(&self, q: impl Fn(usize) -> S) -> (V3<S>, [V3<S>; 3]) {
+        let comb = |w: &[f64; 4]| -> V3<S> {
+            std::array::from_fn(|c| (0..4).fold(S::zero(), |s, j| s + q(R_SLOTS[j] + c) * w[j]))
+        };
+        let (r, a) = (comb(&self.sh), comb(&self.ds));
+        let node = |k: usize| {
+            let s = R_SLOTS[2 * k + 1];
+            section_frame(&self.t0, &self.d0, &[q(s), q(s + 1), q(s + 2)], q(s + 3))[1]
+        };
+        let (d0, d1) = (node(0), node(1));
+        let d: V3<S> = std::array::from_fn(|c| d0[c] * (1.0 - self.xi) + d1[c] * self.xi);
+        (r, gram_schmidt(a, d))
+    }
 }
 
 /// Starts of the r-blocks of S1..S4 (r0, r0_x, r1, r1_x) in the element's coordinates
@@ -51,7 +85,31 @@ impl AngleElement3 {
             gravity_force: [0.0; ANGLE_DOFS],
             points: None,
             line: None,
+            bodies: Vec::new(),
+            g: [0.0; 3],
         }
+    }
+
+    /// The element carrying rigid bodies `bodies` on its section ([`SectionBody3`], ξ along
+    /// the element).
+    pub fn with_bodies(mut self, bodies: &[SectionBody3]) -> Self {
+        let l = self.props.cable.length;
+        let (t0, d0) = (self.props.t0, self.props.d0);
+        self.bodies = bodies
+            .iter()
+            .map(|b| {
+                let sh = crate::model::ancf::Shape::at(b.xi, l);
+                let pose = AnglePose {
+                    sh: sh.s,
+                    ds: sh.ds,
+                    xi: b.xi,
+                    t0,
+                    d0,
+                };
+                (*b, pose)
+            })
+            .collect();
+        self
     }
 
     /// The element under the uniform dead line load `q` [N/m] (world axes; `None`: none), as
@@ -102,11 +160,27 @@ impl Element<Spatial> for AngleElement3 {
             *r -= env.load * g;
         }
         self.add_mass_product(&ea, &mut res);
+        let mut blk = [[0.0; 14]; 14];
+        if !self.bodies.is_empty() {
+            let g = self.g.map(|x| env.load * x);
+            for (b, pose) in &self.bodies {
+                b.add_forces(pose, 14, (&e[..], &ed[..], &ea[..]), g, &mut res);
+                if let Some(c) = out.matrix {
+                    b.add_block(pose, (&e, &ed, &ea), g, c, &mut blk);
+                }
+            }
+        }
         out.add_residual(&res);
         if let (Some((ca, cv, cx)), Some((k, c, mi))) = (out.matrix, matrices) {
             let m = &self.mass;
+            let bodies = !self.bodies.is_empty();
             out.add_block(|r, col| {
-                ca * (m[r * 14 + col] + mi[r][col]) + cx * k[r][col] + cv * c[r][col]
+                let v = ca * (m[r * 14 + col] + mi[r][col]) + cx * k[r][col] + cv * c[r][col];
+                if bodies {
+                    v + blk[r][col]
+                } else {
+                    v
+                }
             });
         }
     }
@@ -119,6 +193,9 @@ impl Element<Spatial> for AngleElement3 {
             *r += fi - g;
         }
         self.add_mass_product(&ea, &mut r);
+        for (b, pose) in &self.bodies {
+            b.add_forces(pose, 14, (&e[..], &ed[..], &ea[..]), self.g, &mut r);
+        }
         res.copy_from_slice(&r);
     }
 
@@ -136,11 +213,17 @@ impl Element<Spatial> for AngleElement3 {
 
     fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 3]) -> Energies {
         let (e, ed, _) = x.arrays::<14>();
-        Energies {
+        let mut out = Energies {
             kinetic: self.props.kinetic_energy(&self.patterns, &e, &ed),
             strain: self.props.strain_energy(&self.tables, &e),
             potential: gravity_potential(&e, &self.gravity_force),
+        };
+        for (b, pose) in &self.bodies {
+            let (t, u) = b.energies(pose, &e, &ed, self.g);
+            out.kinetic += t;
+            out.potential += u;
         }
+        out
     }
 
     fn set_line_load(&mut self, q: &[f64; 3]) {
@@ -150,6 +233,7 @@ impl Element<Spatial> for AngleElement3 {
     fn set_gravity(&mut self, g: &[f64; 3]) {
         self.gravity_force = self.props.load_force(*g, self.line);
         add_point_weight(&self.points, g, R_SLOTS, &mut self.gravity_force);
+        self.g = *g;
     }
 
     fn is_damped(&self) -> bool {

@@ -21,6 +21,7 @@ use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
+use crate::model::section3::SectionBody3;
 use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
 use crate::scene::{Scene, SceneError, Segment, SegmentKind, SpaceKind, TorsionElement};
 use nalgebra::{Matrix3, Quaternion, Rotation3, UnitQuaternion, Vector3};
@@ -126,7 +127,9 @@ impl SegmentParts<Spatial> for SpatialParts {
                 body = body.with_stiffening();
             }
         }
-        let body = body.with_points(&masses.points);
+        let body = body
+            .with_points(&masses.points)
+            .with_bodies(&masses.bodies3);
         let body = Arc::new(body.with_line_load(seg.line_load_vec()));
         let free_p = !held;
         let mut c = Coords::default();
@@ -187,6 +190,7 @@ impl SegmentParts<Spatial> for SpatialParts {
         x0: f64,
         points: &[(f64, f64)],
         _bodies: &[SectionMass],
+        bodies3: &[SectionBody3],
         seg: &Segment,
     ) -> Box<dyn Element<Spatial>> {
         let line = seg.line_load_vec();
@@ -204,12 +208,14 @@ impl SegmentParts<Spatial> for SpatialParts {
                     d0: self.ay.into(),
                 })
                 .with_points(points)
+                .with_bodies(bodies3)
                 .with_line_load(line),
             )
         } else {
             Box::new(
                 AncfElement3::new(*props)
                     .with_points(points)
+                    .with_bodies(bodies3)
                     .with_line_load(line),
             )
         }

@@ -9,7 +9,8 @@ use crate::model::component::{
     Element, ElementOut, Energies, Env, LocalState, Port, Support, Validity,
 };
 use crate::model::sample::ShapePoint;
-use crate::model::vector::Real;
+use crate::model::section3::{gram_schmidt, SectionBody3, SectionPose};
+use crate::model::vector::{Real, V3};
 use nalgebra::{Matrix3, Vector3};
 use num_dual::{Dual2Vec, DualSVec64, HyperDual64};
 use std::any::Any;
@@ -30,6 +31,36 @@ pub struct AncfElement3 {
     points: Option<[f64; 4]>,
     /// The segment's line load q [N/m] ([`Ancf3Props::load_force`]); `None` without one.
     line: Option<[f64; 3]>,
+    /// Rigid bodies on the section (offset or rotary inertia, the director element only) with
+    /// their poses ([`DirectorPose`]).
+    bodies: Vec<(SectionBody3, DirectorPose)>,
+    /// The current gravity [m/s²] (the bodies' weight).
+    g: [f64; 3],
+}
+
+/// The centreline point r = S(ξ)e and the section frame of the director element at ξ:
+/// Gram–Schmidt of r_x = S′(ξ)e and the interpolated director r_y = (1 − ξ)r_y0 + ξ r_y1, the
+/// frame of the element's samples ([`Ancf3Props::sample`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DirectorPose {
+    sh: [f64; 4],
+    ds: [f64; 4],
+    xi: f64,
+    rs: [usize; 4],
+    ys: [usize; 2],
+}
+
+impl SectionPose for DirectorPose {
+    fn pose<S: Real>(&self, q: impl Fn(usize) -> S) -> (V3<S>, [V3<S>; 3]) {
+        let comb = |w: &[f64; 4]| -> V3<S> {
+            std::array::from_fn(|c| (0..4).fold(S::zero(), |s, j| s + q(self.rs[j] + c) * w[j]))
+        };
+        let (r, a) = (comb(&self.sh), comb(&self.ds));
+        let d: V3<S> = std::array::from_fn(|c| {
+            q(self.ys[0] + c) * (1.0 - self.xi) + q(self.ys[1] + c) * self.xi
+        });
+        (r, gram_schmidt(a, d))
+    }
 }
 
 /// Adds point masses `points` (ξ ∈ [0, 1], mass [kg]) on an element of length `l` to its
@@ -93,7 +124,31 @@ impl AncfElement3 {
             gravity_force: [0.0; DIRECTOR_DOFS],
             points: None,
             line: None,
+            bodies: Vec::new(),
+            g: [0.0; 3],
         }
+    }
+
+    /// The element carrying rigid bodies `bodies` on its section ([`SectionBody3`], ξ along
+    /// the element; the director element: a build refuses them on the 3D cable).
+    pub fn with_bodies(mut self, bodies: &[SectionBody3]) -> Self {
+        let (rs, ys) = (self.patterns.r_slots, self.patterns.y_slots);
+        let l = self.props.length;
+        self.bodies = bodies
+            .iter()
+            .map(|b| {
+                let sh = crate::model::ancf::Shape::at(b.xi, l);
+                let pose = DirectorPose {
+                    sh: sh.s,
+                    ds: sh.ds,
+                    xi: b.xi,
+                    rs,
+                    ys,
+                };
+                (*b, pose)
+            })
+            .collect();
+        self
     }
 
     /// The element under the uniform dead line load `q` [N/m] (world axes; `None`: none):
@@ -141,15 +196,29 @@ impl AncfElement3 {
             *r -= env.load * g;
         }
         self.patterns.add_product(&ea, &mut res);
+        let mut blk = [[0.0; D]; D];
+        if !self.bodies.is_empty() {
+            let g = self.g.map(|x| env.load * x);
+            for (b, pose) in &self.bodies {
+                b.add_forces(pose, D, (&e[..], &ed[..], &ea[..]), g, &mut res);
+                if let Some(c) = out.matrix {
+                    b.add_block(pose, (&e, &ed, &ea), g, c, &mut blk);
+                }
+            }
+        }
         out.add_residual(&res);
         if let (Some((ca, cv, cx)), Some((k, c, mi))) = (out.matrix, matrices) {
             // the director inertia has velocity terms whether damped or not
             let rated = cv != 0.0 && (p.damping_time > 0.0 || p.director);
+            let bodies = !self.bodies.is_empty();
             let m = &self.mass;
             out.add_block(|r, col| {
                 let mut v = ca * (m[r * D + col] + mi[r][col]) + cx * k[r][col];
                 if rated {
                     v += cv * c[r][col];
+                }
+                if bodies {
+                    v += blk[r][col];
                 }
                 v
             });
@@ -164,6 +233,9 @@ impl AncfElement3 {
             *r += fi - g;
         }
         self.patterns.add_product(&ea, &mut r);
+        for (b, pose) in &self.bodies {
+            b.add_forces(pose, D, (&e[..], &ed[..], &ea[..]), self.g, &mut r);
+        }
         res.copy_from_slice(&r);
     }
 }
@@ -196,11 +268,17 @@ impl Element<Spatial> for AncfElement3 {
 
     fn energies(&self, x: &LocalState<'_>, _gravity: &[f64; 3]) -> Energies {
         let (e, ed, _) = x.vectors();
-        Energies {
+        let mut out = Energies {
             kinetic: self.props.kinetic_energy(&self.mass, &self.tables, &e, &ed),
             strain: self.props.strain_energy(&self.tables, &e),
             potential: gravity_potential(&e, &self.gravity_force),
+        };
+        for (b, pose) in &self.bodies {
+            let (t, u) = b.energies(pose, &e, &ed, self.g);
+            out.kinetic += t;
+            out.potential += u;
         }
+        out
     }
 
     fn set_line_load(&mut self, q: &[f64; 3]) {
@@ -215,6 +293,7 @@ impl Element<Spatial> for AncfElement3 {
             self.patterns.r_slots,
             &mut self.gravity_force,
         );
+        self.g = *g;
     }
 
     fn is_damped(&self) -> bool {
