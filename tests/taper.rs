@@ -393,3 +393,78 @@ fn tapered_modal_convergence_with_the_number_of_modes() {
         }
     }
 }
+
+/// The tapered modal segment's root carries ρ g ∫A dx + q L (the line load per unit length,
+/// not per unit mass), planar and spatial, the nonlinear and the linear body.
+#[test]
+fn tapered_modal_segment_weight_and_line_load_reach_the_root() {
+    let (g, q) = (9.81, 3.0);
+    let volume = PI / 4.0 * L * (D0 * D0 + D0 * D1 + D1 * D1) / 3.0;
+    let want = RHO_STEEL * g * volume + q * L;
+    for lin in ["", "linear = true"] {
+        let line = format!("line_load = [0.0, {:e}]\n{lin}", -q);
+        let s = scene(
+            &format!("gravity = [0.0, {:e}]", -g),
+            &[modal("a", L, &cone(), 6, true, &line)],
+        );
+        let mut sim = Simulator::<Planar>::new(s).unwrap();
+        sim.solve_static().unwrap();
+        let got = sim.outputs().root_force[1];
+        let rel = got / want - 1.0;
+        eprintln!("planar modal {lin:?}: root force {got:.9} N, rho g V + q L = {want:.9} N, error {rel:+.2e}");
+        assert!(rel.abs() < 1e-9, "{lin}: {rel:e}");
+        let header = format!(
+            "{}\ngravity = [0.0, 0.0, {:e}]",
+            spatial_header("director"),
+            -g
+        );
+        let line = format!("line_load = [0.0, 0.0, {:e}]\n{lin}", -q);
+        let s = scene(&header, &[modal("a", L, &cone(), 6, true, &line)]);
+        let mut sim = Simulator::<Spatial>::new(s).unwrap();
+        sim.solve_static().unwrap();
+        let got = sim.outputs().root_force[2];
+        let rel = got / want - 1.0;
+        eprintln!("spatial modal {lin:?}: root force {got:.9} N, error {rel:+.2e}");
+        assert!(rel.abs() < 1e-9, "spatial {lin}: {rel:e}");
+    }
+}
+
+/// The Newton matrix of tapered modal bodies (a held root segment and a free one behind an ANCF
+/// segment; gravity with an axial part, a line load, modal and Kelvin–Voigt damping) against
+/// central differences of the residual, planar and spatial, nonlinear and linear bodies.
+#[test]
+fn tapered_modal_newton_matrix_matches_central_differences() {
+    let (a, b) = half_cones();
+    let extra = "damping_ratio = 0.03\ndamping_time = 1e-4";
+    let segs = |lin: &str, q1: &str, q2: &str| {
+        let m1 = format!("{extra}\n{lin}\nline_load = [{q1}]");
+        let m2 = format!("{extra}\n{lin}\nline_load = [{q2}]");
+        [
+            modal("m1", 0.5 * L, &a, 3, true, &m1),
+            ancf("e", 0.1, &b, 1, ""),
+            modal("m2", 0.5 * L, &b, 3, false, &m2),
+        ]
+    };
+    for lin in ["", "linear = true"] {
+        let s = scene(
+            "gravity = [-3.0, -9.81]",
+            &segs(lin, "150.0, -200.0", "-50.0, 100.0"),
+        );
+        let mut model = Model::<Planar>::from_scene(&s).unwrap();
+        model.set_tip_force([0.3, -0.7]);
+        let worst = check_newton_matrix(&mut model);
+        eprintln!("planar {lin:?}: worst error / tolerance {worst:.2e}");
+        let header = format!(
+            "{}\ngravity = [-3.0, 1.0, -9.81]",
+            spatial_header("director")
+        );
+        let s = scene(
+            &header,
+            &segs(lin, "150.0, -200.0, 70.0", "-50.0, 100.0, 30.0"),
+        );
+        let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+        model.set_tip_force([0.3, -0.7, 0.2]);
+        let worst = check_newton_matrix(&mut model);
+        eprintln!("spatial {lin:?}: worst error / tolerance {worst:.2e}");
+    }
+}
