@@ -337,30 +337,28 @@ fn torsion_damping(
     m_t: [[f64; 2]; 2],
     k_t: [[f64; 2]; 2],
 ) -> [[f64; 2]; 2] {
-    {
-        let mut d_t = [[0.0; 2]; 2];
-        if damped && jt > 0.0 {
-            let mm = Matrix2::new(m_t[0][0], m_t[0][1], m_t[1][0], m_t[1][1]);
-            let km = Matrix2::new(k_t[0][0], k_t[0][1], k_t[1][0], k_t[1][1]);
-            let lo = mm
-                .cholesky()
-                .expect("torsion mass is positive definite")
-                .l();
-            let li = lo.try_inverse().expect("Cholesky factor is invertible");
-            let c = li * km * li.transpose();
-            let eig = (0.5 * (c + c.transpose())).symmetric_eigen();
-            let sq = eig.eigenvectors
-                * Matrix2::from_diagonal(&eig.eigenvalues.map(|x| x.max(0.0).sqrt()))
-                * eig.eigenvectors.transpose();
-            let dz = 2.0 * props.damping_ratio * lo * sq * lo.transpose();
-            for i in 0..2 {
-                for j in 0..2 {
-                    d_t[i][j] = dz[(i, j)] + props.damping_time * k_t[i][j];
-                }
+    let mut d_t = [[0.0; 2]; 2];
+    if damped && jt > 0.0 {
+        let mm = Matrix2::new(m_t[0][0], m_t[0][1], m_t[1][0], m_t[1][1]);
+        let km = Matrix2::new(k_t[0][0], k_t[0][1], k_t[1][0], k_t[1][1]);
+        let lo = mm
+            .cholesky()
+            .expect("torsion mass is positive definite")
+            .l();
+        let li = lo.try_inverse().expect("Cholesky factor is invertible");
+        let c = li * km * li.transpose();
+        let eig = (0.5 * (c + c.transpose())).symmetric_eigen();
+        let sq = eig.eigenvectors
+            * Matrix2::from_diagonal(&eig.eigenvalues.map(|x| x.max(0.0).sqrt()))
+            * eig.eigenvectors.transpose();
+        let dz = 2.0 * props.damping_ratio * lo * sq * lo.transpose();
+        for i in 0..2 {
+            for j in 0..2 {
+                d_t[i][j] = dz[(i, j)] + props.damping_time * k_t[i][j];
             }
         }
-        d_t
     }
+    d_t
 }
 
 impl ModalBody3 {
