@@ -266,11 +266,6 @@ fn bad_tapers_are_refused_with_the_field_value_and_fix() {
             "segments[0].inner_diameter = [0.002, 0.004]: at the segment's end",
         ),
         (
-            "section = \"round\"\ndiameter = [0.004, 0.002]",
-            "modal",
-            "not yet supported on a modal segment; use kind = \"ancf\"",
-        ),
-        (
             "section = \"round\"\ndiameter = \"thick\"",
             "ancf",
             "a number of metres or a taper [at_start, at_end]",
@@ -296,4 +291,180 @@ fn uniform_dimensions_still_serialize_as_numbers_and_tapers_as_lists() {
     assert!(text.contains("diameter = [0.004, 0.002]"), "{text}");
     assert!(text.contains("diameter = 0.002\n"), "{text}");
     assert_eq!(Scene::from_toml(&text).unwrap(), s);
+}
+
+// ---- tapered MODAL segments (issue 39 item 2, second part) ----
+
+/// The rod split at its middle: the root half tapers D0 → Dm, the tip half Dm → D1.
+fn half_cones() -> (String, String) {
+    let dm = 0.5 * (D0 + D1);
+    (
+        format!("section = \"round\"\ndiameter = [{D0:e}, {dm:e}]"),
+        format!("section = \"round\"\ndiameter = [{dm:e}, {D1:e}]"),
+    )
+}
+
+/// The tapered rod as all-modal, modal root + ANCF tip and ANCF root + modal tip (`modes`
+/// bending modes with the interface shapes on every modal segment, 8 ANCF elements per half).
+fn modal_layouts(modes: usize, extra: &str) -> Vec<(&'static str, Vec<String>)> {
+    let (a, b) = half_cones();
+    vec![
+        (
+            "all-modal",
+            vec![modal("a", L, &cone(), modes, true, extra)],
+        ),
+        (
+            "modal root + ANCF tip",
+            vec![
+                modal("a", 0.5 * L, &a, modes, true, extra),
+                ancf("b", 0.5 * L, &b, 8, extra),
+            ],
+        ),
+        (
+            "ANCF root + modal tip",
+            vec![
+                ancf("a", 0.5 * L, &a, 8, extra),
+                modal("b", 0.5 * L, &b, modes, true, extra),
+            ],
+        ),
+    ]
+}
+
+/// Bending modes per modal segment of the modal tests.
+const MODAL_MODES: usize = 12;
+
+#[test]
+fn tapered_modal_cantilever_tip_deflection_matches_the_closed_form() {
+    let want = tip_deflection(small_force());
+    let p = small_force();
+    for (label, segs) in modal_layouts(MODAL_MODES, "") {
+        let got = -planar_static_tip(&segs)[1];
+        let rel = got / want - 1.0;
+        eprintln!("planar {label}, {MODAL_MODES} modes + 2 interface: tip deflection {got:.6e} m, closed form {want:.6e} m, error {rel:+.2e}");
+        assert!(rel.abs() < 1e-4, "planar {label}: {rel:e}");
+        let header = format!(
+            "{}\n[tip]\nforce = [0.0, 0.0, {:e}]",
+            spatial_header("director"),
+            -p
+        );
+        let mut sim = Simulator::<Spatial>::new(scene(&header, &segs)).unwrap();
+        sim.solve_static().unwrap();
+        let got = -sim.outputs().tip_position[2];
+        let rel = got / want - 1.0;
+        eprintln!("spatial {label}: tip deflection {got:.6e} m, error {rel:+.2e}");
+        assert!(rel.abs() < 1e-4, "spatial {label}: {rel:e}");
+    }
+}
+
+#[test]
+fn tapered_modal_cantilever_first_frequency_matches_the_shooting_reference() {
+    let want = reference_f1();
+    for (label, segs) in modal_layouts(MODAL_MODES, "") {
+        let s = scene("gravity = [0.0, 0.0]", &segs);
+        let mut model = Model::<Planar>::from_scene(&s).unwrap();
+        let got = linearized_modes(&mut model)[0].0;
+        let rel = got / want - 1.0;
+        eprintln!("planar {label}: f1 = {got:.6} Hz, reference {want:.6} Hz, error {rel:+.2e}");
+        assert!(rel.abs() < 1e-4, "planar {label}: {rel:e}");
+        let s = scene(&spatial_header("director"), &segs);
+        let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+        let got = linearized_modes(&mut model)[0].0;
+        let rel = got / want - 1.0;
+        eprintln!("spatial {label}: f1 = {got:.6} Hz, error {rel:+.2e}");
+        assert!(rel.abs() < 1e-4, "spatial {label}: {rel:e}");
+    }
+}
+
+/// Convergence of the all-modal segment with the number of modes (printed; the bounds are
+/// asserted above).
+#[test]
+fn tapered_modal_convergence_with_the_number_of_modes() {
+    let (f1, d) = (reference_f1(), tip_deflection(small_force()));
+    for interface in [false, true] {
+        for modes in [2, 4, 6, 8, 12] {
+            let segs = [modal("a", L, &cone(), modes, interface, "")];
+            let s = scene("gravity = [0.0, 0.0]", &segs);
+            let mut model = Model::<Planar>::from_scene(&s).unwrap();
+            let ef = linearized_modes(&mut model)[0].0 / f1 - 1.0;
+            let ed = -planar_static_tip(&segs)[1] / d - 1.0;
+            eprintln!(
+                "all-modal, {modes} modes, interface {interface}: f1 error {ef:+.2e}, static error {ed:+.2e}"
+            );
+        }
+    }
+}
+
+/// The tapered modal segment's root carries ρ g ∫A dx + q L (the line load per unit length,
+/// not per unit mass), planar and spatial, the nonlinear and the linear body.
+#[test]
+fn tapered_modal_segment_weight_and_line_load_reach_the_root() {
+    let (g, q) = (9.81, 3.0);
+    let volume = PI / 4.0 * L * (D0 * D0 + D0 * D1 + D1 * D1) / 3.0;
+    let want = RHO_STEEL * g * volume + q * L;
+    for lin in ["", "linear = true"] {
+        let line = format!("line_load = [0.0, {:e}]\n{lin}", -q);
+        let s = scene(
+            &format!("gravity = [0.0, {:e}]", -g),
+            &[modal("a", L, &cone(), 6, true, &line)],
+        );
+        let mut sim = Simulator::<Planar>::new(s).unwrap();
+        sim.solve_static().unwrap();
+        let got = sim.outputs().root_force[1];
+        let rel = got / want - 1.0;
+        eprintln!("planar modal {lin:?}: root force {got:.9} N, rho g V + q L = {want:.9} N, error {rel:+.2e}");
+        assert!(rel.abs() < 1e-9, "{lin}: {rel:e}");
+        let header = format!(
+            "{}\ngravity = [0.0, 0.0, {:e}]",
+            spatial_header("director"),
+            -g
+        );
+        let line = format!("line_load = [0.0, 0.0, {:e}]\n{lin}", -q);
+        let s = scene(&header, &[modal("a", L, &cone(), 6, true, &line)]);
+        let mut sim = Simulator::<Spatial>::new(s).unwrap();
+        sim.solve_static().unwrap();
+        let got = sim.outputs().root_force[2];
+        let rel = got / want - 1.0;
+        eprintln!("spatial modal {lin:?}: root force {got:.9} N, error {rel:+.2e}");
+        assert!(rel.abs() < 1e-9, "spatial {lin}: {rel:e}");
+    }
+}
+
+/// The Newton matrix of tapered modal bodies (a held root segment and a free one behind an ANCF
+/// segment; gravity with an axial part, a line load, modal and Kelvin–Voigt damping) against
+/// central differences of the residual, planar and spatial, nonlinear and linear bodies.
+#[test]
+fn tapered_modal_newton_matrix_matches_central_differences() {
+    let (a, b) = half_cones();
+    let extra = "damping_ratio = 0.03\ndamping_time = 1e-4";
+    let segs = |lin: &str, q1: &str, q2: &str| {
+        let m1 = format!("{extra}\n{lin}\nline_load = [{q1}]");
+        let m2 = format!("{extra}\n{lin}\nline_load = [{q2}]");
+        [
+            modal("m1", 0.5 * L, &a, 3, true, &m1),
+            ancf("e", 0.1, &b, 1, ""),
+            modal("m2", 0.5 * L, &b, 3, false, &m2),
+        ]
+    };
+    for lin in ["", "linear = true"] {
+        let s = scene(
+            "gravity = [-3.0, -9.81]",
+            &segs(lin, "150.0, -200.0", "-50.0, 100.0"),
+        );
+        let mut model = Model::<Planar>::from_scene(&s).unwrap();
+        model.set_tip_force([0.3, -0.7]);
+        let worst = check_newton_matrix(&mut model);
+        eprintln!("planar {lin:?}: worst error / tolerance {worst:.2e}");
+        let header = format!(
+            "{}\ngravity = [-3.0, 1.0, -9.81]",
+            spatial_header("director")
+        );
+        let s = scene(
+            &header,
+            &segs(lin, "150.0, -200.0, 70.0", "-50.0, 100.0, 30.0"),
+        );
+        let mut model = Model::<Spatial>::from_scene(&s).unwrap();
+        model.set_tip_force([0.3, -0.7, 0.2]);
+        let worst = check_newton_matrix(&mut model);
+        eprintln!("spatial {lin:?}: worst error / tolerance {worst:.2e}");
+    }
 }

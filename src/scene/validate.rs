@@ -306,13 +306,6 @@ impl Scene {
             }
             match seg.kind {
                 SegmentKind::Modal => {
-                    if seg.is_tapered() {
-                        return Err(SceneError(format!(
-                            "{p}: a tapered section (a dimension [at_start, at_end]) is not yet \
-                             supported on a modal segment; use kind = \"ancf\" with elements, or \
-                             one number per dimension"
-                        )));
-                    }
                     let n = seg.modes.ok_or_else(|| {
                         SceneError(format!(
                             "{p}.modes is missing: a modal segment needs modes = 1..={MAX_MODES}"

@@ -35,6 +35,7 @@
 
 use super::basis::ModalBasis;
 use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
+use super::taper::{modal_damping, row_times, Taper};
 use super::BodyGravity;
 use crate::math;
 use crate::model::sample::ShapePoint;
@@ -85,8 +86,11 @@ pub struct ModalBody {
     /// Point masses on the body ([`ModalBody::with_points`]).
     points: Vec<BodyPoint>,
     /// The segment's line load over ρA, q/(ρA) [m/s²] ([`ModalBody::with_line_load`]); `None`
-    /// without one.
+    /// without one (a tapered body: over its ρA at the start, `rho_a`).
     pub(crate) line: Option<[f64; 2]>,
+    /// The section integrals of a tapered segment ([`ModalBody::tapered`]); `None`: uniform
+    /// (the closed forms of the fields above).
+    taper: Option<Box<Taper>>,
 }
 
 /// Slots per quadrature point of [`ModalBody::fields`].
@@ -222,7 +226,67 @@ impl ModalBody {
             nl,
             points: Vec::new(),
             line: None,
+            taper: None,
         }
+    }
+
+    /// The body of the tapered segment `seg` ([`crate::scene::Segment::is_tapered`]; built
+    /// [`ModalBody::new`] with its properties at the start, before [`ModalBody::linear`] and
+    /// the points): the shapes stay the uniform beam's, and every integral with ρA or EI takes
+    /// the property at its point — the mass terms ∫ρA(1, x, x², φ_k, xφ_k, φ_iφ_j)dx, the
+    /// stiffness ∫EIφ_i″φ_j″dx (full matrices), the nonlinear rule's point masses and EI, the
+    /// stiffening grams; the line load is q per unit length (∫φ_k dx, not ∫ρAφ_k dx); the
+    /// modal damping gives every mode of (M, K) the ratio ζ ([`ModalBody::omegas`]), plus τK.
+    /// `k` and `d` then hold the diagonals of K and D (the matrices are used). Err if the
+    /// modal mass is not positive definite.
+    pub fn tapered(mut self, seg: &crate::scene::Segment) -> Result<Self, String> {
+        let mut t = Taper::new(seg, &self.basis, &self.nl);
+        let n = self.modes();
+        let (om, d) = modal_damping(&t.mass, &t.k_z, seg.damping_ratio, self.damping_time)
+            .ok_or_else(|| {
+                format!(
+                    "{}: the tapered modal mass is not positive definite",
+                    seg.name
+                )
+            })?;
+        self.k = (0..n).map(|i| t.k_z[i * n + i]).collect();
+        self.d = if seg.damping_ratio > 0.0 || self.damping_time > 0.0 {
+            (0..n).map(|i| d[i * n + i]).collect()
+        } else {
+            Vec::new()
+        };
+        t.damp_z = if self.d.is_empty() { Vec::new() } else { d };
+        t.omega_z = om;
+        self.s_f.clone_from(&t.s_f);
+        self.s_x.clone_from(&t.s_x);
+        self.taper = Some(Box::new(t));
+        Ok(self)
+    }
+
+    /// Whether the body is tapered ([`ModalBody::tapered`]).
+    pub fn is_tapered(&self) -> bool {
+        self.taper.is_some()
+    }
+
+    /// (G1, G2) of a held linear frame's geometric stiffness K_G = ρAL θ̇² G2 − ρA ā_x G1
+    /// (ρA, L the body's `rho_a`, `length`): the basis's for a uniform body, the
+    /// ρA-weighted ones of a tapered body ([`ModalBody::tapered`]).
+    pub fn stiffening_grams(&self) -> (Vec<f64>, Vec<f64>) {
+        match &self.taper {
+            None => self.basis.stiffening_grams(),
+            Some(t) => (t.g1.clone(), t.g2.clone()),
+        }
+    }
+
+    /// A tapered body's line load q [N/m] (world axes) in the fields `g`, and the unweighted
+    /// G1 of its axial part (a held linear frame's K_G += (Aᵀq)_x G1); `None` on a uniform
+    /// body (its line load is in `g.distributed`) or without one.
+    pub fn taper_line(&self, g: &BodyGravity<2>) -> Option<([f64; 2], &[f64])> {
+        let t = self.taper.as_ref()?;
+        if g.line == [0.0; 2] {
+            return None;
+        }
+        Some((g.line.map(|c| c * t.rho_ref), &t.g1_line))
     }
 
     /// The body under the uniform dead line load `q` [N/m] (world axes; `None`: none): a load
@@ -455,20 +519,36 @@ impl ModalBody {
 
     /// Mass ρAL [kg].
     pub fn mass(&self) -> f64 {
-        self.rho_a * self.length
+        match &self.taper {
+            None => self.rho_a * self.length,
+            Some(t) => t.mu,
+        }
     }
 
     /// Natural frequencies of the clamped segment ω_k [rad/s].
     pub fn omegas(&self) -> Vec<f64> {
-        self.k.iter().map(|k| (k / self.mass()).sqrt()).collect()
+        match &self.taper {
+            None => self.k.iter().map(|k| (k / self.mass()).sqrt()).collect(),
+            Some(t) => t.omega_z.clone(),
+        }
+    }
+
+    /// (∫ρA x dx, ∫ρA x² dx) [kg m, kg m²]: ½ρAL² and ρAL³/3 on a uniform body.
+    fn moments(&self) -> (f64, f64) {
+        match &self.taper {
+            None => (
+                0.5 * self.rho_a * self.length * self.length,
+                self.rho_a * self.length.powi(3) / 3.0,
+            ),
+            Some(t) => (t.s0, t.j0),
+        }
     }
 
     /// The state's quantities shared by the linear residual and its matrices.
     fn linear_terms(&self, q: &[f64], v: &[f64], a: &[f64], g: [f64; 2]) -> LinearTerms {
         let n = self.modes();
         let mu = self.mass();
-        let s0 = 0.5 * self.rho_a * self.length * self.length;
-        let j0 = self.rho_a * self.length.powi(3) / 3.0;
+        let (s0, j0) = self.moments();
         let (th, thd, thdd) = (q[2], v[2], a[2]);
         let am = &q[3..];
         let vm = &v[3..];
@@ -477,8 +557,22 @@ impl ModalBody {
         let sfa = self.dot_sf(am);
         let sfv = self.dot_sf(vm);
         let sfacc = self.dot_sf(acc);
-        let a2: f64 = am.iter().map(|x| x * x).sum();
-        let av: f64 = am.iter().zip(vm).map(|(x, y)| x * y).sum();
+        // a tapered body: aᵀMa/m and aᵀMȧ/m (the uniform body's M = mI)
+        let (a2, av) = match &self.taper {
+            None => (
+                am.iter().map(|x| x * x).sum(),
+                am.iter().zip(vm).map(|(x, y)| x * y).sum(),
+            ),
+            Some(t) => {
+                let (mut a2, mut av) = (0.0, 0.0);
+                for k in 0..n {
+                    let ma = t.mass_times(am, k);
+                    a2 += ma * am[k];
+                    av += ma * vm[k];
+                }
+                (a2 / mu, av / mu)
+            }
+        };
         let z = Vector2::new(a[0] - g[0], a[1] - g[1]);
         let zl = rot_a.transpose() * z;
         LinearTerms {
@@ -514,10 +608,15 @@ impl ModalBody {
         matrices: bool,
         out: &mut BodyOut,
     ) {
+        let grav = g.into();
         let BodyGravity {
             points: gp,
             distributed: g,
-        } = g.into();
+            ..
+        } = grav;
+        // a tapered body: its mass feels gravity alone, the line load apart (q per length)
+        let line = self.taper_line(&grav).map(|x| x.0);
+        let g = if self.taper.is_some() { gp } else { g };
         let lt = self.linear_terms(q, v, a, g);
         let LinearTerms {
             n,
@@ -549,20 +648,38 @@ impl ModalBody {
             + (s0 * zl[1] - sfa * zl[0])
             + self.s_x.iter().zip(acc).map(|(s, x)| s * x).sum::<f64>()
             + 2.0 * mu * thd * av;
-        for kk in 0..n {
-            let mut f = self.s_f[kk] * zl[1]
-                + self.s_x[kk] * thdd
-                + mu * (acc[kk] - thd * thd * am[kk])
-                + self.k[kk] * am[kk];
-            if !self.d.is_empty() {
-                f += self.d[kk] * vm[kk];
+        if let Some(t) = &self.taper {
+            for kk in 0..n {
+                let mut f = self.s_f[kk] * zl[1]
+                    + self.s_x[kk] * thdd
+                    + (t.mass_times(acc, kk) - thd * thd * t.mass_times(am, kk))
+                    + row_times(&t.k_z, am, kk);
+                if !t.damp_z.is_empty() {
+                    f += row_times(&t.damp_z, vm, kk);
+                }
+                out.res[3 + kk] = f;
             }
-            out.res[3 + kk] = f;
+            if let Some(ql) = line {
+                self.add_line_forces(q, ql, out.res.as_mut_slice());
+            }
+        } else {
+            for kk in 0..n {
+                let mut f = self.s_f[kk] * zl[1]
+                    + self.s_x[kk] * thdd
+                    + mu * (acc[kk] - thd * thd * am[kk])
+                    + self.k[kk] * am[kk];
+                if !self.d.is_empty() {
+                    f += self.d[kk] * vm[kk];
+                }
+                out.res[3 + kk] = f;
+            }
         }
+        let ql = line.unwrap_or([0.0; 2]);
         if self.nonlinear {
             let sc = (rot_a[(1, 0)], rot_a[(0, 0)]);
             self.fields_f64(q, v, a, &mut out.buf);
-            self.add_nonlinear_fields(v, a, g, sc, out.res.as_mut_slice(), &mut out.buf);
+            let r = out.res.as_mut_slice();
+            self.add_nonlinear_fields(v, a, (g, ql), sc, r, &mut out.buf);
         }
         if !self.points.is_empty() {
             let sc = (rot_a[(1, 0)], rot_a[(0, 0)]);
@@ -572,8 +689,11 @@ impl ModalBody {
             return;
         }
         self.linear_matrices(q, v, &lt, out);
+        if let Some(ql) = line {
+            self.add_line_matrices(q, ql, out);
+        }
         if self.nonlinear {
-            self.add_nonlinear_matrices(q, v, a, g, out);
+            self.add_nonlinear_matrices(q, v, a, (g, ql), out);
         }
         if !self.points.is_empty() {
             self.add_point_matrices(q, v, a, gp, out);
@@ -625,6 +745,13 @@ impl ModalBody {
             out.m[(3 + kk, 2)] = self.s_x[kk];
             out.m[(3 + kk, 3 + kk)] = mu;
         }
+        if let Some(t) = &self.taper {
+            for i in 0..n {
+                for j in 0..n {
+                    out.m[(3 + i, 3 + j)] = t.mass[i * n + j];
+                }
+            }
+        }
         // ∂F/∂q̇
         let dw_dthd = Vector2::new(-2.0 * sfv - 2.0 * thd * s0, -2.0 * thd * sfa);
         let c_r = rot_a * dw_dthd;
@@ -652,6 +779,63 @@ impl ModalBody {
             out.k[(2, 3 + kk)] = 2.0 * thdd * mu * am[kk] - sk * zl[0] + 2.0 * mu * thd * vm[kk];
             out.k[(3 + kk, 2)] = -sk * zl[0];
             out.k[(3 + kk, 3 + kk)] = -thd * thd * mu + self.k[kk];
+        }
+        if let Some(t) = &self.taper {
+            // M a, M ȧ in place of m a, m ȧ; the full M, K, D blocks
+            for kk in 0..n {
+                let (ma, mv) = (t.mass_times(am, kk), t.mass_times(vm, kk));
+                let sk = self.s_f[kk];
+                out.c[(2, 3 + kk)] = 2.0 * thd * ma;
+                out.c[(3 + kk, 2)] = -2.0 * thd * ma;
+                out.k[(2, 3 + kk)] = 2.0 * thdd * ma - sk * zl[0] + 2.0 * thd * mv;
+                for j in 0..n {
+                    let ij = kk * n + j;
+                    out.c[(3 + kk, 3 + j)] = if t.damp_z.is_empty() {
+                        0.0
+                    } else {
+                        t.damp_z[ij]
+                    };
+                    out.k[(3 + kk, 3 + j)] = -thd * thd * t.mass[ij] + t.k_z[ij];
+                }
+            }
+        }
+    }
+
+    /// A tapered body's line load `qw` [N/m] (world axes; ql = Aᵀq) on the linear frame's
+    /// kinematics ū = (x, w), added to `res`: its generalized force −∫(∂r/∂q)ᵀq dx, F_R = −Lq,
+    /// F_θ = −∫(Jū)·ql dx = −(½L² ql_y − (Σ_k L∫φ_k dξ a_k) ql_x), F_a = −L∫φ_k dξ ql_y (the
+    /// foreshortening's part in [`ModalBody::add_nonlinear_fields`]).
+    fn add_line_forces(&self, q: &[f64], qw: [f64; 2], res: &mut [f64]) {
+        let Some(t) = self.taper.as_deref() else {
+            return;
+        };
+        let n = self.modes();
+        let l = self.length;
+        let ql = rot(q[2]).transpose() * Vector2::new(qw[0], qw[1]);
+        res[0] -= l * qw[0];
+        res[1] -= l * qw[1];
+        let fa: f64 = t.line_f.iter().zip(&q[3..3 + n]).map(|(f, a)| f * a).sum();
+        res[2] -= 0.5 * l * l * ql[1] - fa * ql[0];
+        for k in 0..n {
+            res[3 + k] -= t.line_f[k] * ql[1];
+        }
+    }
+
+    /// The partial derivatives of [`ModalBody::add_line_forces`] into `out.k` (q is dead in
+    /// world axes: ∂(Aᵀq)/∂θ = (ql_y, −ql_x)).
+    fn add_line_matrices(&self, q: &[f64], qw: [f64; 2], out: &mut BodyOut) {
+        let Some(t) = self.taper.as_deref() else {
+            return;
+        };
+        let n = self.modes();
+        let l = self.length;
+        let ql = rot(q[2]).transpose() * Vector2::new(qw[0], qw[1]);
+        let dq = (ql[1], -ql[0]);
+        let fa: f64 = t.line_f.iter().zip(&q[3..3 + n]).map(|(f, a)| f * a).sum();
+        out.k[(2, 2)] -= 0.5 * l * l * dq.1 - fa * dq.0;
+        for k in 0..n {
+            out.k[(2, 3 + k)] += t.line_f[k] * ql[0];
+            out.k[(3 + k, 2)] -= t.line_f[k] * dq.1;
         }
     }
 
@@ -750,11 +934,14 @@ impl ModalBody {
     /// Σ_p φ′_p w′_p N_p with the axial force N_p = Σ_q m_q (Z + α⁰ + αᶜ)_x,q V_qp.
     /// Generic over the scalar (f64 residuals, [`Dual64`] for the exact Jacobians); `(sn, cs)`
     /// = (sin θ, cos θ); the state's [`ModalBody::fields`] in `buf` (which it overwrites).
+    /// `(g, qw)`: gravity and a tapered body's line load [N/m] (world; zero on a uniform body,
+    /// whose `g` carries it): on a tapered body m_p = ρA(x_p)L W_p, EI = EI(x_p), and the line
+    /// load is the field q/ρA(x_p) beside g.
     fn add_nonlinear_fields<T: Real>(
         &self,
         v: &[T],
         a: &[T],
-        g: [f64; 2],
+        (g, qw): ([f64; 2], [f64; 2]),
         (sn, cs): (T, T),
         out: &mut [T],
         buf: &mut [T],
@@ -768,11 +955,18 @@ impl ModalBody {
         let (zx, zy) = (cs * gx + sn * gy, cs * gy - sn * gx);
         let (mut frx, mut fry, mut fth) = (T::zero(), T::zero(), T::zero());
         let ml = self.rho_a * l;
+        let taper = self.taper.as_deref();
+        let line = qw != [0.0; 2];
+        let (qx, qy) = (cs * qw[0] + sn * qw[1], cs * qw[1] - sn * qw[0]);
         for (p, f) in buf.chunks_exact_mut(FIELDS).enumerate() {
             let (w, wd, wdd) = (f[0], f[1], f[2]);
             let (c, cd, cdd) = (f[7], f[8], f[9]);
             let x = nl.xi[p] * l;
-            let m = ml * nl.w[p];
+            let (m, zx, zy) = match taper {
+                None => (ml * nl.w[p], zx, zy),
+                Some(t) if line => (t.m_p[p], zx - qx * t.inv_rho_p[p], zy - qy * t.inv_rho_p[p]),
+                Some(t) => (t.m_p[p], zx, zy),
+            };
             let acx = cdd - thd2 * c;
             let acy = thdd * c + thd * cd * 2.0;
             let a0x = -(thdd * w) - thd2 * x - thd * wd * 2.0;
@@ -791,7 +985,10 @@ impl ModalBody {
         let tau = self.damping_time;
         nl.for_each_axial_force(buf, FIELDS, 8, |p, f, axial| {
             let (sg, kap) = (f[3], f[6]);
-            let e = self.ei * l * nl.w[p];
+            let e = match taper {
+                None => self.ei * l * nl.w[p],
+                Some(t) => t.ei_z_p[p] * l * nl.w[p],
+            };
             let s2 = sg * sg;
             // U_nl = ½EI∫w″²(w′² + ¼w′⁴)dx
             // ∂c_q/∂a = −L Σ_p V_qp w′_p φ′_p/L
@@ -828,7 +1025,7 @@ impl ModalBody {
         q: &[f64],
         v: &[f64],
         a: &[f64],
-        g: [f64; 2],
+        g: ([f64; 2], [f64; 2]),
         out: &mut BodyOut,
     ) {
         let d = self.dim();
@@ -878,13 +1075,15 @@ impl ModalBody {
     pub fn kinetic_energy(&self, q: &[f64], v: &[f64]) -> f64 {
         let n = self.modes();
         let mu = self.mass();
-        let s0 = 0.5 * self.rho_a * self.length * self.length;
-        let j0 = self.rho_a * self.length.powi(3) / 3.0;
+        let (s0, j0) = self.moments();
         let rot_a = rot(q[2]);
         let am = &q[3..];
         let vm = &v[3..];
         let sfa = self.dot_sf(am);
-        let a2: f64 = am.iter().map(|x| x * x).sum();
+        let a2: f64 = match &self.taper {
+            None => am.iter().map(|x| x * x).sum(),
+            Some(t) => (0..n).map(|k| t.mass_times(am, k) * am[k]).sum::<f64>() / mu,
+        };
         let rd = Vector2::new(v[0], v[1]);
         let ajsv = rot_a * Vector2::new(-sfa, s0);
         let ey = rot_a.column(1).into_owned();
@@ -892,7 +1091,10 @@ impl ModalBody {
             mu * rd.norm_squared() + v[2] * v[2] * (j0 + mu * a2) + 2.0 * v[2] * ajsv.dot(&rd);
         for kk in 0..n {
             t += 2.0 * vm[kk] * (self.s_f[kk] * ey.dot(&rd) + self.s_x[kk] * v[2]);
-            t += mu * vm[kk] * vm[kk];
+            t += match &self.taper {
+                None => mu * vm[kk] * vm[kk],
+                Some(tp) => tp.mass_times(vm, kk) * vm[kk],
+            };
         }
         // the foreshortening's part: |V⁰ + (ċ, θ̇c)|² − |V⁰|² at the quadrature points, V⁰ the
         // linear frame's local point velocity
@@ -915,7 +1117,11 @@ impl ModalBody {
             let x = self.nl.xi[p] * self.length;
             let (v0x, v0y) = (rl[0] - v[2] * w, rl[1] + v[2] * x + wd);
             let dv = (cd, v[2] * c);
-            t += ml * self.nl.w[p] * (2.0 * (v0x * dv.0 + v0y * dv.1) + dv.0 * dv.0 + dv.1 * dv.1);
+            let m = match &self.taper {
+                None => ml * self.nl.w[p],
+                Some(tp) => tp.m_p[p],
+            };
+            t += m * (2.0 * (v0x * dv.0 + v0y * dv.1) + dv.0 * dv.0 + dv.1 * dv.1);
         }
         tp(0.5 * t)
     }
@@ -923,19 +1129,32 @@ impl ModalBody {
     /// Strain energy ½EI∫κ²dx with κ = w″(1 + ½w′²): ½ aᵀ K a plus ½EI∫w″²(w′² + ¼w′⁴)dx on
     /// the body's quadrature [J].
     pub fn strain_energy(&self, q: &[f64]) -> f64 {
-        let lin = 0.5
-            * self
-                .k
-                .iter()
-                .zip(&q[3..])
-                .map(|(k, a)| k * a * a)
-                .sum::<f64>();
+        let am = &q[3..3 + self.modes()];
+        let lin = match &self.taper {
+            None => 0.5 * self.k.iter().zip(am).map(|(k, a)| k * a * a).sum::<f64>(),
+            Some(t) => {
+                0.5 * (0..am.len())
+                    .map(|k| row_times(&t.k_z, am, k) * am[k])
+                    .sum::<f64>()
+            }
+        };
         if !self.nonlinear {
             return lin;
         }
         let mut buf = Vec::new();
         let z = vec![0.0; q.len()];
         self.fields(q, &z, &z, &mut buf);
+        if let Some(t) = &self.taper {
+            let nl: f64 = buf
+                .chunks_exact(FIELDS)
+                .zip(self.nl.w.iter().zip(&t.ei_z_p))
+                .map(|(f, (w, ei))| {
+                    let s2 = f[3] * f[3];
+                    w * ei * f[6] * f[6] * (s2 + 0.25 * s2 * s2)
+                })
+                .sum();
+            return lin + 0.5 * self.length * nl;
+        }
         let nl: f64 = buf
             .chunks_exact(FIELDS)
             .zip(&self.nl.w)
@@ -950,26 +1169,53 @@ impl ModalBody {
     /// Gravity potential −gᵀ∫ρA r dx [J] (the foreshortening on the body's quadrature), with a
     /// line load's −∫qᵀr dx when `g` carries one ([`ModalBody::gravity`]).
     pub fn potential_energy(&self, q: &[f64], g: impl Into<BodyGravity<2>>) -> f64 {
+        let grav = g.into();
         let BodyGravity {
             points: gp,
             distributed: g,
-        } = g.into();
-        let s0 = 0.5 * self.rho_a * self.length * self.length;
+            ..
+        } = grav;
+        let (s0, _) = self.moments();
         let mut buf = Vec::new();
         let z = vec![0.0; q.len()];
         if self.nonlinear {
             self.fields(q, &z, &z, &mut buf);
         }
-        let short: f64 = buf
-            .chunks_exact(FIELDS)
-            .zip(&self.nl.w)
-            .map(|(f, w)| w * f[7])
-            .sum::<f64>()
-            * self.rho_a
-            * self.length;
+        let short: f64 = match &self.taper {
+            None => {
+                buf.chunks_exact(FIELDS)
+                    .zip(&self.nl.w)
+                    .map(|(f, w)| w * f[7])
+                    .sum::<f64>()
+                    * self.rho_a
+                    * self.length
+            }
+            Some(t) => buf
+                .chunks_exact(FIELDS)
+                .zip(&t.m_p)
+                .map(|(f, m)| m * f[7])
+                .sum(),
+        };
         let first = self.mass() * Vector2::new(q[0], q[1])
             + rot(q[2]) * Vector2::new(s0 + short, self.dot_sf(&q[3..]));
-        let u = -(g[0] * first[0] + g[1] * first[1]);
+        let mut u = if self.taper.is_some() {
+            -(gp[0] * first[0] + gp[1] * first[1])
+        } else {
+            -(g[0] * first[0] + g[1] * first[1])
+        };
+        if let (Some((qw, _)), Some(t)) = (self.taper_line(&grav), &self.taper) {
+            // −qᵀ∫r dx, ∫r dx = L R + A(½L² + ∫c dx, Σ L∫φ_k dξ a_k)
+            let l = self.length;
+            let c: f64 = buf
+                .chunks_exact(FIELDS)
+                .zip(&self.nl.w)
+                .map(|(f, w)| w * f[7])
+                .sum::<f64>()
+                * l;
+            let fa: f64 = t.line_f.iter().zip(&q[3..]).map(|(f, a)| f * a).sum();
+            let r = l * Vector2::new(q[0], q[1]) + rot(q[2]) * Vector2::new(0.5 * l * l + c, fa);
+            u -= qw[0] * r[0] + qw[1] * r[1];
+        }
         if self.points.is_empty() {
             u
         } else {

@@ -27,6 +27,7 @@
 
 use super::basis::ModalBasis;
 use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
+use super::taper::{modal_damping, row_times, Taper};
 use super::BodyGravity;
 use crate::math;
 use crate::model::sample::{minimal_frame, ShapePoint};
@@ -206,8 +207,10 @@ pub struct ModalBody3 {
     /// Rigid bodies on the body's sections ([`ModalBody3::with_bodies`]).
     bodies: Vec<(SectionBody3, ModalPose)>,
     /// The segment's line load over ρA, q/(ρA) [m/s²] ([`ModalBody3::with_line_load`]);
-    /// `None` without one.
+    /// `None` without one (a tapered body: over its ρA at the start, `props.rho_a`).
     pub(crate) line: Option<[f64; 3]>,
+    /// The section integrals of a tapered segment ([`ModalBody3::tapered`]); `None`: uniform.
+    taper: Option<Box<Taper>>,
 }
 
 /// Slots per quadrature point of [`ModalBody3::fields`]: v, v̇, v̈, v′, v̇′, v̈′, v″ (0..7), the
@@ -241,28 +244,7 @@ impl ModalBody3 {
         let m_t = [[jt / 3.0, jt * SQRT_2 / PI], [jt * SQRT_2 / PI, jt]];
         let kt = props.gj / l;
         let k_t = [[kt, 0.0], [0.0, kt * PI * PI]];
-        // modal damping of the coupled pair: D = 2ζ L √(L⁻¹KL⁻ᵀ) Lᵀ with M = LLᵀ, + τK
-        let mut d_t = [[0.0; 2]; 2];
-        if damped && jt > 0.0 {
-            let mm = Matrix2::new(m_t[0][0], m_t[0][1], m_t[1][0], m_t[1][1]);
-            let km = Matrix2::new(k_t[0][0], k_t[0][1], k_t[1][0], k_t[1][1]);
-            let lo = mm
-                .cholesky()
-                .expect("torsion mass is positive definite")
-                .l();
-            let li = lo.try_inverse().expect("Cholesky factor is invertible");
-            let c = li * km * li.transpose();
-            let eig = (0.5 * (c + c.transpose())).symmetric_eigen();
-            let sq = eig.eigenvectors
-                * Matrix2::from_diagonal(&eig.eigenvalues.map(|x| x.max(0.0).sqrt()))
-                * eig.eigenvectors.transpose();
-            let dz = 2.0 * props.damping_ratio * lo * sq * lo.transpose();
-            for i in 0..2 {
-                for j in 0..2 {
-                    d_t[i][j] = dz[(i, j)] + props.damping_time * k_t[i][j];
-                }
-            }
-        }
+        let d_t = torsion_damping(&props, damped, jt, m_t, k_t);
         let c_t = [jt * 0.5, jt * 2.0 * SQRT_2 / PI];
         let s_f = basis.i1.iter().map(|v| mu * v).collect();
         let s_x = basis.ix.iter().map(|v| mu * l * v).collect();
@@ -292,9 +274,98 @@ impl ModalBody3 {
             points: Vec::new(),
             bodies: Vec::new(),
             line: None,
+            taper: None,
         }
     }
 
+    /// The body of the tapered segment `seg` ([`Segment::is_tapered`]; built
+    /// [`ModalBody3::new`] with [`ModalProps3::of_segment`], its properties at the start, before
+    /// [`ModalBody3::linear`], the panels and the points): the shapes stay the uniform beam's
+    /// (bending modes, torsion shapes), and every integral with ρA, EI (both planes), GJ or
+    /// ρI_p takes the property at its point — the mass terms (∫ρA(1, x, x², φ_k, xφ_k,
+    /// φ_iφ_j)dx, ∫ρI_p(1, χ_m, χ_iχ_j)dx), the stiffness (∫EIφ_i″φ_j″dx per plane, ∫GJχ_i′χ_j′dx,
+    /// full matrices), the nonlinear rule's point masses and EI, the stiffening grams; the line
+    /// load is q per unit length; the modal damping gives every mode of (M, K) of each plane the
+    /// ratio ζ, plus τK. `k_y`, `k_z`, `d_y`, `d_z` then hold the diagonals (the matrices are
+    /// used). Err if the modal mass is not positive definite.
+    pub fn tapered(mut self, seg: &Segment) -> Result<Self, String> {
+        let t = Taper::new(seg, &self.basis, &self.nl);
+        let n = self.modes();
+        let p = self.props;
+        let bad = || {
+            format!(
+                "{}: the tapered modal mass is not positive definite",
+                seg.name
+            )
+        };
+        let (_, dz) =
+            modal_damping(&t.mass, &t.k_z, p.damping_ratio, p.damping_time).ok_or_else(bad)?;
+        let (_, dy) =
+            modal_damping(&t.mass, &t.k_y, p.damping_ratio, p.damping_time).ok_or_else(bad)?;
+        let diag = |x: &[f64]| -> Vec<f64> { (0..n).map(|i| x[i * n + i]).collect() };
+        self.k_y = diag(&t.k_z);
+        self.k_z = diag(&t.k_y);
+        let mut t = t;
+        if self.damped {
+            self.d_y = diag(&dz);
+            self.d_z = diag(&dy);
+            t.damp_z = dz;
+            t.damp_y = dy;
+        }
+        let (m_t, k_t, c_t) = t.torsion();
+        self.m_t = m_t;
+        self.k_t = k_t;
+        self.c_t = c_t;
+        self.d_t = torsion_damping(&p, self.damped, t.jp, m_t, k_t);
+        self.s_f.clone_from(&t.s_f);
+        self.s_x.clone_from(&t.s_x);
+        self.g1.clone_from(&t.g1);
+        self.g2.clone_from(&t.g2);
+        self.taper = Some(Box::new(t));
+        Ok(self)
+    }
+
+    /// Whether the body is tapered ([`ModalBody3::tapered`]).
+    pub fn is_tapered(&self) -> bool {
+        self.taper.is_some()
+    }
+}
+
+/// The torsion damping of the coupled pair (M_t, K_t): D = 2ζ L √(L⁻¹KL⁻ᵀ) Lᵀ with M = LLᵀ
+/// (every torsion mode the ratio ζ), + τK; zero unless `damped` and the rotary inertia `jt`
+/// [kg m²] > 0.
+fn torsion_damping(
+    props: &ModalProps3,
+    damped: bool,
+    jt: f64,
+    m_t: [[f64; 2]; 2],
+    k_t: [[f64; 2]; 2],
+) -> [[f64; 2]; 2] {
+    let mut d_t = [[0.0; 2]; 2];
+    if damped && jt > 0.0 {
+        let mm = Matrix2::new(m_t[0][0], m_t[0][1], m_t[1][0], m_t[1][1]);
+        let km = Matrix2::new(k_t[0][0], k_t[0][1], k_t[1][0], k_t[1][1]);
+        let lo = mm
+            .cholesky()
+            .expect("torsion mass is positive definite")
+            .l();
+        let li = lo.try_inverse().expect("Cholesky factor is invertible");
+        let c = li * km * li.transpose();
+        let eig = (0.5 * (c + c.transpose())).symmetric_eigen();
+        let sq = eig.eigenvectors
+            * Matrix2::from_diagonal(&eig.eigenvalues.map(|x| x.max(0.0).sqrt()))
+            * eig.eigenvectors.transpose();
+        let dz = 2.0 * props.damping_ratio * lo * sq * lo.transpose();
+        for i in 0..2 {
+            for j in 0..2 {
+                d_t[i][j] = dz[(i, j)] + props.damping_time * k_t[i][j];
+            }
+        }
+    }
+    d_t
+}
+
+impl ModalBody3 {
     /// The body under the uniform dead line load `q` [N/m] (world axes; `None`: none): a load
     /// of density q beside the weight ρA g, so its distributed mass feels g + q/(ρA) where it
     /// feels gravity (forces, Newton block, potential −∫qᵀr dx), its point masses g alone.
@@ -439,6 +510,9 @@ impl ModalBody3 {
     /// body).
     pub fn with_panels(mut self, panels: usize) -> Self {
         let (nl, gram) = Self::rule(&self.basis, self.props.length, panels.max(1));
+        if let Some(t) = &mut self.taper {
+            t.points(&nl, self.props.length);
+        }
         self.nl = nl;
         if self.nonlinear {
             self.gram = gram;
@@ -490,7 +564,29 @@ impl ModalBody3 {
 
     /// Mass ρAL [kg].
     pub fn mass(&self) -> f64 {
-        self.props.rho_a * self.props.length
+        match &self.taper {
+            None => self.props.rho_a * self.props.length,
+            Some(t) => t.mu,
+        }
+    }
+
+    /// (∫ρA x dx, ∫ρA x² dx, ∫ρI_p dx) [kg m, kg m², kg m²]: ½mL, mL²/3, ρI_pL uniform.
+    fn moments(&self) -> (f64, f64, f64) {
+        let l = self.props.length;
+        match &self.taper {
+            None => {
+                let mu = self.mass();
+                (0.5 * mu * l, mu * l * l / 3.0, self.props.rho_ip * l)
+            }
+            Some(t) => (t.s0, t.j0, t.jp),
+        }
+    }
+
+    /// A tapered body's line load q [N/m] (world axes) in the fields `g`; `None` on a uniform
+    /// body (its line load is in `g.distributed`) or without one.
+    fn taper_line(&self, g: &BodyGravity<3>) -> Option<[f64; 3]> {
+        let t = self.taper.as_ref()?;
+        (g.line != [0.0; 3]).then(|| g.line.map(|c| c * t.rho_ref))
     }
 
     /// Whether the body carries damping.
@@ -521,14 +617,20 @@ impl ModalBody3 {
         g: impl Into<BodyGravity<3>>,
         out: &mut [T],
     ) {
+        let grav = g.into();
         let BodyGravity {
             points: gp,
             distributed: g,
-        } = g.into();
+            ..
+        } = grav;
+        // a tapered body: its mass feels gravity alone, the line load apart (q per length)
+        let line = self.taper_line(&grav);
+        let g = if self.taper.is_some() { gp } else { g };
         let nb = self.modes();
         let l = self.props.length;
         let mu = self.mass();
         let ra = self.props.rho_a;
+        let (m_x, m_xx, m_ip) = self.moments();
         let zero = T::zero();
         let p = [q[3], q[4], q[5], q[6]];
         let rot = euler_rotation(p);
@@ -562,17 +664,36 @@ impl ModalBody3 {
             pr[7] += z * vy[n];
             pr[8] += y * vz[n];
         }
-        let pr = pr.map(|x| x * (ra * l));
+        let pr = match &self.taper {
+            None => pr.map(|x| x * (ra * l)),
+            Some(t) => {
+                // the products on the modal mass M: xᵀM y
+                let mut pr = [zero; 9];
+                for n in 0..nb {
+                    let (may, maz) = (t.mass_times(ay, n), t.mass_times(az, n));
+                    pr[0] += may * ay[n];
+                    pr[1] += maz * az[n];
+                    pr[2] += may * az[n];
+                    pr[3] += may * kz[n];
+                    pr[4] += maz * ky[n];
+                    pr[5] += may * vy[n];
+                    pr[6] += maz * vz[n];
+                    pr[7] += maz * vy[n];
+                    pr[8] += may * vz[n];
+                }
+                pr
+            }
+        };
         // first moments ∫ρu, ∫ρS ȧ, ∫ρS ä
-        let cbar = [T::from(0.5 * mu * l), sf[0], sf[1]];
+        let cbar = [T::from(m_x), sf[0], sf[1]];
         let sv = [zero, sf[2], sf[3]];
         let sa = [zero, sf[4], sf[5]];
         // J = ∫ρuuᵀ and Ī = tr(J)I − J + ρI_pL e_x e_xᵀ
-        let jxx = mu * l * l / 3.0;
+        let jxx = m_xx;
         let (jxy, jxz) = (sx[0], sx[1]);
         let (jyy, jzz, jyz) = (pr[0], pr[1], pr[2]);
         let ibar = [
-            [jyy + jzz + self.props.rho_ip * l, -jxy, -jxz],
+            [jyy + jzz + m_ip, -jxy, -jxz],
             [-jxy, jzz + jxx, -jyz],
             [-jxz, -jyz, jyy + jxx],
         ];
@@ -607,15 +728,36 @@ impl ModalBody3 {
             add(cross(wd, cbar), sa),
             add(cross(w, wc), scale(cross(w, sv), T::from(2.0))),
         );
+        // a tapered body's line load in body axes, ql = Aᵀq, with its first moment about the
+        // frame origin ∫ū dx = (½L², Σ L∫φ dξ a_y, Σ L∫φ dξ a_z) (the foreshortening's part in
+        // the nonlinear terms): F −= Lq, M̄ −= ∫ū dx × ql, the bending rows −L∫φ dξ ql_(y,z)
+        let ql = line.map(|qw| mul_t(&rot, qw.map(T::from)));
+        if let (Some(ql), Some(t)) = (ql, &self.taper) {
+            let (mut fy, mut fz) = (zero, zero);
+            for n in 0..nb {
+                fy += ay[n] * t.line_f[n];
+                fz += az[n] * t.line_f[n];
+            }
+            let mo = cross([T::from(0.5 * l * l), fy, fz], ql);
+            for k in 0..3 {
+                mbar[k] -= mo[k];
+            }
+        }
         let mut buf = Vec::new();
         if self.nonlinear {
-            let (dfl, dm) = self.add_nonlinear(q, v, a, (w, wd, z), out, &mut buf);
+            let zq = (z, ql.unwrap_or([zero; 3]));
+            let (dfl, dm) = self.add_nonlinear(q, v, a, (w, wd, zq), out, &mut buf);
             fl = add(fl, dfl);
             mbar = add(mbar, dm);
         }
         let fw = mul(&rot, fl);
         for i in 0..3 {
             out[i] = (a[i] - g[i]) * mu + fw[i];
+        }
+        if let Some(qw) = line {
+            for i in 0..3 {
+                out[i] -= T::from(l * qw[i]);
+            }
         }
         for k in 0..4 {
             out[3 + k] = (eb[0][k] * mbar[0] + eb[1][k] * mbar[1] + eb[2][k] * mbar[2]) * 2.0;
@@ -628,7 +770,53 @@ impl ModalBody3 {
         } else {
             (zero, zero)
         };
-        for n in 0..nb {
+        if let Some(t) = &self.taper {
+            for n in 0..nb {
+                let (sf, sx) = (self.s_f[n], self.s_x[n]);
+                let (may, maz) = (t.mass_times(ay, n), t.mass_times(az, n));
+                let mut fy = z[1] * sf
+                    + (wd[2] * sx - wd[0] * maz)
+                    + t.mass_times(ky, n)
+                    + w[1] * w[0] * sx
+                    + (w[1] * w[1] - w2) * may
+                    + w[1] * w[2] * maz
+                    - w[0] * t.mass_times(vz, n) * 2.0
+                    + row_times(&t.k_z, ay, n);
+                let mut fz = z[2] * sf
+                    + (wd[0] * may - wd[1] * sx)
+                    + t.mass_times(kz, n)
+                    + w[2] * w[0] * sx
+                    + w[2] * w[1] * may
+                    + (w[2] * w[2] - w2) * maz
+                    + w[0] * t.mass_times(vy, n) * 2.0
+                    + row_times(&t.k_y, az, n);
+                if self.damped {
+                    fy += row_times(&t.damp_z, vy, n);
+                    fz += row_times(&t.damp_y, vz, n);
+                }
+                if let Some(ql) = ql {
+                    fy -= ql[1] * t.line_f[n];
+                    fz -= ql[2] * t.line_f[n];
+                }
+                if self.stiffening {
+                    let qx = ql.map_or(zero, |ql| ql[0]);
+                    for m in 0..nb {
+                        let i = n * nb + m;
+                        let k = kg_w * self.g2[i] - kg_a * self.g1[i] + qx * t.g1_line[i];
+                        fy += k * ay[m];
+                        fz += k * az[m];
+                    }
+                }
+                if self.nonlinear {
+                    out[7 + n] += fy;
+                    out[7 + nb + n] += fz;
+                } else {
+                    out[7 + n] = fy;
+                    out[7 + nb + n] = fz;
+                }
+            }
+        }
+        for n in (0..nb).filter(|_| self.taper.is_none()) {
             let (sf, sx) = (self.s_f[n], self.s_x[n]);
             let mut fy = z[1] * sf
                 + (wd[2] * sx - wd[0] * az[n] * ml)
@@ -744,10 +932,10 @@ impl ModalBody3 {
     /// t = w′, V = v″, W = w″): with the inextensible curvatures to third order (Crespo da
     /// Silva & Glynn 1978, the Euler angles ψ = atan(v′/(1 + u′)), θ = asin w′ of the tangent,
     /// no twist), κ_z = ψ′cos θ = V(1 + ½s²) + stW and κ_y = θ′ = W(1 + ½t²), the density
-    /// ½EI_z(κ_z² − V²) + ½EI_y(κ_y² − W²) and its partial derivatives by (s, V, t, W).
+    /// ½EI_z(κ_z² − V²) + ½EI_y(κ_y² − W²) and its partial derivatives by (s, V, t, W), for
+    /// (EI_z, EI_y) [N m²] at the point.
     #[inline]
-    fn strain_density<T: Real>(&self, s: T, vv: T, t: T, ww: T) -> (T, [T; 4]) {
-        let (ez, ey) = (self.props.ei_z, self.props.ei_y);
+    fn strain_density<T: Real>((ez, ey): (f64, f64), s: T, vv: T, t: T, ww: T) -> (T, [T; 4]) {
         let kz = vv * (T::one() + s * s * 0.5) + s * t * ww;
         let ky = ww * (T::one() + t * t * 0.5);
         let e = (kz * kz - vv * vv) * (0.5 * ez) + (ky * ky - ww * ww) * (0.5 * ey);
@@ -765,8 +953,14 @@ impl ModalBody3 {
     /// EI_z κ̇_z ∂κ_z + EI_y κ̇_y ∂κ_y less the linear EI_z V̇ ∂V + EI_y Ẇ ∂W (which the modal
     /// damping τK carries), κ as in [`ModalBody3::strain_density`].
     #[inline]
-    fn damping_density<T: Real>(&self, s: T, vv: T, t: T, ww: T, r: [T; 4]) -> [T; 4] {
-        let (ez, ey) = (self.props.ei_z, self.props.ei_y);
+    fn damping_density<T: Real>(
+        (ez, ey): (f64, f64),
+        s: T,
+        vv: T,
+        t: T,
+        ww: T,
+        r: [T; 4],
+    ) -> [T; 4] {
         let hz = T::one() + s * s * 0.5;
         let hy = T::one() + t * t * 0.5;
         let gz = [vv * s + t * ww, hz, s * ww, s * t];
@@ -791,14 +985,17 @@ impl ModalBody3 {
     /// Aᵀ(R̈ − g)), αᶜ = ω̄̇×cx̄ + ω̄×(ω̄×cx̄) + 2ω̄×ċx̄ + c̈x̄ and α = α⁰ + αᶜ (the body-frame
     /// acceleration of the point less gravity): ΔF = Σ m αᶜ, ΔM = Σ m (ū⁰×αᶜ + cx̄×α),
     /// ΔF_a = Σ m φ αᶜ_(y,z) − Σ_p φ′_p (v′, w′)_p N_p L + ∂U_nl/∂a with the axial force
-    /// N_p = Σ_q m_q α_x,q V_qp (V the cumulative rule). Generic over the scalar.
+    /// N_p = Σ_q m_q α_x,q V_qp (V the cumulative rule). Generic over the scalar. `(z, ql)`:
+    /// Z and a tapered body's line load in body axes Aᵀq [N/m] (zero on a uniform body, whose
+    /// Z carries it): on a tapered body m_p = ρA(x_p)L W_p, EI = EI(x_p), and the line load is
+    /// the field q/ρA(x_p) beside g.
     #[allow(clippy::type_complexity)]
     fn add_nonlinear<T: Real>(
         &self,
         q: &[T],
         v: &[T],
         a: &[T],
-        (w, wd, z): (V3<T>, V3<T>, V3<T>),
+        (w, wd, (z, ql)): (V3<T>, V3<T>, (V3<T>, V3<T>)),
         out: &mut [T],
         buf: &mut Vec<T>,
     ) -> (V3<T>, V3<T>) {
@@ -807,10 +1004,15 @@ impl ModalBody3 {
         let l = self.props.length;
         let ml = self.props.rho_a * l;
         let zero = T::zero();
+        let taper = self.taper.as_deref();
+        let (ez, ey) = (self.props.ei_z, self.props.ei_y);
         self.fields(q, v, a, buf);
         let (mut df, mut dm) = ([zero; 3], [zero; 3]);
         for (p, f) in buf.chunks_exact_mut(FIELDS3).enumerate() {
-            let m = ml * nl.w[p];
+            let (m, z) = match taper {
+                None => (ml * nl.w[p], z),
+                Some(t) => (t.m_p[p], add(z, scale(ql, T::from(-t.inv_rho_p[p])))),
+            };
             let u0 = [T::from(nl.xi[p] * l), f[0], f[7]];
             let ud0 = [zero, f[1], f[8]];
             let ce = [f[14], zero, zero];
@@ -836,10 +1038,14 @@ impl ModalBody3 {
         // both planes into slots 20..24
         let tau = self.props.damping_time;
         nl.for_each_axial_force(buf, FIELDS3, 17, |p, f, axial| {
-            let (_, mut d) = self.strain_density(f[3], f[6], f[10], f[13]);
+            let ei = match taper {
+                None => (ez, ey),
+                Some(t) => (t.ei_z_p[p], t.ei_y_p[p]),
+            };
+            let (_, mut d) = Self::strain_density(ei, f[3], f[6], f[10], f[13]);
             if tau > 0.0 {
                 let r = [f[4], f[24], f[11], f[25]];
-                let dd = self.damping_density(f[3], f[6], f[10], f[13], r);
+                let dd = Self::damping_density(ei, f[3], f[6], f[10], f[13], r);
                 for (x, y) in d.iter_mut().zip(dd) {
                     *x += y * tau;
                 }
@@ -866,12 +1072,16 @@ impl ModalBody3 {
     /// kinetic ½Σm(2V⁰·Vᶜ + |Vᶜ|²) (V⁰ = AᵀṘ + ω̄×ū⁰ + u̇̄⁰ the linear frame's point velocity,
     /// Vᶜ = ω̄×cx̄ + ċx̄), strain Σ L W_p (density of [`ModalBody3::strain_density`]) and
     /// gravity −gᵀA Σ m c x̄; zero for the linear body.
-    fn nonlinear_energies(&self, q: &[f64], v: &[f64], g: [f64; 3]) -> [f64; 3] {
+    /// A tapered body's line load `qw` [N/m] (world; zero otherwise) adds −(Aᵀq)_x ∫c dx to the
+    /// potential.
+    fn nonlinear_energies(&self, q: &[f64], v: &[f64], g: [f64; 3], qw: [f64; 3]) -> [f64; 3] {
         if !self.nonlinear {
             return [0.0; 3];
         }
         let l = self.props.length;
         let ml = self.props.rho_a * l;
+        let taper = self.taper.as_deref();
+        let ei = (self.props.ei_z, self.props.ei_y);
         let mut buf = Vec::new();
         self.fields(q, v, &vec![0.0; q.len()], &mut buf);
         let p = [q[3], q[4], q[5], q[6]];
@@ -879,17 +1089,25 @@ impl ModalBody3 {
         let w = g_mul(&e_bar(p), &v[3..7]);
         let rl = mul_t(&rot, [v[0], v[1], v[2]]);
         let gl = mul_t(&rot, g);
-        let (mut t, mut u, mut c) = (0.0, 0.0, 0.0);
+        let (mut t, mut u, mut c, mut cl) = (0.0, 0.0, 0.0, 0.0);
         for (pi, f) in buf.chunks_exact(FIELDS3).enumerate() {
-            let m = ml * self.nl.w[pi];
+            let (m, ei) = match taper {
+                None => (ml * self.nl.w[pi], ei),
+                Some(tp) => (tp.m_p[pi], (tp.ei_z_p[pi], tp.ei_y_p[pi])),
+            };
             let u0 = [self.nl.xi[pi] * l, f[0], f[7]];
             let v0 = add(add(rl, cross(w, u0)), [0.0, f[1], f[8]]);
             let vc = add(cross(w, [f[14], 0.0, 0.0]), [f[15], 0.0, 0.0]);
             t += 0.5 * m * (2.0 * dot(v0, vc) + dot(vc, vc));
-            u += l * self.nl.w[pi] * self.strain_density(f[3], f[6], f[10], f[13]).0;
+            u += l * self.nl.w[pi] * Self::strain_density(ei, f[3], f[6], f[10], f[13]).0;
             c += m * f[14];
+            cl += l * self.nl.w[pi] * f[14];
         }
-        [t, u, -gl[0] * c]
+        if qw == [0.0; 3] {
+            [t, u, -gl[0] * c]
+        } else {
+            [t, u, -gl[0] * c - mul_t(&rot, qw)[0] * cl]
+        }
     }
 
     /// The Newton block `c_a ∂r/∂q̈ + c_v ∂r/∂q̇ + c_x ∂r/∂q` (row-major d × d) by forward-mode
@@ -935,32 +1153,42 @@ impl ModalBody3 {
         let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
         let vt = &v[7 + 2 * nb..];
         let sum = |c: &[f64], x: &[f64]| c.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
-        let cbar = [0.5 * mu * l, sum(&self.s_f, ay), sum(&self.s_f, az)];
+        let (m_x, m_xx, m_ip) = self.moments();
+        let cbar = [m_x, sum(&self.s_f, ay), sum(&self.s_f, az)];
         let sv = [0.0, sum(&self.s_f, vy), sum(&self.s_f, vz)];
         let rd = [v[0], v[1], v[2]];
-        let jxx = mu * l * l / 3.0;
+        let jxx = m_xx;
         let (jxy, jxz) = (sum(&self.s_x, ay), sum(&self.s_x, az));
-        let (jyy, jzz, jyz) = (ml * sum(ay, ay), ml * sum(az, az), ml * sum(ay, az));
+        // xᵀM y: ρAL xᵀy on a uniform body
+        let mp = |x: &[f64], y: &[f64]| match &self.taper {
+            None => ml * sum(x, y),
+            Some(t) => (0..nb).map(|k| t.mass_times(x, k) * y[k]).sum::<f64>(),
+        };
+        let (jyy, jzz, jyz) = (mp(ay, ay), mp(az, az), mp(ay, az));
         let ibar = [
-            [jyy + jzz + self.props.rho_ip * l, -jxy, -jxz],
+            [jyy + jzz + m_ip, -jxy, -jxz],
             [-jxy, jzz + jxx, -jyz],
             [-jxz, -jyz, jyy + jxx],
         ];
-        // ∫ρ u × s = (ρAL(a_y·ȧ_z − a_z·ȧ_y), −s_x·ȧ_z, s_x·ȧ_y)
-        let us = [
-            ml * (sum(ay, vz) - sum(az, vy)),
-            -sum(&self.s_x, vz),
-            sum(&self.s_x, vy),
-        ];
+        // ∫ρ u × s = (a_yᵀMȧ_z − a_zᵀMȧ_y, −s_x·ȧ_z, s_x·ȧ_y)
+        let us = match &self.taper {
+            None => ml * (sum(ay, vz) - sum(az, vy)),
+            Some(_) => mp(ay, vz) - mp(az, vy),
+        };
+        let us = [us, -sum(&self.s_x, vz), sum(&self.s_x, vy)];
         let mt = &self.m_t;
         let tors = vt[0] * (mt[0][0] * vt[0] + mt[0][1] * vt[1])
             + vt[1] * (mt[1][0] * vt[0] + mt[1][1] * vt[1]);
-        let t = self.nonlinear_energies(q, v, [0.0; 3])[0]
+        let modal = match &self.taper {
+            None => 0.5 * ml * (sum(vy, vy) + sum(vz, vz)),
+            Some(_) => 0.5 * (mp(vy, vy) + mp(vz, vz)),
+        };
+        let t = self.nonlinear_energies(q, v, [0.0; 3], [0.0; 3])[0]
             + 0.5 * mu * dot(rd, rd)
             + dot(rd, mul(&rot, add(cross(w, cbar), sv)))
             + 0.5 * dot(w, mul(&ibar, w))
             + dot(w, us)
-            + 0.5 * ml * (sum(vy, vy) + sum(vz, vz))
+            + modal
             + w[0] * (self.c_t[0] * vt[0] + self.c_t[1] * vt[1])
             + 0.5 * tors;
         let t = if self.points.is_empty() {
@@ -975,8 +1203,14 @@ impl ModalBody3 {
     pub fn strain_energy(&self, q: &[f64]) -> f64 {
         let nb = self.modes();
         let mut u = 0.0;
+        let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
         for n in 0..nb {
-            u += self.k_y[n] * q[7 + n] * q[7 + n] + self.k_z[n] * q[7 + nb + n] * q[7 + nb + n];
+            u += match &self.taper {
+                None => {
+                    self.k_y[n] * q[7 + n] * q[7 + n] + self.k_z[n] * q[7 + nb + n] * q[7 + nb + n]
+                }
+                Some(t) => row_times(&t.k_z, ay, n) * ay[n] + row_times(&t.k_y, az, n) * az[n],
+            };
         }
         let at = &q[7 + 2 * nb..];
         for i in 0..2 {
@@ -984,29 +1218,41 @@ impl ModalBody3 {
                 u += at[i] * self.k_t[i][j] * at[j];
             }
         }
-        0.5 * u + self.nonlinear_energies(q, &vec![0.0; q.len()], [0.0; 3])[1]
+        0.5 * u + self.nonlinear_energies(q, &vec![0.0; q.len()], [0.0; 3], [0.0; 3])[1]
     }
 
     /// Gravity potential −gᵀ∫ρA r dx = −gᵀ(m R + A c̄) [J], with a line load's −∫qᵀr dx when
     /// `g` carries one ([`ModalBody3::gravity`]).
     pub fn potential_energy(&self, q: &[f64], g: impl Into<BodyGravity<3>>) -> f64 {
+        let grav = g.into();
         let BodyGravity {
             points: gp,
             distributed: g,
-        } = g.into();
+            ..
+        } = grav;
+        let line = self.taper_line(&grav);
+        let g = if self.taper.is_some() { gp } else { g };
         let nb = self.modes();
         let l = self.props.length;
         let sum = |c: &[f64], x: &[f64]| c.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
         let cbar = [
-            0.5 * self.mass() * l,
+            self.moments().0,
             sum(&self.s_f, &q[7..7 + nb]),
             sum(&self.s_f, &q[7 + nb..7 + 2 * nb]),
         ];
-        let first = add(
-            scale([q[0], q[1], q[2]], self.mass()),
-            mul(&euler_rotation([q[3], q[4], q[5], q[6]]), cbar),
-        );
-        let u = -dot(g, first) + self.nonlinear_energies(q, &vec![0.0; q.len()], g)[2];
+        let rot = euler_rotation([q[3], q[4], q[5], q[6]]);
+        let first = add(scale([q[0], q[1], q[2]], self.mass()), mul(&rot, cbar));
+        let qw = line.unwrap_or([0.0; 3]);
+        let mut u = -dot(g, first) + self.nonlinear_energies(q, &vec![0.0; q.len()], g, qw)[2];
+        if let (Some(qw), Some(t)) = (line, &self.taper) {
+            // −qᵀ(L R + A(½L², Σ L∫φ dξ a_y, Σ L∫φ dξ a_z)) (the foreshortening's part above)
+            let lf = [
+                0.5 * l * l,
+                sum(&t.line_f, &q[7..7 + nb]),
+                sum(&t.line_f, &q[7 + nb..7 + 2 * nb]),
+            ];
+            u -= dot(qw, add(scale([q[0], q[1], q[2]], l), mul(&rot, lf)));
+        }
         let u = if self.points.is_empty() {
             u
         } else {

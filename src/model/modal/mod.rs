@@ -4,6 +4,7 @@ pub mod basis;
 pub mod body;
 pub mod body3d;
 mod nonlinear;
+mod taper;
 
 pub use basis::ModalBasis;
 
@@ -16,6 +17,10 @@ pub struct BodyGravity<const N: usize> {
     pub points: [f64; N],
     /// On the distributed mass (with the line load).
     pub distributed: [f64; N],
+    /// The line load's share of `distributed`, load · q/ρA_ref [m/s²] (zero without one): a
+    /// tapered body (ρA varying along it) takes `points` on its mass and q = ρA_ref · `line` [N/m]
+    /// per unit length apart, ρA_ref its ρA at the start.
+    pub line: [f64; N],
 }
 
 impl<const N: usize> From<[f64; N]> for BodyGravity<N> {
@@ -24,6 +29,7 @@ impl<const N: usize> From<[f64; N]> for BodyGravity<N> {
         Self {
             points: g,
             distributed: g,
+            line: [0.0; N],
         }
     }
 }
@@ -34,14 +40,17 @@ impl<const N: usize> BodyGravity<N> {
     pub fn of(g: [f64; N], load: f64, line: Option<[f64; N]>) -> Self {
         let points = g.map(|c| load * c);
         let mut distributed = points;
+        let mut share = [0.0; N];
         if let Some(b) = line {
-            for (d, b) in distributed.iter_mut().zip(b) {
-                *d += load * b;
+            for ((d, s), b) in distributed.iter_mut().zip(share.iter_mut()).zip(b) {
+                *s = load * b;
+                *d += *s;
             }
         }
         Self {
             points,
             distributed,
+            line: share,
         }
     }
 }

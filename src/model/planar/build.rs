@@ -87,6 +87,11 @@ impl SegmentParts<Planar> for PlanarParts {
             seg.damping_ratio,
             seg.damping_time,
         );
+        let body = if seg.is_tapered() {
+            body.tapered(seg).map_err(SceneError)?
+        } else {
+            body
+        };
         let body = if seg.linear { body.linear() } else { body };
         let body = body.with_points(&masses.points).with_bodies(&masses.bodies);
         let body = body.with_line_load(seg.line_load_vec());

@@ -348,7 +348,7 @@ impl ModalElement {
     /// The element of a held frame: with the geometric stiffening K_G if the body is linear
     /// (the nonlinear body has it in its own forces).
     pub fn held(body: Arc<ModalBody>) -> Self {
-        let stiffening = (!body.nonlinear).then(|| body.basis.stiffening_grams());
+        let stiffening = (!body.nonlinear).then(|| body.stiffening_grams());
         Self {
             stiffening,
             ..Self::new(body)
@@ -358,24 +358,39 @@ impl ModalElement {
 
 /// Adds K_G a to the bending rows of `res` (and K_G to the a×a block of `k`) for a held frame
 /// at (q, q̇, q̈) under gravity `g`; derivatives by the held frame's coordinates are not needed
-/// (they have no columns).
+/// (they have no columns). A tapered body ([`ModalBody::is_tapered`]): its ρA-weighted grams,
+/// gravity on its mass and its line load's axial part (Aᵀq)_x G1 apart.
 fn add_stiffening(
     body: &ModalBody,
     (g1, g2): &(Vec<f64>, Vec<f64>),
     (q, v, a): (&[f64], &[f64], &[f64]),
-    g: [f64; 2],
+    grav: &BodyGravity<2>,
     res: &mut [f64],
     k: Option<&mut nalgebra::DMatrix<f64>>,
 ) {
     let n = body.modes();
     let (s, c) = math::sin_cos(q[2]);
+    let g = if body.is_tapered() {
+        grav.points
+    } else {
+        grav.distributed
+    };
     let ax = c * (a[0] - g[0]) + s * (a[1] - g[1]);
     let (kw, ka) = (body.rho_a * body.length * v[2] * v[2], body.rho_a * ax);
-    if kw == 0.0 && ka == 0.0 {
+    let line = body
+        .taper_line(grav)
+        .map(|(qw, g1l)| (c * qw[0] + s * qw[1], g1l));
+    if kw == 0.0 && ka == 0.0 && line.is_none() {
         // a frame at rest with no axial field (a clamped root across gravity): K_G = 0
         return;
     }
-    let kg = |i: usize, j: usize| kw * g2[i * n + j] - ka * g1[i * n + j];
+    let kg = |i: usize, j: usize| {
+        let k = kw * g2[i * n + j] - ka * g1[i * n + j];
+        match line {
+            Some((qx, g1l)) => k + qx * g1l[i * n + j],
+            None => k,
+        }
+    };
     for i in 0..n {
         res[3 + i] += (0..n).map(|j| kg(i, j) * q[3 + j]).sum::<f64>();
     }
@@ -397,8 +412,7 @@ impl Element<Planar> for ModalElement {
         self.body.eval(q, v, a, g, out.matrix.is_some(), body);
         if let Some(grams) = &self.stiffening {
             let k = out.matrix.is_some().then_some(&mut body.k);
-            let gd = g.distributed;
-            add_stiffening(&self.body, grams, (q, v, a), gd, body.res.as_mut_slice(), k);
+            add_stiffening(&self.body, grams, (q, v, a), &g, body.res.as_mut_slice(), k);
         }
         out.add_residual(body.res.as_slice());
         if let Some((ca, cv, cx)) = out.matrix {
@@ -413,7 +427,7 @@ impl Element<Planar> for ModalElement {
         self.body.eval(&q, &v, &a, g, false, &mut out);
         if let Some(grams) = &self.stiffening {
             let r = out.res.as_mut_slice();
-            add_stiffening(&self.body, grams, (&q, &v, &a), g.distributed, r, None);
+            add_stiffening(&self.body, grams, (&q, &v, &a), &g, r, None);
         }
         res.copy_from_slice(out.res.as_slice());
     }

@@ -118,6 +118,9 @@ impl SegmentParts<Spatial> for SpatialParts {
         };
         let basis = ModalBasis::new(seg.modes.unwrap_or(1), seg.interface_modes);
         let mut body = ModalBody3::new(basis, ModalProps3::of_segment(seg));
+        if seg.is_tapered() {
+            body = body.tapered(seg).map_err(SceneError)?;
+        }
         if seg.linear {
             body = body.linear();
             if held {
