@@ -450,3 +450,33 @@ fn bad_stations_are_refused_naming_the_field() {
         assert!(err.contains(want), "{err}\nwanted: {want}");
     }
 }
+
+#[test]
+fn the_largest_stress_along_a_tip_loaded_cantilever_is_at_its_root() {
+    // outputs.stress: σ_max = F L r/I at s = 0 (Euler–Bernoulli: the moment is largest at the
+    // clamp); the cubic elements' curvature is exact for the linear moment of a tip load, the
+    // modal segment's (8 modes + the interface shapes, which hold the static tip-load shape) too
+    let f = 1e-5 * 3.0 * ei() / L.powi(2);
+    let i = std::f64::consts::PI * D.powi(4) / 64.0;
+    let want = f * L * (D / 2.0) / i;
+    for (label, segs, _) in rods() {
+        let header =
+            format!("gravity = [0.0, 0.0]\n[outputs]\nstress = true\n[tip]\nforce = [0.0, {f:e}]");
+        let s = with_stations(&header, &segs, "");
+        let mut sim = Simulator::<Planar>::new(s).unwrap();
+        sim.solve_static().unwrap();
+        let (sigma, at) = sim.outputs().stress_max;
+        eprintln!("{label}: σ_max {sigma:.6e} Pa at s = {at} (F L r/I = {want:.6e})");
+        assert!(
+            (sigma / want - 1.0).abs() < 1e-4 && at == 0.0,
+            "{label}: {sigma:e} at {at}"
+        );
+    }
+    // without outputs.stress: no such output
+    let s = with_stations("", &rods()[0].1, "");
+    let names: Vec<String> = hybeam::simulator::OutputId::of_scene(&s)
+        .into_iter()
+        .map(|(n, _)| n)
+        .collect();
+    assert!(!names.iter().any(|n| n.starts_with("beam.")), "{names:?}");
+}

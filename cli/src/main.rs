@@ -177,7 +177,11 @@ fn scene_columns(scene: &Scene) -> Vec<(String, OutputId)> {
     out.extend(OutputId::of_scene(scene).into_iter().filter(|(_, id)| {
         matches!(
             id.quantity,
-            Quantity::StationForce | Quantity::StationMoment | Quantity::StationStress
+            Quantity::StationForce
+                | Quantity::StationMoment
+                | Quantity::StationStress
+                | Quantity::BeamStressMax
+                | Quantity::BeamStressMaxAt
         )
     }));
     out
@@ -355,6 +359,7 @@ fn animate(args: &AnimateArgs) -> Result<(), String> {
     // the masses' spheres from the first piece (their centres from each piece)
     let look = hybeam_view::Look {
         radii: Vec::new(),
+        segments: Vec::new(),
         masses: first
             .masses
             .iter()

@@ -41,6 +41,11 @@ case "${1:-}" in
         rm -rf out/vehicle/view
         .venv/bin/hybeam-cosim "$SYSTEM" --scheme implicit --step 1e-3 --out out/vehicle \
             --set boom.visualization.directory=out/vehicle/view
+        # the root weld's fatigue over the pass (EN 1993-1-9 detail category 71, m = 3:
+        # C = 2e6 * 71e6^3; docs/fatigue.md)
+        .venv/bin/hybeam-fatigue out/vehicle/cosim.csv --station root_weld \
+            --column boom.station.root_weld.stress --sn m=3,C=7.16e29 \
+            --json out/vehicle/root_weld_fatigue.json --plot out/vehicle/root_weld_cycles.png
         cargo run --release --quiet --bin hybeam -- animate out/vehicle/view \
             --body 4.1,1.3,1.8 --body-centre -0.45,-0.65,0 --title "car over a bump with the roof boom" \
             --out out/vehicle/animation.html

@@ -113,9 +113,9 @@ pub struct Model<S: Space> {
     /// The line load of each slot [N/m], global axes (zero beyond `line_segments`).
     line_loads: [S::Vec; MAX_LINE_LOADS],
     /// The stations' cuts ([`Model::set_stations`]; none until set).
-    pub(crate) stations: Vec<super::stations::Cut>,
+    pub(crate) stations: Vec<super::cut::Cut>,
     /// Each coordinate's rigid group, for the stations.
-    pub(crate) group_map: super::stations::GroupMap,
+    pub(crate) group_map: super::cut::GroupMap,
     scale: Vec<f64>,
     q0: Vec<f64>,
     lu: NewtonLu,

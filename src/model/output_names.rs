@@ -54,6 +54,11 @@ pub enum Quantity {
     /// `station.<name>.stress` [Pa]: the largest von Mises stress over the section's boundary;
     /// component = slot.
     StationStress,
+    /// `beam.stress_max` [Pa] (with `outputs.stress`): the largest von Mises stress along the
+    /// beam.
+    BeamStressMax,
+    /// `beam.stress_max_at` [m]: its arc length from the root.
+    BeamStressMaxAt,
 }
 
 /// One scalar output: a quantity and the index of its component (in [`Space::AXES`],
@@ -120,6 +125,20 @@ impl OutputId {
                 component: slot,
             };
             out.push((format!("station.{}.stress", st.name), stress));
+        }
+        if scene.outputs.stress {
+            for (name, quantity) in [
+                ("beam.stress_max", Quantity::BeamStressMax),
+                ("beam.stress_max_at", Quantity::BeamStressMaxAt),
+            ] {
+                out.push((
+                    name.into(),
+                    OutputId {
+                        quantity,
+                        component: 0,
+                    },
+                ));
+            }
         }
         out
     }
@@ -217,6 +236,8 @@ impl<S: Space> Outputs<S> {
             StationForce => self.stations.get(k / 3).map(|s| s.force[k % 3]),
             StationMoment => self.stations.get(k / 3).map(|s| s.moment[k % 3]),
             StationStress => self.stations.get(k).map(|s| s.stress),
+            BeamStressMax => one(self.stress_max.0),
+            BeamStressMaxAt => one(self.stress_max.1),
         }
     }
 }

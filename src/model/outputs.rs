@@ -51,6 +51,9 @@ pub struct Outputs<S: Space> {
     /// The loads at each station of the scene, in `[[stations]]` order (zero beyond them;
     /// [`Model::station_loads`]).
     pub stations: [super::stations::StationLoads; crate::scene::MAX_STATIONS],
+    /// With `outputs.stress`: the largest von Mises stress along the beam [Pa] and its arc
+    /// length from the root [m] ([`Model::beam_stress`]); zero without.
+    pub stress_max: (f64, f64),
 }
 
 /// Validity measures of a model at one configuration.
@@ -129,6 +132,7 @@ impl<S: Space> Model<S> {
         let r = self.held_residual((q, v, acc), lam, &mut buf);
         (o.root_force, o.root_moment) = self.support.reaction(&r, &self.held);
         o.stations = self.station_loads((q, v, acc), (&o.root_force, &o.root_moment));
+        o.stress_max = self.beam_stress((q, v, acc)).unwrap_or_default();
         o.mount = self.mount_inertia(q);
         if let (Some(mi), Some(m)) = (&o.mount, self.mount.as_deref()) {
             let (f, mo) = mi.rigid_reaction(m, &self.gravity);

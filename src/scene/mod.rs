@@ -376,6 +376,9 @@ pub struct Scene {
     /// Run settings.
     #[serde(default)]
     pub simulation: Simulation,
+    /// Optional outputs (`[outputs]`).
+    #[serde(default, skip_serializing_if = "OutputOptions::is_default")]
+    pub outputs: OutputOptions,
     /// Segments from root to tip.
     #[serde(default)]
     pub segments: Vec<Segment>,
@@ -385,6 +388,22 @@ pub struct Scene {
     /// Stations: sections whose loads and stress are outputs (`[[stations]]`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub stations: Vec<Station>,
+}
+
+/// Optional outputs of a scene (`[outputs]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct OutputOptions {
+    /// `beam.stress_max` [Pa] and `beam.stress_max_at` [m]: the largest von Mises stress
+    /// along the beam from the local strains and where (docs/stations.md).
+    #[serde(default)]
+    pub stress: bool,
+}
+
+impl OutputOptions {
+    fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
 }
 
 /// The most stations a scene may have (their loads are held in fixed-size slots of the outputs).

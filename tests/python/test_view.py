@@ -25,6 +25,7 @@ POINT_ARRAYS = {
     "twist": 1,
     "arc": 1,
     "radius": 1,
+    "stress": 1,
 }
 
 
@@ -93,6 +94,7 @@ def test_series_opens_with_its_times_points_and_arrays(strip):
     assert np.abs(grid.point_data["curvature_y"]).max() > 0
     assert np.abs(grid.point_data["curvature_z"]).max() > 0
     assert np.abs(grid.point_data["twist"]).max() > 0
+    assert np.asarray(grid.point_data["stress"]).max() > 0
     radius = np.asarray(grid.point_data["radius"])[:-1]
     np.testing.assert_allclose(radius, 0.002)  # the 4 mm strip's half width
 

@@ -3,9 +3,10 @@
 //! `viewer/src/main.js` bundled by esbuild from the npm registry's packages), so the page opens
 //! offline in any browser.
 //!
-//! Per frame: the centreline points [m], the section y axis (twist), the strain that colours the
-//! tube (the largest fibre strain |ε| + |κ|·c, c the section's outer radius), the root frame
-//! and the tip values. Positions, axes and strains are stored as 32-bit floats (display only),
+//! Per frame: the centreline points [m], the section y axis (twist), what colours the tube (the
+//! largest von Mises stress over the section from the strains, `hybeam::model::strain_stress`;
+//! a page made from a series read back: the largest fibre strain |ε| + |κ|·c, c the section's
+//! outer radius), the root frame and the tip values. Positions, axes and strains are stored as 32-bit floats (display only),
 //! times and tip values as 64-bit (shown as numbers).
 
 use crate::look::Look;
@@ -144,6 +145,14 @@ impl Recorder {
         };
         let centres = self.look.mass_centres(shape);
         self.push_dressed(time, shape, &radii, &centres, tip);
+        // colour by the von Mises stress where the look knows the sections
+        if let Some(stress) = self.look.point_stresses(shape) {
+            let n = stress.len();
+            let at = self.strain.len() - n;
+            for (s, x) in self.strain[at..].iter_mut().zip(stress) {
+                *s = x as f32;
+            }
+        }
     }
 
     /// [`Recorder::push`] with the tube's radius at each point [m] (used at the first frame
@@ -246,7 +255,11 @@ impl Recorder {
             positions: f32s(&self.positions),
             section: f32s(&self.section),
             strain: f32s(&self.strain),
-            strain_label: "largest fibre strain |ε| + |κ|·c [-]",
+            strain_label: if self.look.segments.is_empty() {
+                "largest fibre strain |ε| + |κ|·c [-]"
+            } else {
+                "von Mises stress [Pa]"
+            },
             root: f32s(&self.root),
             tip: TipData {
                 names: &self.tip_names,

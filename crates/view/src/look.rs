@@ -5,8 +5,8 @@
 //! own interpolation, 8 per element by default), its offset turned by the interpolated section
 //! frame.
 
-use hybeam::model::Shape;
-use hybeam::scene::{Dim, Scene, Section};
+use hybeam::model::{strain_stress, Shape};
+use hybeam::scene::{Dim, Scene, Section, Segment};
 
 /// The density of the sphere a mass is drawn as [kg/m³]: an equipment box of mixed metal and
 /// plastic (a 1 kg mass is a sphere of 4.9 cm radius).
@@ -35,6 +35,9 @@ pub struct Look {
     pub radii: Vec<[f64; 2]>,
     /// The attached masses.
     pub masses: Vec<MassLook>,
+    /// The scene's segments, for the von Mises stress at each point (empty: a look read back
+    /// from a series, which has no stress).
+    pub segments: Vec<Segment>,
 }
 
 impl Look {
@@ -68,7 +71,11 @@ impl Look {
                 })
             })
             .collect();
-        Self { radii, masses }
+        Self {
+            radii,
+            masses,
+            segments: scene.segments.clone(),
+        }
     }
 
     /// A look of segments whose radii are `radii` at both ends, without masses.
@@ -76,30 +83,30 @@ impl Look {
         Self {
             radii: radii.iter().map(|r| [*r, *r]).collect(),
             masses: Vec::new(),
+            segments: Vec::new(),
         }
     }
 
     /// The outer radius at each point of `shape` [m]: its segment's, linear in the arc length
     /// between the segment's first and last sample.
     pub fn point_radii(&self, shape: &Shape) -> Vec<f64> {
-        let mut out = Vec::with_capacity(shape.points.len());
-        for (si, range) in shape.segments.iter().enumerate() {
-            let pts = &shape.points[range.clone()];
+        along(shape, |si, t, _| {
             let [r0, r1] = self.radii.get(si).copied().unwrap_or_default();
-            let (a0, a1) = match (pts.first(), pts.last()) {
-                (Some(a), Some(b)) => (a.arc, b.arc),
-                _ => (0.0, 0.0),
-            };
-            for p in pts {
-                let t = if a1 > a0 {
-                    (p.arc - a0) / (a1 - a0)
-                } else {
-                    0.0
-                };
-                out.push(r0 + t * (r1 - r0));
-            }
+            r0 + t * (r1 - r0)
+        })
+    }
+
+    /// The largest von Mises stress over the section at each point of `shape` [Pa], from the
+    /// point's strains ([`hybeam::model::strain_stress`]); `None` without the scene's segments.
+    pub fn point_stresses(&self, shape: &Shape) -> Option<Vec<f64>> {
+        if self.segments.is_empty() {
+            return None;
         }
-        out
+        Some(along(shape, |si, t, p| {
+            self.segments
+                .get(si)
+                .map_or(0.0, |seg| strain_stress(seg, t, p))
+        }))
     }
 
     /// The masses' centres [m], world axes, on `shape` (a mass whose segment has no samples at
@@ -146,4 +153,26 @@ impl Look {
     pub fn mass_radii(&self) -> Vec<f64> {
         self.masses.iter().map(|m| m.radius).collect()
     }
+}
+
+/// `f(segment, t, point)` at each point of `shape`, t ∈ [0, 1] the point's fraction of its
+/// segment (linear in the arc length between the segment's first and last sample).
+fn along(shape: &Shape, f: impl Fn(usize, f64, &hybeam::model::ShapePoint) -> f64) -> Vec<f64> {
+    let mut out = Vec::with_capacity(shape.points.len());
+    for (si, range) in shape.segments.iter().enumerate() {
+        let pts = &shape.points[range.clone()];
+        let (a0, a1) = match (pts.first(), pts.last()) {
+            (Some(a), Some(b)) => (a.arc, b.arc),
+            _ => (0.0, 0.0),
+        };
+        for p in pts {
+            let t = if a1 > a0 {
+                (p.arc - a0) / (a1 - a0)
+            } else {
+                0.0
+            };
+            out.push(f(si, t, p));
+        }
+    }
+    out
 }

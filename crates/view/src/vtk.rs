@@ -10,7 +10,8 @@
 //! (about the section axes), `twist` [rad/m], `arc` [m] (reference arc length from the root).
 //! Cell data: `segment` (scene index; −1 at the root vertex), `kind` (0 segment, 1 joint,
 //! 2 root frame, 3 attached mass). A Tube filter with radius `radius` (point data, the section's
-//! outer radius [m], varying along a taper) draws the real section; at a mass's vertex `radius`
+//! outer radius [m], varying along a taper) draws the real section; `stress` [Pa] is the largest
+//! von Mises stress over the section from the point's strains (`hybeam::model::strain_stress`); at a mass's vertex `radius`
 //! is its sphere's (a Glyph filter scaled by it draws the masses).
 
 use crate::look::Look;
@@ -68,10 +69,11 @@ pub fn piece(shape: &Shape, look: &Look) -> Vtk {
     let extra = shape.joints.len() + 1 + masses.len();
     let total = n + 1 + masses.len();
     let radii = look.point_radii(shape);
+    let stresses = look.point_stresses(shape).unwrap_or_else(|| vec![0.0; n]);
     let mut points = Vec::with_capacity(3 * total);
     let mut vectors: [Vec<f64>; 4] = std::array::from_fn(|_| Vec::with_capacity(3 * total));
-    let mut scalars: [Vec<f64>; 7] = std::array::from_fn(|_| Vec::with_capacity(total));
-    for (p, radius) in shape.points.iter().zip(radii) {
+    let mut scalars: [Vec<f64>; 8] = std::array::from_fn(|_| Vec::with_capacity(total));
+    for ((p, radius), stress) in shape.points.iter().zip(radii).zip(stresses) {
         points.extend_from_slice(&p.position);
         vectors[0].extend_from_slice(&p.velocity);
         for k in 0..3 {
@@ -85,6 +87,7 @@ pub fn piece(shape: &Shape, look: &Look) -> Vtk {
             p.twist,
             p.arc,
             radius,
+            stress,
         ]) {
             s.push(v);
         }
@@ -149,7 +152,7 @@ pub fn piece(shape: &Shape, look: &Look) -> Vtk {
         Attribute::DataArray(DataArray::scalars(name, 1).with_data(data))
     };
     let [velocity, tangent, section_y, section_z] = vectors;
-    let [axial, curvature, curvature_y, curvature_z, twist, arc, radius] = scalars;
+    let [axial, curvature, curvature_y, curvature_z, twist, arc, radius, stress] = scalars;
     let point = vec![
         vector("velocity", velocity),
         vector("tangent", tangent),
@@ -162,6 +165,7 @@ pub fn piece(shape: &Shape, look: &Look) -> Vtk {
         scalar("twist", twist),
         scalar("arc", arc),
         scalar("radius", radius),
+        scalar("stress", stress),
     ];
     let cell = vec![
         Attribute::DataArray(DataArray::scalars("segment", 1).with_data(segment)),

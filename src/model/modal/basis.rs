@@ -354,6 +354,16 @@ impl ModalBasis {
     }
 }
 
+/// Number of torsion shapes of a spatial modal body (ξ and √2 sin πξ).
+pub const TORSION_SHAPES: usize = 2;
+
+/// The torsion shapes χ_m(ξ) and their slopes χ_m′(ξ) (per ξ) of a spatial modal body.
+pub fn torsion_shapes(xi: f64) -> ([f64; 2], [f64; 2]) {
+    use std::f64::consts::{PI, SQRT_2};
+    let (s, c) = crate::math::sin_cos(PI * xi);
+    ([xi, SQRT_2 * s], [1.0, SQRT_2 * PI * c])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -147,14 +147,7 @@ impl ModalProps3 {
     }
 }
 
-/// Number of torsion shapes (ξ and √2 sin πξ).
-pub const TORSION_SHAPES: usize = 2;
-
-/// The torsion shapes χ_m(ξ) and their slopes χ_m′(ξ) (per ξ).
-pub fn torsion_shapes(xi: f64) -> ([f64; 2], [f64; 2]) {
-    let (s, c) = math::sin_cos(PI * xi);
-    ([xi, SQRT_2 * s], [1.0, SQRT_2 * PI * c])
-}
+pub use super::basis::{torsion_shapes, TORSION_SHAPES};
 
 /// Constant properties and invariants of a spatial modal segment.
 #[derive(Debug, Clone)]

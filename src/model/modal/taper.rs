@@ -6,8 +6,7 @@
 //! the uniform body's ρAL·I and diag(EIΛ_k/L³). All tables are built once; the uniform body
 //! does not use this module.
 
-use super::basis::{quadrature, ModalBasis};
-use super::body3d::torsion_shapes;
+use super::basis::{quadrature, torsion_shapes, ModalBasis};
 use super::nonlinear::Nonlinear;
 use crate::scene::Segment;
 use nalgebra::DMatrix;

@@ -672,41 +672,55 @@ impl Table {
         }
         // the stations' loads: 600000 + 10·i + k (force x 1, y 2, z 3, moment x 4, y 5, z 6,
         // stress 7), i the station's index in [[stations]]; they depend on the mount's
-        // accelerations as the reaction does
+        // accelerations as the reaction does; and the beam's largest stress (120, 121)
         for (name, id) in OutputId::of_scene(scene) {
-            let (k, unit, what) = match id.quantity {
-                Quantity::StationForce => (
+            let station = |k: u32, what: &str| {
+                let slot = match id.quantity {
+                    Quantity::StationStress => id.component,
+                    _ => id.component / 3,
+                };
+                let description = format!("station '{}': {what}", scene.stations[slot].name);
+                (
+                    STATION_VR + 10 * slot as u32 + k,
+                    description,
+                    drives.clone(),
+                )
+            };
+            let (unit, (vr, description, depends_on)) = match id.quantity {
+                Quantity::StationForce => ("N", station(
                     1 + (id.component % 3) as u32,
-                    "N",
                     "force of the part beyond the station on the part before it, section frame (x axial, tension positive; y, z shear)",
-                ),
-                Quantity::StationMoment => (
+                )),
+                Quantity::StationMoment => ("N.m", station(
                     4 + (id.component % 3) as u32,
-                    "N.m",
                     "moment of the part beyond the station on the part before it about the cut, section frame (x torsion, y and z bending)",
-                ),
-                Quantity::StationStress => (
+                )),
+                Quantity::StationStress => ("Pa", station(
                     7,
-                    "Pa",
                     "largest von Mises stress over the section's boundary from the station's loads (docs/stations.md)",
-                ),
+                )),
+                Quantity::BeamStressMax => ("Pa", (
+                    120,
+                    "largest von Mises stress along the beam from the local strains (outputs.stress; docs/stations.md)".to_string(),
+                    Vec::new(),
+                )),
+                Quantity::BeamStressMaxAt => ("m", (
+                    121,
+                    "arc length from the root where beam.stress_max is".to_string(),
+                    Vec::new(),
+                )),
                 _ => continue,
             };
-            let slot = match id.quantity {
-                Quantity::StationStress => id.component,
-                _ => id.component / 3,
-            };
-            let mut v = Variable {
+            let v = Variable {
                 name,
-                vr: STATION_VR + 10 * slot as u32 + k,
+                vr,
                 causality: Causality::Output,
                 variability: Variability::Continuous,
                 start: None,
                 unit: Some(unit),
-                description: format!("station '{}': {what}", scene.stations[slot].name),
-                depends_on: Vec::new(),
+                description,
+                depends_on,
             };
-            v.depends_on = drives.clone();
             t.push(v, Access::Output(id));
         }
         for (row, id) in present(&GRAVITY, &inputs) {
