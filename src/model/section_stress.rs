@@ -88,9 +88,24 @@ impl StressSection {
                 };
                 let j = 0.5 * std::f64::consts::PI * (r.powi(4) - ri.powi(4));
                 let tau_t = if j > 0.0 { (t * r / j).abs() } else { 0.0 };
-                for k in 0..72 {
-                    let phi = 2.0 * std::f64::consts::PI * k as f64 / 72.0;
-                    let (y, z) = (r * phi.cos(), r * phi.sin());
+                if v == 0.0 && self.i_y == self.i_z {
+                    // no shear force: τ is the same all round and σ = N/A + (r/I)|M| cos(φ − φ₀)
+                    // is largest in magnitude at |N/A| + |M| r/I
+                    let i = self.i_z;
+                    let bend = if i > 0.0 {
+                        (my * my + mz * mz).sqrt() * r / i
+                    } else {
+                        0.0
+                    };
+                    return vm((n / self.area).abs() + bend, tau_t);
+                }
+                // the 72 points 5° apart by rotating (cos, sin) (no trigonometry per point)
+                const COS_5: f64 = 0.996_194_698_091_745_5;
+                const SIN_5: f64 = 0.087_155_742_747_658_17;
+                let (mut c, mut sn) = (1.0f64, 0.0f64);
+                for _ in 0..72 {
+                    let (y, z) = (r * c, r * sn);
+                    (c, sn) = (c * COS_5 - sn * SIN_5, sn * COS_5 + c * SIN_5);
                     // the point's coordinate along V and the angle from it
                     let eta = if v > 0.0 { (y * vy + z * vz) / v } else { 0.0 };
                     let tau_v = if v == 0.0 {
