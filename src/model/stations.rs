@@ -252,11 +252,15 @@ impl<S: Space> Model<S> {
                     let Some(&Some((g, c))) = found else { continue };
                     let group = &self.groups[g as usize];
                     let c = c as usize;
+                    // the group's values (at most 4: a point, a direction, Euler parameters)
+                    let mut gv = [0.0; 4];
+                    for (o, d) in gv.iter_mut().zip(&group.dofs) {
+                        *o = value(*d);
+                    }
+                    let n = group.dofs.len().min(4);
                     match group.kind {
                         Rigid::Point => {
-                            let r_pt = embed::<S>(
-                                &group.dofs.iter().map(|d| value(*d)).collect::<Vec<_>>(),
-                            );
+                            let r_pt = embed::<S>(&gv[..n]);
                             f[c] += r;
                             // δq_c under δθ about axis j: (e_j × (r − p))_c
                             let d = sub(r_pt, p);
@@ -265,16 +269,14 @@ impl<S: Space> Model<S> {
                             }
                         }
                         Rigid::Direction => {
-                            let dv = embed::<S>(
-                                &group.dofs.iter().map(|d| value(*d)).collect::<Vec<_>>(),
-                            );
+                            let dv = embed::<S>(&gv[..n]);
                             for j in 0..3 {
                                 m[j] += r * cross(unit(j), dv)[c];
                             }
                         }
                         Rigid::Angle => m[2] += r,
                         Rigid::Euler => {
-                            let e4: Vec<f64> = group.dofs.iter().map(|d| value(*d)).collect();
+                            let e4 = gv;
                             // δp = ½ (0, e_j) ⊗ p
                             for j in 0..3 {
                                 let w = unit(j);
