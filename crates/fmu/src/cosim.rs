@@ -594,10 +594,10 @@ mod tests {
         assert_eq!(m.get_real(mass).unwrap(), 0.4);
         m.set_real(mass, 2.5).unwrap();
         let place = at(&m, 500_000 + 10 * 3 + 2);
-        m.set_real(place, 1.5).unwrap();
+        m.set_real(place, 0.3).unwrap();
         m.initialize(0.0).unwrap();
         let nozzle = &m.sim.scene().masses[3];
-        assert_eq!((nozzle.mass, nozzle.at), (2.5, 1.5));
+        assert_eq!((nozzle.mass, nozzle.at), (2.5, 0.3));
         let mut m = BeamFmu::from_resource(&text).unwrap();
         let e = m.set_real(mass, -1.0).unwrap_err();
         assert!(e.contains("masses.nozzle_3.mass = -1"), "{e}");
