@@ -229,7 +229,8 @@ impl<S: Space> Model<S> {
         };
         let r_s = embed::<S>(reaction.0.as_ref());
         let m_s = moment3::<S>(S::moment_components(reaction.1));
-        let mut local = Vec::new();
+        // each inboard element's residual once per output, evaluated on first need
+        let mut residuals: Vec<Option<Vec<f64>>> = vec![None; self.elements.len()];
         for (slot, cut) in out.iter_mut().zip(&self.stations) {
             let Some((p, frame)) = sample(cut.at, &mut samples) else {
                 continue;
@@ -239,10 +240,12 @@ impl<S: Space> Model<S> {
             let mut m = sub([0.0; 3], add(m_s, cross(sub(root, p), r_s)));
             for &i in &cut.inboard {
                 let e = &self.elements[i];
-                let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
-                local.clear();
-                local.resize(x.len(), 0.0);
-                e.at.part.residual(&x, &env, &mut local);
+                let local = residuals[i].get_or_insert_with(|| {
+                    let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
+                    let mut r = vec![0.0; x.len()];
+                    e.at.part.residual(&x, &env, &mut r);
+                    r
+                });
                 for (k, dof) in e.at.dofs.dofs().iter().enumerate() {
                     let r = local[k];
                     let found = match *dof {
