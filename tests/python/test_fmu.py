@@ -80,7 +80,13 @@ def test_simulate_with_input_array(fmu_path):
     assert np.array_equal(
         res["tip.position.x"][before], free["tip.position.x"][free["time"] <= 0.5]
     )
-    assert not np.allclose(res["tip.position.x"][after], free["tip.position.x"][free["time"] > 0.6])
+    # (a heavy boom moves little under 0.05 N: the runs are deterministic, so any difference
+    # beyond rounding is the force's; the 3 m sprayer arm's tip moves by ~3e-7 m along x)
+    moved = max(
+        np.max(np.abs(res[n][after] - free[n][free["time"] > 0.6]))
+        for n in ("tip.position.x", "tip.position.y")
+    )
+    assert moved > 1e-9, moved
 
 
 def test_rollback_with_fmu_state_reproduces_outputs(slave, vrs, fmu_path, md):
