@@ -440,7 +440,7 @@ fn bad_stations_are_refused_naming_the_field() {
     };
     for (stations, want) in [
         ("[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = 0.6\n", "stations[0].at = 0.6: not a cut of segment \"a\""),
-        ("[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = 0.2\n", "use one of [0, 0.125, 0.25, 0.375, 0.5]"),
+
         ("[[stations]]\nname = \"w\"\nsegment = \"m\"\nat = 0.25\n", "a modal segment is cut at its ends"),
         ("[[stations]]\nname = \"w\"\nsegment = \"x\"\nat = 0.0\n", "stations[0].segment = \"x\": no segment has this name"),
         ("[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = 0.0\n[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = 0.5\n", "stations[1].name = \"w\": station names must be unique"),
@@ -479,4 +479,114 @@ fn the_largest_stress_along_a_tip_loaded_cantilever_is_at_its_root() {
         .map(|(n, _)| n)
         .collect();
     assert!(!names.iter().any(|n| n.starts_with("beam.")), "{names:?}");
+}
+
+#[test]
+fn stations_inside_planar_ancf_elements() {
+    // the part of the element before the cut integrated by the element: the tip-loaded and the
+    // weighted cantilever at cuts between the nodes (4 elements of 0.25 m), against the same
+    // closed forms as at the nodes
+    let r = round(D);
+    let at = [0.1, 0.3, 0.55, 0.9];
+    let stations: String = at
+        .iter()
+        .enumerate()
+        .map(|(k, s)| format!("[[stations]]\nname = \"s{k}\"\nsegment = \"a\"\nat = {s:e}\n"))
+        .collect();
+    let f = 1e-5 * 3.0 * ei() / L.powi(2);
+    let header = format!("gravity = [0.0, 0.0]\n[tip]\nforce = [0.0, {f:e}]");
+    let mut sim = Simulator::<Planar>::new(with_stations(
+        &header,
+        &[ancf("a", L, &r, 4, "")],
+        &stations,
+    ))
+    .unwrap();
+    sim.solve_static().unwrap();
+    let o = sim.outputs();
+    for (k, s) in at.iter().enumerate() {
+        let (wf, wm) = cantilever_section(*s, [0.0, f, 0.0], [0.0; 3], 0.0);
+        let st = o.stations[k];
+        let e = [
+            (st.moment[2] - wm[2]).abs() / (f * L),
+            (st.force[1] - wf[1]).abs() / f,
+        ];
+        eprintln!(
+            "tip load, s = {s}: M {:.6e} vs {:.6e}, V {:.6e}; errors {:.1e} {:.1e}",
+            st.moment[2], wm[2], st.force[1], e[0], e[1]
+        );
+        assert!(e[0] <= 1e-6 && e[1] <= 1e-6, "s = {s}: {st:?}");
+    }
+    // the weight, with a point mass on the second element: M(s) = −q(L − s)²/2 − m g (a − s)⁺
+    let g = 1e-7 * 8.0 * ei() / (rho_a() * L.powi(4));
+    let (q, mass, a) = (rho_a() * g, 0.2 * rho_a() * L, 0.4);
+    let masses =
+        format!("[[masses]]\nname = \"m\"\nsegment = \"a\"\nat = {a:e}\nmass = {mass:e}\n");
+    let s = with_stations(
+        &format!("gravity = [0.0, {:e}]", -g),
+        &[ancf("a", L, &r, 4, "")],
+        &(stations.clone() + &masses),
+    );
+    let mut sim = Simulator::<Planar>::new(s).unwrap();
+    sim.solve_static().unwrap();
+    let o = sim.outputs();
+    for (k, s) in at.iter().enumerate() {
+        let beyond = if *s < a { 1.0 } else { 0.0 };
+        let m = -q * (L - s).powi(2) / 2.0 - beyond * mass * g * (a - s);
+        let v = -q * (L - s) - beyond * mass * g;
+        let st = o.stations[k];
+        let (em, ev) = (
+            (st.moment[2] / m - 1.0).abs(),
+            (st.force[1] / v - 1.0).abs(),
+        );
+        eprintln!(
+            "weight, s = {s}: M {:.6e} vs {m:.6e} ({em:.1e}), V {:.6e} vs {v:.6e} ({ev:.1e})",
+            st.moment[2], st.force[1]
+        );
+        assert!(em <= 1e-9 && ev <= 1e-9, "s = {s}: {st:?}");
+    }
+    // in motion: a cut just before a node carries what the node carries (the element's part
+    // [0, ξ → 1] is the whole element's d'Alembert load, which the node's projection holds)
+    let near = "[[stations]]\nname = \"n\"\nsegment = \"a\"\nat = 0.2499999\n[[stations]]\nname = \"k\"\nsegment = \"a\"\nat = 0.25\n";
+    let mut sim = AnySimulator::new(with_stations(
+        "gravity = [0.0, -9.81]",
+        &[ancf("a", L, &r, 4, "")],
+        near,
+    ))
+    .unwrap();
+    sim.advance(0.05).unwrap();
+    let hybeam::simulator::AnyOutputs::Planar(o) = sim.outputs() else {
+        unreachable!()
+    };
+    let (a, b) = (o.stations[0], o.stations[1]);
+    let scale = b.moment[2].abs().max(b.force[1].abs());
+    eprintln!("just before the node: {a:?}\nat the node: {b:?}");
+    assert!(scale > 1e-3);
+    for c in 0..3 {
+        assert!(
+            (a.force[c] - b.force[c]).abs() <= 1e-4 * scale
+                && (a.moment[c] - b.moment[c]).abs() <= 1e-4 * scale
+        );
+    }
+    // refused where the elements cannot split themselves: spatial, tapered, a body on the segment
+    for (header, seg) in [
+        ("space = \"spatial\"", ancf("a", L, &r, 4, "")),
+        (
+            "",
+            ancf(
+                "a",
+                L,
+                "section = \"round\"\ndiameter = [0.01, 0.008]",
+                4,
+                "",
+            ),
+        ),
+    ] {
+        let text = format!("name = \"t\"\n{header}\n[[segments]]\n{seg}\n[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = 0.3\n");
+        let err = Scene::from_toml(&text).unwrap_err().0;
+        assert!(
+            err.contains("stations[0].at = 0.3: not a cut")
+                && err.contains("use one of [0, 0.25, 0.5, 0.75, 1]"),
+            "{err}"
+        );
+    }
 }

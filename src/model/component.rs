@@ -199,6 +199,21 @@ pub trait Element<S: Space>: Debug + Send + Sync + 'static {
     /// ([`ShapePoint`]; `segment` and `arc` are the caller's to set).
     fn sample(&self, x: &LocalState<'_>, xi: &[f64], out: &mut Vec<ShapePoint>);
 
+    /// The d'Alembert load of the part ξ' ∈ [0, `xi`] of the element at the state `x` under
+    /// gravity `gravity` (full load): the force ∫(f_ext − ρA r̈) dx [N] and its moment about
+    /// `about` ∫(r − about) × (f_ext − ρA r̈) dx [N m], with the point masses on that part,
+    /// world axes as 3-vectors; `None` where the element cannot split itself (the default):
+    /// stations then only cut at its ends.
+    fn partial_load(
+        &self,
+        _x: &LocalState<'_>,
+        _gravity: &S::Vec,
+        _xi: f64,
+        _about: [f64; 3],
+    ) -> Option<([f64; 3], [f64; 3])> {
+        None
+    }
+
     /// Validity measures at `q` (none by default).
     fn validity(&self, _q: &[f64]) -> Validity {
         Validity::default()

@@ -12,6 +12,10 @@ pub(crate) struct Cut {
     pub(crate) inboard: Vec<usize>,
     /// (element, ξ) whose sample is the cut's point and section frame.
     pub(crate) at: (usize, f64),
+    /// A cut inside an element: (element, ξ) — the loads at the element's start node
+    /// (`inboard` are the elements before it) carried across the part [0, ξ] by the element's
+    /// [`super::component::Element::partial_load`].
+    pub(crate) partial: Option<(usize, f64)>,
     pub(crate) section: StressSection,
 }
 

@@ -127,6 +127,23 @@ impl<S: Space> Model<S> {
             let at = first
                 .or(last)
                 .ok_or_else(|| SceneError("stations: a beam without elements".into()))?;
+            // a cut inside an element of the segment: the element holding it (its part before
+            // the cut is integrated by the element; inboard are the elements before it)
+            let inside = (0..self.elements.len()).find(|&i| {
+                let e = &self.elements[i];
+                e.segment == si
+                    && start[i] < st.at - tol
+                    && st.at < start[i] + e.at.part.length() - tol
+            });
+            let (outboard, at, partial) = match inside {
+                Some(i) => {
+                    let xi = (st.at - start[i]) / self.elements[i].at.part.length();
+                    let mut out = outboard;
+                    out.push(i);
+                    (out, (i, xi), Some((i, xi)))
+                }
+                None => (outboard, at, None),
+            };
             let inboard: Vec<usize> = (0..self.elements.len())
                 .filter(|i| !outboard.contains(i))
                 .collect();
@@ -138,6 +155,7 @@ impl<S: Space> Model<S> {
             cuts.push(Cut {
                 inboard,
                 at,
+                partial,
                 section: StressSection::of(seg, t),
             });
         }
@@ -295,6 +313,20 @@ impl<S: Space> Model<S> {
                             }
                         }
                     }
+                }
+            }
+            // inside an element: the loads at its start node p₀ (about p the projection above
+            // already gives M₀ + (p₀ − p) × F₀) carried across its part [0, ξ]:
+            // F = F₀ − ∫(f − ρA r̈), M = M₀ + (p₀ − p) × F₀ − ∫(r − p) × (f − ρA r̈)
+            if let Some((ei, xi)) = cut.partial {
+                let e = &self.elements[ei];
+                let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
+                let Some((pf, pm)) = e.at.part.partial_load(&x, &self.gravity, xi, p) else {
+                    continue;
+                };
+                for k in 0..3 {
+                    f[k] -= pf[k];
+                    m[k] -= pm[k];
                 }
             }
             let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

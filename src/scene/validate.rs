@@ -455,12 +455,25 @@ impl Scene {
             }
             let cuts = seg.station_cuts();
             let at = st.at;
-            if !(at.is_finite() && cuts.iter().any(|c| (c - at).abs() <= 1e-9 * seg.length)) {
+            // inside an element: planar uniform ANCF segments without section bodies (their
+            // elements integrate the part before the cut themselves)
+            let inside = self.space == SpaceKind::Planar
+                && seg.kind == SegmentKind::Ancf
+                && !seg.is_tapered()
+                && self
+                    .masses
+                    .iter()
+                    .all(|m| m.segment != seg.name || m.is_point())
+                && at.is_finite()
+                && (0.0..=seg.length).contains(&at);
+            if !(inside
+                || at.is_finite() && cuts.iter().any(|c| (c - at).abs() <= 1e-9 * seg.length))
+            {
                 let shown: Vec<String> = cuts.iter().map(|c| format!("{c}")).collect();
                 let why = match seg.kind {
                     SegmentKind::Modal => "a modal segment is cut at its ends".to_string(),
                     SegmentKind::Ancf => format!(
-                        "an ANCF segment is cut at its ends and at the nodes between its {} elements",
+                        "an ANCF segment is cut at its ends and at the nodes between its {} elements; anywhere along it in a planar scene when it is not tapered and carries no mass with an offset or rotary inertia",
                         cuts.len() - 1
                     ),
                 };

@@ -3,7 +3,7 @@
 
 use super::Planar;
 use crate::math;
-use crate::model::ancf::{AncfProps, Mat8, QuadTables, SectionMass, Shape, Vec8};
+use crate::model::ancf::{AncfProps, Mat8, QuadTables, SectionMass, Shape, Vec8, GAUSS5};
 use crate::model::assembly::Model;
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
 use crate::model::modal::{BodyGravity, BodyOut, ModalBody};
@@ -32,6 +32,8 @@ pub struct AncfElement {
     /// The segment's line load over ρA, q/(ρA) [m/s²] on a uniform element; on a tapered one
     /// ([`AncfProps::taper`]) the load q itself [N/m]; `None` without one.
     line: Option<[f64; 2]>,
+    /// The point masses (ξ, m [kg]) on the element, for [`Element::partial_load`].
+    point_list: Vec<(f64, f64)>,
 }
 
 /// The Newton coefficients (c_a, c_v, c_x) and the 8 × 8 block the section bodies add to.
@@ -68,6 +70,7 @@ impl AncfElement {
             bodies: Vec::new(),
             g: [0.0; 2],
             line: None,
+            point_list: Vec::new(),
         }
     }
 
@@ -170,6 +173,7 @@ impl AncfElement {
             }
         }
         self.points = Some(w);
+        self.point_list = points.to_vec();
         self
     }
 }
@@ -262,6 +266,47 @@ impl Element<Planar> for AncfElement {
 
     fn set_line_load(&mut self, q: &[f64; 2]) {
         self.line = Some(self.line_of(*q));
+    }
+
+    /// Gauss 5 on [0, ξ] (exact for ρA S ë and (r − p) × ρA S ë, degree 6, on a uniform
+    /// element) and the point masses at ξ_m < ξ; `None` on a tapered element or one carrying
+    /// section bodies.
+    fn partial_load(
+        &self,
+        x: &LocalState<'_>,
+        gravity: &[f64; 2],
+        xi: f64,
+        about: [f64; 3],
+    ) -> Option<([f64; 3], [f64; 3])> {
+        if self.props.taper.is_some() || !self.bodies.is_empty() {
+            return None;
+        }
+        let (e, _, ea) = x.arrays::<8>();
+        let (e, ea) = (Vec8::from(e), Vec8::from(ea));
+        let l = self.props.length;
+        let line = self.line.unwrap_or([0.0; 2]);
+        let (mut f, mut m) = ([0.0; 3], 0.0);
+        let mut add = |s: f64, w: f64, mass: f64, field: [f64; 2]| {
+            let sh = Shape::at(s, l);
+            let (r, a) = (sh.r(&e), sh.r(&ea));
+            let load = [w * mass * (field[0] - a[0]), w * mass * (field[1] - a[1])];
+            f[0] += load[0];
+            f[1] += load[1];
+            m += (r[0] - about[0]) * load[1] - (r[1] - about[1]) * load[0];
+        };
+        let distributed = [gravity[0] + line[0], gravity[1] + line[1]];
+        for (xg, wg) in GAUSS5 {
+            add(
+                0.5 * xi * (xg + 1.0),
+                0.5 * xi * l * wg,
+                self.props.rho_a,
+                distributed,
+            );
+        }
+        for &(xm, mass) in self.point_list.iter().filter(|(xm, _)| *xm < xi) {
+            add(xm, 1.0, mass, *gravity);
+        }
+        Some((f, [0.0, 0.0, m]))
     }
 
     fn set_gravity(&mut self, g: &[f64; 2]) {
