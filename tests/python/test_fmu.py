@@ -163,3 +163,27 @@ def test_simulate_fmu_does_not_pass_a_recoverable_discard(fmu_path, huge_force):
     with pytest.raises(FMICallException) as failure:
         simulate_fmu(fmu_path, stop_time=1.0, output_interval=0.01, input=inp, output=POSITIONS)
     assert failure.value.status == fmi2Error
+
+
+def test_station_at_the_root_through_fmpy_is_minus_the_reaction(fmu_path, md):
+    """A station named `root_weld` (the shipped sprayer booms' station at the root; skipped for
+    FMUs without it) read through fmpy: its force and moment equal minus `root.force.*` and
+    `root.moment.*` at every output (the clamped root's section frame is the world's; docs/
+    stations.md), and its stress is finite and positive once gravity loads the arm."""
+    names = {v.name for v in md.modelVariables}
+    if "station.root_weld.stress" not in names:
+        pytest.skip("no root_weld station in this FMU")
+    pairs = [
+        (f"station.root_weld.{q}.{a}", f"root.{q}.{a}")
+        for q in ("force", "moment")
+        for a in "xyz"
+        if f"station.root_weld.{q}.{a}" in names
+    ]
+    outputs = [n for p in pairs for n in p] + ["station.root_weld.stress"]
+    res = simulate_fmu(fmu_path, stop_time=0.1, output_interval=0.01, output=outputs)
+    scale = max(np.max(np.abs(res[r])) for _, r in pairs)
+    assert scale > 1.0
+    for s, r in pairs:
+        assert np.max(np.abs(res[s] + res[r])) <= 1e-9 * scale, (s, r)
+    stress = res["station.root_weld.stress"]
+    assert np.all(np.isfinite(stress)) and stress[-1] > 1e6
