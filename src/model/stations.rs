@@ -89,6 +89,8 @@ impl<S: Space> Model<S> {
                 .partial_cmp(&(eb.segment, start[*b]))
                 .unwrap_or(std::cmp::Ordering::Equal)
         };
+        // the tip end of the last element: the sample of a cut with nothing beyond it
+        let last = (0..self.elements.len()).max_by(order).map(|i| (i, 1.0));
         let mut cuts = Vec::with_capacity(scene.stations.len().min(MAX_STATIONS));
         for st in scene.stations.iter().take(MAX_STATIONS) {
             let Some(si) = scene.segments.iter().position(|s| s.name == st.segment) else {
@@ -106,24 +108,7 @@ impl<S: Space> Model<S> {
             let outboard: Vec<usize> = (0..self.elements.len()).filter(|&i| beyond(i)).collect();
             // the cut's sample: the first outboard element's root (the lowest segment, then the
             // lowest start), else the tip end of the last element
-            let first = outboard
-                .iter()
-                .copied()
-                .min_by(|&a, &b| {
-                    let (ea, eb) = (&self.elements[a], &self.elements[b]);
-                    (ea.segment, start[a])
-                        .partial_cmp(&(eb.segment, start[b]))
-                        .unwrap_or(std::cmp::Ordering::Equal)
-                })
-                .map(|i| (i, 0.0));
-            let last = (0..self.elements.len())
-                .max_by(|&a, &b| {
-                    let (ea, eb) = (&self.elements[a], &self.elements[b]);
-                    (ea.segment, start[a])
-                        .partial_cmp(&(eb.segment, start[b]))
-                        .unwrap_or(std::cmp::Ordering::Equal)
-                })
-                .map(|i| (i, 1.0));
+            let first = outboard.iter().copied().min_by(order).map(|i| (i, 0.0));
             let at = first
                 .or(last)
                 .ok_or_else(|| SceneError("stations: a beam without elements".into()))?;
