@@ -150,6 +150,41 @@ impl SectionBody3 {
     }
 }
 
+/// Adds the forces of the bodies `bodies` (each with its pose) at the element's (q, q̇, q̈) of
+/// `D` coordinates under gravity `g` [m/s²] to `res` and, with the Newton coefficients
+/// `matrix` = (c_a, c_v, c_x), their block to `blk` ([`SectionBody3::add_forces`],
+/// [`SectionBody3::add_block`]).
+pub fn add_bodies<P: SectionPose, const D: usize>(
+    bodies: &[(SectionBody3, P)],
+    (q, v, a): (&[f64; D], &[f64; D], &[f64; D]),
+    g: [f64; 3],
+    matrix: Option<(f64, f64, f64)>,
+    res: &mut [f64],
+    blk: &mut [[f64; D]; D],
+) {
+    for (b, pose) in bodies {
+        b.add_forces(pose, D, (&q[..], &v[..], &a[..]), g, res);
+        if let Some(c) = matrix {
+            b.add_block(pose, (q, v, a), g, c, blk);
+        }
+    }
+}
+
+/// Adds the kinetic and gravity energies of the bodies `bodies` at (q, q̇) under gravity `g`
+/// [m/s²] to `out` ([`SectionBody3::energies`]).
+pub fn add_body_energies<P: SectionPose>(
+    bodies: &[(SectionBody3, P)],
+    (q, v): (&[f64], &[f64]),
+    g: [f64; 3],
+    out: &mut super::component::Energies,
+) {
+    for (b, pose) in bodies {
+        let (t, u) = b.energies(pose, q, v, g);
+        out.kinetic += t;
+        out.potential += u;
+    }
+}
+
 /// The frame [t, d2, d3] of the tangent `a` and a section director `d` (Gram–Schmidt, as
 /// [`crate::model::sample::director_frame`]), generic over the scalar.
 #[inline]

@@ -9,7 +9,9 @@ use crate::model::component::{
     Element, ElementOut, Energies, Env, LocalState, Port, Support, Validity,
 };
 use crate::model::sample::ShapePoint;
-use crate::model::section3::{gram_schmidt, SectionBody3, SectionPose};
+use crate::model::section3::{
+    add_bodies, add_body_energies, gram_schmidt, SectionBody3, SectionPose,
+};
 use crate::model::vector::{Real, V3};
 use nalgebra::{Matrix3, Vector3};
 use num_dual::{Dual2Vec, DualSVec64, HyperDual64};
@@ -199,12 +201,14 @@ impl AncfElement3 {
         let mut blk = [[0.0; D]; D];
         if !self.bodies.is_empty() {
             let g = self.g.map(|x| env.load * x);
-            for (b, pose) in &self.bodies {
-                b.add_forces(pose, D, (&e[..], &ed[..], &ea[..]), g, &mut res);
-                if let Some(c) = out.matrix {
-                    b.add_block(pose, (&e, &ed, &ea), g, c, &mut blk);
-                }
-            }
+            add_bodies(
+                &self.bodies,
+                (&e, &ed, &ea),
+                g,
+                out.matrix,
+                &mut res,
+                &mut blk,
+            );
         }
         out.add_residual(&res);
         if let (Some((ca, cv, cx)), Some((k, c, mi))) = (out.matrix, matrices) {
@@ -273,11 +277,7 @@ impl Element<Spatial> for AncfElement3 {
             strain: self.props.strain_energy(&self.tables, &e),
             potential: gravity_potential(&e, &self.gravity_force),
         };
-        for (b, pose) in &self.bodies {
-            let (t, u) = b.energies(pose, &e, &ed, self.g);
-            out.kinetic += t;
-            out.potential += u;
-        }
+        add_body_energies(&self.bodies, (&e[..], &ed[..]), self.g, &mut out);
         out
     }
 
