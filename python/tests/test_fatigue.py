@@ -103,3 +103,14 @@ def test_cli_names_missing_columns_and_bad_files(tmp_path, capsys):
     assert "[root_weld]: m = -3" in err and "must be positive" in err
     assert cli.main([str(csv), "--station", "root_weld"]) == 2
     assert "give the S-N curve once" in capsys.readouterr().err
+
+
+def test_cli_names_unreadable_files_and_text_columns(tmp_path, capsys):
+    bad = tmp_path / "bad.csv"
+    bad.write_bytes(b"\xff\xfe\x00garbage")
+    assert cli.main([str(bad), "--station", "w", "--sn", "m=3,C=1e12"]) == 2
+    assert "cannot read it as a table" in capsys.readouterr().err
+    text = tmp_path / "text.csv"
+    pd.DataFrame({"station.w.stress": ["a", "b"]}).to_csv(text, index=False)
+    assert cli.main([str(text), "--station", "w", "--sn", "m=3,C=1e12"]) == 2
+    assert "is not numeric" in capsys.readouterr().err

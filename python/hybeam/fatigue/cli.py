@@ -17,7 +17,8 @@ import argparse
 import json
 import pathlib
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -40,6 +41,14 @@ def _curve(args: argparse.Namespace) -> SNCurve:
     return curves[args.station]
 
 
+def _read(path: pathlib.Path, read: Callable[[pathlib.Path], Any]) -> Any:
+    """`read(path)`, a file that cannot be read or parsed a FatigueError naming it."""
+    try:
+        return read(path)
+    except (OSError, ValueError) as e:
+        raise FatigueError(f"{path}: cannot read it as a table ({e})") from None
+
+
 def _histories(result: pathlib.Path, column: str) -> dict[str, np.ndarray]:
     """The history of `column` per run: {"": values} for a CSV, {variant: values} for a
     sweep directory."""
@@ -49,22 +58,20 @@ def _histories(result: pathlib.Path, column: str) -> dict[str, np.ndarray]:
         path = result / "series.parquet"
         if not path.exists():
             raise FatigueError(f"{result}: no series.parquet (a hybeam-sweep study directory?)")
-        frame = pd.read_parquet(path)
-        if column not in frame.columns:
-            raise FatigueError(
-                f"{path}: no column {column!r}; the study's series are "
-                f"{[c for c in frame.columns if c not in ('variant', 'time')]} (add it to "
-                f"[outputs] series, or name another with --column)"
-            )
-        return {str(v): g[column].to_numpy() for v, g in frame.groupby("variant", sort=False)}
-    if not result.exists():
-        raise FatigueError(f"{result}: no such file")
-    frame = pd.read_csv(result)
+        frame = _read(path, pd.read_parquet)
+        have = [c for c in frame.columns if c not in ("variant", "time")]
+        hint = "the study's series are", "add it to [outputs] series, or name another with --column"
+    else:
+        if not result.exists():
+            raise FatigueError(f"{result}: no such file")
+        path, frame = result, _read(result, pd.read_csv)
+        have, hint = list(frame.columns), ("it has", "name another with --column")
     if column not in frame.columns:
-        raise FatigueError(
-            f"{result}: no column {column!r}; it has {list(frame.columns)} (name another with "
-            f"--column)"
-        )
+        raise FatigueError(f"{path}: no column {column!r}; {hint[0]} {have} ({hint[1]})")
+    if not pd.api.types.is_numeric_dtype(frame[column]):
+        raise FatigueError(f"{path}: column {column!r} is not numeric; give a stress column [Pa]")
+    if result.is_dir():
+        return {str(v): g[column].to_numpy() for v, g in frame.groupby("variant", sort=False)}
     return {"": frame[column].to_numpy()}
 
 
