@@ -222,9 +222,10 @@ fn any_row(out: &mut String, t: f64, sim: &AnySimulator, ids: &[(String, OutputI
     writeln!(out, "{}", line.join(",")).unwrap();
 }
 
-/// The output names of a scene's FMU-level outputs (header of [`any_row`]).
+/// The output names of a scene's FMU-level outputs, its stations' and beam stress included
+/// (header of [`any_row`]).
 fn any_ids(scene: &Scene) -> Vec<(String, OutputId)> {
-    OutputId::named_with(scene.space, scene.mount_start().is_some())
+    OutputId::of_scene(scene)
 }
 
 /// A history through [`AnySimulator`]: outputs every `dt` to `t_end`; before each step
