@@ -23,7 +23,7 @@
 
 use super::assembly::Model;
 use super::component::{Env, LocalState};
-use super::cut::{Cut, GroupMap};
+use super::cut::{Cut, GroupMap, StressPoint};
 use super::dofs::{Dof, Rigid};
 pub use super::section_stress::{SectionShape, StressSection};
 use super::space::Space;
@@ -153,7 +153,30 @@ impl<S: Space> Model<S> {
             for i in 1..scene.segments.len() {
                 seg_start[i] = seg_start[i - 1] + scene.segments[i - 1].length;
             }
-            map.stress = Some((scene.segments.clone(), start.clone(), seg_start));
+            let points = self
+                .elements
+                .iter()
+                .enumerate()
+                .map(|(i, e)| {
+                    let Some(seg) = scene.segments.get(e.segment) else {
+                        return Vec::new();
+                    };
+                    let l = e.at.part.length();
+                    STRESS_POINTS
+                        .iter()
+                        .map(|xi| {
+                            let s = start[i] + xi * l;
+                            let t = if seg.length > 0.0 {
+                                (s / seg.length).clamp(0.0, 1.0)
+                            } else {
+                                0.0
+                            };
+                            StressPoint::of(seg, t, seg_start[e.segment] + s)
+                        })
+                        .collect()
+                })
+                .collect();
+            map.stress = Some(points);
         }
         self.stations = cuts;
         self.group_map = map;
@@ -165,28 +188,21 @@ impl<S: Space> Model<S> {
     /// and Gauss points (N = EAε, T = GJτ, M_y = EI_y κ_y, M_z = EI_z κ_z; no transverse shear:
     /// a strain field does not give it) by [`StressSection::stress`].
     pub fn beam_stress(&self, (q, v, acc): (&[f64], &[f64], &[f64])) -> Option<(f64, f64)> {
-        let (segs, start, seg_start) = self.group_map.stress.as_ref()?;
+        let points = self.group_map.stress.as_ref()?;
         let held = self.held_state();
         let mut samples = Vec::with_capacity(STRESS_POINTS.len());
         let (mut worst, mut at) = (0.0f64, 0.0);
-        for (i, e) in self.elements.iter().enumerate() {
-            let Some(seg) = segs.get(e.segment) else {
+        for (e, points) in self.elements.iter().zip(points) {
+            if points.is_empty() {
                 continue;
-            };
+            }
             let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
             samples.clear();
             e.at.part.sample(&x, &STRESS_POINTS, &mut samples);
-            let l = e.at.part.length();
-            for (p, xi) in samples.iter().zip(STRESS_POINTS) {
-                let s = start[i] + xi * l;
-                let t = if seg.length > 0.0 {
-                    (s / seg.length).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let sigma = strain_stress(seg, t, p);
+            for (p, point) in samples.iter().zip(points) {
+                let sigma = point.stress(p);
                 if sigma > worst {
-                    (worst, at) = (sigma, seg_start[e.segment] + s);
+                    (worst, at) = (sigma, point.at);
                 }
             }
         }
@@ -328,18 +344,9 @@ impl<S: Space> Model<S> {
 }
 
 /// The largest von Mises stress [Pa] over the section of `seg` at the fraction `t` of its length
-/// from the local strains of the sample `p`: N = EAε, T = GJτ, M_y = EI_y κ_y, M_z = EI_z κ_z
-/// through [`StressSection::stress`] (no transverse shear: a strain field does not give it).
+/// from the local strains of the sample `p` ([`StressPoint::stress`]).
 pub fn strain_stress(seg: &Segment, t: f64, p: &super::sample::ShapePoint) -> f64 {
-    let props = seg.section_props_at(t);
-    let (e, g) = (seg.youngs_modulus, seg.shear_modulus());
-    let force = [e * props.area * p.axial_strain, 0.0, 0.0];
-    let moment = [
-        g * props.torsion * p.twist,
-        e * props.i_y * p.curvature[0],
-        e * props.i_z * p.curvature[1],
-    ];
-    StressSection::of(seg, t).stress(force, moment)
+    StressPoint::of(seg, t, 0.0).stress(p)
 }
 
 fn embed<S: Space>(v: &[f64]) -> [f64; 3] {

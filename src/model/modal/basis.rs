@@ -94,11 +94,16 @@ pub struct ModalBasis {
     pub tip_slope: Vec<f64>,
     /// ∫₀¹ φ_i′φ_j′ dξ (row-major n × n): the tip foreshortening is ½ aᵀ G a / L.
     pub slope_gram: Vec<f64>,
-    /// The shapes at the first set of sample points a viewer asked for, and at the Gauss
-    /// points between them ([`ModalBasis::fields`], [`ModalBasis::slope_integrals`]): the same
-    /// values, computed once.
-    samples: OnceLock<Samples>,
+    /// The shapes at the first [`SAMPLE_SETS`] sets of sample points asked for (a viewer's
+    /// points, a station's cut, the stress points) and at the Gauss points between them
+    /// ([`ModalBasis::fields`], [`ModalBasis::slope_integrals`]): state-independent values,
+    /// computed once per set (the shapes cost exponentials and trigonometry).
+    samples: [OnceLock<Samples>; SAMPLE_SETS],
 }
+
+/// How many sets of sample points a basis keeps ([`ModalBasis::fields`]); a further set is
+/// evaluated at each call.
+pub const SAMPLE_SETS: usize = 6;
 
 /// (φ, φ′, φ″) of every shape at sample points `xi` and, per interval up to each, the Gauss
 /// weights (× half the interval) and the shapes at the Gauss points.
@@ -215,7 +220,7 @@ impl ModalBasis {
             tip: vec![0.0; n],
             tip_slope: vec![0.0; n],
             slope_gram: vec![0.0; n * n],
-            samples: OnceLock::new(),
+            samples: Default::default(),
         };
         // Deterministic sign: φ_j(1) > 0 (or φ_j′(1) > 0 if the tip value vanishes).
         for j in 0..n {
@@ -289,13 +294,16 @@ impl ModalBasis {
         }));
     }
 
-    /// The shapes at the sample points `xi` (cached for the first `xi` asked for).
+    /// The shapes at the sample points `xi` (kept for the first [`SAMPLE_SETS`] sets asked
+    /// for; a slot another thread fills meanwhile with another set is passed over).
     fn samples(&self, xi: &[f64]) -> Cow<'_, Samples> {
-        match self.samples.get() {
-            Some(s) if s.xi == xi => Cow::Borrowed(s),
-            Some(_) => Cow::Owned(Samples::new(self, xi)),
-            None => Cow::Borrowed(self.samples.get_or_init(|| Samples::new(self, xi))),
+        for slot in &self.samples {
+            let s = slot.get_or_init(|| Samples::new(self, xi));
+            if s.xi == xi {
+                return Cow::Borrowed(s);
+            }
         }
+        Cow::Owned(Samples::new(self, xi))
     }
 
     /// The fields of the amplitude vectors `a[m]` at each ξ of `xi`: (Σφ_j a_j, Σφ_j′ a_j,
