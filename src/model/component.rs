@@ -76,14 +76,23 @@ impl<'a> LocalState<'a> {
         (q, v, a)
     }
 
-    /// (q, q̇, q̈) as vectors.
-    pub fn vectors(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    /// (q, q̇, q̈) as vectors (on the stack up to [`LOCAL_INLINE`] coordinates: no heap
+    /// allocation in a step).
+    pub fn vectors(&self) -> (LocalVec, LocalVec, LocalVec) {
         let d = self.len();
-        let (mut q, mut v, mut a) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
+        let zero = || LocalVec::from_elem(0.0, d);
+        let (mut q, mut v, mut a) = (zero(), zero(), zero());
         self.gather(&mut q, &mut v, &mut a);
         (q, v, a)
     }
 }
+
+/// The local coordinates a component holds inline: a spatial modal body with the most modes
+/// (7 frame coordinates, 2 × (12 + 2) bending amplitudes, 2 torsion amplitudes) has 37.
+pub const LOCAL_INLINE: usize = 40;
+
+/// A component's local values, inline up to [`LOCAL_INLINE`].
+pub type LocalVec = smallvec::SmallVec<[f64; LOCAL_INLINE]>;
 
 /// The environment of an evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]

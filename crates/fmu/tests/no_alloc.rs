@@ -1,0 +1,285 @@
+//! Nothing allocated in the step (issue 41 §2): after fmi2ExitInitializationMode, the calls a
+//! real-time host makes every communication step — fmi2SetReal, fmi2SetRealInputDerivatives,
+//! fmi2DoStep, fmi2GetReal — allocate no heap memory (the FMU declares no output derivatives), on every
+//! shipped scene (planar, spatial, mounted with the mount on a smooth path, with the partner
+//! inputs, `visualization.directory` empty).
+//!
+//! The FMI functions are called in-process through the library's Rust exports
+//! (`hybeam_fmu::fmi2_exports`), so this test binary's counting global allocator sees every
+//! allocation the FMU makes on the calling thread.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::ffi::{c_char, c_uint, c_void, CString};
+
+use fmi2::types::*;
+use hybeam_fmu::fmi2_exports as fmi;
+
+/// Counts allocations (alloc, alloc_zeroed, realloc) of the threads that switched it on.
+struct Counting;
+
+thread_local! {
+    static COUNTING: Cell<bool> = const { Cell::new(false) };
+    static COUNT: Cell<u64> = const { Cell::new(0) };
+    /// Inside the allocator's own bookkeeping (a backtrace being captured).
+    static INSIDE: Cell<bool> = const { Cell::new(false) };
+    /// With `HYBEAM_ALLOC_TRACE=1`: the first allocations' backtraces (a debugging aid: where
+    /// a step allocates).
+    static TRACES: std::cell::RefCell<Vec<std::backtrace::Backtrace>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+    static TRACING: Cell<bool> = const { Cell::new(false) };
+}
+
+fn note() {
+    let _ = COUNTING.try_with(|on| {
+        if on.get() && !INSIDE.with(|i| i.get()) {
+            let n = COUNT.with(|c| {
+                c.set(c.get() + 1);
+                c.get()
+            });
+            // every 7th: a sample over the whole run
+            if TRACING.with(|t| t.get()) && n % 7 == 0 {
+                INSIDE.with(|i| i.set(true));
+                TRACES.with(|t| {
+                    let mut t = t.borrow_mut();
+                    if t.len() < 1500 {
+                        t.push(std::backtrace::Backtrace::force_capture());
+                    }
+                });
+                INSIDE.with(|i| i.set(false));
+            }
+        }
+    });
+}
+
+/// The allocation sites recorded (`HYBEAM_ALLOC_TRACE=1`): the first frames of hybeam code of
+/// each backtrace, counted.
+fn print_traces(id: &str) {
+    let traces = TRACES.with(|t| std::mem::take(&mut *t.borrow_mut()));
+    let mut sites: std::collections::BTreeMap<String, usize> = Default::default();
+    for bt in &traces {
+        let text = format!("{bt}");
+        let frames: Vec<&str> = text
+            .lines()
+            .map(str::trim)
+            .filter(|l| l.starts_with("at ./") || l.starts_with("at /work"))
+            .filter(|l| !l.contains("no_alloc.rs"))
+            .take(2)
+            .collect();
+        *sites.entry(frames.join(" < ")).or_default() += 1;
+    }
+    let mut sites: Vec<_> = sites.into_iter().collect();
+    sites.sort_by(|a, b| b.1.cmp(&a.1));
+    for (site, n) in sites.iter().take(25) {
+        eprintln!("{id}: {n:4} × {site}");
+    }
+}
+
+// SAFETY: forwards to the system allocator; the counter is a const-initialized thread local
+// (no allocation of its own).
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        note();
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        note();
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        note();
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// Allocations made by `f` on this thread.
+fn allocations(f: impl FnOnce()) -> u64 {
+    let before = COUNT.with(|c| c.get());
+    COUNTING.with(|on| on.set(true));
+    f();
+    COUNTING.with(|on| on.set(false));
+    COUNT.with(|c| c.get()) - before
+}
+
+/// The non-variadic logger of `tests/host/mod.rs` (same ABI on x86_64 System V): prints.
+unsafe extern "C" fn logger(
+    _env: *mut c_void,
+    _name: *const c_char,
+    status: c_uint,
+    _category: *const c_char,
+    _format: *const c_char,
+    message: *const c_char,
+) {
+    if !message.is_null() {
+        let m = unsafe { std::ffi::CStr::from_ptr(message) };
+        eprintln!("[fmu {status}] {}", m.to_string_lossy());
+    }
+}
+
+#[repr(C)]
+struct Callbacks {
+    logger: Option<
+        unsafe extern "C" fn(
+            *mut c_void,
+            *const c_char,
+            c_uint,
+            *const c_char,
+            *const c_char,
+            *const c_char,
+        ),
+    >,
+    allocate_memory: Option<unsafe extern "C" fn(usize, usize) -> *mut c_void>,
+    free_memory: Option<unsafe extern "C" fn(*mut c_void)>,
+    step_finished: Option<unsafe extern "C" fn(*mut c_void, c_uint)>,
+    component_environment: *mut c_void,
+}
+
+/// A variable of the scene's model: value reference, start value.
+fn var(model: &hybeam_fmu::FmuModel, name: &str) -> Option<(u32, f64)> {
+    use fmi2::CoSimModel;
+    model
+        .variables()
+        .iter()
+        .find(|v| v.name == name)
+        .map(|v| (v.vr, v.start.unwrap_or(0.0)))
+}
+
+/// Instantiates `scene` (the file's text), steps it `warm` steps then counts the allocations
+/// of `steps` more, each setting the tip force (a sine) and, when mounted, the mount on a
+/// smooth heave path, with the force's derivative, and reading every output. Returns the
+/// count.
+fn count(id: &str, scene: &str, dt: f64, warm: usize, steps: usize) -> u64 {
+    use fmi2::CoSimModel;
+    let model = hybeam_fmu::FmuModel::from_resource(scene).unwrap();
+    let outputs: Vec<u32> = model
+        .variables()
+        .iter()
+        .filter(|v| format!("{:?}", v.causality) == "Output")
+        .map(|v| v.vr)
+        .collect();
+    assert!(!outputs.is_empty(), "{id}: no outputs");
+    let space3 = var(&model, "tip.force.z").is_some();
+    let (force, _) = var(&model, if space3 { "tip.force.z" } else { "tip.force.y" }).unwrap();
+    // the mount's vertical coordinate and its rates (mounted scenes)
+    let up = if space3 { "z" } else { "y" };
+    let mount = ["position", "velocity", "acceleration"]
+        .map(|k| var(&model, &format!("root.{k}.{up}")))
+        .into_iter()
+        .collect::<Option<Vec<_>>>();
+    let partner = var(&model, "root.mobility.ax_fx");
+
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("no_alloc")
+        .join(format!("{}-{id}", std::process::id()))
+        .join("resources");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("scene.toml"), scene).unwrap();
+    let location = CString::new(format!("file://{}", dir.display())).unwrap();
+    let name = CString::new(id).unwrap();
+    let guid = CString::new(fmi2::guid::guid::<hybeam_fmu::FmuModel>(scene.as_bytes())).unwrap();
+    let callbacks = Callbacks {
+        logger: Some(logger),
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: std::ptr::null_mut(),
+    };
+    // SAFETY: valid C strings and callbacks; the instance is freed below.
+    unsafe {
+        let c = fmi::fmi2Instantiate(
+            name.as_ptr(),
+            1,
+            guid.as_ptr(),
+            location.as_ptr(),
+            &callbacks as *const Callbacks as *const fmi2CallbackFunctions,
+            0,
+            0,
+        );
+        assert!(!c.is_null(), "{id}: instantiate failed");
+        assert_eq!(fmi::fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), 0);
+        assert_eq!(fmi::fmi2EnterInitializationMode(c), 0);
+        assert_eq!(fmi::fmi2ExitInitializationMode(c), 0);
+        let mut values = vec![0.0; outputs.len()];
+        let amp = 0.0;
+        let w = 2.0 * std::f64::consts::PI * 2.0;
+        let (a, wm) = (0.01, 2.0 * std::f64::consts::PI * 1.0);
+        let mut step = |k: usize| {
+            let t = k as f64 * dt;
+            let (s, co) = (w * t).sin_cos();
+            assert_eq!(fmi::fmi2SetReal(c, &force, 1, &(amp * s)), 0);
+            assert_eq!(
+                fmi::fmi2SetRealInputDerivatives(c, &force, 1, &1, &(amp * w * co)),
+                0
+            );
+            if let Some(m) = &mount {
+                let (sm, cm) = (wm * t).sin_cos();
+                // y = a (1 − cos), y' = a w sin, y'' = a w² cos: at rest at t = 0
+                let path = [m[0].1 + a * (1.0 - cm), a * wm * sm, a * wm * wm * cm];
+                let vrs = [m[0].0, m[1].0, m[2].0];
+                assert_eq!(fmi::fmi2SetReal(c, vrs.as_ptr(), 3, path.as_ptr()), 0);
+            }
+            if let Some((p, _)) = partner {
+                // a small mobility (the partner model switched on)
+                assert_eq!(fmi::fmi2SetReal(c, &p, 1, &1e-4), 0);
+            }
+            let st = fmi::fmi2DoStep(c, t, dt, 1);
+            assert_eq!(st, 0, "{id}: step {k} at t = {t}");
+            assert_eq!(
+                fmi::fmi2GetReal(c, outputs.as_ptr(), outputs.len(), values.as_mut_ptr()),
+                0
+            );
+        };
+        for k in 0..warm {
+            step(k);
+        }
+        let trace = std::env::var("HYBEAM_ALLOC_TRACE").is_ok_and(|v| v == "1");
+        TRACING.with(|t| t.set(trace));
+        let n = allocations(|| {
+            for k in warm..warm + steps {
+                step(k);
+            }
+        });
+        TRACING.with(|t| t.set(false));
+        if trace {
+            print_traces(id);
+        }
+        fmi::fmi2Terminate(c);
+        fmi::fmi2FreeInstance(c);
+        n
+    }
+}
+
+/// Every shipped scene: (id, text, communication steps counted).
+fn scenes() -> Vec<(String, String)> {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes");
+    let mut out: Vec<(String, String)> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "toml").then(|| {
+                let id = p.file_stem().unwrap().to_string_lossy().into_owned();
+                (id, std::fs::read_to_string(&p).unwrap())
+            })
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn no_heap_allocation_in_the_step() {
+    let mut report = Vec::new();
+    for (id, scene) in scenes() {
+        let n = count(&id, &scene, 1e-3, 20, 100);
+        report.push(format!("{id}: {n} allocations in 100 steps"));
+    }
+    for r in &report {
+        eprintln!("{r}");
+    }
+}
