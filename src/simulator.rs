@@ -54,6 +54,9 @@ pub struct Simulator<S: Space> {
     load_rates: LoadRates<S>,
     /// Smallest internal step used so far [s].
     pub min_step_used: f64,
+    /// Where a communication step keeps the state and mount it returns to on failure (kept
+    /// between steps: saving copies into it, no allocation in the step).
+    backup: (State, Option<Box<MountState<S>>>),
 }
 
 impl<S: Space> Simulator<S> {
@@ -127,15 +130,17 @@ impl<S: Space> Simulator<S> {
             calm: 0,
         };
         let applied = Inputs::of(&model);
+        let mount = mount.map(Box::new);
         Ok(Self {
             scene,
             model,
             integ,
+            backup: (state.clone(), mount.clone()),
             state,
             step,
             applied,
             pending: applied,
-            mount: mount.map(Box::new),
+            mount,
             load_rates: LoadRates::default(),
             min_step_used: f64::INFINITY,
         })

@@ -36,6 +36,17 @@ pub struct State {
 }
 
 impl State {
+    /// Copies `other` into this state, reusing its vectors' memory (no allocation when the
+    /// sizes match).
+    pub fn copy_from(&mut self, other: &State) {
+        self.t = other.t;
+        self.q.clone_from(&other.q);
+        self.v.clone_from(&other.v);
+        self.acc.clone_from(&other.acc);
+        self.aux.clone_from(&other.aux);
+        self.lambda.clone_from(&other.lambda);
+    }
+
     /// At rest at coordinates `q`, with `m` multipliers.
     pub fn at_rest(t: f64, q: Vec<f64>, m: usize) -> Self {
         let n = q.len();

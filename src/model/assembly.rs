@@ -116,6 +116,10 @@ pub struct Model<S: Space> {
     pub(crate) stations: Vec<super::cut::Cut>,
     /// Each coordinate's rigid group, for the stations.
     pub(crate) group_map: super::cut::GroupMap,
+    /// A constraint's rows for the outputs' held residual (through `&self`).
+    pub(crate) constraint_out: super::scratch::Scratch<ConstraintOut>,
+    /// The stations' and the beam stress's working memory (sized by `set_stations`).
+    pub(crate) station_work: super::scratch::Scratch<super::cut::StationWork>,
     scale: Vec<f64>,
     q0: Vec<f64>,
     lu: NewtonLu,
@@ -261,6 +265,8 @@ impl<S: Space> Model<S> {
             line_loads,
             stations: Vec::new(),
             group_map: Default::default(),
+            constraint_out: Default::default(),
+            station_work: Default::default(),
             scale,
             q0,
             lu: NewtonLu::new(pattern),

@@ -68,3 +68,13 @@ impl StressPoint {
         self.section.stress(force, moment)
     }
 }
+
+/// The stations' working memory, kept between outputs: each element's residual (flat, at
+/// `offset[e]`), whether it is computed at this output, the samples of a cut.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct StationWork {
+    pub(crate) residual: Vec<f64>,
+    pub(crate) offset: Vec<usize>,
+    pub(crate) done: Vec<bool>,
+    pub(crate) samples: Vec<super::sample::ShapePoint>,
+}

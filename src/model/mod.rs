@@ -16,7 +16,9 @@
 //!   mount ([`held`]), its rigid inertia ([`MountInertia`], [`inertia`]); the clamped slope
 //!   direction of an ANCF root ([`direction`]);
 //! * [`shape`], [`sample`]: the beam's shape at one state for viewers ([`Shape`],
-//!   [`ShapePoint`]).
+//!   [`ShapePoint`]);
+//! * [`scratch`]: working memory that evaluations through `&self` reuse (no allocation in a
+//!   step).
 //!
 //! Planar ([`planar`]): [`Planar`], the components wrapping the kernels, the rigid joint, the
 //! root support, the rigid motion of planar coordinate groups ([`Space::carry`] in
@@ -42,6 +44,7 @@ pub mod output_names;
 pub mod outputs;
 pub mod planar;
 pub mod sample;
+pub mod scratch;
 pub mod section3;
 pub mod section_stress;
 pub mod shape;

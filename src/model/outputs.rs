@@ -2,7 +2,7 @@
 //! of the elements. Dimension-free, read through ports, elements and the support.
 
 use super::assembly::Model;
-use super::component::{ConstraintOut, Element, Env, LocalState};
+use super::component::{Element, Env, LocalState, LocalVec};
 use super::dofs::Dof;
 use super::load::{moment_residual, point_force_residual};
 use super::space::{is_nonzero_moment, PortKin, Space};
@@ -76,7 +76,7 @@ pub struct ModelValidity {
 impl<S: Space> Model<S> {
     /// Outputs at a state (q, q̇, q̈, λ).
     pub fn outputs(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> Outputs<S> {
-        let mut buf = vec![0.0; self.max_local_len()];
+        let mut buf = LocalVec::from_elem(0.0, self.max_local_len());
         let tip = &self.tip.dofs;
         let x = &mut buf[..tip.len()];
         tip.gather(q, &self.held, x);
@@ -153,7 +153,7 @@ impl<S: Space> Model<S> {
 
     /// Rates and accelerations of the tip port's local coordinates: the state's for free ones,
     /// the mount's for held ones (a modal tip port holds its root frame; zero for a fixed root).
-    fn tip_rates(&self, v: &[f64], acc: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    fn tip_rates(&self, v: &[f64], acc: &[f64]) -> (LocalVec, LocalVec) {
         self.tip
             .dofs
             .dofs()
@@ -199,7 +199,7 @@ impl<S: Space> Model<S> {
     /// The support's force [N] and moment [N m] on the beam at a state (the reaction of
     /// [`Outputs`] alone).
     pub fn reaction(&self, q: &[f64], v: &[f64], acc: &[f64], lam: &[f64]) -> (S::Vec, S::Moment) {
-        let mut buf = vec![0.0; self.max_local_len()];
+        let mut buf = LocalVec::from_elem(0.0, self.max_local_len());
         let r = self.held_residual((q, v, acc), lam, &mut buf);
         self.support.reaction(&r, &self.held)
     }
@@ -216,14 +216,14 @@ impl<S: Space> Model<S> {
         (q, v, acc): (&[f64], &[f64], &[f64]),
         lam: &[f64],
         buf: &mut [f64],
-    ) -> Vec<f64> {
+    ) -> LocalVec {
         // −0 is the exact additive identity: a coordinate reached once gets its term's bits
-        let mut r = vec![-0.0; self.held.len()];
+        let mut r = LocalVec::from_elem(-0.0, self.held.len());
         let env = Env {
             gravity: self.gravity,
             load: 1.0,
         };
-        let mut local = Vec::new();
+        let mut local = LocalVec::new();
         for e in self.elements.iter().filter(|e| e.at.dofs.has_held()) {
             let x = LocalState::moving(&e.at.dofs, self.held_state(), (q, v, acc));
             local.resize(x.len(), 0.0);
@@ -243,21 +243,22 @@ impl<S: Space> Model<S> {
                 tip.scatter_held(&local, &mut r);
             }
         }
-        let mut out = ConstraintOut::default();
-        for c in self.constraints.iter().filter(|c| c.at.dofs.has_held()) {
-            let dofs = &c.at.dofs;
-            let d = dofs.len();
-            let x = &mut buf[..d];
-            dofs.gather(q, &self.held, x);
-            out.reset(c.rows, d);
-            c.at.part.eval(x, None, &mut out);
-            for row in 0..c.rows {
-                let l = lam[c.row + row];
-                local.clear();
-                local.extend(out.jac[row * d..(row + 1) * d].iter().map(|j| j * l));
-                dofs.scatter_held(&local, &mut r);
+        self.constraint_out.with(|out| {
+            for c in self.constraints.iter().filter(|c| c.at.dofs.has_held()) {
+                let dofs = &c.at.dofs;
+                let d = dofs.len();
+                let x = &mut buf[..d];
+                dofs.gather(q, &self.held, x);
+                out.reset(c.rows, d);
+                c.at.part.eval(x, None, out);
+                for row in 0..c.rows {
+                    let l = lam[c.row + row];
+                    local.clear();
+                    local.extend(out.jac[row * d..(row + 1) * d].iter().map(|j| j * l));
+                    dofs.scatter_held(&local, &mut r);
+                }
             }
-        }
+        });
         r
     }
 

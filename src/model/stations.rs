@@ -180,6 +180,21 @@ impl<S: Space> Model<S> {
         }
         self.stations = cuts;
         self.group_map = map;
+        // the working memory at its size: every element's residual, the samples of a cut or
+        // an element's stress points
+        let mut offset = Vec::with_capacity(self.elements.len());
+        let mut total = 0;
+        for e in &self.elements {
+            offset.push(total);
+            total += e.at.dofs.len();
+        }
+        let work = super::cut::StationWork {
+            residual: vec![0.0; total],
+            done: vec![false; self.elements.len()],
+            offset,
+            samples: Vec::with_capacity(STRESS_POINTS.len()),
+        };
+        self.station_work = super::scratch::Scratch::new(work);
         Ok(())
     }
 
@@ -190,22 +205,24 @@ impl<S: Space> Model<S> {
     pub fn beam_stress(&self, (q, v, acc): (&[f64], &[f64], &[f64])) -> Option<(f64, f64)> {
         let points = self.group_map.stress.as_ref()?;
         let held = self.held_state();
-        let mut samples = Vec::with_capacity(STRESS_POINTS.len());
         let (mut worst, mut at) = (0.0f64, 0.0);
-        for (e, points) in self.elements.iter().zip(points) {
-            if points.is_empty() {
-                continue;
-            }
-            let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
-            samples.clear();
-            e.at.part.sample(&x, &STRESS_POINTS, &mut samples);
-            for (p, point) in samples.iter().zip(points) {
-                let sigma = point.stress(p);
-                if sigma > worst {
-                    (worst, at) = (sigma, point.at);
+        self.station_work.with(|work| {
+            let samples = &mut work.samples;
+            for (e, points) in self.elements.iter().zip(points) {
+                if points.is_empty() {
+                    continue;
+                }
+                let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
+                samples.clear();
+                e.at.part.sample(&x, &STRESS_POINTS, samples);
+                for (p, point) in samples.iter().zip(points) {
+                    let sigma = point.stress(p);
+                    if sigma > worst {
+                        (worst, at) = (sigma, point.at);
+                    }
                 }
             }
-        }
+        });
         Some((worst, at))
     }
 
@@ -226,119 +243,124 @@ impl<S: Space> Model<S> {
         if self.stations.is_empty() {
             return out;
         }
-        let env = Env {
-            gravity: self.gravity,
-            load: 1.0,
-        };
-        let held = self.held_state();
-        let value = |d: Dof| match d {
-            Dof::Free(i) => q[i as usize],
-            Dof::Held(j) => self.held[j as usize],
-        };
-        let sample = |(ei, xi): (usize, f64), out: &mut Vec<super::sample::ShapePoint>| {
-            let e = &self.elements[ei];
-            let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
-            out.clear();
-            e.at.part.sample(&x, &[xi], out);
-            out.first().map(|p| (p.position, p.frame))
-        };
-        let mut samples = Vec::with_capacity(1);
-        let Some((root, _)) = sample(self.group_map.root, &mut samples) else {
-            return out;
-        };
-        let r_s = embed::<S>(reaction.0.as_ref());
-        let m_s = moment3::<S>(S::moment_components(reaction.1));
-        // each inboard element's residual once per output, evaluated on first need
-        let mut residuals: Vec<Option<Vec<f64>>> = vec![None; self.elements.len()];
-        for (slot, cut) in out.iter_mut().zip(&self.stations) {
-            let Some((p, frame)) = sample(cut.at, &mut samples) else {
-                continue;
+        self.station_work.with(|work| {
+            let env = Env {
+                gravity: self.gravity,
+                load: 1.0,
             };
-            // −R·δu − (M_R + (o − p) × R)·δθ, then the inboard residuals' virtual work
-            let mut f = r_s.map(|x| -x);
-            let mut m = sub([0.0; 3], add(m_s, cross(sub(root, p), r_s)));
-            for &i in &cut.inboard {
-                let e = &self.elements[i];
-                let local = residuals[i].get_or_insert_with(|| {
-                    let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
-                    let mut r = vec![0.0; x.len()];
-                    e.at.part.residual(&x, &env, &mut r);
-                    r
-                });
-                for (k, dof) in e.at.dofs.dofs().iter().enumerate() {
-                    let r = local[k];
-                    let found = match *dof {
-                        Dof::Free(i) => self.group_map.free.get(i as usize),
-                        Dof::Held(j) => self.group_map.held.get(j as usize),
-                    };
-                    let Some(&Some((g, c))) = found else { continue };
-                    let group = &self.groups[g as usize];
-                    let c = c as usize;
-                    // the group's values (at most 4: a point, a direction, Euler parameters)
-                    let mut gv = [0.0; 4];
-                    for (o, d) in gv.iter_mut().zip(&group.dofs) {
-                        *o = value(*d);
-                    }
-                    let n = group.dofs.len().min(4);
-                    match group.kind {
-                        Rigid::Point => {
-                            let r_pt = embed::<S>(&gv[..n]);
-                            f[c] += r;
-                            // δq_c under δθ about axis j: (e_j × (r − p))_c
-                            let d = sub(r_pt, p);
-                            for j in 0..3 {
-                                m[j] += r * cross(unit(j), d)[c];
-                            }
-                        }
-                        Rigid::Direction => {
-                            let dv = embed::<S>(&gv[..n]);
-                            for j in 0..3 {
-                                m[j] += r * cross(unit(j), dv)[c];
-                            }
-                        }
-                        Rigid::Angle => m[2] += r,
-                        Rigid::Euler => {
-                            let e4 = gv;
-                            // δp = ½ (0, e_j) ⊗ p
-                            for j in 0..3 {
-                                let w = unit(j);
-                                let pv = [e4[1], e4[2], e4[3]];
-                                let wxp = cross(w, pv);
-                                let dp = [
-                                    -0.5 * (w[0] * pv[0] + w[1] * pv[1] + w[2] * pv[2]),
-                                    0.5 * (e4[0] * w[0] + wxp[0]),
-                                    0.5 * (e4[0] * w[1] + wxp[1]),
-                                    0.5 * (e4[0] * w[2] + wxp[2]),
-                                ];
-                                m[j] += r * dp[c];
-                            }
-                        }
-                    }
-                }
-            }
-            // inside an element: the loads at its start node p₀ (about p the projection above
-            // already gives M₀ + (p₀ − p) × F₀) carried across its part [0, ξ]:
-            // F = F₀ − ∫(f − ρA r̈), M = M₀ + (p₀ − p) × F₀ − ∫(r − p) × (f − ρA r̈)
-            if let Some((ei, xi)) = cut.partial {
+            let held = self.held_state();
+            let value = |d: Dof| match d {
+                Dof::Free(i) => q[i as usize],
+                Dof::Held(j) => self.held[j as usize],
+            };
+            let sample = |(ei, xi): (usize, f64), out: &mut Vec<super::sample::ShapePoint>| {
                 let e = &self.elements[ei];
                 let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
-                let Some((pf, pm)) = e.at.part.partial_load(&x, &self.gravity, xi, p) else {
+                out.clear();
+                e.at.part.sample(&x, &[xi], out);
+                out.first().map(|p| (p.position, p.frame))
+            };
+            let work = &mut *work;
+            let samples = &mut work.samples;
+            let Some((root, _)) = sample(self.group_map.root, samples) else {
+                return;
+            };
+            let r_s = embed::<S>(reaction.0.as_ref());
+            let m_s = moment3::<S>(S::moment_components(reaction.1));
+            // each inboard element's residual once per output, evaluated on first need
+            work.done.iter_mut().for_each(|d| *d = false);
+            for (slot, cut) in out.iter_mut().zip(&self.stations) {
+                let Some((p, frame)) = sample(cut.at, samples) else {
                     continue;
                 };
-                for k in 0..3 {
-                    f[k] -= pf[k];
-                    m[k] -= pm[k];
+                // −R·δu − (M_R + (o − p) × R)·δθ, then the inboard residuals' virtual work
+                let mut f = r_s.map(|x| -x);
+                let mut m = sub([0.0; 3], add(m_s, cross(sub(root, p), r_s)));
+                for &i in &cut.inboard {
+                    let e = &self.elements[i];
+                    let (o, d) = (work.offset[i], e.at.dofs.len());
+                    let local = &mut work.residual[o..o + d];
+                    if !work.done[i] {
+                        let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
+                        local.fill(0.0);
+                        e.at.part.residual(&x, &env, local);
+                        work.done[i] = true;
+                    }
+                    for (k, dof) in e.at.dofs.dofs().iter().enumerate() {
+                        let r = local[k];
+                        let found = match *dof {
+                            Dof::Free(i) => self.group_map.free.get(i as usize),
+                            Dof::Held(j) => self.group_map.held.get(j as usize),
+                        };
+                        let Some(&Some((g, c))) = found else { continue };
+                        let group = &self.groups[g as usize];
+                        let c = c as usize;
+                        // the group's values (at most 4: a point, a direction, Euler parameters)
+                        let mut gv = [0.0; 4];
+                        for (o, d) in gv.iter_mut().zip(&group.dofs) {
+                            *o = value(*d);
+                        }
+                        let n = group.dofs.len().min(4);
+                        match group.kind {
+                            Rigid::Point => {
+                                let r_pt = embed::<S>(&gv[..n]);
+                                f[c] += r;
+                                // δq_c under δθ about axis j: (e_j × (r − p))_c
+                                let d = sub(r_pt, p);
+                                for j in 0..3 {
+                                    m[j] += r * cross(unit(j), d)[c];
+                                }
+                            }
+                            Rigid::Direction => {
+                                let dv = embed::<S>(&gv[..n]);
+                                for j in 0..3 {
+                                    m[j] += r * cross(unit(j), dv)[c];
+                                }
+                            }
+                            Rigid::Angle => m[2] += r,
+                            Rigid::Euler => {
+                                let e4 = gv;
+                                // δp = ½ (0, e_j) ⊗ p
+                                for j in 0..3 {
+                                    let w = unit(j);
+                                    let pv = [e4[1], e4[2], e4[3]];
+                                    let wxp = cross(w, pv);
+                                    let dp = [
+                                        -0.5 * (w[0] * pv[0] + w[1] * pv[1] + w[2] * pv[2]),
+                                        0.5 * (e4[0] * w[0] + wxp[0]),
+                                        0.5 * (e4[0] * w[1] + wxp[1]),
+                                        0.5 * (e4[0] * w[2] + wxp[2]),
+                                    ];
+                                    m[j] += r * dp[c];
+                                }
+                            }
+                        }
+                    }
                 }
+                // inside an element: the loads at its start node p₀ (about p the projection above
+                // already gives M₀ + (p₀ − p) × F₀) carried across its part [0, ξ]:
+                // F = F₀ − ∫(f − ρA r̈), M = M₀ + (p₀ − p) × F₀ − ∫(r − p) × (f − ρA r̈)
+                if let Some((ei, xi)) = cut.partial {
+                    let e = &self.elements[ei];
+                    let x = LocalState::moving(&e.at.dofs, held, (q, v, acc));
+                    let Some((pf, pm)) = e.at.part.partial_load(&x, &self.gravity, xi, p) else {
+                        continue;
+                    };
+                    for k in 0..3 {
+                        f[k] -= pf[k];
+                        m[k] -= pm[k];
+                    }
+                }
+                let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+                let force = [dot(f, frame[0]), dot(f, frame[1]), dot(f, frame[2])];
+                let moment = [dot(m, frame[0]), dot(m, frame[1]), dot(m, frame[2])];
+                *slot = StationLoads {
+                    force,
+                    moment,
+                    stress: cut.section.stress(force, moment),
+                };
             }
-            let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-            let force = [dot(f, frame[0]), dot(f, frame[1]), dot(f, frame[2])];
-            let moment = [dot(m, frame[0]), dot(m, frame[1]), dot(m, frame[2])];
-            *slot = StationLoads {
-                force,
-                moment,
-                stress: cut.section.stress(force, moment),
-            };
-        }
+        });
         out
     }
 }

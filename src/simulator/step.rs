@@ -19,26 +19,28 @@ pub struct StepControl {
 /// this fraction.
 pub(super) const STEP_ROUNDING: f64 = 1e-9;
 
-/// What a communication step returns to when it fails: the state, step control and mount
-/// path at its start (the applied inputs change only when it succeeds).
-struct Saved<S: Space> {
-    state: State,
-    step: StepControl,
-    mount: Option<Box<MountState<S>>>,
-}
-
 impl<S: Space> Simulator<S> {
-    /// Returns to what `saved` holds after a failed or refused communication step (the held
-    /// Newton matrix belongs to the abandoned attempt).
-    fn roll_back(&mut self, saved: Saved<S>) {
+    /// Keeps the state and mount path at the start of a communication step in `backup`
+    /// (copied into its vectors: no allocation once their sizes are set).
+    fn save(&mut self) {
+        let (state, mount) = &mut self.backup;
+        state.copy_from(&self.state);
+        mount.clone_from(&self.mount);
+    }
+
+    /// Returns to the state, step control `step` and mount path at the start of a failed or
+    /// refused communication step (the held Newton matrix belongs to the abandoned attempt;
+    /// the applied inputs change only when a step succeeds).
+    fn roll_back(&mut self, step: StepControl) {
         // the applied loads (an attempt left the pending ones, or their values within the step)
         self.applied.apply(&mut self.model);
-        if let Some(ms) = &saved.mount {
-            self.model.set_mount(&ms.held(saved.state.t));
+        let (state, mount) = &mut self.backup;
+        if let Some(ms) = mount.as_deref() {
+            self.model.set_mount(&ms.held(state.t));
         }
-        self.mount = saved.mount;
-        self.state = saved.state;
-        self.step = saved.step;
+        std::mem::swap(&mut self.mount, mount);
+        std::mem::swap(&mut self.state, state);
+        self.step = step;
         self.integ.invalidate();
     }
 
@@ -78,11 +80,8 @@ impl<S: Space> Simulator<S> {
                 calm: 0,
             };
         }
-        let saved = Saved {
-            state: self.state.clone(),
-            step: self.step,
-            mount: self.mount.clone(),
-        };
+        self.save();
+        let saved = self.step;
         let inputs = self.pending;
         let done = self.take_mount_input().and_then(|jump| {
             self.jump_inputs(t0, &inputs, jump)?;

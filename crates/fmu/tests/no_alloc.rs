@@ -64,7 +64,7 @@ fn print_traces(id: &str) {
             .map(str::trim)
             .filter(|l| l.starts_with("at ./") || l.starts_with("at /work"))
             .filter(|l| !l.contains("no_alloc.rs"))
-            .take(2)
+            .take(3)
             .collect();
         *sites.entry(frames.join(" < ")).or_default() += 1;
     }

@@ -327,6 +327,38 @@ impl ModalBasis {
             .collect()
     }
 
+    /// At each ξ of the ascending `xi` (index k): the fields of `a` and of `ad` ([`Self::fields`])
+    /// and ∫₀^ξ (φ′ᵀa)² dξ, ∫₀^ξ (φ′ᵀa)(φ′ᵀad) dξ ([`Self::slope_integrals`]), the same values
+    /// by the same operations, handed to `each(k, fields(a), fields(ad), ∫aa, ∫a·ad)` (no
+    /// allocation once the points' shapes are kept).
+    pub fn sample_fields(
+        &self,
+        a: &[f64],
+        ad: &[f64],
+        xi: &[f64],
+        mut each: impl FnMut(usize, [f64; 3], [f64; 3], f64, f64),
+    ) {
+        let s = self.samples(xi);
+        let field = |phi: &[[f64; 3]], am: &[f64]| {
+            let mut f = [0.0; 3];
+            for (p, aj) in phi.iter().zip(am.iter()) {
+                for d in 0..3 {
+                    f[d] += p[d] * aj;
+                }
+            }
+            f
+        };
+        let (mut s_aa, mut s_ad) = (0.0, 0.0);
+        for (k, (g, at)) in s.gauss.iter().zip(&s.at).enumerate() {
+            for (w, phi) in g {
+                let slope = |v: &[f64]| -> f64 { phi.iter().zip(v).map(|(p, x)| p[1] * x).sum() };
+                s_aa += w * slope(a) * slope(a);
+                s_ad += w * slope(a) * slope(ad);
+            }
+            each(k, field(at, a), field(at, ad), s_aa, s_ad);
+        }
+    }
+
     /// ∫₀^ξ (φ′ᵀa)(φ′ᵀb) dξ at each ξ of the ascending `xi` for each pair (a, b) of `pairs`
     /// (`[pair][k]`), by the 5-point Gauss rule on every interval between consecutive ξ: the
     /// foreshortening ½∫₀^ξ w′²dξ / L of the points inside a segment and its rate.

@@ -1281,38 +1281,38 @@ impl ModalBody {
     pub fn sample(&self, q: &[f64], v: &[f64], xi: &[f64], out: &mut Vec<ShapePoint>) {
         let (a, ad) = (&q[3..], &v[3..]);
         let l = self.length;
-        let f = self.basis.fields(&[a, ad], xi);
-        let short = self.basis.slope_integrals(&[(a, a), (a, ad)], xi);
         let r = rot(q[2]);
-        for (k, &x) in xi.iter().enumerate() {
-            let [w, w1, w2] = f[0][k];
-            let (u, short_rate) = if x == 1.0 {
-                let (u, g) = self.tip_local_and_gradient(q);
-                (u, g.iter().zip(ad).map(|(g, v)| g * v).sum::<f64>())
-            } else {
-                let u = Vector2::new(x * l - 0.5 * short[0][k] / l, w);
-                (u, short[1][k] / l)
-            };
-            let ud = Vector2::new(-short_rate, f[1][k][0]);
-            let p = Vector2::new(q[0], q[1]) + r * u;
-            let vel = Vector2::new(v[0], v[1]) + v[2] * perp(r * u) + r * ud;
-            let t = r * Vector2::new(1.0, w1 / l).normalize();
-            out.push(ShapePoint {
-                position: [p.x, p.y, 0.0],
-                velocity: [vel.x, vel.y, 0.0],
-                frame: [[t.x, t.y, 0.0], [-t.y, t.x, 0.0], [0.0, 0.0, 1.0]],
-                curvature: [
-                    0.0,
-                    w2 / (l * l)
-                        * if self.nonlinear {
-                            1.0 + 0.5 * (w1 / l) * (w1 / l)
-                        } else {
-                            1.0
-                        },
-                ],
-                ..ShapePoint::default()
+        let mut g = crate::model::component::LocalVec::from_elem(0.0, self.modes());
+        self.basis
+            .sample_fields(a, ad, xi, |k, [w, w1, w2], [wd, _, _], s_aa, s_ad| {
+                let x = xi[k];
+                let (u, short_rate) = if x == 1.0 {
+                    let u = self.tip_local_into(q, &mut g);
+                    (u, g.iter().zip(ad).map(|(g, v)| g * v).sum::<f64>())
+                } else {
+                    let u = Vector2::new(x * l - 0.5 * s_aa / l, w);
+                    (u, s_ad / l)
+                };
+                let ud = Vector2::new(-short_rate, wd);
+                let p = Vector2::new(q[0], q[1]) + r * u;
+                let vel = Vector2::new(v[0], v[1]) + v[2] * perp(r * u) + r * ud;
+                let t = r * Vector2::new(1.0, w1 / l).normalize();
+                out.push(ShapePoint {
+                    position: [p.x, p.y, 0.0],
+                    velocity: [vel.x, vel.y, 0.0],
+                    frame: [[t.x, t.y, 0.0], [-t.y, t.x, 0.0], [0.0, 0.0, 1.0]],
+                    curvature: [
+                        0.0,
+                        w2 / (l * l)
+                            * if self.nonlinear {
+                                1.0 + 0.5 * (w1 / l) * (w1 / l)
+                            } else {
+                                1.0
+                            },
+                    ],
+                    ..ShapePoint::default()
+                });
             });
-        }
     }
 
     /// Global position of the material point at x = ξL, with its foreshortening

@@ -369,6 +369,8 @@ pub struct ModalElement {
     /// ā = Aᵀ(R̈ − g), the axial force of the segment's centrifugal and axial inertia field.
     stiffening: Option<(Vec<f64>, Vec<f64>)>,
     out: BodyOut,
+    /// The body's output for [`Element::residual`] (through `&self`).
+    residual_out: crate::model::scratch::Scratch<BodyOut>,
     /// Local (q, q̇, q̈) of the last evaluation.
     x: [Vec<f64>; 3],
     /// The segment's line load over ρA, q/(ρA) [m/s²] (the body's at build, then
@@ -385,6 +387,7 @@ impl ModalElement {
             line: body.line,
             body,
             stiffening: None,
+            residual_out: crate::model::scratch::Scratch::new(out.clone()),
             out,
             x: [vec![0.0; d], vec![0.0; d], vec![0.0; d]],
         }
@@ -467,14 +470,15 @@ impl Element<Planar> for ModalElement {
 
     fn residual(&self, x: &LocalState<'_>, env: &Env<Planar>, res: &mut [f64]) {
         let (q, v, a) = x.vectors();
-        let mut out = BodyOut::new(self.body.dim());
-        let g = BodyGravity::of(env.gravity, 1.0, self.line);
-        self.body.eval(&q, &v, &a, g, false, &mut out);
-        if let Some(grams) = &self.stiffening {
-            let r = out.res.as_mut_slice();
-            add_stiffening(&self.body, grams, (&q, &v, &a), &g, r, None);
-        }
-        res.copy_from_slice(out.res.as_slice());
+        self.residual_out.with(|out| {
+            let g = BodyGravity::of(env.gravity, 1.0, self.line);
+            self.body.eval(&q, &v, &a, g, false, out);
+            if let Some(grams) = &self.stiffening {
+                let r = out.res.as_mut_slice();
+                add_stiffening(&self.body, grams, (&q, &v, &a), &g, r, None);
+            }
+            res.copy_from_slice(out.res.as_slice());
+        });
     }
 
     fn energies(&self, x: &LocalState<'_>, gravity: &[f64; 2]) -> Energies {

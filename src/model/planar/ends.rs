@@ -13,18 +13,25 @@ use crate::model::space::PortKin;
 use nalgebra::Vector2;
 use std::sync::Arc;
 
+/// Derivatives over an end's local coordinates (inline up to 24: a planar modal body has at
+/// most 3 + 12 + 2; no allocation in a step).
+pub type Grads = smallvec::SmallVec<[f64; 24]>;
+
+/// 2-vector derivatives over an end's local coordinates (inline as [`Grads`]).
+pub type Grads2 = smallvec::SmallVec<[Vector2<f64>; 24]>;
+
 /// Orientation of an end.
 #[derive(Debug, Clone)]
 pub enum Orientation {
     /// Angle ψ [rad], with ∂ψ/∂q_local.
-    Angle(f64, Vec<f64>),
+    Angle(f64, Grads),
     /// Slope vector s [-], with ∂s/∂q_local (one 2-vector per local coordinate).
-    Slope(Vector2<f64>, Vec<Vector2<f64>>),
+    Slope(Vector2<f64>, Grads2),
 }
 
 impl Default for Orientation {
     fn default() -> Self {
-        Orientation::Angle(0.0, Vec::new())
+        Orientation::Angle(0.0, Grads::new())
     }
 }
 
@@ -34,7 +41,7 @@ pub struct EndKin {
     /// Position [m].
     pub p: Vector2<f64>,
     /// ∂p/∂q_local.
-    pub dp: Vec<Vector2<f64>>,
+    pub dp: Grads2,
     /// Orientation.
     pub orient: Orientation,
     /// Curvature of p (modal tip only).
@@ -50,14 +57,14 @@ pub struct TipCurvature {
     /// A u_tip.
     pub au: Vector2<f64>,
     /// J ∂p/∂a_k.
-    pub j_dp_da: Vec<Vector2<f64>>,
+    pub j_dp_da: Grads2,
     /// A e_x / L.
     pub ax_over_l: Vector2<f64>,
-    /// G (row-major n × n).
-    pub gram: Vec<f64>,
+    /// The body, whose `gram` is G (row-major n × n).
+    pub body: Arc<ModalBody>,
     /// The tip angle ψ = θ + f(t), t = uᵀa the elastic tip slope w′(L): (f″(t), u), so that
     /// ∂²ψ/∂a_j∂a_k = f″ u_j u_k.
-    pub angle: (f64, Vec<f64>),
+    pub angle: (f64, Grads),
 }
 
 impl EndKin {
@@ -76,7 +83,7 @@ impl EndKin {
             if m != 0.0 {
                 for j in 0..n {
                     for k in 0..n {
-                        let g = c.gram[j * n + k];
+                        let g = c.body.gram[j * n + k];
                         if g != 0.0 {
                             add(it + 1 + j, it + 1 + k, m * g);
                         }
@@ -156,7 +163,7 @@ impl Port<Planar> for NodePort {
         out.dp.extend([Vector2::x(), Vector2::y(), z, z]);
         let mut ds = match std::mem::take(&mut out.orient) {
             Orientation::Slope(_, v) => v,
-            Orientation::Angle(..) => Vec::new(),
+            Orientation::Angle(..) => Grads2::new(),
         };
         ds.clear();
         ds.extend([z, z, Vector2::x(), Vector2::y()]);
@@ -196,7 +203,7 @@ fn tip_angle(t: f64) -> [f64; 3] {
 
 impl ModalTipPort {
     /// ∂t/∂a_k = φ_k′(1)/L.
-    fn slope_gradient(&self) -> Vec<f64> {
+    fn slope_gradient(&self) -> Grads {
         let b = &*self.0;
         b.basis.tip_slope.iter().map(|s| s / b.length).collect()
     }
@@ -234,7 +241,7 @@ impl ModalTipPort {
             au,
             j_dp_da: dp[3..].iter().map(|c| Vector2::new(-c[1], c[0])).collect(),
             ax_over_l: a.column(0).into_owned() / b.length,
-            gram: b.gram.clone(),
+            body: self.0.clone(),
             angle: (f2, self.slope_gradient()),
         });
         out.p = Vector2::new(ql[0], ql[1]) + au;
@@ -243,10 +250,10 @@ impl ModalTipPort {
 }
 
 /// The ∂ψ/∂q storage of an angle orientation, taken for reuse (empty for a slope).
-fn angle_storage(o: &mut Orientation) -> Vec<f64> {
+fn angle_storage(o: &mut Orientation) -> Grads {
     match std::mem::take(o) {
         Orientation::Angle(_, v) => v,
-        Orientation::Slope(..) => Vec::new(),
+        Orientation::Slope(..) => Grads::new(),
     }
 }
 
