@@ -200,13 +200,25 @@ impl Newton {
                 }
                 counters.factorizations += 1;
                 self.factored_h = Some(h);
-                self.jac_at = Some(JacobianPoint {
-                    h,
-                    q: t.q.clone(),
-                    v: t.v.clone(),
-                    acc: t.acc.clone(),
-                    lam: t.lambda.clone(),
-                });
+                // refilled in place (no allocation once sized)
+                match &mut self.jac_at {
+                    Some(jp) => {
+                        jp.h = h;
+                        jp.q.clone_from(&t.q);
+                        jp.v.clone_from(&t.v);
+                        jp.acc.clone_from(&t.acc);
+                        jp.lam.clone_from(&t.lambda);
+                    }
+                    None => {
+                        self.jac_at = Some(JacobianPoint {
+                            h,
+                            q: t.q.clone(),
+                            v: t.v.clone(),
+                            acc: t.acc.clone(),
+                            lam: t.lambda.clone(),
+                        })
+                    }
+                }
                 fresh = true;
             }
             for r in self.res.iter_mut() {

@@ -23,6 +23,19 @@ impl<T> Scratch<T> {
     }
 }
 
+impl<T: Default> Scratch<T> {
+    /// Takes the memory out (a default in its place) for a computation with several exits;
+    /// [`Scratch::put`] returns it (memory not returned is only allocated again next time).
+    pub fn take(&self) -> T {
+        self.with(std::mem::take)
+    }
+
+    /// Returns memory taken by [`Scratch::take`].
+    pub fn put(&self, value: T) {
+        self.with(|t| *t = value);
+    }
+}
+
 impl<T: Clone> Clone for Scratch<T> {
     fn clone(&self) -> Self {
         Self::new(self.with(|t| t.clone()))

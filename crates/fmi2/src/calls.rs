@@ -630,7 +630,7 @@ impl<M: CoSimModel> Instance<M> {
     ) -> Status {
         let f = F::GetDirectionalDerivative;
         tri!(self.check_state(f));
-        if !self.model.model_info().capabilities.directional_derivative {
+        if !self.model.capabilities().directional_derivative {
             return self.error(
                 f,
                 "not provided by this FMU (providesDirectionalDerivative=\"false\")",
@@ -691,7 +691,7 @@ impl<M: CoSimModel> Instance<M> {
     ) -> Status {
         let f = F::SetRealInputDerivatives;
         tri!(self.check_state(f));
-        let max = self.model.model_info().capabilities.input_derivative_order;
+        let max = self.model.capabilities().input_derivative_order;
         if max == 0 {
             return self.error(
                 f,
@@ -733,7 +733,7 @@ impl<M: CoSimModel> Instance<M> {
     ) -> Status {
         let f = F::GetRealOutputDerivatives;
         tri!(self.check_state(f));
-        let max = self.model.model_info().capabilities.output_derivative_order;
+        let max = self.model.capabilities().output_derivative_order;
         if max == 0 {
             return self.error(
                 f,

@@ -153,6 +153,12 @@ pub trait CoSimModel: Sized + Send + 'static {
     fn from_resource(text: &str) -> Result<Self, String>;
     /// Model name, description and default experiment.
     fn model_info(&self) -> ModelInfo;
+    /// The capabilities of [`CoSimModel::model_info`], which the layer checks in the calls of
+    /// every step: override it to answer without building the strings of `model_info` (no
+    /// allocation in a step).
+    fn capabilities(&self) -> crate::Capabilities {
+        self.model_info().capabilities
+    }
     /// The variable table (single source for the XML and the runtime).
     fn variables(&self) -> &[Variable];
     /// Value of the variable `variables()[index]` (the layer resolved its value reference and

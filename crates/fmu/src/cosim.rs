@@ -151,6 +151,10 @@ impl CoSimModel for BeamFmu {
         describe::model_info(&self.base)
     }
 
+    fn capabilities(&self) -> fmi2::Capabilities {
+        describe::capabilities(&self.base)
+    }
+
     fn variables(&self) -> &[Variable] {
         self.table.variables()
     }

@@ -40,6 +40,7 @@ use super::BodyGravity;
 use crate::math;
 use crate::model::sample::ShapePoint;
 use crate::model::vector::Real;
+use crate::model::component::LocalVec;
 use nalgebra::{DMatrix, DVector, Matrix2, Vector2};
 use num_dual::Dual64;
 
@@ -59,6 +60,8 @@ fn perp(v: Vector2<f64>) -> Vector2<f64> {
 pub struct ModalBody {
     /// Shape basis.
     pub basis: ModalBasis,
+    /// The nonlinear fields' buffer of the energies (through `&self`; no allocation in a step).
+    fields_buf: crate::model::scratch::Scratch<Vec<f64>>,
     /// Length L [m].
     pub length: f64,
     /// Mass per length ρA [kg/m].
@@ -212,6 +215,7 @@ impl ModalBody {
         }
         let nl = nl.scaled(length, n);
         Self {
+            fields_buf: Default::default(),
             basis,
             length,
             rho_a,
@@ -469,7 +473,7 @@ impl ModalBody {
         let n = self.modes();
         let rot_a = rot(q[2]);
         let (am, vm) = (&q[3..3 + n], &v[3..3 + n]);
-        let z = vec![0.0; n];
+        let z = LocalVec::from_elem(0.0, n);
         let rd = Vector2::new(v[0], v[1]);
         let (mut t, mut u) = (0.0, 0.0);
         for pt in &self.points {
@@ -1108,8 +1112,8 @@ impl ModalBody {
         if !self.nonlinear {
             return tp(0.5 * t);
         }
-        let mut buf = Vec::new();
-        self.fields(q, v, &vec![0.0; q.len()], &mut buf);
+        let mut buf = self.fields_buf.take();
+        self.fields(q, v, &LocalVec::from_elem(0.0, q.len()), &mut buf);
         let rl = rot_a.transpose() * rd;
         let ml = self.rho_a * self.length;
         for (p, f) in buf.chunks_exact(FIELDS).enumerate() {
@@ -1123,6 +1127,7 @@ impl ModalBody {
             };
             t += m * (2.0 * (v0x * dv.0 + v0y * dv.1) + dv.0 * dv.0 + dv.1 * dv.1);
         }
+        self.fields_buf.put(buf);
         tp(0.5 * t)
     }
 
@@ -1141,8 +1146,8 @@ impl ModalBody {
         if !self.nonlinear {
             return lin;
         }
-        let mut buf = Vec::new();
-        let z = vec![0.0; q.len()];
+        let mut buf = self.fields_buf.take();
+        let z = LocalVec::from_elem(0.0, q.len());
         self.fields(q, &z, &z, &mut buf);
         if let Some(t) = &self.taper {
             let nl: f64 = buf
@@ -1153,6 +1158,7 @@ impl ModalBody {
                     w * ei * f[6] * f[6] * (s2 + 0.25 * s2 * s2)
                 })
                 .sum();
+            self.fields_buf.put(buf);
             return lin + 0.5 * self.length * nl;
         }
         let nl: f64 = buf
@@ -1163,6 +1169,7 @@ impl ModalBody {
                 w * f[6] * f[6] * (s2 + 0.25 * s2 * s2)
             })
             .sum();
+        self.fields_buf.put(buf);
         lin + 0.5 * self.ei * self.length * nl
     }
 
@@ -1176,10 +1183,12 @@ impl ModalBody {
             ..
         } = grav;
         let (s0, _) = self.moments();
-        let mut buf = Vec::new();
-        let z = vec![0.0; q.len()];
+        let mut buf = self.fields_buf.take();
+        let z = LocalVec::from_elem(0.0, q.len());
         if self.nonlinear {
             self.fields(q, &z, &z, &mut buf);
+        } else {
+            buf.clear();
         }
         let short: f64 = match &self.taper {
             None => {
@@ -1216,10 +1225,11 @@ impl ModalBody {
             let r = l * Vector2::new(q[0], q[1]) + rot(q[2]) * Vector2::new(0.5 * l * l + c, fa);
             u -= qw[0] * r[0] + qw[1] * r[1];
         }
+        self.fields_buf.put(buf);
         if self.points.is_empty() {
             u
         } else {
-            u + self.point_energies(q, &vec![0.0; q.len()], gp).1
+            u + self.point_energies(q, &LocalVec::from_elem(0.0, q.len()), gp).1
         }
     }
 

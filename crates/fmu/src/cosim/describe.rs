@@ -117,21 +117,25 @@ pub(super) fn model_info(scene: &Scene) -> ModelInfo {
         start_time: 0.0,
         stop_time: scene.simulation.t_end,
         step_size: scene.simulation.output_step,
-        // every beam takes input derivatives (the tip loads' and line loads' make them
-        // F + Ḟτ + ½F̈τ² over a step); a mounted one's reaction depends directly on the mount
-        // accelerations, which the host may interpolate with derivatives, and it gives output
-        // derivatives and the apparent mass; a fixed-root beam has no direct feedthrough
-        capabilities: if scene.root == Root::Mounted {
-            fmi2::Capabilities {
-                input_derivative_order: 2,
-                output_derivative_order: 1,
-                directional_derivative: true,
-            }
-        } else {
-            fmi2::Capabilities {
-                input_derivative_order: 2,
-                ..fmi2::Capabilities::default()
-            }
-        },
+        capabilities: capabilities(scene),
+    }
+}
+
+/// What the FMU of a scene can do: every beam takes input derivatives (the tip loads' and line
+/// loads' make them F + Ḟτ + ½F̈τ² over a step); a mounted one's reaction depends directly on
+/// the mount accelerations, which the host may interpolate with derivatives, and it gives
+/// output derivatives and the apparent mass; a fixed-root beam has no direct feedthrough.
+pub(super) fn capabilities(scene: &Scene) -> fmi2::Capabilities {
+    if scene.root == Root::Mounted {
+        fmi2::Capabilities {
+            input_derivative_order: 2,
+            output_derivative_order: 1,
+            directional_derivative: true,
+        }
+    } else {
+        fmi2::Capabilities {
+            input_derivative_order: 2,
+            ..fmi2::Capabilities::default()
+        }
     }
 }
