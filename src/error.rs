@@ -137,6 +137,9 @@ pub enum StepLimit {
         /// The internal step that failed [s].
         h: f64,
     },
+    /// The real-time mode (`solver.mode = "realtime"`) does not halve a step.
+    #[error("in the real-time mode, which never halves an internal step")]
+    Realtime,
     /// Another halving would exceed `solver.max_internal_steps`.
     #[error("after {halvings} halvings of the internal step (another would exceed solver.max_internal_steps = {cap} internal steps in one communication step)")]
     WorkCap {

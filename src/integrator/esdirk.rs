@@ -167,7 +167,8 @@ impl Esdirk {
                 (params.tolerance * tableau.tolerance_factor).max(MIN_TOLERANCE),
                 params.max_iterations,
                 n + m,
-            ),
+            )
+            .with_fixed(params.fixed_work()),
             eta: 1.0,
             stage_acc: vec![vec![0.0; n]; tableau.stages],
             trial: State::at_rest(0.0, vec![0.0; n], m),

@@ -62,7 +62,8 @@ impl GeneralizedAlpha {
     pub fn new(params: &IntegrationParameters, n: usize, m: usize) -> Self {
         Self {
             p: AlphaParams::from_rho_inf(params.rho_inf),
-            newton: Newton::new(params.tolerance, params.max_iterations, n + m),
+            newton: Newton::new(params.tolerance, params.max_iterations, n + m)
+                .with_fixed(params.fixed_work()),
             eta: 1.0,
             trial: State::at_rest(0.0, vec![0.0; n], m),
         }

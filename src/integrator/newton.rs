@@ -8,6 +8,17 @@ use super::{scaled_norm, Counters, EvalRequest, Integrable, State, StateRef, REF
 /// Why a step failed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum StepFailure {
+    /// Real-time mode: the last of the fixed iterations left an increment above the bound.
+    FixedWorkUnconverged {
+        /// Step size [s].
+        h: f64,
+        /// The iterations done.
+        iterations: usize,
+        /// The last scaled increment norm (1 = tolerance).
+        last_norm: f64,
+        /// `solver.realtime_bound`.
+        bound: f64,
+    },
     /// Newton did not converge within the iteration limit.
     NoConvergence {
         /// Step size tried [s].
@@ -28,6 +39,15 @@ impl std::fmt::Display for StepFailure {
             StepFailure::NoConvergence { h, last_norm } => write!(
                 f,
                 "Newton did not converge at step {h:.3e} s (last increment {last_norm:.2e} x tolerance)"
+            ),
+            StepFailure::FixedWorkUnconverged {
+                h,
+                iterations,
+                last_norm,
+                bound,
+            } => write!(
+                f,
+                "real-time step {h:.3e} s: the last of {iterations} Newton iterations moved {last_norm:.2e} x tolerance, above solver.realtime_bound = {bound:.2e} (raise solver.realtime_iterations, refresh the matrix more often with a smaller solver.realtime_refresh, or use a smaller solver.max_step)"
             ),
             StepFailure::Singular { h } => {
                 write!(f, "singular or non-finite Newton matrix at step {h:.3e} s")
@@ -77,6 +97,10 @@ pub(super) struct Newton {
     pub(super) res: Vec<f64>,
     /// Work counters.
     pub(super) counters: Counters,
+    /// Real-time mode: the fixed work of a solve (`None`: iterate to the tolerance).
+    pub(super) fixed: Option<super::FixedWork>,
+    /// Real-time mode: solves since the matrix was last refreshed.
+    pub(super) solves_since_refresh: u32,
 }
 
 /// How an increment Δq of the coordinates moves the trial's other unknowns: q̇ += dv·Δq,
@@ -97,7 +121,15 @@ impl Newton {
             jac_at: None,
             res: vec![0.0; rows],
             counters: Counters::default(),
+            fixed: None,
+            solves_since_refresh: 0,
         }
+    }
+
+    /// With the real-time mode's fixed work (`None`: the normal mode).
+    pub(super) fn with_fixed(mut self, fixed: Option<super::FixedWork>) -> Self {
+        self.fixed = fixed;
+        self
     }
 
     /// Forgets the held matrix.
@@ -177,6 +209,9 @@ impl Newton {
         rates: Rates,
         mut eta: f64,
     ) -> Result<(usize, f64), StepFailure> {
+        if let Some(fixed) = self.fixed {
+            return self.iterate_fixed(model, t, h, request, rates, fixed, eta);
+        }
         let eta_start = eta;
         let counters = &mut self.counters;
         let n = t.q.len();
@@ -272,5 +307,97 @@ impl Newton {
         }
         self.invalidate();
         Err(StepFailure::NoConvergence { h, last_norm: last })
+    }
+
+    /// The real-time mode's solve: exactly `fixed.iterations` iterations, the matrix evaluated
+    /// and factorized at the first of them when the schedule says so (every `fixed.refresh`
+    /// solves, or when none is held for this step size), whatever the contraction; fails if
+    /// the last increment is above `fixed.bound` × tolerance. Returns the iterations and `eta`
+    /// unchanged (no estimate steers the work).
+    #[allow(clippy::too_many_arguments)]
+    fn iterate_fixed<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        t: &mut State,
+        h: f64,
+        request: impl Fn(bool) -> EvalRequest,
+        rates: Rates,
+        fixed: super::FixedWork,
+        eta: f64,
+    ) -> Result<(usize, f64), StepFailure> {
+        let n = t.q.len();
+        let m = t.lambda.len();
+        let held = self.factored_h.is_some_and(|hf| (hf - h).abs() <= 1e-9 * h);
+        let due = !held || self.solves_since_refresh + 1 >= fixed.refresh;
+        let mut last = f64::INFINITY;
+        for it in 0..fixed.iterations {
+            let refresh = it == 0 && due;
+            model.eval(
+                StateRef::new(&t.q, &t.v, &t.acc, &t.lambda),
+                request(refresh),
+                &mut self.res,
+            );
+            self.counters.iterations += 1;
+            if refresh {
+                if model.factorize().is_err() {
+                    self.factored_h = None;
+                    return Err(StepFailure::Singular { h });
+                }
+                self.counters.factorizations += 1;
+                self.factored_h = Some(h);
+                self.solves_since_refresh = 0;
+                if let Some(jp) = &mut self.jac_at {
+                    jp.h = h;
+                    jp.q.clone_from(&t.q);
+                    jp.v.clone_from(&t.v);
+                    jp.acc.clone_from(&t.acc);
+                    jp.lam.clone_from(&t.lambda);
+                } else {
+                    self.jac_at = Some(JacobianPoint {
+                        h,
+                        q: t.q.clone(),
+                        v: t.v.clone(),
+                        acc: t.acc.clone(),
+                        lam: t.lambda.clone(),
+                    });
+                }
+            }
+            for r in self.res.iter_mut() {
+                *r = -*r;
+            }
+            if !model.solve(&mut self.res) {
+                self.factored_h = None;
+                return Err(StepFailure::Singular { h });
+            }
+            model.increment(&mut t.q, &self.res[..n]);
+            for i in 0..n {
+                let d = self.res[i];
+                t.v[i] += rates.dv * d;
+                t.acc[i] += rates.da * d;
+                if let Some(div) = rates.aux_div {
+                    t.aux[i] += d / div;
+                }
+            }
+            for j in 0..m {
+                t.lambda[j] += self.res[n + j];
+            }
+            last = scaled_norm(&self.res[..n], model.scales()) / self.tol;
+            if !last.is_finite() {
+                self.factored_h = None;
+                return Err(StepFailure::Singular { h });
+            }
+        }
+        if !due {
+            self.solves_since_refresh += 1;
+        }
+        if last > fixed.bound {
+            return Err(StepFailure::FixedWorkUnconverged {
+                h,
+                iterations: fixed.iterations,
+                last_norm: last,
+                bound: fixed.bound,
+            });
+        }
+        Ok((fixed.iterations, eta))
     }
 }

@@ -38,6 +38,84 @@ pub struct IntegrationParameters {
     /// law's meaning. In (0, 1]; default [`DEFAULT_MAX_AXIAL_STRAIN`] (a metal rod); a rubber
     /// hose or a soft polymer rod may raise it.
     pub max_axial_strain: f64,
+    /// The work per communication step: [`Mode::Normal`] (default) or [`Mode::Realtime`], a
+    /// cost fixed before the step starts (docs/realtime.md).
+    #[serde(skip_serializing_if = "Mode::is_normal")]
+    pub mode: Mode,
+    /// Real-time mode: Newton iterations per implicit solve, always all of them, in 1..=20
+    /// (default 3).
+    #[serde(skip_serializing_if = "is_default_iterations")]
+    pub realtime_iterations: usize,
+    /// Real-time mode: the Newton matrix is evaluated and factorized at the first iteration of
+    /// every k-th implicit solve (and of the first after a change of inputs or step size), in
+    /// 1..=1000 (default 1: every solve).
+    #[serde(skip_serializing_if = "is_default_refresh")]
+    pub realtime_refresh: u32,
+    /// Real-time mode: the largest scaled Newton increment of a solve's last iteration, in
+    /// units of `tolerance`, that a step is accepted with; beyond it the step fails (the FMU
+    /// returns fmi2Discard naming the value and keeps its state). In [1, 1e12] (default 1e3).
+    #[serde(skip_serializing_if = "is_default_bound")]
+    pub realtime_bound: f64,
+}
+
+/// The work per communication step (`solver.mode`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Mode {
+    /// Newton iterates to `tolerance`, the held matrix refreshed when it contracts poorly, a
+    /// failing internal step halved: accurate, its cost varying from step to step.
+    #[default]
+    Normal,
+    /// A fixed work per communication step for hard real-time hosts: the internal steps of
+    /// `max_step`, never halved; `realtime_iterations` Newton iterations per implicit solve;
+    /// the matrix refreshed every `realtime_refresh` solves; a step whose last increment exceeds
+    /// `realtime_bound` × `tolerance` fails with the value in the message.
+    Realtime,
+}
+
+impl Mode {
+    fn is_normal(&self) -> bool {
+        *self == Mode::Normal
+    }
+}
+
+/// Default of `solver.realtime_iterations`.
+pub const DEFAULT_REALTIME_ITERATIONS: usize = 3;
+/// Default of `solver.realtime_refresh`.
+pub const DEFAULT_REALTIME_REFRESH: u32 = 1;
+/// Default of `solver.realtime_bound`.
+pub const DEFAULT_REALTIME_BOUND: f64 = 1e3;
+
+fn is_default_iterations(x: &usize) -> bool {
+    *x == DEFAULT_REALTIME_ITERATIONS
+}
+fn is_default_refresh(x: &u32) -> bool {
+    *x == DEFAULT_REALTIME_REFRESH
+}
+fn is_default_bound(x: &f64) -> bool {
+    *x == DEFAULT_REALTIME_BOUND
+}
+
+/// The fixed work of a real-time implicit solve ([`Mode::Realtime`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedWork {
+    /// Newton iterations per solve.
+    pub iterations: usize,
+    /// The matrix refreshed every this many solves.
+    pub refresh: u32,
+    /// The accepted last increment, in units of the tolerance.
+    pub bound: f64,
+}
+
+impl IntegrationParameters {
+    /// The fixed work of the real-time mode (`None` in the normal mode).
+    pub fn fixed_work(&self) -> Option<FixedWork> {
+        (self.mode == Mode::Realtime).then_some(FixedWork {
+            iterations: self.realtime_iterations,
+            refresh: self.realtime_refresh,
+            bound: self.realtime_bound,
+        })
+    }
 }
 
 /// The time integration method: the scene's `solver.method`.
@@ -72,6 +150,10 @@ impl Default for IntegrationParameters {
             max_iterations: 12,
             max_internal_steps: 20_000,
             max_axial_strain: DEFAULT_MAX_AXIAL_STRAIN,
+            mode: Mode::Normal,
+            realtime_iterations: DEFAULT_REALTIME_ITERATIONS,
+            realtime_refresh: DEFAULT_REALTIME_REFRESH,
+            realtime_bound: DEFAULT_REALTIME_BOUND,
         }
     }
 }

@@ -187,6 +187,24 @@ impl Scene {
                 s.max_axial_strain
             )));
         }
+        if s.realtime_iterations == 0 || s.realtime_iterations > 20 {
+            return Err(SceneError(format!(
+                "solver.realtime_iterations = {}: must be in 1..=20 (the Newton iterations of every implicit solve in the real-time mode; 3 is the default)",
+                s.realtime_iterations
+            )));
+        }
+        if s.realtime_refresh == 0 || s.realtime_refresh > 1000 {
+            return Err(SceneError(format!(
+                "solver.realtime_refresh = {}: must be in 1..=1000 (the Newton matrix is refreshed every this many implicit solves in the real-time mode; 1, the default, refreshes it every solve)",
+                s.realtime_refresh
+            )));
+        }
+        if !(s.realtime_bound.is_finite() && (1.0..=1e12).contains(&s.realtime_bound)) {
+            return Err(SceneError(format!(
+                "solver.realtime_bound = {}: must be in [1, 1e12] (the largest last Newton increment, in units of solver.tolerance, a real-time step is accepted with; 1e3 is the default)",
+                s.realtime_bound
+            )));
+        }
         if s.max_iterations == 0 || s.max_iterations > 100 {
             return Err(SceneError(format!(
                 "solver.max_iterations = {}: must be in 1..=100",

@@ -187,8 +187,11 @@ impl<S: Space> Simulator<S> {
                 Err(e) => {
                     self.integ.counters_mut().rejected += 1;
                     halvings += 1;
-                    // a halving doubles the steps still to go
-                    let limit = if halvings > MAX_HALVINGS {
+                    // a halving doubles the steps still to go; the real-time mode never halves
+                    let realtime = self.scene.solver.mode == crate::integrator::Mode::Realtime;
+                    let limit = if realtime {
+                        Some(StepLimit::Realtime)
+                    } else if halvings > MAX_HALVINGS {
                         Some(StepLimit::MaxHalvings)
                     } else if 0.5 * h < MIN_STEP {
                         Some(StepLimit::MinStep { h })

@@ -272,14 +272,43 @@ fn scenes() -> Vec<(String, String)> {
     out
 }
 
+/// The scenes whose steps allocate nothing today (every planar scene with a fixed root); the
+/// spatial and mounted scenes still allocate in their kernels and in the partner model
+/// (docs/realtime.md) and are counted, not yet held to zero.
+const ALLOCATION_FREE: [&str; 16] = [
+    "case1",
+    "case1_ancf",
+    "case1_modal",
+    "case2",
+    "case2_ancf",
+    "case2_modal",
+    "case3",
+    "case3_ancf",
+    "case3_modal",
+    "soft_rod",
+    "soft_rod_hybrid",
+    "soft_rod_modal",
+    "sprayer_boom",
+    "case1_3d_ancf",
+    "case2_3d_ancf",
+    "strip_3d",
+];
+
 #[test]
 fn no_heap_allocation_in_the_step() {
     let mut report = Vec::new();
+    let mut failed = Vec::new();
     for (id, scene) in scenes() {
-        let n = count(&id, &scene, 1e-3, 20, 100);
-        report.push(format!("{id}: {n} allocations in 100 steps"));
+        // soft_rod_hybrid's modal root segment is refused at 0.131 s (docs/engine-findings.md)
+        let steps = if id == "soft_rod_hybrid" { 100 } else { 1000 };
+        let n = count(&id, &scene, 1e-3, 20, steps);
+        report.push(format!("{id}: {n} allocations in {steps} steps"));
+        if ALLOCATION_FREE.contains(&id.as_str()) && n != 0 {
+            failed.push(format!("{id}: {n} allocations in {steps} steps"));
+        }
     }
     for r in &report {
         eprintln!("{r}");
     }
+    assert!(failed.is_empty(), "allocations in the step: {failed:?}");
 }

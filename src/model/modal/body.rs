@@ -38,9 +38,9 @@ use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
 use super::taper::{modal_damping, row_times, Taper};
 use super::BodyGravity;
 use crate::math;
+use crate::model::component::LocalVec;
 use crate::model::sample::ShapePoint;
 use crate::model::vector::Real;
-use crate::model::component::LocalVec;
 use nalgebra::{DMatrix, DVector, Matrix2, Vector2};
 use num_dual::Dual64;
 
@@ -1229,7 +1229,9 @@ impl ModalBody {
         if self.points.is_empty() {
             u
         } else {
-            u + self.point_energies(q, &LocalVec::from_elem(0.0, q.len()), gp).1
+            u + self
+                .point_energies(q, &LocalVec::from_elem(0.0, q.len()), gp)
+                .1
         }
     }
 
@@ -1254,7 +1256,7 @@ impl ModalBody {
     /// [`ModalBody::gram`]: the ξ = 1 case of the points inside), so that the tip moves inward
     /// as the segment bends and an axial tip load stiffens the modes.
     pub fn tip_local(&self, q: &[f64]) -> Vector2<f64> {
-        self.tip_local_and_gradient(q).0
+        self.tip_local_into(q, &mut LocalVec::from_elem(0.0, self.modes()))
     }
 
     /// [`ModalBody::tip_local`] and [`ModalBody::foreshortening_gradient`] in one pass.
