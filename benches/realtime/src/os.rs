@@ -1,0 +1,138 @@
+//! What the harness asks of the operating system: the calling thread's CPU time, pinning to
+//! one core, locking memory. Linux only (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`,
+//! `sched_setaffinity`, `mlockall`); elsewhere each call says so.
+
+/// The calling thread's CPU time (user + system) [ns], `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`.
+///
+/// Called twice per step inside the measured loop: no allocation, no error path but a panic on a
+/// clock the kernel refuses (checked once by [`check_thread_clock`] before the loop).
+#[cfg(target_os = "linux")]
+#[inline]
+pub fn thread_cpu_ns() -> u64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: a valid out-pointer for the call.
+    let r = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    assert_eq!(r, 0, "clock_gettime(CLOCK_THREAD_CPUTIME_ID) failed");
+    ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64
+}
+
+/// Elsewhere: no thread CPU clock (the harness refuses to start, see [`check_thread_clock`]).
+#[cfg(not(target_os = "linux"))]
+pub fn thread_cpu_ns() -> u64 {
+    0
+}
+
+/// Checks that the thread CPU clock works, and returns its resolution [ns].
+#[cfg(target_os = "linux")]
+pub fn check_thread_clock() -> Result<u64, String> {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: a valid out-pointer for the call.
+    let r = unsafe { libc::clock_getres(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    if r != 0 {
+        return Err(format!(
+            "clock_getres(CLOCK_THREAD_CPUTIME_ID) failed: {}",
+            std::io::Error::last_os_error()
+        ));
+    }
+    Ok(ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64)
+}
+
+/// Elsewhere: refused.
+#[cfg(not(target_os = "linux"))]
+pub fn check_thread_clock() -> Result<u64, String> {
+    Err("hybeam-realtime measures thread CPU time with clock_gettime(CLOCK_THREAD_CPUTIME_ID): Linux only".into())
+}
+
+/// Pins the calling thread to `cpu` (sched_setaffinity).
+#[cfg(target_os = "linux")]
+pub fn pin_to(cpu: usize) -> Result<(), String> {
+    if cpu >= libc::CPU_SETSIZE as usize {
+        return Err(format!("--pin {cpu}: beyond CPU_SETSIZE"));
+    }
+    // SAFETY: cpu_set_t is plain data; CPU_ZERO/CPU_SET write within it (cpu < CPU_SETSIZE).
+    let r = unsafe {
+        let mut set: libc::cpu_set_t = std::mem::zeroed();
+        libc::CPU_ZERO(&mut set);
+        libc::CPU_SET(cpu, &mut set);
+        libc::sched_setaffinity(0, std::mem::size_of::<libc::cpu_set_t>(), &set)
+    };
+    if r != 0 {
+        return Err(format!(
+            "sched_setaffinity to CPU {cpu} refused: {} (this machine has {} CPUs online)",
+            std::io::Error::last_os_error(),
+            std::thread::available_parallelism().map_or(0, |n| n.get())
+        ));
+    }
+    Ok(())
+}
+
+/// Elsewhere: refused.
+#[cfg(not(target_os = "linux"))]
+pub fn pin_to(_cpu: usize) -> Result<(), String> {
+    Err("--pin: sched_setaffinity is Linux only".into())
+}
+
+/// mlockall(MCL_CURRENT | MCL_FUTURE): every page of the process resident, now and later.
+#[cfg(target_os = "linux")]
+pub fn lock_memory() -> Result<(), String> {
+    // SAFETY: no pointers; the call only changes the process's paging.
+    let r = unsafe { libc::mlockall(libc::MCL_CURRENT | libc::MCL_FUTURE) };
+    if r != 0 {
+        return Err(format!(
+            "mlockall(MCL_CURRENT | MCL_FUTURE) refused: {} (RLIMIT_MEMLOCK or missing CAP_IPC_LOCK)",
+            std::io::Error::last_os_error()
+        ));
+    }
+    Ok(())
+}
+
+/// Elsewhere: refused.
+#[cfg(not(target_os = "linux"))]
+pub fn lock_memory() -> Result<(), String> {
+    Err("--mlock: mlockall is Linux only".into())
+}
+
+/// Page faults of the process so far: (minor, major), from getrusage(RUSAGE_SELF).
+#[cfg(target_os = "linux")]
+pub fn page_faults() -> (u64, u64) {
+    // SAFETY: rusage is plain data; a valid out-pointer for the call.
+    let mut u: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: as above.
+    let r = unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut u) };
+    if r != 0 {
+        return (0, 0);
+    }
+    (u.ru_minflt as u64, u.ru_majflt as u64)
+}
+
+/// Context switches of the calling thread so far: (voluntary, involuntary), from
+/// getrusage(RUSAGE_THREAD).
+#[cfg(target_os = "linux")]
+pub fn context_switches() -> (u64, u64) {
+    // SAFETY: rusage is plain data; a valid out-pointer for the call.
+    let mut u: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: as above.
+    let r = unsafe { libc::getrusage(libc::RUSAGE_THREAD, &mut u) };
+    if r != 0 {
+        return (0, 0);
+    }
+    (u.ru_nvcsw as u64, u.ru_nivcsw as u64)
+}
+
+/// Elsewhere: unknown (zero).
+#[cfg(not(target_os = "linux"))]
+pub fn page_faults() -> (u64, u64) {
+    (0, 0)
+}
+
+/// Elsewhere: unknown (zero).
+#[cfg(not(target_os = "linux"))]
+pub fn context_switches() -> (u64, u64) {
+    (0, 0)
+}
