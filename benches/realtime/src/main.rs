@@ -124,6 +124,8 @@ struct Conditions {
     faults: (u64, u64),
     /// Context switches of the thread during the loop (voluntary, involuntary).
     switches: (u64, u64),
+    /// The 1-minute load average after the loop (other work on the machine), if readable.
+    load: Option<f64>,
 }
 
 impl Conditions {
@@ -338,6 +340,7 @@ fn measure(args: &Args, fmu_path: &Path) -> Result<Run, String> {
     let (faults1, switches1) = (os::page_faults(), os::context_switches());
     conditions.faults = (faults1.0 - faults0.0, faults1.1 - faults0.1);
     conditions.switches = (switches1.0 - switches0.0, switches1.1 - switches0.1);
+    conditions.load = os::load_average();
 
     if let Some((k, t, e)) = failure {
         return Err(format!(
@@ -430,7 +433,8 @@ fn text(run: &Run) -> String {
         "{} ({}): {} steps of {} ms, statistics over steps {}..{} (warm-up {} excluded)\n\
          inputs set per step: {}; outputs read per step: {}\n\
          {}; thread CPU clock resolution {} ns; loop {:.2} s wall\n\
-         during the loop: page faults minor {} major {}, context switches voluntary {} involuntary {}\n\n",
+         during the loop: page faults minor {} major {}, context switches voluntary {} involuntary {}; \
+         load average (1 min) {} on {} CPUs\n\n",
         run.label,
         run.model_identifier,
         run.steps,
@@ -447,6 +451,8 @@ fn text(run: &Run) -> String {
         c.faults.1,
         c.switches.0,
         c.switches.1,
+        c.load.map_or("unknown".to_string(), |l| format!("{l:.2}")),
+        os::cpus_online(),
     );
     out.push_str("per step [µs]   median      p99    p99.9   p99.99      max  max/median\n");
     out.push_str(&row("wall", &run.wall));
@@ -523,7 +529,7 @@ fn json(run: &Run) -> String {
         Some(Err(e)) => json_string(e),
     };
     format!(
-        "{{\"label\": {}, \"model_identifier\": {}, \"steps\": {}, \"warmup\": {}, \"step_s\": {}, \"pinned_cpu\": {}, \"mlock\": {}, \"clock_resolution_ns\": {}, \"page_faults\": [{}, {}], \"context_switches\": [{}, {}], \"inputs\": [{}], \"outputs\": {}, \"wall_us\": {}, \"cpu_us\": {}, \"headroom\": {}}}",
+        "{{\"label\": {}, \"model_identifier\": {}, \"steps\": {}, \"warmup\": {}, \"step_s\": {}, \"pinned_cpu\": {}, \"mlock\": {}, \"clock_resolution_ns\": {}, \"page_faults\": [{}, {}], \"context_switches\": [{}, {}], \"load_average\": {}, \"inputs\": [{}], \"outputs\": {}, \"wall_us\": {}, \"cpu_us\": {}, \"headroom\": {}}}",
         json_string(&run.label),
         json_string(&run.model_identifier),
         run.steps,
@@ -536,6 +542,7 @@ fn json(run: &Run) -> String {
         c.faults.1,
         c.switches.0,
         c.switches.1,
+        c.load.map_or("null".to_string(), |l| l.to_string()),
         run.inputs
             .iter()
             .map(|s| json_string(s))

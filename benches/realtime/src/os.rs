@@ -66,7 +66,7 @@ pub fn pin_to(cpu: usize) -> Result<(), String> {
         return Err(format!(
             "sched_setaffinity to CPU {cpu} refused: {} (this machine has {} CPUs online)",
             std::io::Error::last_os_error(),
-            std::thread::available_parallelism().map_or(0, |n| n.get())
+            cpus_online()
         ));
     }
     Ok(())
@@ -135,4 +135,28 @@ pub fn page_faults() -> (u64, u64) {
 #[cfg(not(target_os = "linux"))]
 pub fn context_switches() -> (u64, u64) {
     (0, 0)
+}
+
+/// The 1-minute load average (`/proc/loadavg`), if readable: how busy the machine was.
+pub fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()?
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
+}
+
+/// CPUs online (`sysconf(_SC_NPROCESSORS_ONLN)`; not the affinity mask, which `--pin` narrows).
+#[cfg(target_os = "linux")]
+pub fn cpus_online() -> usize {
+    // SAFETY: no pointers.
+    let n = unsafe { libc::sysconf(libc::_SC_NPROCESSORS_ONLN) };
+    usize::try_from(n).unwrap_or(0)
+}
+
+/// Elsewhere: the parallelism the standard library sees.
+#[cfg(not(target_os = "linux"))]
+pub fn cpus_online() -> usize {
+    std::thread::available_parallelism().map_or(0, |n| n.get())
 }
