@@ -59,6 +59,15 @@ struct Args {
     /// Pin the measuring thread to this CPU (sched_setaffinity).
     #[arg(long)]
     pin: Option<usize>,
+    /// Run the measuring thread SCHED_FIFO at this priority (1..=99), as a real-time host would;
+    /// a refusal is an error.
+    #[arg(long, value_name = "PRIORITY", value_parser = clap::value_parser!(i32).range(1..=99))]
+    fifo: Option<i32>,
+    /// Pace the steps as a real-time host does: step k starts at the k-th period boundary
+    /// (clock_nanosleep to start + k · step, no sleep when behind) instead of back to back;
+    /// records each step's wake-up lateness and counts the steps that end past their period.
+    #[arg(long)]
+    paced: bool,
     /// Lock all memory, current and future (mlockall); a refusal is reported, not fatal.
     #[arg(long)]
     mlock: bool,
@@ -116,6 +125,8 @@ pub fn hybeam_realtime_step(
 struct Conditions {
     /// The CPU the thread was pinned to.
     pinned: Option<usize>,
+    /// The SCHED_FIFO priority of the thread, if asked.
+    fifo: Option<i32>,
     /// Whether mlockall succeeded; the refusal's reason otherwise (None: not asked).
     locked: Option<Result<(), String>>,
     /// Resolution of the thread CPU clock [ns].
@@ -138,7 +149,10 @@ impl Conditions {
             Some(Ok(())) => "memory locked",
             Some(Err(_)) => "mlockall refused",
         };
-        format!("{pin}, {lock}")
+        match self.fifo {
+            Some(p) => format!("{pin}, {lock}, SCHED_FIFO {p}"),
+            None => format!("{pin}, {lock}"),
+        }
     }
 }
 
@@ -159,6 +173,19 @@ struct Run {
     cpu: Summary,
     conditions: Conditions,
     elapsed_s: f64,
+    /// With --paced: per-step wake-up lateness [µs], its summary and the steps (after the
+    /// warm-up) that ended past their period.
+    paced: Option<Paced>,
+}
+
+/// What pacing measured.
+struct Paced {
+    /// Per step: how late the step started after its period boundary [µs].
+    late_us: Vec<f64>,
+    /// The summary of `late_us` after the warm-up.
+    late: Summary,
+    /// Steps after the warm-up that ended past the end of their period.
+    overruns: usize,
 }
 
 fn main() -> ExitCode {
@@ -172,7 +199,7 @@ fn main() -> ExitCode {
     }
 }
 
-const MARKDOWN_HEADER: &str = "| FMU | steps | step [ms] | pinned, mlock | CPU median [µs] | CPU p99 | CPU p99.9 | CPU p99.99 | CPU max | CPU max/median | wall median [µs] | wall p99 | wall p99.9 | wall p99.99 | wall max | wall max/median | headroom (step / CPU max) |\n|---|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|";
+const MARKDOWN_HEADER: &str = "| FMU | steps | step [ms] | pinned, mlock, sched | CPU median [µs] | CPU p99 | CPU p99.9 | CPU p99.99 | CPU max | CPU max/median | wall median [µs] | wall p99 | wall p99.9 | wall p99.99 | wall max | wall max/median | headroom (step / CPU max) |\n|---|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|";
 
 fn run(args: &Args) -> Result<(), String> {
     if args.markdown_header {
@@ -276,6 +303,10 @@ fn measure(args: &Args, fmu_path: &Path) -> Result<Run, String> {
         os::pin_to(cpu)?;
         conditions.pinned = Some(cpu);
     }
+    if let Some(p) = args.fifo {
+        os::fifo(p)?;
+        conditions.fifo = Some(p);
+    }
     if args.mlock {
         conditions.locked = Some(os::lock_memory());
     }
@@ -308,13 +339,24 @@ fn measure(args: &Args, fmu_path: &Path) -> Result<Run, String> {
     let h = args.step;
     let mut wall_ns = vec![0u64; n];
     let mut cpu_ns = vec![0u64; n];
+    // paced: how late each step started after its period boundary [ns]
+    let mut late_ns = vec![0u64; if args.paced { n } else { 0 }];
+    let mut overruns = 0usize;
+    let h_ns = (h * 1e9).round() as u64;
     let mut outputs = vec![0.0f64; out_vrs.len()];
     let mut failure: Option<(usize, f64, CallError)> = None;
     let (faults0, switches0) = (os::page_faults(), os::context_switches());
     let start = Instant::now();
+    // the first period boundary: one step from now
+    let origin = os::monotonic_ns() + h_ns;
     let mut t = 0.0f64;
     for k in 0..n {
         plan.fill(t);
+        if args.paced {
+            let boundary = origin + k as u64 * h_ns;
+            os::sleep_until_ns(boundary);
+            late_ns[k] = os::monotonic_ns().saturating_sub(boundary);
+        }
         let w0 = Instant::now();
         let c0 = os::thread_cpu_ns();
         let r = hybeam_realtime_step(
@@ -330,6 +372,9 @@ fn measure(args: &Args, fmu_path: &Path) -> Result<Run, String> {
         let w1 = Instant::now();
         wall_ns[k] = (w1 - w0).as_nanos() as u64;
         cpu_ns[k] = c1.saturating_sub(c0);
+        if args.paced && k >= args.warmup && os::monotonic_ns() > origin + (k as u64 + 1) * h_ns {
+            overruns += 1;
+        }
         if let Err(e) = r {
             failure = Some((k, t, e));
             break;
@@ -372,6 +417,17 @@ fn measure(args: &Args, fmu_path: &Path) -> Result<Run, String> {
     };
     let wall = shift(Summary::of(&wall_us[w..]).ok_or("no steps measured")?);
     let cpu = shift(Summary::of(&cpu_us[w..]).ok_or("no steps measured")?);
+    let paced = if args.paced {
+        let late_us: Vec<f64> = late_ns.iter().map(|v| *v as f64 / 1e3).collect();
+        let late = shift(Summary::of(&late_us[w..]).ok_or("no steps measured")?);
+        Some(Paced {
+            late_us,
+            late,
+            overruns,
+        })
+    } else {
+        None
+    };
     Ok(Run {
         label: args
             .label
@@ -389,6 +445,7 @@ fn measure(args: &Args, fmu_path: &Path) -> Result<Run, String> {
         cpu,
         conditions,
         elapsed_s,
+        paced,
     })
 }
 
@@ -400,9 +457,11 @@ fn fmt_ms(h: f64) -> String {
 fn write_csv(path: &Path, run: &Run) -> Result<(), String> {
     let err = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
     let mut f = std::io::BufWriter::new(std::fs::File::create(path).map_err(err)?);
-    writeln!(f, "step,t_s,wall_us,cpu_us,warmup").map_err(err)?;
+    let paced = run.paced.as_ref();
+    let late_header = if paced.is_some() { ",late_us" } else { "" };
+    writeln!(f, "step,t_s,wall_us,cpu_us,warmup{late_header}").map_err(err)?;
     for k in 0..run.steps {
-        writeln!(
+        write!(
             f,
             "{k},{},{:.3},{:.3},{}",
             k as f64 * run.step,
@@ -410,6 +469,11 @@ fn write_csv(path: &Path, run: &Run) -> Result<(), String> {
             run.cpu_us[k],
             u8::from(k < run.warmup)
         )
+        .map_err(err)?;
+        match paced {
+            Some(p) => writeln!(f, ",{:.3}", p.late_us[k]),
+            None => writeln!(f),
+        }
         .map_err(err)?;
     }
     f.flush().map_err(err)
@@ -457,6 +521,13 @@ fn text(run: &Run) -> String {
     out.push_str("per step [µs]   median      p99    p99.9   p99.99      max  max/median\n");
     out.push_str(&row("wall", &run.wall));
     out.push_str(&row("CPU", &run.cpu));
+    if let Some(p) = &run.paced {
+        out.push_str(&row("late", &p.late));
+        out.push_str(&format!(
+            "(paced: late = wake-up after the period boundary; {} steps ended past their period)\n",
+            p.overruns
+        ));
+    }
     out.push_str(&format!(
         "\nheadroom = step / worst CPU time = {:.2}{}\n",
         run.step * 1e6 / run.cpu.max,
@@ -476,7 +547,15 @@ fn markdown_row(run: &Run) -> String {
         run.label,
         run.steps - run.warmup,
         fmt_ms(run.step),
-        run.conditions.pin_lock(),
+        match &run.paced {
+            Some(p) => format!(
+                "{}, paced ({} overruns, wake-up late ≤ {:.0} µs)",
+                run.conditions.pin_lock(),
+                p.overruns,
+                p.late.max
+            ),
+            None => run.conditions.pin_lock(),
+        },
         c.median,
         c.p99,
         c.p999,
@@ -529,13 +608,14 @@ fn json(run: &Run) -> String {
         Some(Err(e)) => json_string(e),
     };
     format!(
-        "{{\"label\": {}, \"model_identifier\": {}, \"steps\": {}, \"warmup\": {}, \"step_s\": {}, \"pinned_cpu\": {}, \"mlock\": {}, \"clock_resolution_ns\": {}, \"page_faults\": [{}, {}], \"context_switches\": [{}, {}], \"load_average\": {}, \"inputs\": [{}], \"outputs\": {}, \"wall_us\": {}, \"cpu_us\": {}, \"headroom\": {}}}",
+        "{{\"label\": {}, \"model_identifier\": {}, \"steps\": {}, \"warmup\": {}, \"step_s\": {}, \"pinned_cpu\": {}, \"fifo\": {}, \"mlock\": {}, \"clock_resolution_ns\": {}, \"page_faults\": [{}, {}], \"context_switches\": [{}, {}], \"load_average\": {}, \"inputs\": [{}], \"outputs\": {}, \"wall_us\": {}, \"cpu_us\": {}, \"paced\": {}, \"headroom\": {}}}",
         json_string(&run.label),
         json_string(&run.model_identifier),
         run.steps,
         run.warmup,
         run.step,
         c.pinned.map_or("null".to_string(), |p| p.to_string()),
+        c.fifo.map_or("null".to_string(), |p| p.to_string()),
         locked,
         c.clock_resolution_ns,
         c.faults.0,
@@ -551,6 +631,11 @@ fn json(run: &Run) -> String {
         run.outputs,
         json_summary(&run.wall),
         json_summary(&run.cpu),
+        run.paced.as_ref().map_or("null".to_string(), |p| format!(
+            "{{\"late_us\": {}, \"overruns\": {}}}",
+            json_summary(&p.late),
+            p.overruns
+        )),
         run.step * 1e6 / run.cpu.max
     )
 }

@@ -25,6 +25,62 @@ pub fn thread_cpu_ns() -> u64 {
     0
 }
 
+/// CLOCK_MONOTONIC now [ns] (the clock of `std::time::Instant` on Linux and of
+/// [`sleep_until_ns`]).
+#[cfg(target_os = "linux")]
+#[inline]
+pub fn monotonic_ns() -> u64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: a valid out-pointer for the call.
+    let r = unsafe { libc::clock_gettime(libc::CLOCK_MONOTONIC, &mut ts) };
+    assert_eq!(r, 0, "clock_gettime(CLOCK_MONOTONIC) failed");
+    ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64
+}
+
+/// Elsewhere: the standard library's monotonic clock from its first use.
+#[cfg(not(target_os = "linux"))]
+pub fn monotonic_ns() -> u64 {
+    static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+    START
+        .get_or_init(std::time::Instant::now)
+        .elapsed()
+        .as_nanos() as u64
+}
+
+/// Sleeps until CLOCK_MONOTONIC reaches `deadline` [ns] (clock_nanosleep, TIMER_ABSTIME;
+/// returns at once if it has passed). No allocation.
+#[cfg(target_os = "linux")]
+#[inline]
+pub fn sleep_until_ns(deadline: u64) {
+    let ts = libc::timespec {
+        tv_sec: (deadline / 1_000_000_000) as libc::time_t,
+        tv_nsec: (deadline % 1_000_000_000) as libc::c_long,
+    };
+    // an interrupted sleep (EINTR) sleeps again to the same deadline
+    // SAFETY: a valid timespec; no remaining-time pointer with TIMER_ABSTIME.
+    while unsafe {
+        libc::clock_nanosleep(
+            libc::CLOCK_MONOTONIC,
+            libc::TIMER_ABSTIME,
+            &ts,
+            std::ptr::null_mut(),
+        )
+    } == libc::EINTR
+    {}
+}
+
+/// Elsewhere: std's sleep for the remaining time.
+#[cfg(not(target_os = "linux"))]
+pub fn sleep_until_ns(deadline: u64) {
+    let now = monotonic_ns();
+    if deadline > now {
+        std::thread::sleep(std::time::Duration::from_nanos(deadline - now));
+    }
+}
+
 /// Checks that the thread CPU clock works, and returns its resolution [ns].
 #[cfg(target_os = "linux")]
 pub fn check_thread_clock() -> Result<u64, String> {
@@ -76,6 +132,31 @@ pub fn pin_to(cpu: usize) -> Result<(), String> {
 #[cfg(not(target_os = "linux"))]
 pub fn pin_to(_cpu: usize) -> Result<(), String> {
     Err("--pin: sched_setaffinity is Linux only".into())
+}
+
+/// Makes the calling thread SCHED_FIFO at `priority` (1..=99): it runs whenever it is ready,
+/// ahead of every normal thread (the kernel's RT throttling still leaves others 5 % of each
+/// second by default, `/proc/sys/kernel/sched_rt_runtime_us`).
+#[cfg(target_os = "linux")]
+pub fn fifo(priority: i32) -> Result<(), String> {
+    let param = libc::sched_param {
+        sched_priority: priority,
+    };
+    // SAFETY: a valid sched_param for the call; 0 is the calling thread.
+    let r = unsafe { libc::sched_setscheduler(0, libc::SCHED_FIFO, &param) };
+    if r != 0 {
+        return Err(format!(
+            "sched_setscheduler(SCHED_FIFO, {priority}) refused: {} (needs CAP_SYS_NICE or RLIMIT_RTPRIO)",
+            std::io::Error::last_os_error()
+        ));
+    }
+    Ok(())
+}
+
+/// Elsewhere: refused.
+#[cfg(not(target_os = "linux"))]
+pub fn fifo(_priority: i32) -> Result<(), String> {
+    Err("--fifo: SCHED_FIFO is Linux only".into())
 }
 
 /// mlockall(MCL_CURRENT | MCL_FUTURE): every page of the process resident, now and later.
