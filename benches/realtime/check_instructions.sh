@@ -52,7 +52,7 @@ for r in $(seq 1 "$RUNS"); do
 done
 
 # 2. the same run under callgrind: instructions per step
-echo "callgrind: $STEPS steps of $FMU (boom: about 30 ms a step under valgrind) ..." >&2
+echo "callgrind: $STEPS steps of $FMU (boom: about 20 ms a step under valgrind) ..." >&2
 valgrind --tool=callgrind --collect-atstart=no --toggle-collect=hybeam_realtime_step \
     --dump-after=hybeam_realtime_step --callgrind-out-file="$work/cg.out" \
     "$HARNESS" "$FMU" --steps "$STEPS" --warmup "$WARMUP" "${EXTRA[@]}" >/dev/null 2>"$work/valgrind.log" || {
@@ -99,6 +99,8 @@ awk -F, '{ n++; x += $2; y += $3; xx += $2 * $2; yy += $3 * $3; xy += $2 * $3 }
           printf "\ncorrelation per step of instructions and native CPU time (run 1): %.3f\n", c }' \
     "$work/joined.csv"
 imed=$(after_warmup <"$work/instructions.csv" | cut -d, -f2 | sort -g | awk '{ v[NR] = $1 } END { r = 0.5 * NR; r = (r == int(r)) ? r : int(r) + 1; print v[r] }')
+cmed=$(cut -d, -f2 <"$work/cpu1.csv" | sort -g | awk '{ v[NR] = $1 } END { r = 0.5 * NR; r = (r == int(r)) ? r : int(r) + 1; print v[r] }')
+awk -v i="$imed" -v c="$cmed" 'BEGIN { printf "median instructions per native CPU ns (run 1): %.2f (the callgrind count; see the caveat above)\n", i / (c * 1e3) }'
 for r in $(seq 1 "$RUNS"); do
     s=$(argmax <"$work/cpu$r.csv")
     i=$(awk -F, -v s="$s" '$1 == s { print $2 }' "$work/instructions.csv")
