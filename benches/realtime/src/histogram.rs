@@ -6,11 +6,11 @@ use plotters::prelude::*;
 
 use crate::stats::Summary;
 
-/// Number of bins (log-spaced).
+/// Number of bins.
 const BINS: usize = 120;
 
-/// Writes the histogram of `cpu_us` (per-step thread CPU time [µs]) to `path`: log-spaced bins
-/// on a log time axis, log-scaled counts, the median, p99, p99.9, the maximum and the step
+/// Writes the histogram of `cpu_us` (per-step thread CPU time [µs]) to `path`: equal bins from
+/// just below the fastest step to past the slowest step and the budget, log-scaled counts, the median, p99, p99.9, the maximum and the step
 /// budget `budget_us` [µs] marked as vertical lines.
 pub fn write(
     path: &Path,
@@ -19,17 +19,15 @@ pub fn write(
     summary: &Summary,
     budget_us: f64,
 ) -> Result<(), String> {
-    let positive: Vec<f64> = cpu_us.iter().copied().filter(|v| *v > 0.0).collect();
-    let lo = positive.iter().copied().fold(f64::INFINITY, f64::min);
+    let lo = cpu_us.iter().copied().fold(f64::INFINITY, f64::min);
     if !lo.is_finite() {
-        return Err("no positive CPU time to plot".into());
+        return Err("no CPU time to plot".into());
     }
-    let (x0, x1) = (lo / 1.1, summary.max.max(budget_us) * 1.15);
-    let (l0, l1) = (x0.ln(), x1.ln());
-    let edge = |i: usize| (l0 + (l1 - l0) * i as f64 / BINS as f64).exp();
+    let (x0, x1) = (lo * 0.9, summary.max.max(budget_us) * 1.05);
+    let edge = |i: usize| x0 + (x1 - x0) * i as f64 / BINS as f64;
     let mut counts = vec![0usize; BINS];
-    for v in &positive {
-        let i = ((v.ln() - l0) / (l1 - l0) * BINS as f64) as usize;
+    for v in cpu_us {
+        let i = ((v - x0) / (x1 - x0) * BINS as f64).max(0.0) as usize;
         counts[i.min(BINS - 1)] += 1;
     }
     let top = counts.iter().copied().max().unwrap_or(1).max(1) as f64 * 3.0;
@@ -42,7 +40,7 @@ pub fn write(
         .margin(18)
         .x_label_area_size(50)
         .y_label_area_size(70)
-        .build_cartesian_2d((x0..x1).log_scale(), (0.7f64..top).log_scale())
+        .build_cartesian_2d(x0..x1, (0.7f64..top).log_scale())
         .map_err(|e| err(&e))?;
     chart
         .configure_mesh()

@@ -127,6 +127,8 @@ struct Conditions {
     pinned: Option<usize>,
     /// The SCHED_FIFO priority of the thread, if asked.
     fifo: Option<i32>,
+    /// Whether the steps were paced (--paced).
+    paced: bool,
     /// Whether mlockall succeeded; the refusal's reason otherwise (None: not asked).
     locked: Option<Result<(), String>>,
     /// Resolution of the thread CPU clock [ns].
@@ -149,10 +151,15 @@ impl Conditions {
             Some(Ok(())) => "memory locked",
             Some(Err(_)) => "mlockall refused",
         };
-        match self.fifo {
-            Some(p) => format!("{pin}, {lock}, SCHED_FIFO {p}"),
-            None => format!("{pin}, {lock}"),
-        }
+        let fifo = self
+            .fifo
+            .map_or(String::new(), |p| format!(", SCHED_FIFO {p}"));
+        let paced = if self.paced {
+            ", paced"
+        } else {
+            ", back to back"
+        };
+        format!("{pin}, {lock}{fifo}{paced}")
     }
 }
 
@@ -297,6 +304,7 @@ fn measure(args: &Args, fmu_path: &Path) -> Result<Run, String> {
 
     let mut conditions = Conditions {
         clock_resolution_ns,
+        paced: args.paced,
         ..Conditions::default()
     };
     if let Some(cpu) = args.pin {
@@ -549,7 +557,7 @@ fn markdown_row(run: &Run) -> String {
         fmt_ms(run.step),
         match &run.paced {
             Some(p) => format!(
-                "{}, paced ({} overruns, wake-up late ≤ {:.0} µs)",
+                "{} ({} overruns, wake-up late ≤ {:.0} µs)",
                 run.conditions.pin_lock(),
                 p.overruns,
                 p.late.max
