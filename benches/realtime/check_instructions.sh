@@ -14,7 +14,7 @@
 # call (--dump-after): dump k holds the instructions of step k-1, nothing of the harness's
 # timers or input computation.
 #
-# What it prints: median, p99, p99.9, max and max/median of the instructions per step and of the
+# What it prints: min, median, p99, p99.9, max and max/median of the instructions per step and of the
 # native CPU time per step over the same steps (the FMU is deterministic: same inputs, same
 # path), for NATIVE_RUNS native runs (their spread is the noise of the CPU-time ratio), the
 # correlation of the two per step, and which steps are the slowest in each. Caveat: under
@@ -69,10 +69,10 @@ for k in $(seq 1 "$STEPS"); do
 done >"$work/instructions.csv"
 
 # 3. the statistics over steps WARMUP..STEPS-1 (nearest-rank percentiles, as the harness)
-stats() { # stdin: one value a line; prints median p99 p99.9 max max/median
+stats() { # stdin: one value a line; prints min median p99 p99.9 max max/median
     sort -g | awk '{ v[NR] = $1 }
         function pct(p,   r) { r = p / 100 * NR; r = (r == int(r)) ? r : int(r) + 1; if (r < 1) r = 1; return v[r] }
-        END { printf "%14.6g %14.6g %14.6g %14.6g %10.3f", pct(50), pct(99), pct(99.9), v[NR], v[NR] / pct(50) }'
+        END { printf "%12.1f %12.1f %12.1f %12.1f %12.1f %10.3f", v[1], pct(50), pct(99), pct(99.9), v[NR], v[NR] / pct(50) }'
 }
 argmax() { # stdin: step,value; prints the step of the largest value
     sort -t, -k2 -g | tail -1 | cut -d, -f1
@@ -80,7 +80,7 @@ argmax() { # stdin: step,value; prints the step of the largest value
 after_warmup() { awk -F, -v w="$WARMUP" '$1 >= w'; }
 
 printf '\n%s: %s steps, statistics over steps %s..%s\n' "$FMU" "$STEPS" "$WARMUP" "$STEPS"
-printf '%-28s %14s %14s %14s %14s %10s %8s\n' "per step" median p99 p99.9 max max/median "max at"
+printf '%-28s %12s %12s %12s %12s %12s %10s %8s\n' "per step" min median p99 p99.9 max max/median "max at"
 printf '%-28s %s %8s\n' "instructions (callgrind)" \
     "$(after_warmup <"$work/instructions.csv" | cut -d, -f2 | stats)" \
     "$(after_warmup <"$work/instructions.csv" | argmax)"
