@@ -2,6 +2,20 @@
 //! one core, locking memory. Linux only (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`,
 //! `sched_setaffinity`, `mlockall`); elsewhere each call says so.
 
+/// `clock_gettime(clock)` [ns]; panics if the kernel refuses the clock (no allocation).
+#[cfg(target_os = "linux")]
+#[inline]
+fn clock_ns(clock: libc::clockid_t, name: &str) -> u64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: a valid out-pointer for the call.
+    let r = unsafe { libc::clock_gettime(clock, &mut ts) };
+    assert_eq!(r, 0, "clock_gettime({name}) failed");
+    ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64
+}
+
 /// The calling thread's CPU time (user + system) [ns], `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`.
 ///
 /// Called twice per step inside the measured loop: no allocation, no error path but a panic on a
@@ -9,14 +23,7 @@
 #[cfg(target_os = "linux")]
 #[inline]
 pub fn thread_cpu_ns() -> u64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: a valid out-pointer for the call.
-    let r = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    assert_eq!(r, 0, "clock_gettime(CLOCK_THREAD_CPUTIME_ID) failed");
-    ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64
+    clock_ns(libc::CLOCK_THREAD_CPUTIME_ID, "CLOCK_THREAD_CPUTIME_ID")
 }
 
 /// Elsewhere: no thread CPU clock (the harness refuses to start, see [`check_thread_clock`]).
@@ -30,14 +37,7 @@ pub fn thread_cpu_ns() -> u64 {
 #[cfg(target_os = "linux")]
 #[inline]
 pub fn monotonic_ns() -> u64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: a valid out-pointer for the call.
-    let r = unsafe { libc::clock_gettime(libc::CLOCK_MONOTONIC, &mut ts) };
-    assert_eq!(r, 0, "clock_gettime(CLOCK_MONOTONIC) failed");
-    ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64
+    clock_ns(libc::CLOCK_MONOTONIC, "CLOCK_MONOTONIC")
 }
 
 /// Elsewhere: the standard library's monotonic clock from its first use.
@@ -105,6 +105,19 @@ pub fn check_thread_clock() -> Result<u64, String> {
     Err("hybeam-realtime measures thread CPU time with clock_gettime(CLOCK_THREAD_CPUTIME_ID): Linux only".into())
 }
 
+/// `Ok` for a libc call that returned 0; otherwise "`what` refused: <the OS error> (`hint`)".
+#[cfg(target_os = "linux")]
+fn os_result(r: libc::c_int, what: &str, hint: &str) -> Result<(), String> {
+    if r == 0 {
+        Ok(())
+    } else {
+        Err(format!(
+            "{what} refused: {} ({hint})",
+            std::io::Error::last_os_error()
+        ))
+    }
+}
+
 /// Pins the calling thread to `cpu` (sched_setaffinity).
 #[cfg(target_os = "linux")]
 pub fn pin_to(cpu: usize) -> Result<(), String> {
@@ -118,14 +131,11 @@ pub fn pin_to(cpu: usize) -> Result<(), String> {
         libc::CPU_SET(cpu, &mut set);
         libc::sched_setaffinity(0, std::mem::size_of::<libc::cpu_set_t>(), &set)
     };
-    if r != 0 {
-        return Err(format!(
-            "sched_setaffinity to CPU {cpu} refused: {} (this machine has {} CPUs online)",
-            std::io::Error::last_os_error(),
-            cpus_online()
-        ));
-    }
-    Ok(())
+    os_result(
+        r,
+        &format!("sched_setaffinity to CPU {cpu}"),
+        &format!("this machine has {} CPUs online", cpus_online()),
+    )
 }
 
 /// Elsewhere: refused.
@@ -144,13 +154,11 @@ pub fn fifo(priority: i32) -> Result<(), String> {
     };
     // SAFETY: a valid sched_param for the call; 0 is the calling thread.
     let r = unsafe { libc::sched_setscheduler(0, libc::SCHED_FIFO, &param) };
-    if r != 0 {
-        return Err(format!(
-            "sched_setscheduler(SCHED_FIFO, {priority}) refused: {} (needs CAP_SYS_NICE or RLIMIT_RTPRIO)",
-            std::io::Error::last_os_error()
-        ));
-    }
-    Ok(())
+    os_result(
+        r,
+        &format!("sched_setscheduler(SCHED_FIFO, {priority})"),
+        "needs CAP_SYS_NICE or RLIMIT_RTPRIO",
+    )
 }
 
 /// Elsewhere: refused.
@@ -164,13 +172,11 @@ pub fn fifo(_priority: i32) -> Result<(), String> {
 pub fn lock_memory() -> Result<(), String> {
     // SAFETY: no pointers; the call only changes the process's paging.
     let r = unsafe { libc::mlockall(libc::MCL_CURRENT | libc::MCL_FUTURE) };
-    if r != 0 {
-        return Err(format!(
-            "mlockall(MCL_CURRENT | MCL_FUTURE) refused: {} (RLIMIT_MEMLOCK or missing CAP_IPC_LOCK)",
-            std::io::Error::last_os_error()
-        ));
-    }
-    Ok(())
+    os_result(
+        r,
+        "mlockall(MCL_CURRENT | MCL_FUTURE)",
+        "RLIMIT_MEMLOCK or missing CAP_IPC_LOCK",
+    )
 }
 
 /// Elsewhere: refused.
@@ -179,31 +185,27 @@ pub fn lock_memory() -> Result<(), String> {
     Err("--mlock: mlockall is Linux only".into())
 }
 
-/// Page faults of the process so far: (minor, major), from getrusage(RUSAGE_SELF).
+/// getrusage(`who`), if the kernel answers.
 #[cfg(target_os = "linux")]
-pub fn page_faults() -> (u64, u64) {
-    // SAFETY: rusage is plain data; a valid out-pointer for the call.
+fn rusage(who: libc::c_int) -> Option<libc::rusage> {
+    // SAFETY: rusage is plain data (all zero is a valid value); a valid out-pointer for the call.
     let mut u: libc::rusage = unsafe { std::mem::zeroed() };
     // SAFETY: as above.
-    let r = unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut u) };
-    if r != 0 {
-        return (0, 0);
-    }
-    (u.ru_minflt as u64, u.ru_majflt as u64)
+    (unsafe { libc::getrusage(who, &mut u) } == 0).then_some(u)
+}
+
+/// Page faults of the process so far: (minor, major), from getrusage(RUSAGE_SELF); zero if
+/// refused.
+#[cfg(target_os = "linux")]
+pub fn page_faults() -> (u64, u64) {
+    rusage(libc::RUSAGE_SELF).map_or((0, 0), |u| (u.ru_minflt as u64, u.ru_majflt as u64))
 }
 
 /// Context switches of the calling thread so far: (voluntary, involuntary), from
-/// getrusage(RUSAGE_THREAD).
+/// getrusage(RUSAGE_THREAD); zero if refused.
 #[cfg(target_os = "linux")]
 pub fn context_switches() -> (u64, u64) {
-    // SAFETY: rusage is plain data; a valid out-pointer for the call.
-    let mut u: libc::rusage = unsafe { std::mem::zeroed() };
-    // SAFETY: as above.
-    let r = unsafe { libc::getrusage(libc::RUSAGE_THREAD, &mut u) };
-    if r != 0 {
-        return (0, 0);
-    }
-    (u.ru_nvcsw as u64, u.ru_nivcsw as u64)
+    rusage(libc::RUSAGE_THREAD).map_or((0, 0), |u| (u.ru_nvcsw as u64, u.ru_nivcsw as u64))
 }
 
 /// Elsewhere: unknown (zero).
