@@ -480,7 +480,7 @@ impl ModalBody3 {
         let w = g_mul(&e_bar(p), &v[3..7]);
         let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
         let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
-        let z = vec![0.0; nb];
+        let z = Amplitudes::from_elem(0.0, nb);
         let (mut t, mut e) = (0.0, 0.0);
         for pt in &self.points {
             let (cy, py) = pt.plane(ay, vy, &z);
