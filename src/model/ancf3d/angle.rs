@@ -254,12 +254,12 @@ impl Angle3 {
         tab: &Tables3,
         e: &[f64; 14],
         ed: &[f64; 14],
-    ) -> ([f64; 14], Box<[[f64; 14]; 14]>, Box<[[f64; 14]; 14]>) {
+    ) -> ([f64; 14], [[f64; 14]; 14], [[f64; 14]; 14]) {
         let force = self.internal_force(tab, e, ed);
         let (c, cd) = (cable_part(e), cable_part(ed));
         let (_, kc, cc) = self.cable.tangent(tab, &c, &cd);
-        let mut k = Box::new([[0.0; 14]; 14]);
-        let mut cm = Box::new([[0.0; 14]; 14]);
+        let mut k = [[0.0; 14]; 14];
+        let mut cm = [[0.0; 14]; 14];
         for (i, &si) in CABLE_SLOTS.iter().enumerate() {
             for (j, &sj) in CABLE_SLOTS.iter().enumerate() {
                 k[si][sj] = kc[i][j];
@@ -372,9 +372,9 @@ impl Angle3 {
         (e, ed, ea): (&[f64; 14], &[f64; 14], &[f64; 14]),
         k: &mut [[f64; 14]; 14],
         c: &mut [[f64; 14]; 14],
-    ) -> ([f64; 14], Box<[[f64; 14]; 14]>) {
+    ) -> ([f64; 14], [[f64; 14]; 14]) {
         let mut f = [0.0; ANGLE_DOFS];
-        let mut m = Box::new([[0.0; 14]; 14]);
+        let mut m = [[0.0; 14]; 14];
         for (&xs, &ts) in SLOPE.iter().zip(&THETA) {
             // seeds: q (a, θ) 0..4, q̇ 4..8, q̈ 8..12
             let slots = [xs, xs + 1, xs + 2, ts];

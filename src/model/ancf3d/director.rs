@@ -105,9 +105,9 @@ impl Ancf3Props {
         x: (&[f64; D], &[f64; D], &[f64; D]),
         k: &mut [[f64; D]; D],
         c: &mut [[f64; D]; D],
-    ) -> ([f64; D], Box<[[f64; D]; D]>) {
+    ) -> ([f64; D], [[f64; D]; D]) {
         let mut f = [0.0; D];
-        let mut m = Box::new([[0.0; D]; D]);
+        let mut m = [[0.0; D]; D];
         if !self.director {
             return (f, m);
         }

@@ -562,14 +562,14 @@ impl Ancf3Props {
         tab: &Tables3,
         e: &[f64; D],
         ed: &[f64; D],
-    ) -> ([f64; D], Box<[[f64; D]; D]>, Box<[[f64; D]; D]>) {
+    ) -> ([f64; D], [[f64; D]; D], [[f64; D]; D]) {
         debug_assert_eq!(D, self.dofs());
         let force = self.internal_force(tab, e, ed);
-        let mut k = Box::new([[0.0; D]; D]);
-        let mut c = Box::new([[0.0; D]; D]);
+        let mut k = [[0.0; D]; D];
+        let mut c = [[0.0; D]; D];
         let damped = self.damping_time > 0.0;
         let (rs, ys) = self.slots();
-        let mats = (&mut *k, &mut *c);
+        let mats = (&mut k, &mut c);
         for (q, (w, ds)) in tab.axial.iter().enumerate() {
             let maps = [Map::new(ds, &rs)];
             if damped {

@@ -30,13 +30,17 @@ use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
 use super::taper::{modal_damping, row_times, Taper};
 use super::BodyGravity;
 use crate::math;
+use crate::model::component::{LocalVec, LOCAL_INLINE};
 use crate::model::sample::{minimal_frame, ShapePoint};
 use crate::model::section3::{self, SectionBody3, SectionPose};
 use crate::model::vector::{add, cross, dot, scale, Real, V3};
 use crate::scene::Segment;
+use crate::scene::MAX_MODES;
 use nalgebra::{Matrix2, Vector2};
 use num_dual::Dual64;
+use smallvec::SmallVec;
 use std::f64::consts::{PI, SQRT_2};
+use std::sync::Arc;
 
 /// A(p) = (e0² − eᵀe)I + 2eeᵀ + 2e0ẽ, rows (body → world; a rotation for |p| = 1).
 #[inline]
@@ -190,7 +194,7 @@ pub struct ModalBody3 {
     /// G = Σ_p W_p φ′(ξ_p)φ′(ξ_p)ᵀ (row-major nb × nb): the tip foreshortening of each plane
     /// is ½aᵀGa/L. The nonlinear body's quadrature (the ξ = 1 case of the foreshortening of the
     /// points inside); the basis's [`ModalBasis::slope_gram`] for the linear body.
-    pub gram: Vec<f64>,
+    pub gram: Arc<[f64]>,
     /// The geometrically nonlinear body (true unless built [`ModalBody3::linear`]).
     pub nonlinear: bool,
     nl: Nonlinear,
@@ -210,6 +214,20 @@ pub struct ModalBody3 {
 /// same of w (7..14), the foreshortening c, ċ, c̈ (14..17), scratch of
 /// [`ModalBody3::add_nonlinear`] (17..24), v̇″ and ẇ″ (24, 25).
 const FIELDS3: usize = 26;
+
+/// Quadrature points of the default nonlinear rule at most: 5 per panel, max(2, ⌈nb/4⌉) panels
+/// of at most [`MAX_MODES`] + 2 bending amplitudes.
+const MAX_POINTS: usize = 5 * (MAX_MODES + 2).div_ceil(4);
+
+/// The per-point fields of the nonlinear terms ([`FIELDS3`] per point; on the stack for the
+/// default rule: no allocation in a step).
+type FieldBuf<T> = SmallVec<[T; FIELDS3 * MAX_POINTS]>;
+
+/// One value per bending amplitude of a plane (on the stack).
+pub type Amplitudes = SmallVec<[f64; MAX_MODES + 2]>;
+
+/// Dual local coordinates (on the stack up to [`LOCAL_INLINE`]).
+type DualVec = SmallVec<[Dual64; LOCAL_INLINE]>;
 
 impl ModalBody3 {
     /// Builds the body from its bending basis and properties.
@@ -260,7 +278,7 @@ impl ModalBody3 {
             g1,
             g2,
             stiffening: false,
-            gram,
+            gram: gram.into(),
             nonlinear: true,
             nl,
             damped,
@@ -462,7 +480,7 @@ impl ModalBody3 {
         let w = g_mul(&e_bar(p), &v[3..7]);
         let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
         let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
-        let z = vec![0.0; nb];
+        let z = Amplitudes::from_elem(0.0, nb);
         let (mut t, mut e) = (0.0, 0.0);
         for pt in &self.points {
             let (cy, py) = pt.plane(ay, vy, &z);
@@ -508,7 +526,7 @@ impl ModalBody3 {
         }
         self.nl = nl;
         if self.nonlinear {
-            self.gram = gram;
+            self.gram = gram.into();
         }
         self
     }
@@ -519,7 +537,7 @@ impl ModalBody3 {
     /// (0, −w′, v′) (scene key `linear = true`).
     pub fn linear(mut self) -> Self {
         self.nonlinear = false;
-        self.gram.clone_from(&self.basis.slope_gram);
+        self.gram = self.basis.slope_gram.as_slice().into();
         self
     }
 
@@ -601,7 +619,7 @@ impl ModalBody3 {
 
     /// Residual `r = M q̈ − Q_v − Q_g + K a + D ȧ` at (q, q̇, q̈) for gravity g [m/s²] (world)
     /// into `out` (length [`ModalBody3::dim`]). Generic over the scalar; a nonlinear body
-    /// allocates its per-point fields ([`FIELDS3`] per quadrature point) once per call.
+    /// keeps its per-point fields ([`FIELDS3`] per quadrature point) on the stack.
     pub fn residual<T: Real>(
         &self,
         q: &[T],
@@ -736,7 +754,7 @@ impl ModalBody3 {
                 mbar[k] -= mo[k];
             }
         }
-        let mut buf = Vec::new();
+        let mut buf = FieldBuf::new();
         if self.nonlinear {
             let zq = (z, ql.unwrap_or([zero; 3]));
             let (dfl, dm) = self.add_nonlinear(q, v, a, (w, wd, zq), out, &mut buf);
@@ -877,7 +895,7 @@ impl ModalBody3 {
     /// the body's quadrature): v, v̇, v̈, v′, v̇′, v̈′, v″ and the same of w (x-derivatives), and
     /// the foreshortening c = −½∫₀ˣ(v′² + w′²)dx with its rates ċ, c̈ (the cumulative integral
     /// on the quadrature's own points, as the planar body), then v̇″, ẇ″ in slots 24, 25.
-    fn fields<T: Real>(&self, q: &[T], v: &[T], a: &[T], buf: &mut Vec<T>) {
+    fn fields<T: Real>(&self, q: &[T], v: &[T], a: &[T], buf: &mut FieldBuf<T>) {
         let nb = self.modes();
         let nl = &self.nl;
         let np = nl.w.len();
@@ -990,7 +1008,7 @@ impl ModalBody3 {
         a: &[T],
         (w, wd, (z, ql)): (V3<T>, V3<T>, (V3<T>, V3<T>)),
         out: &mut [T],
-        buf: &mut Vec<T>,
+        buf: &mut FieldBuf<T>,
     ) -> (V3<T>, V3<T>) {
         let nb = self.modes();
         let nl = &self.nl;
@@ -1075,8 +1093,8 @@ impl ModalBody3 {
         let ml = self.props.rho_a * l;
         let taper = self.taper.as_deref();
         let ei = (self.props.ei_z, self.props.ei_y);
-        let mut buf = Vec::new();
-        self.fields(q, v, &vec![0.0; q.len()], &mut buf);
+        let mut buf = FieldBuf::new();
+        self.fields(q, v, &LocalVec::from_elem(0.0, q.len()), &mut buf);
         let p = [q[3], q[4], q[5], q[6]];
         let rot = euler_rotation(p);
         let w = g_mul(&e_bar(p), &v[3..7]);
@@ -1105,7 +1123,8 @@ impl ModalBody3 {
 
     /// The Newton block `c_a ∂r/∂q̈ + c_v ∂r/∂q̇ + c_x ∂r/∂q` (row-major d × d) by forward-mode
     /// automatic differentiation of [`ModalBody3::residual`]: column j is the directional
-    /// derivative along (δq, δq̇, δq̈) = (c_x, c_v, c_a)·e_j. Exact; allocates (rebuilt rarely).
+    /// derivative along (δq, δq̇, δq̈) = (c_x, c_v, c_a)·e_j. Exact; no allocation (up to
+    /// [`LOCAL_INLINE`] coordinates).
     pub fn newton_block(
         &self,
         (q, v, a): (&[f64], &[f64], &[f64]),
@@ -1115,9 +1134,9 @@ impl ModalBody3 {
     ) {
         let g = g.into();
         let d = self.dim();
-        let lift = |x: &[f64]| -> Vec<Dual64> { x.iter().map(|&x| Dual64::from_re(x)).collect() };
+        let lift = |x: &[f64]| -> DualVec { x.iter().map(|&x| Dual64::from_re(x)).collect() };
         let (mut qd, mut vd, mut ad) = (lift(q), lift(v), lift(a));
-        let mut out = vec![Dual64::from_re(0.0); d];
+        let mut out = DualVec::from_elem(Dual64::from_re(0.0), d);
         for j in 0..d {
             qd[j].eps = cx;
             vd[j].eps = cv;
@@ -1211,7 +1230,8 @@ impl ModalBody3 {
                 u += at[i] * self.k_t[i][j] * at[j];
             }
         }
-        0.5 * u + self.nonlinear_energies(q, &vec![0.0; q.len()], [0.0; 3], [0.0; 3])[1]
+        0.5 * u
+            + self.nonlinear_energies(q, &LocalVec::from_elem(0.0, q.len()), [0.0; 3], [0.0; 3])[1]
     }
 
     /// Gravity potential −gᵀ∫ρA r dx = −gᵀ(m R + A c̄) [J], with a line load's −∫qᵀr dx when
@@ -1236,7 +1256,8 @@ impl ModalBody3 {
         let rot = euler_rotation([q[3], q[4], q[5], q[6]]);
         let first = add(scale([q[0], q[1], q[2]], self.mass()), mul(&rot, cbar));
         let qw = line.unwrap_or([0.0; 3]);
-        let mut u = -dot(g, first) + self.nonlinear_energies(q, &vec![0.0; q.len()], g, qw)[2];
+        let mut u = -dot(g, first)
+            + self.nonlinear_energies(q, &LocalVec::from_elem(0.0, q.len()), g, qw)[2];
         if let (Some(qw), Some(t)) = (line, &self.taper) {
             // −qᵀ(L R + A(½L², Σ L∫φ dξ a_y, Σ L∫φ dξ a_z)) (the foreshortening's part above)
             let lf = [
@@ -1249,9 +1270,11 @@ impl ModalBody3 {
         let u = if self.points.is_empty() {
             u
         } else {
-            u + self.point_energies(q, &vec![0.0; q.len()], gp).1
+            u + self
+                .point_energies(q, &LocalVec::from_elem(0.0, q.len()), gp)
+                .1
         };
-        let v = vec![0.0; q.len()];
+        let v = LocalVec::from_elem(0.0, q.len());
         (self.bodies.iter()).fold(u, |u, (b, pose)| u + b.energies(pose, q, &v, gp).1)
     }
 
@@ -1273,7 +1296,7 @@ impl ModalBody3 {
     }
 
     /// (G a)_k / L for one plane's amplitudes: gradient of the foreshortening ½aᵀGa/L.
-    pub fn foreshortening_gradient(&self, a: &[f64]) -> Vec<f64> {
+    pub fn foreshortening_gradient(&self, a: &[f64]) -> Amplitudes {
         let nb = self.modes();
         (0..nb)
             .map(|k| (0..nb).map(|j| self.gram[k * nb + j] * a[j]).sum::<f64>() / self.props.length)
@@ -1288,7 +1311,7 @@ impl ModalBody3 {
 
     /// [`ModalBody3::tip_local`] and the foreshortening gradients of both planes
     /// ([`ModalBody3::foreshortening_gradient`] of a_y and of a_z) in one pass.
-    pub fn tip_local_and_gradients(&self, q: &[f64]) -> ([f64; 3], Vec<f64>, Vec<f64>) {
+    pub fn tip_local_and_gradients(&self, q: &[f64]) -> ([f64; 3], Amplitudes, Amplitudes) {
         let nb = self.modes();
         let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
         let gy = self.foreshortening_gradient(ay);
@@ -1323,7 +1346,7 @@ impl ModalBody3 {
         let e = e_world(p);
         let omega: [f64; 3] =
             std::array::from_fn(|i| 2.0 * (0..4).map(|k| e[i][k] * qd[3 + k]).sum::<f64>());
-        let dot = |g: Vec<f64>, v: &[f64]| g.iter().zip(v).map(|(g, v)| g * v).sum::<f64>();
+        let dot = |g: Amplitudes, v: &[f64]| g.iter().zip(v).map(|(g, v)| g * v).sum::<f64>();
         for (k, &x) in xi.iter().enumerate() {
             let ([v, v1, v2], [w, w1, w2]) = (f[0][k], f[1][k]);
             let (u, short_rate) = if x == 1.0 {

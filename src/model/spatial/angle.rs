@@ -2,7 +2,7 @@
 //! node as a port ([`AnglePort3`]), `torsion_element = "angle"`. Kernel:
 //! [`crate::model::ancf3d::angle`].
 
-use super::kin::{EndKin3, Field3};
+use super::kin::{EndKin3, Field3, Grad3, Second3};
 use super::node::{
     add_point_weight, add_points, frame_duals, gravity_potential, moment_stiffness, rotation_of,
     rotation_second_along, NodeFrame,
@@ -277,15 +277,15 @@ impl AnglePort3 {
         let d = q.len();
         let duals = frame_duals::<_, 4>(self, q);
         let (frame, r) = rotation_of(&duals);
-        let mut rotation = vec![Vector3::zeros(); d];
+        let mut rotation = Grad3::from_elem(Vector3::zeros(), d);
         rotation[3..7].copy_from_slice(&r);
         // the section axis d2(r_x, θ): its gradient from the same duals, its Hessian from
         // second-order duals (joint rows' matrices only)
         let d2 = &duals[1];
         let mut section = Field3 {
             v: Vector3::from_fn(|c, _| d2[c].re),
-            d: vec![Vector3::zeros(); d],
-            dd: Vec::new(),
+            d: Grad3::from_elem(Vector3::zeros(), d),
+            dd: Second3::default(),
         };
         for k in 0..4 {
             section.d[3 + k] = Vector3::from_fn(|c, _| d2[c].eps.0.map_or(0.0, |g| g[k]));
@@ -298,7 +298,7 @@ impl AnglePort3 {
                 for j in k..4 {
                     let h = Vector3::from_fn(|c, _| d2[c].v2.0.map_or(0.0, |h| h[(k, j)]));
                     if h != Vector3::zeros() {
-                        section.dd.push((3 + k, 3 + j, h));
+                        section.dd.list.push((3 + k, 3 + j, h));
                     }
                 }
             }

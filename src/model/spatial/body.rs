@@ -8,12 +8,13 @@
 //! derivatives are closed-form: ∂(Av̄)/∂p = 2[e0v̄ + e×v̄, (eᵀv̄)I + ev̄ᵀ − v̄eᵀ − e0ṽ̄] and the
 //! constant ∂²(Av̄)/∂p² (docs/references.md §7.2), valid for any p.
 
+use super::kin::{BarSecond, Coef, FrameSecond, Grad3, Second3, Sparse3};
 use super::{EndKin3, Field3, Spatial};
 use crate::math;
 use crate::model::assembly::Model;
 use crate::model::component::{
     Constraint, ConstraintOut, Element, ElementOut, Energies, Env, LocalState, Port, Support,
-    Validity,
+    Validity, LOCAL_INLINE,
 };
 use crate::model::modal::body3d::{self, euler_rotation};
 use crate::model::modal::{BodyGravity, ModalBody3};
@@ -82,8 +83,9 @@ impl Attitude {
 }
 
 /// The field A(p)·v̄(a) (+ R if `with_r`) over `dim` local coordinates, from v̄ at the current
-/// a, its derivatives `dv` (local index, ∂v̄/∂q_k) and second derivatives `ddv` (k ≤ l); the
-/// second derivatives of the field only if `second` (else `dd` stays empty and `ddv` unused).
+/// a, its derivatives `dv` (local index, ∂v̄/∂q_k) and second derivatives `ddv`; the second
+/// derivatives of the field only if `second` (else `dd` stays empty and `ddv` unused): those of
+/// A(p) listed, the others kept as their factors ([`FrameSecond`]).
 #[allow(clippy::too_many_arguments)]
 fn frame_field(
     q: &[f64],
@@ -92,14 +94,14 @@ fn frame_field(
     with_r: bool,
     v: Vector3<f64>,
     dv: &[(usize, Vector3<f64>)],
-    ddv: &[(usize, usize, Vector3<f64>)],
+    ddv: BarSecond,
     second: bool,
 ) -> Field3 {
     let a = &att.a;
     let mut f = Field3 {
         v: a * v,
-        d: vec![Vector3::zeros(); dim],
-        dd: Vec::new(),
+        d: Grad3::from_elem(Vector3::zeros(), dim),
+        dd: Second3::default(),
     };
     if with_r {
         for c in 0..3 {
@@ -116,26 +118,24 @@ fn frame_field(
     if !second {
         return f;
     }
-    f.dd.reserve(10 + 4 * dv.len() + ddv.len());
-    let mut push = |i: usize, j: usize, h: Vector3<f64>| {
-        if h != Vector3::zeros() {
-            f.dd.push((i, j, h));
-        }
-    };
     if v != Vector3::zeros() {
         for i in 0..4 {
             for j in i..4 {
-                push(P0 + i, P0 + j, dd_av(&v, i, j));
+                let h = dd_av(&v, i, j);
+                if h != Vector3::zeros() {
+                    f.dd.list.push((P0 + i, P0 + j, h));
+                }
             }
         }
     }
-    for &(k, b) in dv {
-        for (i, da) in att.da.iter().enumerate() {
-            push(P0 + i, k, da * b);
-        }
-    }
-    for &(k, l, c) in ddv {
-        push(k, l, a * c);
+    if !dv.is_empty() || ddv != BarSecond::Zero {
+        f.dd.frame = Some(FrameSecond {
+            p0: P0,
+            a: att.a,
+            da: att.da,
+            dv: Sparse3::from_slice(dv),
+            ddv,
+        });
     }
     f
 }
@@ -179,6 +179,9 @@ fn end_kin(p: Field3, tangent: Field3, section: Field3, normals: [Field3; 3]) ->
     }
 }
 
+/// Hyper-dual local coordinates (inline up to [`LOCAL_INLINE`]).
+type Duals = smallvec::SmallVec<[HyperDual64; LOCAL_INLINE]>;
+
 /// Adds −m·∂²θ/∂q_i∂q_j of the frame of directors (T(q), S(q)) given as a generic function
 /// of q, by hyper-dual numbers (exact), over the coordinates `active` (the others do not move
 /// the frame).
@@ -189,7 +192,7 @@ fn frame_moment_stiffness(
     directors: impl Fn(&[HyperDual64]) -> (V3<HyperDual64>, V3<HyperDual64>),
     add: &mut dyn FnMut(usize, usize, f64),
 ) {
-    let mut x: Vec<HyperDual64> = q.iter().map(|&v| HyperDual64::from_re(v)).collect();
+    let mut x: Duals = q.iter().map(|&v| HyperDual64::from_re(v)).collect();
     for i in active.clone() {
         for j in active.clone() {
             x[i].eps1 = 1.0;
@@ -221,7 +224,7 @@ fn frame_rotation_second_derivative(
     active: impl Iterator<Item = usize>,
     directors: impl Fn(&[HyperDual64]) -> (V3<HyperDual64>, V3<HyperDual64>),
 ) -> [f64; 3] {
-    let mut x: Vec<HyperDual64> = q.iter().map(|&v| HyperDual64::from_re(v)).collect();
+    let mut x: Duals = q.iter().map(|&v| HyperDual64::from_re(v)).collect();
     for i in active {
         x[i].eps1 = dir[i];
         x[i].eps2 = dir[i];
@@ -243,6 +246,8 @@ pub struct ModalElement3 {
     pub body: Arc<ModalBody3>,
     /// Local (q, q̇, q̈, r) of the last evaluation (reused: no allocation per iteration).
     x: [Vec<f64>; 4],
+    /// The Newton block of the last evaluation, row-major d × d (reused likewise).
+    block: Vec<f64>,
     /// The segment's line load over ρA, q/(ρA) [m/s²] (the body's at build, then
     /// [`Element::set_line_load`]'s); `None` without one.
     line: Option<[f64; 3]>,
@@ -256,6 +261,7 @@ impl ModalElement3 {
             line: body.line,
             body,
             x: [vec![0.0; d], vec![0.0; d], vec![0.0; d], vec![0.0; d]],
+            block: vec![0.0; d * d],
         }
     }
 }
@@ -269,8 +275,8 @@ impl Element<Spatial> for ModalElement3 {
         out.add_residual(r);
         if let Some(c) = out.matrix {
             let d = self.body.dim();
-            let mut block = vec![0.0; d * d];
-            self.body.newton_block((q, v, a), g, c, &mut block);
+            let block = &mut self.block;
+            self.body.newton_block((q, v, a), g, c, block);
             out.add_block(|i, j| block[i * d + j]);
         }
     }
@@ -460,29 +466,24 @@ impl ModalTipPort3 {
         let u = Vector3::from(b.tip_local(q));
         let gy = b.foreshortening_gradient(&q[b.iy(0)..b.iy(0) + nb]);
         let gz = b.foreshortening_gradient(&q[b.iz(0)..b.iz(0) + nb]);
-        let mut dv = Vec::with_capacity(2 * nb + 2);
-        let mut ddv = Vec::new();
+        let mut dv = Sparse3::new();
         for n in 0..nb {
             dv.push((b.iy(n), Vector3::new(-gy[n], b.basis.tip[n], 0.0)));
             dv.push((b.iz(n), Vector3::new(-gz[n], 0.0, b.basis.tip[n])));
-            if !second {
-                continue;
-            }
-            for m in n..nb {
-                let g = b.gram[n * nb + m];
-                if g != 0.0 {
-                    let h = Vector3::new(-g / l, 0.0, 0.0);
-                    ddv.push((b.iy(n), b.iy(m), h));
-                    ddv.push((b.iz(n), b.iz(m), h));
-                }
-            }
         }
-        let pos = frame_field(q, &att, d, true, u, &dv, &ddv, second);
+        // ∂²ū_T: the foreshortening's −G/L in both planes
+        let ddv = BarSecond::Gram {
+            gram: b.gram.clone(),
+            nb,
+            first: [b.iy(0), b.iz(0)],
+            length: l,
+        };
+        let pos = frame_field(q, &att, d, true, u, &dv, ddv, second);
         // directors: functions of (v′, w′, θ), each linear in its amplitudes with the
         // coefficients (local index, ∂x/∂q_k) of `coef`
         let (_, slope, th) = b.tip_elastic(q);
         let dirs = TipDirectors::new([slope[0], slope[1], th], second, b.nonlinear);
-        let coef = |i: usize| -> Vec<(usize, f64)> {
+        let coef = |i: usize| -> Coef {
             match i {
                 0 => (0..nb)
                     .map(|n| (b.iy(n), b.basis.tip_slope[n] / l))
@@ -496,29 +497,21 @@ impl ModalTipPort3 {
         let coef = [coef(0), coef(1), coef(2)];
         let mut field = |n: usize| {
             dv.clear();
-            ddv.clear();
             for (i, c) in coef.iter().enumerate() {
                 let g = dirs.g[n][i];
                 if g != Vector3::zeros() {
                     dv.extend(c.iter().map(|&(k, x)| (k, g * x)));
                 }
             }
-            if second {
-                for (pi, &(i, j)) in PAIRS.iter().enumerate() {
-                    let h = dirs.h[n][pi];
-                    if h == Vector3::zeros() {
-                        continue;
-                    }
-                    for (a, &(k, x)) in coef[i].iter().enumerate() {
-                        // each unordered pair once: k ≤ l (the variables' indices increase)
-                        let from = if i == j { a } else { 0 };
-                        for &(kl, y) in &coef[j][from..] {
-                            ddv.push((k, kl, h * (x * y)));
-                        }
-                    }
+            let ddv = if second {
+                BarSecond::Chain {
+                    coef: coef.clone(),
+                    pairs: std::array::from_fn(|pi| (PAIRS[pi], dirs.h[n][pi])),
                 }
-            }
-            frame_field(q, &att, d, false, dirs.v[n], &dv, &ddv, second)
+            } else {
+                BarSecond::Zero
+            };
+            frame_field(q, &att, d, false, dirs.v[n], &dv, ddv, second)
         };
         let [tangent, section, n1, n2, n3] = [0, 1, 2, 3, 4].map(&mut field);
         end_kin(pos, tangent, section, [n1, n2, n3])
@@ -560,8 +553,17 @@ impl ModalRootPort3 {
     fn end(&self, q: &[f64], second: bool) -> EndKin3 {
         let d = self.0.dim();
         let att = Attitude::new(q);
-        let f = |v: Vector3<f64>| frame_field(q, &att, d, false, v, &[], &[], second);
-        let pos = frame_field(q, &att, d, true, Vector3::zeros(), &[], &[], second);
+        let f = |v: Vector3<f64>| frame_field(q, &att, d, false, v, &[], BarSecond::Zero, second);
+        let pos = frame_field(
+            q,
+            &att,
+            d,
+            true,
+            Vector3::zeros(),
+            &[],
+            BarSecond::Zero,
+            second,
+        );
         let (fy, fz) = (f(Vector3::y()), f(Vector3::z()));
         end_kin(pos, f(Vector3::x()), fy.clone(), [fy, fz.clone(), fz])
     }

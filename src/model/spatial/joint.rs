@@ -183,6 +183,7 @@ fn product(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::spatial::kin::{Grad3, Second3};
     use nalgebra::{Matrix3, Vector3};
 
     /// A deterministic pseudo-random number in (−1, 1) from integers.
@@ -197,8 +198,8 @@ mod tests {
         let n = q.len();
         let mut f = Field3 {
             v: Vector3::zeros(),
-            d: vec![Vector3::zeros(); n],
-            dd: Vec::new(),
+            d: Grad3::from_elem(Vector3::zeros(), n),
+            dd: Second3::default(),
         };
         let mut dd = vec![Vector3::zeros(); n * n];
         for c in 0..3 {
@@ -219,7 +220,7 @@ mod tests {
         }
         for i in 0..n {
             for j in i..n {
-                f.dd.push((i, j, dd[i * n + j]));
+                f.dd.list.push((i, j, dd[i * n + j]));
             }
         }
         f
@@ -241,7 +242,7 @@ mod tests {
             EndKin3 {
                 p: field(s, q),
                 frame: Matrix3::identity(),
-                rotation: vec![Vector3::zeros(); self.n],
+                rotation: Grad3::from_elem(Vector3::zeros(), self.n),
                 tangent: field(s + 10, q),
                 section: self.section.then(|| field(s + 20, q)),
                 normals: self

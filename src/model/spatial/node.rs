@@ -2,7 +2,7 @@
 //! ([`NodePort3`]) and the root support of an ANCF chain ([`NodeSupport3`]). Kernel:
 //! [`crate::model::ancf3d`].
 
-use super::kin::{EndKin3, Field3};
+use super::kin::{EndKin3, Field3, Grad3};
 use super::Spatial;
 use crate::model::ancf3d::{Ancf3Props, MassPatterns, Tables3, DIRECTOR_DOFS};
 use crate::model::component::{
@@ -489,7 +489,7 @@ pub(super) fn rotation_second_along<F: NodeFrame, const N: usize>(
 impl Port<Spatial> for NodePort3 {
     fn kinematics(&self, q: &[f64]) -> EndKin3 {
         let d = q.len();
-        let mut rotation = vec![Vector3::zeros(); d];
+        let mut rotation = Grad3::from_elem(Vector3::zeros(), d);
         let frame = if self.director {
             let (f, r) = frame_rotation::<_, 6>(self, q);
             rotation[3..9].copy_from_slice(&r);

@@ -265,13 +265,9 @@ fn twist_inertia_tangent_matches_central_differences() {
     for i in 0..14 {
         assert!((f[i] - f0[i]).abs() <= 1e-14 * fmax, "force {i}");
     }
-    check_jacobians(
-        [e, ed, ea],
-        &[(0, &k), (1, &c), (2, &*m)],
-        1e-6,
-        1e-6,
-        |x| p.twist_inertia(&x[0], &x[1], &x[2]),
-    );
+    check_jacobians([e, ed, ea], &[(0, &k), (1, &c), (2, &m)], 1e-6, 1e-6, |x| {
+        p.twist_inertia(&x[0], &x[1], &x[2])
+    });
 }
 
 #[test]

@@ -64,6 +64,7 @@ fn rotations_section_field_and_moment_stiffness_match_central_differences() {
             let (a, b) = (j.min(k), j.max(k));
             let got = sec
                 .dd
+                .list
                 .iter()
                 .find(|(x, y, _)| (*x, *y) == (a, b))
                 .map_or(Vector3::zeros(), |e| e.2);
