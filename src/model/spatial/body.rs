@@ -513,7 +513,9 @@ impl ModalTipPort3 {
             };
             frame_field(q, &att, d, false, dirs.v[n], &dv, ddv, second)
         };
-        let [tangent, section, n1, n2, n3] = [0, 1, 2, 3, 4].map(&mut field);
+        // one by one (not an array map: each field is a large value, moved as little as possible)
+        let (tangent, section) = (field(0), field(1));
+        let (n1, n2, n3) = (field(2), field(3), field(4));
         end_kin(pos, tangent, section, [n1, n2, n3])
     }
 }

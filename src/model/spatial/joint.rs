@@ -80,11 +80,15 @@ impl Constraint for RigidJoint3 {
 
     fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut) {
         let (qu, qd) = q.split_at(self.up_len);
-        let (ku, kd) = if lambda.is_some() {
-            (self.up.kinematics(qu), self.down.kinematics(qd))
+        // each written in place (no tuple: the kinematics are large values, kept on the stack)
+        let (ku, kd);
+        if lambda.is_some() {
+            ku = self.up.kinematics(qu);
+            kd = self.down.kinematics(qd);
         } else {
-            (self.up.kinematics_first(qu), self.down.kinematics_first(qd))
-        };
+            ku = self.up.kinematics_first(qu);
+            kd = self.down.kinematics_first(qd);
+        }
         let d = q.len();
         let (ou, od) = (0, self.up_len);
         // position rows
