@@ -88,8 +88,9 @@ impl<'a> LocalState<'a> {
 }
 
 /// The local coordinates a component holds inline: a spatial modal body with the most modes
-/// (7 frame coordinates, 2 × (12 + 2) bending amplitudes, 2 torsion amplitudes) has 37.
-pub const LOCAL_INLINE: usize = 40;
+/// (7 frame coordinates, 2 × (12 + 2) bending amplitudes, 2 torsion amplitudes) has 37, a
+/// joint between two such bodies' ends more.
+pub const LOCAL_INLINE: usize = 64;
 
 /// A component's local values, inline up to [`LOCAL_INLINE`].
 pub type LocalVec = smallvec::SmallVec<[f64; LOCAL_INLINE]>;
@@ -247,6 +248,12 @@ pub struct ConstraintOut {
 impl ConstraintOut {
     /// Zeroes Φ and Φ_q for `rows` × `d` and clears the Hessian.
     pub fn reset(&mut self, rows: usize, d: usize) {
+        // the Hessian's triplets reserved once for the most a block can have (rows × d²): a
+        // later step never grows it
+        let most = rows * d * d;
+        if self.hess.capacity() < most {
+            self.hess.reserve(most - self.hess.len());
+        }
         self.phi.clear();
         self.phi.resize(rows, 0.0);
         self.jac.clear();

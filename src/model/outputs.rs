@@ -265,15 +265,8 @@ impl<S: Space> Model<S> {
     /// The validity measures of all elements at `q`, in one pass.
     pub fn validity(&self, q: &[f64]) -> ModelValidity {
         let mut out = ModelValidity::default();
-        // on the stack when it fits: this runs after every step
-        let mut stack = [0.0; 32];
-        let mut heap = Vec::new();
-        let buf = if self.max_local_len() <= stack.len() {
-            &mut stack[..]
-        } else {
-            heap.resize(self.max_local_len(), 0.0);
-            &mut heap[..]
-        };
+        // on the stack (this runs after every step)
+        let mut buf = LocalVec::from_elem(0.0, self.max_local_len());
         for e in &self.elements {
             let x = &mut buf[..e.at.dofs.len()];
             e.at.dofs.gather(q, &self.held, x);

@@ -257,9 +257,10 @@ impl<M: CoSimModel> Instance<M> {
     }
 
     /// fmi2GetReal: `out[i]` = the value of `vrs[i]` (equal lengths).
-    pub fn get_real(&self, vrs: &[fmi2ValueReference], out: &mut [f64]) -> Status {
+    pub fn get_real(&mut self, vrs: &[fmi2ValueReference], out: &mut [f64]) -> Status {
         let f = F::GetReal;
         tri!(self.check_state(f));
+        self.model.before_get_real();
         for (&r, slot) in vrs.iter().zip(out.iter_mut()) {
             let Some(index) = self.index_of(r) else {
                 return self.error(f, self.not_a(r, "a Real"));

@@ -161,6 +161,9 @@ pub trait CoSimModel: Sized + Send + 'static {
     }
     /// The variable table (single source for the XML and the runtime).
     fn variables(&self) -> &[Variable];
+    /// Called once at the start of every fmi2GetReal, before the values are read: a model may
+    /// bring a quantity it computes only on demand up to date here. Default: nothing.
+    fn before_get_real(&mut self) {}
     /// Value of the variable `variables()[index]` (the layer resolved its value reference and
     /// checked `index`). Outputs are those of the current state.
     fn get_real(&self, index: usize) -> Result<f64, String>;

@@ -97,7 +97,7 @@ impl BeamFmu {
     }
 
     fn refresh_outputs(&mut self) {
-        self.outputs = self.feed.take(Evaluated::of(&mut self.sim));
+        self.outputs = self.feed.take(Evaluated::outputs_of(&mut self.sim));
     }
 
     /// The scene a start builds from: the parameters set so far and the inputs the host set
@@ -196,6 +196,14 @@ impl CoSimModel for BeamFmu {
         match (self.warning.take(), views) {
             (Some(a), Some(b)) => Some(format!("{a}; {b}")),
             (a, b) => a.or(b),
+        }
+    }
+
+    /// The reactions' direct feedthrough needs the apparent mass once the host has set new
+    /// mount accelerations since the step.
+    fn before_get_real(&mut self) {
+        if self.sim.mount_acceleration_change().is_some() {
+            self.feed.ensure_apparent(&mut self.sim);
         }
     }
 
@@ -339,6 +347,7 @@ impl CoSimModel for BeamFmu {
             ));
         };
         let dim = self.sim.scene().space.dim();
+        self.feed.ensure_apparent(&mut self.sim);
         self.feed
             .partial(o, i, dim)
             .ok_or_else(|| format!("{}: the apparent mass is not available", names(&self.table)))

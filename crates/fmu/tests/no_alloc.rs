@@ -30,6 +30,9 @@ thread_local! {
     static TRACING: Cell<bool> = const { Cell::new(false) };
 }
 
+/// Every how many allocations a backtrace is kept (HYBEAM_ALLOC_TRACE).
+const TRACE_EVERY: u64 = 1;
+
 fn note() {
     let _ = COUNTING.try_with(|on| {
         if on.get() && !INSIDE.with(|i| i.get()) {
@@ -38,7 +41,7 @@ fn note() {
                 c.get()
             });
             // every 7th: a sample over the whole run
-            if TRACING.with(|t| t.get()) && n % 7 == 0 {
+            if TRACING.with(|t| t.get()) && n % TRACE_EVERY == 0 {
                 INSIDE.with(|i| i.set(true));
                 TRACES.with(|t| {
                     let mut t = t.borrow_mut();
@@ -272,38 +275,36 @@ fn scenes() -> Vec<(String, String)> {
     out
 }
 
-/// The scenes whose steps allocate nothing today (every planar scene with a fixed root); the
-/// spatial and mounted scenes still allocate in their kernels and in the partner model
-/// (docs/realtime.md) and are counted, not yet held to zero.
-const ALLOCATION_FREE: [&str; 16] = [
-    "case1",
-    "case1_ancf",
-    "case1_modal",
-    "case2",
-    "case2_ancf",
-    "case2_modal",
-    "case3",
-    "case3_ancf",
-    "case3_modal",
-    "soft_rod",
-    "soft_rod_hybrid",
-    "soft_rod_modal",
-    "sprayer_boom",
-    "case1_3d_ancf",
-    "case2_3d_ancf",
-    "strip_3d",
+/// The scenes whose steps still allocate: the mounted ones, in the partner model's and the
+/// apparent mass's solves (docs/realtime.md). Every other shipped scene is held to zero.
+const STILL_ALLOCATING: [&str; 5] = [
+    "boom",
+    "boom_3d",
+    "boom_rt",
+    "boom_3d_rt",
+    "case1_3d_mounted",
 ];
 
 #[test]
 fn no_heap_allocation_in_the_step() {
     let mut report = Vec::new();
     let mut failed = Vec::new();
+    // HYBEAM_ALLOC_SCENE=<id>: that scene alone (a debugging aid)
+    let only = std::env::var("HYBEAM_ALLOC_SCENE").ok();
     for (id, scene) in scenes() {
-        // soft_rod_hybrid's modal root segment is refused at 0.131 s (docs/engine-findings.md)
-        let steps = if id == "soft_rod_hybrid" { 100 } else { 1000 };
+        if only.as_ref().is_some_and(|o| *o != id) {
+            continue;
+        }
+        // the soft rods' modal segments are refused as the rod falls (0.131 s, 0.153 s:
+        // docs/engine-findings.md)
+        let steps = if id == "soft_rod_hybrid" || id == "soft_rod_modal" {
+            100
+        } else {
+            1000
+        };
         let n = count(&id, &scene, 1e-3, 20, steps);
         report.push(format!("{id}: {n} allocations in {steps} steps"));
-        if ALLOCATION_FREE.contains(&id.as_str()) && n != 0 {
+        if !STILL_ALLOCATING.contains(&id.as_str()) && n != 0 {
             failed.push(format!("{id}: {n} allocations in {steps} steps"));
         }
     }

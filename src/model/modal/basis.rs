@@ -327,16 +327,16 @@ impl ModalBasis {
             .collect()
     }
 
-    /// At each ξ of the ascending `xi` (index k): the fields of `a` and of `ad` ([`Self::fields`])
-    /// and ∫₀^ξ (φ′ᵀa)² dξ, ∫₀^ξ (φ′ᵀa)(φ′ᵀad) dξ ([`Self::slope_integrals`]), the same values
-    /// by the same operations, handed to `each(k, fields(a), fields(ad), ∫aa, ∫a·ad)` (no
-    /// allocation once the points' shapes are kept).
-    pub fn sample_fields(
+    /// At each ξ of the ascending `xi` (index k): the fields of each amplitude vector of `a`
+    /// ([`Self::fields`]) and ∫₀^ξ (φ′ᵀa)(φ′ᵀb) dξ for each pair of `pairs`
+    /// ([`Self::slope_integrals`]), the same values by the same operations, handed to
+    /// `each(k, fields, integrals)` (no allocation once the points' shapes are kept).
+    pub fn sample_fields<const A: usize, const P: usize>(
         &self,
-        a: &[f64],
-        ad: &[f64],
+        a: [&[f64]; A],
+        pairs: [(&[f64], &[f64]); P],
         xi: &[f64],
-        mut each: impl FnMut(usize, [f64; 3], [f64; 3], f64, f64),
+        mut each: impl FnMut(usize, [[f64; 3]; A], [f64; P]),
     ) {
         let s = self.samples(xi);
         let field = |phi: &[[f64; 3]], am: &[f64]| {
@@ -348,14 +348,15 @@ impl ModalBasis {
             }
             f
         };
-        let (mut s_aa, mut s_ad) = (0.0, 0.0);
+        let mut acc = [0.0; P];
         for (k, (g, at)) in s.gauss.iter().zip(&s.at).enumerate() {
             for (w, phi) in g {
                 let slope = |v: &[f64]| -> f64 { phi.iter().zip(v).map(|(p, x)| p[1] * x).sum() };
-                s_aa += w * slope(a) * slope(a);
-                s_ad += w * slope(a) * slope(ad);
+                for (s, (x, y)) in acc.iter_mut().zip(&pairs) {
+                    *s += w * slope(x) * slope(y);
+                }
             }
-            each(k, field(at, a), field(at, ad), s_aa, s_ad);
+            each(k, a.map(|am| field(at, am)), acc);
         }
     }
 

@@ -1296,7 +1296,8 @@ impl ModalBody {
         let r = rot(q[2]);
         let mut g = crate::model::component::LocalVec::from_elem(0.0, self.modes());
         self.basis
-            .sample_fields(a, ad, xi, |k, [w, w1, w2], [wd, _, _], s_aa, s_ad| {
+            .sample_fields([a, ad], [(a, a), (a, ad)], xi, |k, f, [s_aa, s_ad]| {
+                let ([w, w1, w2], [wd, _, _]) = (f[0], f[1]);
                 let x = xi[k];
                 let (u, short_rate) = if x == 1.0 {
                     let u = self.tip_local_into(q, &mut g);

@@ -1339,24 +1339,24 @@ impl ModalBody3 {
         );
         let (vy, vz) = (&qd[7..7 + nb], &qd[7 + nb..7 + 2 * nb]);
         let b = &self.basis;
-        let f = b.fields(&[ay, az, vy, vz], xi);
-        let s = b.slope_integrals(&[(ay, ay), (az, az), (ay, vy), (az, vz)], xi);
         let p = [q[3], q[4], q[5], q[6]];
         let a = euler_rotation(p);
         let e = e_world(p);
         let omega: [f64; 3] =
             std::array::from_fn(|i| 2.0 * (0..4).map(|k| e[i][k] * qd[3 + k]).sum::<f64>());
         let dot = |g: Amplitudes, v: &[f64]| g.iter().zip(v).map(|(g, v)| g * v).sum::<f64>();
-        for (k, &x) in xi.iter().enumerate() {
-            let ([v, v1, v2], [w, w1, w2]) = (f[0][k], f[1][k]);
+        let pairs = [(ay, ay), (az, az), (ay, vy), (az, vz)];
+        b.sample_fields([ay, az, vy, vz], pairs, xi, |k, f, s| {
+            let x = xi[k];
+            let ([v, v1, v2], [w, w1, w2]) = (f[0], f[1]);
             let (u, short_rate) = if x == 1.0 {
                 let (u, gy, gz) = self.tip_local_and_gradients(q);
                 (u, dot(gy, vy) + dot(gz, vz))
             } else {
-                let u = [x * l - 0.5 * (s[0][k] + s[1][k]) / l, v, w];
-                (u, (s[2][k] + s[3][k]) / l)
+                let u = [x * l - 0.5 * (s[0] + s[1]) / l, v, w];
+                (u, (s[2] + s[3]) / l)
             };
-            let ud = [-short_rate, f[2][k][0], f[3][k][0]];
+            let ud = [-short_rate, f[2][0], f[3][0]];
             let (chi, dchi) = torsion_shapes(x);
             let th = chi[0] * at[0] + chi[1] * at[1];
             let au = mul(&a, u);
@@ -1390,7 +1390,7 @@ impl ModalBody3 {
                 twist: (dchi[0] * at[0] + dchi[1] * at[1]) / l,
                 ..ShapePoint::default()
             });
-        }
+        });
     }
 
     /// Modal deflection measure max(|(v_T, w_T)|/L, |(v′, w′)|, |θ_T|): tip deflection over the

@@ -46,7 +46,19 @@ pub struct Evaluated {
 }
 
 impl Evaluated {
-    /// Evaluates `sim`'s current state.
+    /// Evaluates `sim`'s current state without its apparent mass (computed on demand:
+    /// [`Feedthrough::ensure_apparent`]).
+    pub fn outputs_of(sim: &mut AnySimulator) -> Self {
+        let outputs = sim.outputs();
+        let rigid = sim.rigid_mass_matrix(&outputs);
+        Self {
+            outputs,
+            apparent: None,
+            rigid,
+        }
+    }
+
+    /// Evaluates `sim`'s current state with its apparent mass.
     pub fn of(sim: &mut AnySimulator) -> Self {
         let outputs = sim.outputs();
         let apparent = sim.apparent_mass();
@@ -72,6 +84,10 @@ impl Evaluated {
 #[derive(Debug, Clone)]
 pub struct Feedthrough {
     apparent: Option<Vec<Vec<f64>>>,
+    /// The apparent mass is not yet computed for the current state (it takes one solve per
+    /// mount acceleration component and a rebuilt Newton matrix: about three quarters of a
+    /// mounted boom's step, so it is computed when a host needs it, not after every step).
+    stale: bool,
     rigid: Option<Vec<Vec<f64>>>,
     /// The last communication step [s] (the velocity-input mode's partials divide by it).
     last_step: f64,
@@ -86,6 +102,7 @@ impl Feedthrough {
     pub fn new(variables: usize, step: f64) -> Self {
         Self {
             apparent: None,
+            stale: true,
             rigid: None,
             last_step: step,
             backward: vec![0.0; variables],
@@ -94,9 +111,19 @@ impl Feedthrough {
 
     /// Takes the evaluated state's matrices; returns its outputs.
     pub fn take(&mut self, e: Evaluated) -> AnyOutputs {
+        self.stale = e.apparent.is_none();
         self.apparent = e.apparent;
         self.rigid = e.rigid;
         e.outputs
+    }
+
+    /// Computes the apparent mass of `sim`'s current state if it is not yet (a mounted beam;
+    /// the run continues bit for bit: [`AnySimulator::apparent_mass`]).
+    pub fn ensure_apparent(&mut self, sim: &mut AnySimulator) {
+        if self.stale {
+            self.apparent = sim.apparent_mass();
+            self.stale = false;
+        }
     }
 
     /// A new run: no step taken yet.
