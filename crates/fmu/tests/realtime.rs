@@ -30,3 +30,31 @@ fn an_unconverged_realtime_step_is_discarded_and_the_state_kept() {
     let inst = initialized_with(&ok, "realtime-ok");
     assert_eq!(inst.do_step(0.0, 1e-3), OK);
 }
+
+/// The mode as an FMU parameter (`solver.realtime_iterations`, set before initialization):
+/// 0 the normal mode, k the real-time mode with k iterations; a non-integer is refused naming
+/// the field.
+#[test]
+fn the_realtime_mode_is_a_parameter() {
+    let it = vr_in(SCENE, "solver.realtime_iterations");
+    let h = vr_in(SCENE, "solver.max_step");
+    let inst = in_initialization(SCENE, "realtime-parameter");
+    assert_eq!(
+        inst.get1(it),
+        0.0,
+        "the shipped scene is in the normal mode"
+    );
+    assert_eq!(inst.set_real(&[it], &[2.5]), ERROR);
+    inst.log.assert_last(
+        ERROR,
+        "logStatusError",
+        &["solver.realtime_iterations = 2.5"],
+    );
+    // one iteration per 1 ms step: refused at the first step, as in the scene file
+    assert_eq!(inst.set_real(&[it, h], &[1.0, 1e-3]), OK);
+    assert_eq!(inst.get1(it), 1.0);
+    assert_eq!(inst.exit_init(), OK);
+    assert_eq!(inst.do_step(0.0, 1e-3), DISCARD);
+    inst.log
+        .assert_last(DISCARD, "logStatusDiscard", &["solver.realtime_bound"]);
+}

@@ -14,6 +14,7 @@
 //! checked against this table by `tests/variables_doc.rs`.
 
 use fmi2::{Causality, StringVariable, Variability, Variable};
+use hybeam::integrator::Mode;
 use hybeam::scene::{Dim, Mass, MotionInput, Root, Scene, Section, Segment, SegmentKind};
 use hybeam::simulator::{InputId, InputKind, OutputId, Quantity};
 
@@ -338,8 +339,8 @@ pub const LINE_LOAD_K: u32 = 20;
 /// A segment field, the parameter `<segment>.<name>` with value reference 1000·(i + 1) + `k`.
 pub type SegmentField = Field<Segment>;
 
-/// Scene-wide fixed parameters: solver 110–113.
-const SCENE_PARAMETERS: [SceneParameter; 4] = [
+/// Scene-wide fixed parameters: solver 110–114.
+const SCENE_PARAMETERS: [SceneParameter; 5] = [
     SceneParameter {
         name: "solver.rho_inf",
         vr: 110,
@@ -372,7 +373,39 @@ const SCENE_PARAMETERS: [SceneParameter; 4] = [
         get: |s| s.solver.max_axial_strain,
         set: |s, x| s.solver.max_axial_strain = x,
     },
+    SceneParameter {
+        name: "solver.realtime_iterations",
+        vr: 114,
+        unit: None,
+        description: "0: the normal mode (Newton to the tolerance, steps halved on failure); 1-20: the real-time mode, a fixed work per step with this many Newton iterations per solve",
+        get: |s| realtime_iterations(&s.solver),
+        set: set_realtime_iterations,
+    },
 ];
+
+/// `solver.realtime_iterations` as the FMU parameter: 0 in the normal mode.
+fn realtime_iterations(s: &hybeam::scene::Solver) -> f64 {
+    match s.mode {
+        Mode::Normal => 0.0,
+        Mode::Realtime => s.realtime_iterations as f64,
+    }
+}
+
+/// Sets the mode from the FMU parameter: 0 the normal mode, an integer k in 1..=20 the
+/// real-time mode with k iterations; anything else leaves the real-time mode with 0 iterations,
+/// which the scene's validation refuses naming the field.
+fn set_realtime_iterations(s: &mut Scene, x: f64) {
+    if x == 0.0 {
+        s.solver.mode = Mode::Normal;
+    } else {
+        s.solver.mode = Mode::Realtime;
+        s.solver.realtime_iterations = if x.fract() == 0.0 && (1.0..=20.0).contains(&x) {
+            x as usize
+        } else {
+            0
+        };
+    }
+}
 
 fn round(s: &Segment) -> bool {
     matches!(s.section, Section::Round | Section::Tube)
