@@ -1,13 +1,12 @@
 //! Kinematics of a spatial port: position and directors as [`Field3`]s over the local
 //! coordinates of the component the port sits on.
 //!
-//! Nothing here allocates: first derivatives are held inline up to [`LOCAL_INLINE`] local
+//! Nothing here allocates: first derivatives are held inline up to [`END_INLINE`] local
 //! coordinates, and the second derivatives of a modal body's fields A(p)·v̄(a) — hundreds of
 //! pairs on a body with many modes — are kept as their factors ([`FrameSecond`]) and
 //! produced pair by pair where they are used.
 
 use super::Spatial;
-use crate::model::component::LOCAL_INLINE;
 use crate::model::space::PortKin;
 use crate::scene::MAX_MODES;
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
@@ -19,8 +18,14 @@ use std::sync::{Arc, OnceLock};
 /// modes.
 pub const MAX_AMPLITUDES: usize = MAX_MODES + 2;
 
-/// One 3-vector per local coordinate (inline up to [`LOCAL_INLINE`]).
-pub type Grad3 = SmallVec<[Vector3<f64>; LOCAL_INLINE]>;
+/// The local coordinates of one end held inline: a spatial modal body's end has at most 37
+/// (7 frame coordinates, 2 × (12 + 2) bending amplitudes, 2 torsion amplitudes), an ANCF node's
+/// element 26. Smaller than [`crate::model::component::LOCAL_INLINE`] on purpose: an [`EndKin3`] holds seven of these
+/// and is moved by value.
+pub const END_INLINE: usize = 40;
+
+/// One 3-vector per local coordinate of an end (inline up to [`END_INLINE`]).
+pub type Grad3 = SmallVec<[Vector3<f64>; END_INLINE]>;
 
 /// (local index, coefficient) of a variable linear in a modal body's amplitudes (inline up to
 /// [`MAX_AMPLITUDES`]).
