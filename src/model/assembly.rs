@@ -613,8 +613,8 @@ mod tests {
         fn kinematics(&self, q: &[f64]) -> EndKin {
             EndKin {
                 p: Vector2::new(q[0], q[1]),
-                dp: vec![Vector2::x(), Vector2::y()],
-                orient: Orientation::Angle(0.0, vec![0.0; 2]),
+                dp: [Vector2::x(), Vector2::y()].into_iter().collect(),
+                orient: Orientation::Angle(0.0, [0.0; 2].into_iter().collect()),
                 curv: None,
             }
         }
