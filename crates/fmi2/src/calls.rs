@@ -256,11 +256,20 @@ impl<M: CoSimModel> Instance<M> {
         }
     }
 
+    /// fmi2GetReal as the exported symbol runs it: the model's
+    /// [`CoSimModel::before_get_real`](crate::CoSimModel::before_get_real), then
+    /// [`Instance::get_real`].
+    pub fn get_real_prepared(&mut self, vrs: &[fmi2ValueReference], out: &mut [f64]) -> Status {
+        if self.check_state(F::GetReal).is_ok() {
+            self.model.before_get_real();
+        }
+        self.get_real(vrs, out)
+    }
+
     /// fmi2GetReal: `out[i]` = the value of `vrs[i]` (equal lengths).
-    pub fn get_real(&mut self, vrs: &[fmi2ValueReference], out: &mut [f64]) -> Status {
+    pub fn get_real(&self, vrs: &[fmi2ValueReference], out: &mut [f64]) -> Status {
         let f = F::GetReal;
         tri!(self.check_state(f));
-        self.model.before_get_real();
         for (&r, slot) in vrs.iter().zip(out.iter_mut()) {
             let Some(index) = self.index_of(r) else {
                 return self.error(f, self.not_a(r, "a Real"));

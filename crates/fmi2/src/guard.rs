@@ -401,7 +401,7 @@ macro_rules! values {
 }
 
 values! {
-    fmi2GetReal GetReal get_real slice_out (*mut fmi2Real);
+    fmi2GetReal GetReal get_real_prepared slice_out (*mut fmi2Real);
     fmi2GetInteger GetInteger get_integer slice_out (*mut fmi2Integer);
     fmi2GetBoolean GetBoolean get_boolean slice_out (*mut fmi2Boolean);
     fmi2GetString GetString get_string slice_out (*mut fmi2String);

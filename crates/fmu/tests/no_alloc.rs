@@ -30,18 +30,11 @@ thread_local! {
     static TRACING: Cell<bool> = const { Cell::new(false) };
 }
 
-/// Every how many allocations a backtrace is kept (HYBEAM_ALLOC_TRACE).
-const TRACE_EVERY: u64 = 1;
-
 fn note() {
     let _ = COUNTING.try_with(|on| {
         if on.get() && !INSIDE.with(|i| i.get()) {
-            let n = COUNT.with(|c| {
-                c.set(c.get() + 1);
-                c.get()
-            });
-            // every 7th: a sample over the whole run
-            if TRACING.with(|t| t.get()) && n % TRACE_EVERY == 0 {
+            COUNT.with(|c| c.set(c.get() + 1));
+            if TRACING.with(|t| t.get()) {
                 INSIDE.with(|i| i.set(true));
                 TRACES.with(|t| {
                     let mut t = t.borrow_mut();
@@ -72,7 +65,7 @@ fn print_traces(id: &str) {
         *sites.entry(frames.join(" < ")).or_default() += 1;
     }
     let mut sites: Vec<_> = sites.into_iter().collect();
-    sites.sort_by(|a, b| b.1.cmp(&a.1));
+    sites.sort_by_key(|s| std::cmp::Reverse(s.1));
     for (site, n) in sites.iter().take(25) {
         eprintln!("{id}: {n:4} × {site}");
     }
