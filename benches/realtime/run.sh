@@ -13,10 +13,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
-SCENES=${SCENES:-"boom boom_3d case1 case1_3d strip_3d"}
+SCENES=${SCENES:-"boom boom_3d boom_rt boom_3d_rt case1 case1_3d strip_3d"}
 amplitude() { # tip force amplitude [N] for a scene
     case "$1" in
-        boom | boom_3d) echo 10 ;;   # 10.4 kg tube boom: weight ~100 N
+        boom | boom_3d | boom_rt | boom_3d_rt) echo 10 ;; # 10.4 kg tube boom: weight ~100 N
         case1 | case1_3d) echo 0.01 ;; # 2 mm rod, 9.9 g: weight ~0.1 N
         strip_3d) echo 0.002 ;;      # 4 mm x 0.5 mm strip, 6.3 g, very soft
         *) echo 1 ;;
