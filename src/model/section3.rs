@@ -105,6 +105,36 @@ impl SectionBody3 {
         }
     }
 
+    /// The body's d'Alembert force −m(p̈ − g) [N] and its moment about `about` [N m], world
+    /// axes, at (q, q̇, q̈): −(p − about) × m(p̈ − g) − R(Iω̇ + ω × Iω) — the virtual work of Q
+    /// ([`SectionBody3::add_forces`]) under a rigid virtual motion (δp = δu + δθ × (p − about),
+    /// the section turning by δθ), negated: what a station inside an element takes from it.
+    pub fn load<P: SectionPose>(
+        &self,
+        pose: &P,
+        (q, v, a): (&[f64], &[f64], &[f64]),
+        g: [f64; 3],
+        about: [f64; 3],
+    ) -> ([f64; 3], [f64; 3]) {
+        let (r, f) = pose.pose(|j| Dual2::new(q[j], v[j], a[j]));
+        let p = self.centre(&r, &f);
+        let acc: V3<f64> = std::array::from_fn(|i| (p[i].v2 - g[i]) * self.mass);
+        let part = |k: u8| f.map(|c| c.map(|x| [x.re, x.v1, x.v2][k as usize]));
+        let fr = part(0);
+        let w = spin(&fr, &part(1));
+        let wd = spin(&fr, &part(2));
+        let i = self.inertia;
+        let iw: V3<f64> = std::array::from_fn(|k| w[k] * i[k]);
+        let gyro = cross(w, iw);
+        let h: V3<f64> = std::array::from_fn(|k| wd[k] * i[k] + gyro[k]);
+        let arm: V3<f64> = std::array::from_fn(|c| p[c].re - about[c]);
+        let m = cross(arm, acc);
+        (
+            acc.map(|x| -x),
+            std::array::from_fn(|c| -m[c] - (fr[0][c] * h[0] + fr[1][c] * h[1] + fr[2][c] * h[2])),
+        )
+    }
+
     /// Adds `c_a ∂Q/∂q̈ + c_v ∂Q/∂q̇ + c_x ∂Q/∂q` of [`SectionBody3::add_forces`] (D coordinates)
     /// to `blk` (row-major D × D): forward-mode AD, column j along (c_x, c_v, c_a)·e_j.
     pub fn add_block<P: SectionPose, const D: usize>(

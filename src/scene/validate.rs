@@ -473,30 +473,21 @@ impl Scene {
             }
             let cuts = seg.station_cuts();
             let at = st.at;
-            // inside an element: planar uniform ANCF segments without section bodies (their
-            // elements integrate the part before the cut themselves)
-            let inside = self.space == SpaceKind::Planar
-                && seg.kind == SegmentKind::Ancf
-                && !seg.is_tapered()
-                && self
-                    .masses
-                    .iter()
-                    .all(|m| m.segment != seg.name || m.is_point())
-                && at.is_finite()
-                && (0.0..=seg.length).contains(&at);
-            if !(inside
-                || at.is_finite() && cuts.iter().any(|c| (c - at).abs() <= 1e-9 * seg.length))
-            {
-                let shown: Vec<String> = cuts.iter().map(|c| format!("{c}")).collect();
-                let why = match seg.kind {
-                    SegmentKind::Modal => "a modal segment is cut at its ends".to_string(),
-                    SegmentKind::Ancf => format!(
-                        "an ANCF segment is cut at its ends and at the nodes between its {} elements; anywhere along it in a planar scene when it is not tapered and carries no mass with an offset or rotary inertia",
-                        cuts.len() - 1
-                    ),
-                };
+            let tol = 1e-9 * seg.length;
+            let along = at.is_finite() && at >= -tol && at <= seg.length + tol;
+            if !along {
                 return Err(SceneError(format!(
-                    "{p}.at = {at}: not a cut of segment {:?} ({why}); use one of [{}] m, or change the segment's element count so that a node falls where you need it",
+                    "{p}.at = {at}: not a cut of segment {:?}, which is {} m long; give the arc length from its start, 0 to {} m",
+                    seg.name, seg.length, seg.length
+                )));
+            }
+            // inside an element: ANCF segments, planar and spatial (their elements integrate
+            // the part before the cut themselves, `Element::partial_load`)
+            let inside = seg.kind == SegmentKind::Ancf;
+            if !(inside || cuts.iter().any(|c| (c - at).abs() <= tol)) {
+                let shown: Vec<String> = cuts.iter().map(|c| format!("{c}")).collect();
+                return Err(SceneError(format!(
+                    "{p}.at = {at}: not a cut of segment {:?} (a modal segment is cut at its ends); use one of [{}] m",
                     seg.name,
                     shown.join(", ")
                 )));
