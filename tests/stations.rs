@@ -29,7 +29,7 @@ fn rho_a() -> f64 {
 }
 
 /// The rods: (label, segments, stations text). Stations at 0, ¼, ½ (the joint of the hybrids,
-/// as the first segment's end), ¾ and L, and inside ANCF elements between them.
+/// as the first segment's end), ¾ and L, and inside ANCF elements and modal bodies between them.
 fn rods() -> Vec<(&'static str, Vec<String>, String)> {
     let r = round(D);
     let st = |seg: &str, at: f64, name: &str| {
@@ -59,7 +59,7 @@ fn rods() -> Vec<(&'static str, Vec<String>, String)> {
     vec![
         ("all-ANCF", vec![ancf("a", L, &r, 8, "")], one("a")),
         ("all-modal", vec![modal("m", L, &r, 8, true, "")], {
-            [0.0, 1.0]
+            [0.0, 0.1, 0.37, 0.5, 0.81, 1.0]
                 .iter()
                 .enumerate()
                 .map(|(k, s)| st("m", *s, &format!("s{k}")))
@@ -71,7 +71,12 @@ fn rods() -> Vec<(&'static str, Vec<String>, String)> {
                 modal("m", 0.5 * L, &r, 6, true, ""),
                 ancf("a", 0.5 * L, &r, 4, ""),
             ],
-            two("m", "a", &[0.0, 0.5], &[0.0, 0.05, 0.25, 0.3, 0.5]),
+            two(
+                "m",
+                "a",
+                &[0.0, 0.1, 0.33, 0.5],
+                &[0.0, 0.05, 0.25, 0.3, 0.5],
+            ),
         ),
         (
             "hybrid ANCF+modal",
@@ -79,7 +84,12 @@ fn rods() -> Vec<(&'static str, Vec<String>, String)> {
                 ancf("a", 0.5 * L, &r, 4, ""),
                 modal("m", 0.5 * L, &r, 6, true, ""),
             ],
-            two("a", "m", &[0.0, 0.07, 0.125, 0.2, 0.44, 0.5], &[0.0, 0.5]),
+            two(
+                "a",
+                "m",
+                &[0.0, 0.07, 0.125, 0.2, 0.44, 0.5],
+                &[0.0, 0.12, 0.29, 0.5],
+            ),
         ),
     ]
 }
@@ -442,7 +452,9 @@ fn bad_stations_are_refused_naming_the_field() {
     for (stations, want) in [
         ("[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = 0.6\n", "stations[0].at = 0.6: not a cut of segment \"a\""),
 
-        ("[[stations]]\nname = \"w\"\nsegment = \"m\"\nat = 0.25\n", "a modal segment is cut at its ends"),
+        ("[[stations]]\nname = \"w\"\nsegment = \"m\"\nat = 0.7\n", "stations[0].at = 0.7: not a cut of segment \"m\", which is 0.5 m long; give the arc length from its start, 0 to 0.5 m"),
+        ("[[stations]]\nname = \"w\"\nsegment = \"m\"\nat = -0.1\n", "stations[0].at = -0.1: not a cut of segment \"m\""),
+        ("[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = nan\n", "stations[0].at = NaN: not a cut of segment \"a\""),
         ("[[stations]]\nname = \"w\"\nsegment = \"x\"\nat = 0.0\n", "stations[0].segment = \"x\": no segment has this name"),
         ("[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = 0.0\n[[stations]]\nname = \"w\"\nsegment = \"a\"\nat = 0.5\n", "stations[1].name = \"w\": station names must be unique"),
         ("[[stations]]\nname = \"a b\"\nsegment = \"a\"\nat = 0.0\n", "stations[0].name = \"a b\""),

@@ -471,7 +471,6 @@ impl Scene {
                     "{p}: stations are not computed with torsion_element = \"angle\" (its nodal twist angles do not turn with a rigid rotation of the part beyond the cut); use the director element (torsion_element = \"director\") or remove the station"
                 )));
             }
-            let cuts = seg.station_cuts();
             let at = st.at;
             let tol = 1e-9 * seg.length;
             let along = at.is_finite() && at >= -tol && at <= seg.length + tol;
@@ -481,17 +480,8 @@ impl Scene {
                     seg.name, seg.length, seg.length
                 )));
             }
-            // inside an element: ANCF segments, planar and spatial (their elements integrate
-            // the part before the cut themselves, `Element::partial_load`)
-            let inside = seg.kind == SegmentKind::Ancf;
-            if !(inside || cuts.iter().any(|c| (c - at).abs() <= tol)) {
-                let shown: Vec<String> = cuts.iter().map(|c| format!("{c}")).collect();
-                return Err(SceneError(format!(
-                    "{p}.at = {at}: not a cut of segment {:?} (a modal segment is cut at its ends); use one of [{}] m",
-                    seg.name,
-                    shown.join(", ")
-                )));
-            }
+            // anywhere along it: the element holding the cut (ANCF element, modal body; planar
+            // and spatial) integrates its part before the cut itself (`Element::partial_load`)
         }
         Ok(())
     }

@@ -538,6 +538,19 @@ impl Element<Planar> for ModalElement {
         !self.body.d.is_empty()
     }
 
+    /// [`ModalBody::partial_load`] with the element's line load.
+    fn partial_load(
+        &self,
+        x: &LocalState<'_>,
+        gravity: &[f64; 2],
+        xi: f64,
+        about: [f64; 3],
+    ) -> Option<([f64; 3], [f64; 3])> {
+        let (q, v, a) = x.vectors();
+        let g = BodyGravity::of(*gravity, 1.0, self.line);
+        self.body.partial_load((&q, &v, &a), g, xi, about)
+    }
+
     /// Modal deflection max(|w(L)|/L, |θ_J|): the tip deflection over the length or the tip
     /// slope [rad].
     fn validity(&self, q: &[f64]) -> Validity {
