@@ -194,11 +194,11 @@ impl CutTable {
 
 /// The table of the cut at `xi` from `cache` (computed at its first use), or `None` when every
 /// slot holds another cut.
-pub(super) fn cut_table<'a>(
-    cache: &'a CutCache,
+pub(super) fn cut_table(
+    cache: &CutCache,
     xi: f64,
     make: impl Fn() -> CutTable,
-) -> Option<&'a CutTable> {
+) -> Option<&CutTable> {
     for slot in cache.iter() {
         let t = slot.get_or_init(&make);
         if t.xi == xi {
