@@ -26,7 +26,7 @@
 //! Newton block ([`ModalBody3::newton_block`]).
 
 use super::basis::ModalBasis;
-use super::body::{cut_cache, cut_table, CutCache, CutTable};
+use super::body::{cut_cache, cut_table, slope_fields, CutCache, CutTable};
 use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
 use super::taper::{modal_damping, row_times, Taper};
 use super::BodyGravity;
@@ -531,12 +531,13 @@ impl ModalBody3 {
         let wxe = cross(w, ex);
         tab.for_each(
             nb,
-            |phi| {
-                let (fy, fz) = (point_fields(phi, ay, vy, ky), point_fields(phi, az, vz, kz));
+            |slope| {
+                let fy = slope_fields(slope, (ay, vy, ky));
+                let fz = slope_fields(slope, (az, vz, kz));
                 [
-                    fy[3] * fy[3] + fz[3] * fz[3],
-                    fy[3] * fy[4] + fz[3] * fz[4],
-                    fy[4] * fy[4] + fy[3] * fy[5] + fz[4] * fz[4] + fz[3] * fz[5],
+                    fy[0] * fy[0] + fz[0] * fz[0],
+                    fy[0] * fy[1] + fz[0] * fz[1],
+                    fy[1] * fy[1] + fy[0] * fy[2] + fz[1] * fz[1] + fz[0] * fz[2],
                 ]
             },
             |&[x, wt, ra, rip], phi, c| {
