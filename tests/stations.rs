@@ -1102,3 +1102,62 @@ fn the_modal_cut_rule_integrates_the_floating_frame_to_1e_10() {
     eprintln!("worst relative difference {worst:.1e}");
     assert!(worst <= 1e-10, "{errs:?}");
 }
+
+#[test]
+fn stations_inside_elements_under_a_line_load() {
+    // a segment line load q (−y) and no gravity, on tapered ANCF (4 elements) and modal (8 +
+    // interface) segments, uniform and tapered, planar and spatial: the load beyond the cut,
+    // M_z(s) = −q(L − s)²/2, V_y = −q(L − s) (a load per unit length whatever the section)
+    let q = 1e-7 * 8.0 * ei() / L.powi(4);
+    let at = [0.1, 0.3, 0.45, 0.9];
+    let taper = "section = \"round\"\ndiameter = [0.012, 0.008]".to_string();
+    let mut worst = 0.0f64;
+    for spatial in [false, true] {
+        let (header, load) = if spatial {
+            (
+                "space = \"spatial\"\ngravity = [0.0, 0.0, 0.0]",
+                format!("line_load = [0.0, {:e}, 0.0]", -q),
+            )
+        } else {
+            (
+                "gravity = [0.0, 0.0]",
+                format!("line_load = [0.0, {:e}]", -q),
+            )
+        };
+        for (label, seg) in [
+            ("ANCF uniform", ancf("a", L, &round(D), 4, &load)),
+            ("ANCF tapered", ancf("a", L, &taper, 4, &load)),
+            ("modal uniform", modal("a", L, &round(D), 8, true, &load)),
+            ("modal tapered", modal("a", L, &taper, 8, true, &load)),
+        ] {
+            let scene = with_stations(header, &[seg], &stations_at(&at));
+            let st: Vec<_> = if spatial {
+                let mut sim = Simulator::<Spatial>::new(scene).unwrap();
+                sim.solve_static().unwrap();
+                sim.outputs().stations.to_vec()
+            } else {
+                let mut sim = Simulator::<Planar>::new(scene).unwrap();
+                sim.solve_static().unwrap();
+                sim.outputs().stations.to_vec()
+            };
+            for (k, s) in at.iter().enumerate() {
+                let (m, v) = (-q * (L - s).powi(2) / 2.0, -q * (L - s));
+                let (em, ev) = (
+                    (st[k].moment[2] / m - 1.0).abs(),
+                    (st[k].force[1] / v - 1.0).abs(),
+                );
+                eprintln!(
+                    "line load, {label} (spatial {spatial}), s = {s}: M_z {:.6e} vs {m:.6e} ({em:.1e}), V_y {:.6e} vs {v:.6e} ({ev:.1e})",
+                    st[k].moment[2], st[k].force[1]
+                );
+                worst = worst.max(em).max(ev);
+                assert!(
+                    em <= 1e-5 && ev <= 1e-5,
+                    "{label} {spatial} s = {s}: {:?}",
+                    st[k]
+                );
+            }
+        }
+    }
+    eprintln!("worst relative error {worst:.2e}");
+}
