@@ -1161,3 +1161,30 @@ fn stations_inside_elements_under_a_line_load() {
     }
     eprintln!("worst relative error {worst:.2e}");
 }
+
+#[test]
+fn the_twist_inertia_is_carried_across_a_cut() {
+    // a step tip torque T = 1 N m from rest, no gravity, spatial: the torsional waves make the
+    // twist inertia a leading part of the loads; a cut 1e-7 m before the free end (and before a
+    // node, and after the root) against the end (the node, the root): the modal body's spinning
+    // sections −∫ρI_p(ω̄̇_x + θ̈)dx and the director element's lumped twist inertia across the
+    // part [0, ξ]
+    let r = round(D);
+    let header = "space = \"spatial\"\ngravity = [0.0, 0.0, 0.0]\n[tip]\nforce = [0.0, 0.0, 0.0]\nmoment = [1.0, 0.0, 0.0]";
+    for (label, seg, near) in [
+        (
+            "modal",
+            modal("a", L, &r, 8, true, ""),
+            stations_at(&[L - 1e-7, L, 1e-7, 0.0]),
+        ),
+        (
+            "director",
+            ancf("a", L, &r, 4, ""),
+            stations_at(&[0.25 - 1e-7, 0.25, L - 1e-7, L]),
+        ),
+    ] {
+        let (err, scale) = pairs_after_release(with_stations(header, &[seg], &near));
+        eprintln!("{label}, step tip torque: cuts 1e-7 m from the node/end: {err:.2e} of the loads ({scale:.3e})");
+        assert!(scale > 0.5 && err <= 1e-5, "{label}: {err:e}");
+    }
+}
