@@ -41,6 +41,24 @@ pub(crate) const GAUSS5: [(f64, f64); 5] = [
     (0.906_179_845_938_664, 0.236_926_885_056_189_1),
 ];
 
+/// The polynomial of degree 4 through `values` at the [`GAUSS5`] points, at ξ ∈ [0, 1] of the
+/// element (Lagrange form): a tapered element's ρA(x) between its quadrature points, exact for
+/// the at most quadratic ρA of a linear taper ([`SectionTable`]).
+pub(crate) fn gauss5_interpolate(values: &[f64; 5], xi: f64) -> f64 {
+    let t = 2.0 * xi - 1.0;
+    let mut out = 0.0;
+    for (i, (ti, _)) in GAUSS5.iter().enumerate() {
+        let mut w = 1.0;
+        for (j, (tj, _)) in GAUSS5.iter().enumerate() {
+            if j != i {
+                w *= (t - tj) / (ti - tj);
+            }
+        }
+        out += w * values[i];
+    }
+    out
+}
+
 /// Hermite shape functions and their first and second x-derivatives at ξ = x/l.
 #[derive(Debug, Clone, Copy)]
 pub struct Shape {

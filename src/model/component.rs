@@ -211,9 +211,10 @@ pub trait Element<S: Space>: Debug + Send + Sync + 'static {
 
     /// The d'Alembert load of the part ξ' ∈ [0, `xi`] of the element at the state `x` under
     /// gravity `gravity` (full load): the force ∫(f_ext − ρA r̈) dx [N] and its moment about
-    /// `about` ∫(r − about) × (f_ext − ρA r̈) dx [N m], with the point masses on that part,
-    /// world axes as 3-vectors; `None` where the element cannot split itself (the default):
-    /// stations then only cut at its ends.
+    /// `about` ∫(r − about) × (f_ext − ρA r̈) dx [N m], with the point masses, section bodies
+    /// and rotary inertia on that part, world axes as 3-vectors (no heap allocation once the
+    /// element has seen the cut: a step asks for it); `None` where the element cannot split
+    /// itself (the default; the angle element): scene validation refuses such cuts.
     fn partial_load(
         &self,
         _x: &LocalState<'_>,

@@ -64,16 +64,15 @@ impl SectionBody3 {
         std::array::from_fn(|i| r[i] + f[0][i] * o[0] + f[1][i] * o[1] + f[2][i] * o[2])
     }
 
-    /// Adds the body's inertia and weight forces Q (module doc) over the `n` coordinates of the
-    /// pose at (q, q̇, q̈) under gravity `g` [m/s²] to `out`.
-    pub fn add_forces<T: Real, P: SectionPose>(
+    /// The body's centre p, m(p̈ − g), the section frame R and Iω̇ + ω × Iω (section axes) at
+    /// (q, q̇, q̈) under gravity `g`: one evaluation of the pose along the time Taylor series.
+    #[allow(clippy::type_complexity)]
+    fn dynamics<T: Real, P: SectionPose>(
         &self,
         pose: &P,
-        n: usize,
         (q, v, a): (&[T], &[T], &[T]),
         g: [f64; 3],
-        out: &mut [T],
-    ) {
+    ) -> (V3<T>, V3<T>, [V3<T>; 3], V3<T>) {
         let (r, f) = pose.pose(|j| Dual2::new(q[j], v[j], a[j]));
         let p = self.centre(&r, &f);
         let acc: V3<T> = std::array::from_fn(|i| (p[i].v2 - g[i]) * self.mass);
@@ -85,6 +84,21 @@ impl SectionBody3 {
         let iw: V3<T> = std::array::from_fn(|k| w[k] * i[k]);
         let gyro = cross(w, iw);
         let h: V3<T> = std::array::from_fn(|k| wd[k] * i[k] + gyro[k]);
+        (p.map(|x| x.re), acc, fr, h)
+    }
+
+    /// Adds the body's inertia and weight forces Q (module doc) over the `n` coordinates of the
+    /// pose at (q, q̇, q̈) under gravity `g` [m/s²] to `out`.
+    pub fn add_forces<T: Real, P: SectionPose>(
+        &self,
+        pose: &P,
+        n: usize,
+        (q, v, a): (&[T], &[T], &[T]),
+        g: [f64; 3],
+        out: &mut [T],
+    ) {
+        let (_, acc, _, h) = self.dynamics(pose, (q, v, a), g);
+        let i = self.inertia;
         let rotary = i.iter().any(|x| *x != 0.0) || self.offset.iter().any(|x| *x != 0.0);
         for (k, o) in out.iter_mut().enumerate().take(n) {
             let (rk, fk) = pose.pose(|j| {
@@ -103,6 +117,26 @@ impl SectionBody3 {
             }
             *o += s;
         }
+    }
+
+    /// The body's d'Alembert force −m(p̈ − g) [N] and its moment about `about` [N m], world
+    /// axes, at (q, q̇, q̈): −(p − about) × m(p̈ − g) − R(Iω̇ + ω × Iω) — the virtual work of Q
+    /// ([`SectionBody3::add_forces`]) under a rigid virtual motion (δp = δu + δθ × (p − about),
+    /// the section turning by δθ), negated: what a station inside an element takes from it.
+    pub fn load<P: SectionPose>(
+        &self,
+        pose: &P,
+        (q, v, a): (&[f64], &[f64], &[f64]),
+        g: [f64; 3],
+        about: [f64; 3],
+    ) -> ([f64; 3], [f64; 3]) {
+        let (p, acc, fr, h) = self.dynamics(pose, (q, v, a), g);
+        let arm: V3<f64> = std::array::from_fn(|c| p[c] - about[c]);
+        let m = cross(arm, acc);
+        (
+            acc.map(|x| -x),
+            std::array::from_fn(|c| -m[c] - (fr[0][c] * h[0] + fr[1][c] * h[1] + fr[2][c] * h[2])),
+        )
     }
 
     /// Adds `c_a ∂Q/∂q̈ + c_v ∂Q/∂q̇ + c_x ∂Q/∂q` of [`SectionBody3::add_forces`] (D coordinates)

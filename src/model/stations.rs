@@ -18,8 +18,10 @@
 //! gives exactly minus the support reaction, a cut at the free end the tip loads (to the Newton
 //! tolerance of the state: the outboard part's equilibrium, F_tip − Σ_{outboard} r_e·δq_e, gives
 //! the same loads to that tolerance), and the loads converge with the mesh as the reaction does.
-//! A cut is at a segment's end or, on an ANCF
-//! segment, at a node between elements (where the outboard part is a set of whole elements).
+//! A cut is anywhere along a segment: at a segment's end or a node between ANCF elements the
+//! outboard part is a set of whole elements; inside an element (ANCF element, modal body) the
+//! element integrates its own part before the cut ([`super::component::Element::partial_load`])
+//! and the loads at its start are carried across that part (see [`Model::station_loads`]).
 
 use super::assembly::Model;
 use super::component::{Env, LocalState};
@@ -177,6 +179,15 @@ impl<S: Space> Model<S> {
                 })
                 .collect();
             map.stress = Some(points);
+        }
+        // the elements holding a cut inside prepare it now (a modal body keeps its shapes at
+        // the cut's quadrature points): no allocation when a step asks for the loads
+        let q0 = self.initial_coordinates();
+        let rest = vec![0.0; q0.len()];
+        for (ei, xi) in cuts.iter().filter_map(|c| c.partial) {
+            let e = &self.elements[ei];
+            let x = LocalState::moving(&e.at.dofs, self.held_state(), (q0, &rest, &rest));
+            let _ = e.at.part.partial_load(&x, &self.gravity, xi, [0.0; 3]);
         }
         self.stations = cuts;
         self.group_map = map;

@@ -471,36 +471,17 @@ impl Scene {
                     "{p}: stations are not computed with torsion_element = \"angle\" (its nodal twist angles do not turn with a rigid rotation of the part beyond the cut); use the director element (torsion_element = \"director\") or remove the station"
                 )));
             }
-            let cuts = seg.station_cuts();
             let at = st.at;
-            // inside an element: planar uniform ANCF segments without section bodies (their
-            // elements integrate the part before the cut themselves)
-            let inside = self.space == SpaceKind::Planar
-                && seg.kind == SegmentKind::Ancf
-                && !seg.is_tapered()
-                && self
-                    .masses
-                    .iter()
-                    .all(|m| m.segment != seg.name || m.is_point())
-                && at.is_finite()
-                && (0.0..=seg.length).contains(&at);
-            if !(inside
-                || at.is_finite() && cuts.iter().any(|c| (c - at).abs() <= 1e-9 * seg.length))
-            {
-                let shown: Vec<String> = cuts.iter().map(|c| format!("{c}")).collect();
-                let why = match seg.kind {
-                    SegmentKind::Modal => "a modal segment is cut at its ends".to_string(),
-                    SegmentKind::Ancf => format!(
-                        "an ANCF segment is cut at its ends and at the nodes between its {} elements; anywhere along it in a planar scene when it is not tapered and carries no mass with an offset or rotary inertia",
-                        cuts.len() - 1
-                    ),
-                };
+            let tol = 1e-9 * seg.length;
+            let along = at.is_finite() && at >= -tol && at <= seg.length + tol;
+            if !along {
                 return Err(SceneError(format!(
-                    "{p}.at = {at}: not a cut of segment {:?} ({why}); use one of [{}] m, or change the segment's element count so that a node falls where you need it",
-                    seg.name,
-                    shown.join(", ")
+                    "{p}.at = {at}: not a cut of segment {:?}, which is {} m long; give the arc length from its start, 0 to {} m",
+                    seg.name, seg.length, seg.length
                 )));
             }
+            // anywhere along it: the element holding the cut (ANCF element, modal body; planar
+            // and spatial) integrates its part before the cut itself (`Element::partial_load`)
         }
         Ok(())
     }

@@ -95,6 +95,37 @@ impl Ancf3Props {
         f
     }
 
+    /// The moment about the world axes of the director's twist inertia at each node (world
+    /// axes) [N m]: the virtual work of its residual on the node's r_x, r_y (the constant
+    /// pattern's ρI_p (l/2) r̈_y and [`Ancf3Props::director_inertia`]'s rest, f_x, f_y) under
+    /// a rigid rotation δθ (δr_x = δθ × r_x, δr_y = δθ × r_y): r_x × f_x + r_y × f_y. Zero for
+    /// the 3D cable. Each is the lumped weight l/2 of the element's twist inertia.
+    pub fn director_node_moments<const D: usize>(
+        &self,
+        tab: &Tables3,
+        e: &[f64; D],
+        ed: &[f64; D],
+        ea: &[f64; D],
+    ) -> [[f64; 3]; 2] {
+        let mut out = [[0.0; 3]; 2];
+        if !self.director {
+            return out;
+        }
+        let (rs, ys) = self.slots();
+        let nodes = [(rs[1], ys[0]), (rs[3], ys[1])];
+        for ((p, (xs, yl)), o) in tab.director.iter().zip(nodes).zip(&mut out) {
+            let v3 = |x: &[f64; D], s: usize| [x[s], x[s + 1], x[s + 2]];
+            let loc = |x: &[f64; D]| [v3(x, xs), v3(x, yl)];
+            let [fa, fc] = director_point(p.w * self.rho_ip, &loc(e), &loc(ed), &loc(ea));
+            let h = 0.5 * self.rho_ip * self.length;
+            let ya = v3(ea, yl);
+            let fy: [f64; 3] = std::array::from_fn(|c| fc[c] + h * ya[c]);
+            let (mx, my) = (cross(&v3(e, xs), &fa), cross(&v3(e, yl), &fy));
+            *o = std::array::from_fn(|c| mx[c] + my[c]);
+        }
+        out
+    }
+
     /// [`Ancf3Props::director_inertia`] and its exact Jacobians (forward-mode AD): adds ∂f/∂e
     /// to `k`, ∂f/∂ė to `c`, and returns the force and ∂f/∂ë (the configuration-dependent part
     /// of the mass matrix, row-major D × D).

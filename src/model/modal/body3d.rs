@@ -26,6 +26,7 @@
 //! Newton block ([`ModalBody3::newton_block`]).
 
 use super::basis::ModalBasis;
+use super::body::{cut_cache, cut_table, slope_fields, CutCache, CutTable};
 use super::nonlinear::{panels, point_fields, BodyPoint, Nonlinear};
 use super::taper::{modal_damping, row_times, Taper};
 use super::BodyGravity;
@@ -208,6 +209,9 @@ pub struct ModalBody3 {
     pub(crate) line: Option<[f64; 3]>,
     /// The section integrals of a tapered segment ([`ModalBody3::tapered`]); `None`: uniform.
     taper: Option<Box<Taper>>,
+    /// The shapes at the quadrature points of the stations' cuts
+    /// ([`ModalBody3::partial_load`]).
+    cuts: CutCache,
 }
 
 /// Slots per quadrature point of [`ModalBody3::fields`]: v, v̇, v̈, v′, v̇′, v̈′, v″ (0..7), the
@@ -286,6 +290,7 @@ impl ModalBody3 {
             bodies: Vec::new(),
             line: None,
             taper: None,
+            cuts: cut_cache(),
         }
     }
 
@@ -470,6 +475,116 @@ impl ModalBody3 {
                 out[7 + nb + k] += f[2] * pt.phi[k] - f[0] * pt.ga(az, k);
             }
         }
+    }
+
+    /// The d'Alembert load of the part [0, ξ] of the body at (q, q̇, q̈) under the fields `g`
+    /// ([`crate::model::component::Element::partial_load`]), world axes: ∫ρA(g − r̈) + q and its
+    /// moment about `about` on the cut's composite rule ([`CutTable`]), r̈ = R̈ + A(ω̄̇ × ū +
+    /// ω̄ × (ω̄ × ū) + 2ω̄ × u̇̄ + ǖ), ū = (x − ½∫₀ˣ(v′² + w′²)dx, v, w) (no foreshortening on a
+    /// linear body); the sections' spin, the rate of the angular momentum ρI_p(ω̄_x + θ̇) A e_x:
+    /// −∫ρI_p A[(ω̄̇_x + θ̈)e_x + (ω̄_x + θ̇) ω̄ × e_x]dx; the point masses at x < ξL and the
+    /// section bodies at ξ_b < ξ ([`SectionBody3::load`]). `None` when the body's cut tables
+    /// are full.
+    pub fn partial_load(
+        &self,
+        (q, v, a): (&[f64], &[f64], &[f64]),
+        g: BodyGravity<3>,
+        xi: f64,
+        about: [f64; 3],
+    ) -> Option<([f64; 3], [f64; 3])> {
+        let nb = self.modes();
+        let l = self.props.length;
+        let tab = cut_table(&self.cuts, xi, || {
+            CutTable::new(&self.basis, xi, |x| match &self.taper {
+                Some(t) => {
+                    let p = super::taper::line_props(&t.segment, x);
+                    (p.rho_a, p.rho_ip)
+                }
+                None => (self.props.rho_a, self.props.rho_ip),
+            })
+        })?;
+        let (ay, az) = (&q[7..7 + nb], &q[7 + nb..7 + 2 * nb]);
+        let (vy, vz) = (&v[7..7 + nb], &v[7 + nb..7 + 2 * nb]);
+        let (ky, kz) = (&a[7..7 + nb], &a[7 + nb..7 + 2 * nb]);
+        let t0 = 7 + 2 * nb;
+        let p = [q[3], q[4], q[5], q[6]];
+        let rot = euler_rotation(p);
+        let eb = e_bar(p);
+        let (w, wd) = (g_mul(&eb, &v[3..7]), g_mul(&eb, &a[3..7]));
+        let z = mul_t(&rot, [a[0], a[1], a[2]]);
+        let (field, line) = match &self.taper {
+            None => (mul_t(&rot, g.distributed), [0.0; 3]),
+            Some(t) => (
+                mul_t(&rot, g.points),
+                mul_t(&rot, g.line.map(|c| c * t.rho_ref)),
+            ),
+        };
+        let alpha = |u: V3<f64>, ud: V3<f64>, ua: V3<f64>| {
+            add(
+                add(z, cross(wd, u)),
+                add(add(cross(w, cross(w, u)), scale(cross(w, ud), 2.0)), ua),
+            )
+        };
+        let (mut fl, mut ml) = ([0.0; 3], [0.0; 3]);
+        let nonlinear = self.nonlinear;
+        let ex = [1.0, 0.0, 0.0];
+        let wxe = cross(w, ex);
+        tab.for_each(
+            nb,
+            |slope| {
+                let fy = slope_fields(slope, (ay, vy, ky));
+                let fz = slope_fields(slope, (az, vz, kz));
+                [
+                    fy[0] * fy[0] + fz[0] * fz[0],
+                    fy[0] * fy[1] + fz[0] * fz[1],
+                    fy[1] * fy[1] + fy[0] * fy[2] + fz[1] * fz[1] + fz[0] * fz[2],
+                ]
+            },
+            |&[x, wt, ra, rip], phi, c| {
+                let (fy, fz) = (point_fields(phi, ay, vy, ky), point_fields(phi, az, vz, kz));
+                let c = if nonlinear { c } else { [0.0; 3] };
+                let u = [x * l - 0.5 * c[0] / l, fy[0], fz[0]];
+                let al = alpha(u, [-c[1] / l, fy[1], fz[1]], [-c[2] / l, fy[2], fz[2]]);
+                let load: V3<f64> =
+                    std::array::from_fn(|i| wt * l * (ra * (field[i] - al[i]) + line[i]));
+                let (chi, _) = torsion_shapes(x);
+                let spin = w[0] + chi[0] * v[t0] + chi[1] * v[t0 + 1];
+                let spin_d = wd[0] + chi[0] * a[t0] + chi[1] * a[t0 + 1];
+                let m = cross(u, load);
+                for i in 0..3 {
+                    fl[i] += load[i];
+                    ml[i] += m[i] - wt * l * rip * (spin_d * ex[i] + spin * wxe[i]);
+                }
+            },
+        );
+        let gp = mul_t(&rot, g.points);
+        for pt in self.points.iter().filter(|pt| pt.x < xi * l) {
+            let (cy, py) = pt.plane(ay, vy, ky);
+            let (cz, pz) = pt.plane(az, vz, kz);
+            let u = [cy[0] + cz[0] + pt.x, py[0], pz[0]];
+            let al = alpha(
+                u,
+                [cy[1] + cz[1], py[1], pz[1]],
+                [cy[2] + cz[2], py[2], pz[2]],
+            );
+            let load: V3<f64> = std::array::from_fn(|i| pt.mass * (gp[i] - al[i]));
+            let m = cross(u, load);
+            for i in 0..3 {
+                fl[i] += load[i];
+                ml[i] += m[i];
+            }
+        }
+        // world axes: F = A f_l, M = (R − p) × F + A Σ ū × load
+        let f = mul(&rot, fl);
+        let arm = [q[0] - about[0], q[1] - about[1], q[2] - about[2]];
+        let mut m = add(cross(arm, f), mul(&rot, ml));
+        let mut f = f;
+        for (b, pose) in self.bodies.iter().filter(|(b, _)| b.xi < xi) {
+            let (bf, bm) = b.load(pose, (q, v, a), g.points, about);
+            f = add(f, bf);
+            m = add(m, bm);
+        }
+        Some((f, m))
     }
 
     /// The point masses' kinetic energy Σ ½m|ṙ|² and gravity potential −Σ m gᵀr [J].

@@ -3,7 +3,9 @@
 
 use super::Planar;
 use crate::math;
-use crate::model::ancf::{AncfProps, Mat8, QuadTables, SectionMass, Shape, Vec8, GAUSS5};
+use crate::model::ancf::{
+    gauss5_interpolate, AncfProps, Mat8, QuadTables, SectionMass, Shape, Vec8, GAUSS5,
+};
 use crate::model::assembly::Model;
 use crate::model::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
 use crate::model::modal::{BodyGravity, BodyOut, ModalBody};
@@ -268,9 +270,11 @@ impl Element<Planar> for AncfElement {
         self.line = Some(self.line_of(*q));
     }
 
-    /// Gauss 5 on [0, ξ] (exact for ρA S ë and (r − p) × ρA S ë, degree 6, on a uniform
-    /// element) and the point masses at ξ_m < ξ; `None` on a tapered element or one carrying
-    /// section bodies.
+    /// Gauss 5 on [0, ξ]: exact for ρA(g − S ë) and (r − p) × ρA(g − S ë), of degree 6 on a
+    /// uniform element and 8 on a tapered one (ρA(x), at most quadratic, from its 5 quadrature
+    /// values, [`gauss5_interpolate`]); the point masses at ξ_m < ξ and the section bodies at
+    /// ξ_b < ξ with their own d'Alembert force −f_r and moment −((r − p) × f_r + d × f_d)
+    /// ([`SectionMass::forces`]: the rigid projection of their generalized force).
     fn partial_load(
         &self,
         x: &LocalState<'_>,
@@ -278,11 +282,8 @@ impl Element<Planar> for AncfElement {
         xi: f64,
         about: [f64; 3],
     ) -> Option<([f64; 3], [f64; 3])> {
-        if self.props.taper.is_some() || !self.bodies.is_empty() {
-            return None;
-        }
-        let (e, _, ea) = x.arrays::<8>();
-        let (e, ea) = (Vec8::from(e), Vec8::from(ea));
+        let (e8, ed8, ea8) = x.arrays::<8>();
+        let (e, ea) = (Vec8::from(e8), Vec8::from(ea8));
         let l = self.props.length;
         let line = self.line.unwrap_or([0.0; 2]);
         let (mut f, mut m) = ([0.0; 3], 0.0);
@@ -294,17 +295,45 @@ impl Element<Planar> for AncfElement {
             f[1] += load[1];
             m += (r[0] - about[0]) * load[1] - (r[1] - about[1]) * load[0];
         };
-        let distributed = [gravity[0] + line[0], gravity[1] + line[1]];
-        for (xg, wg) in GAUSS5 {
-            add(
-                0.5 * xi * (xg + 1.0),
-                0.5 * xi * l * wg,
-                self.props.rho_a,
-                distributed,
-            );
+        match &self.props.taper {
+            None => {
+                let distributed = [gravity[0] + line[0], gravity[1] + line[1]];
+                for (xg, wg) in GAUSS5 {
+                    add(
+                        0.5 * xi * (xg + 1.0),
+                        0.5 * xi * l * wg,
+                        self.props.rho_a,
+                        distributed,
+                    );
+                }
+            }
+            Some(t) => {
+                // the line load q [N/m] as a field over the local ρA(x)
+                for (xg, wg) in GAUSS5 {
+                    let s = 0.5 * xi * (xg + 1.0);
+                    let ra = gauss5_interpolate(&t.rho_a, s);
+                    let field = [gravity[0] + line[0] / ra, gravity[1] + line[1] / ra];
+                    add(s, 0.5 * xi * l * wg, ra, field);
+                }
+            }
         }
         for &(xm, mass) in self.point_list.iter().filter(|(xm, _)| *xm < xi) {
             add(xm, 1.0, mass, *gravity);
+        }
+        for (b, sv, dv) in self.bodies.iter().filter(|(b, _, _)| b.xi < xi) {
+            let d = comb2(dv, &e8);
+            let fb = b.forces(
+                comb2(sv, &ea8),
+                d,
+                comb2(dv, &ed8),
+                comb2(dv, &ea8),
+                *gravity,
+            );
+            let r = comb2(sv, &e8);
+            f[0] -= fb[0];
+            f[1] -= fb[1];
+            m -= (r[0] - about[0]) * fb[1] - (r[1] - about[1]) * fb[0];
+            m -= d[0] * fb[3] - d[1] * fb[2];
         }
         Some((f, [0.0, 0.0, m]))
     }
@@ -507,6 +536,19 @@ impl Element<Planar> for ModalElement {
 
     fn is_damped(&self) -> bool {
         !self.body.d.is_empty()
+    }
+
+    /// [`ModalBody::partial_load`] with the element's line load.
+    fn partial_load(
+        &self,
+        x: &LocalState<'_>,
+        gravity: &[f64; 2],
+        xi: f64,
+        about: [f64; 3],
+    ) -> Option<([f64; 3], [f64; 3])> {
+        let (q, v, a) = x.vectors();
+        let g = BodyGravity::of(*gravity, 1.0, self.line);
+        self.body.partial_load((&q, &v, &a), g, xi, about)
     }
 
     /// Modal deflection max(|w(L)|/L, |θ_J|): the tip deflection over the length or the tip

@@ -303,6 +303,19 @@ impl Element<Spatial> for ModalElement3 {
         }
     }
 
+    /// [`ModalBody3::partial_load`] with the element's line load.
+    fn partial_load(
+        &self,
+        x: &LocalState<'_>,
+        gravity: &[f64; 3],
+        xi: f64,
+        about: [f64; 3],
+    ) -> Option<([f64; 3], [f64; 3])> {
+        let (q, v, a) = x.vectors();
+        let g = BodyGravity::of(*gravity, 1.0, self.line);
+        self.body.partial_load((&q, &v, &a), g, xi, about)
+    }
+
     fn set_line_load(&mut self, q: &[f64; 3]) {
         self.line = Some(q.map(|c| c / self.body.props.rho_a));
     }

@@ -38,6 +38,8 @@ pub struct AncfElement3 {
     bodies: Vec<(SectionBody3, DirectorPose)>,
     /// The current gravity [m/s²] (the bodies' weight).
     g: [f64; 3],
+    /// The point masses (ξ, m [kg]) on the element, for [`Element::partial_load`].
+    point_list: Vec<(f64, f64)>,
 }
 
 /// The centreline point r = S(ξ)e and the section frame of the director element at ξ:
@@ -128,6 +130,7 @@ impl AncfElement3 {
             line: None,
             bodies: Vec::new(),
             g: [0.0; 3],
+            point_list: Vec::new(),
         }
     }
 
@@ -166,6 +169,7 @@ impl AncfElement3 {
         let (d, slots) = (self.props.dofs(), self.patterns.r_slots);
         let l = self.props.length;
         self.points = add_points(points, l, &mut self.patterns, &mut self.mass, d, slots);
+        self.point_list = points.to_vec();
         self
     }
 
@@ -229,6 +233,65 @@ impl AncfElement3 {
         }
     }
 
+    /// [`Element::partial_load`] on `D` coordinates: Gauss 5 on [0, ξ] of ρA(x)(g − r̈) + q and
+    /// (r − p) × that (exact: degree 6 uniform, 8 tapered with ρA(x) from its 5 quadrature
+    /// values), the point masses and section bodies at ξ_m < ξ, and the director's twist
+    /// inertia, lumped at the nodes (moments m₀, m₁ of weight l/2 each,
+    /// [`Ancf3Props::director_node_moments`]): its density interpolated linearly between
+    /// them, the part [0, ξ] takes ξ((2 − ξ)m₀ + ξ m₁) (the trapezoid on [0, ξ]; m₀ + m₁ at
+    /// ξ = 1, the whole element's).
+    fn partial_d<const D: usize>(
+        &self,
+        x: &LocalState<'_>,
+        gravity: &[f64; 3],
+        xi: f64,
+        about: [f64; 3],
+    ) -> ([f64; 3], [f64; 3]) {
+        let (e, ed, ea) = x.arrays::<D>();
+        let p = &self.props;
+        let (l, rs) = (p.length, self.patterns.r_slots);
+        let line = self.line.unwrap_or([0.0; 3]);
+        let (mut f, mut m) = ([0.0; 3], [0.0; 3]);
+        let mut add = |s: f64, w: f64, mass: f64, q: [f64; 3]| {
+            let sh = crate::model::ancf::Shape::at(s, l).s;
+            let comb = |x: &[f64; D]| -> [f64; 3] {
+                std::array::from_fn(|c| (0..4).map(|j| sh[j] * x[rs[j] + c]).sum())
+            };
+            let (r, a) = (comb(&e), comb(&ea));
+            let load: [f64; 3] = std::array::from_fn(|c| w * (mass * (gravity[c] - a[c]) + q[c]));
+            let arm: [f64; 3] = std::array::from_fn(|c| r[c] - about[c]);
+            let t = crate::model::vector::cross(arm, load);
+            for c in 0..3 {
+                f[c] += load[c];
+                m[c] += t[c];
+            }
+        };
+        for (xg, wg) in crate::model::ancf::GAUSS5 {
+            let s = 0.5 * xi * (xg + 1.0);
+            let ra = p.taper.as_ref().map_or(p.rho_a, |t| {
+                crate::model::ancf::gauss5_interpolate(&t.rho_a, s)
+            });
+            add(s, 0.5 * xi * l * wg, ra, line);
+        }
+        for &(xm, mass) in self.point_list.iter().filter(|(xm, _)| *xm < xi) {
+            add(xm, 1.0, mass, [0.0; 3]);
+        }
+        for (b, pose) in self.bodies.iter().filter(|(b, _)| b.xi < xi) {
+            let (bf, bm) = b.load(pose, (&e[..], &ed[..], &ea[..]), *gravity, about);
+            for c in 0..3 {
+                f[c] += bf[c];
+                m[c] += bm[c];
+            }
+        }
+        if p.director {
+            let [m0, m1] = p.director_node_moments(&self.tables, &e, &ed, &ea);
+            for c in 0..3 {
+                m[c] -= xi * ((2.0 - xi) * m0[c] + xi * m1[c]);
+            }
+        }
+        (f, m)
+    }
+
     fn residual_d<const D: usize>(&self, x: &LocalState<'_>, res: &mut [f64]) {
         let (e, ed, ea) = x.arrays::<D>();
         let mut r = self.props.internal_force(&self.tables, &e, &ed);
@@ -259,6 +322,20 @@ impl Element<Spatial> for AncfElement3 {
         } else {
             self.residual_d::<12>(x, res)
         }
+    }
+
+    fn partial_load(
+        &self,
+        x: &LocalState<'_>,
+        gravity: &[f64; 3],
+        xi: f64,
+        about: [f64; 3],
+    ) -> Option<([f64; 3], [f64; 3])> {
+        Some(if self.props.director {
+            self.partial_d::<18>(x, gravity, xi, about)
+        } else {
+            self.partial_d::<12>(x, gravity, xi, about)
+        })
     }
 
     fn length(&self) -> f64 {
