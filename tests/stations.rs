@@ -781,6 +781,19 @@ fn stations_inside_tapered_ancf_elements_and_section_bodies() {
     eprintln!("worst relative error {worst:.2e}");
 }
 
+/// The stations of `scene` (planar or spatial) in static equilibrium.
+fn static_stations(scene: Scene) -> Vec<hybeam::model::StationLoads> {
+    if scene.space == hybeam::scene::SpaceKind::Spatial {
+        let mut sim = Simulator::<Spatial>::new(scene).unwrap();
+        sim.solve_static().unwrap();
+        sim.outputs().stations.to_vec()
+    } else {
+        let mut sim = Simulator::<Planar>::new(scene).unwrap();
+        sim.solve_static().unwrap();
+        sim.outputs().stations.to_vec()
+    }
+}
+
 /// Largest difference of stations (0, 1) and (2, 3) at t = 0.05 s of a run of `scene` released
 /// straight, relative to the largest load of the four.
 fn pairs_after_release(scene: Scene) -> (f64, f64) {
@@ -893,15 +906,7 @@ fn stations_inside_modal_bodies_under_their_weight() {
             };
             let masses = mass_on_a("b", ab, mb, &body) + &mass_on_a("p", ap, mp, "");
             let scene = with_stations(&header, &seg, &(stations_at(&at) + &masses));
-            let st: Vec<_> = if spatial {
-                let mut sim = Simulator::<Spatial>::new(scene).unwrap();
-                sim.solve_static().unwrap();
-                sim.outputs().stations.to_vec()
-            } else {
-                let mut sim = Simulator::<Planar>::new(scene).unwrap();
-                sim.solve_static().unwrap();
-                sim.outputs().stations.to_vec()
-            };
+            let st = static_stations(scene);
             let along = if spatial { ox } else { ot };
             for (k, s) in at.iter().enumerate() {
                 let (w0, w1) = beyond(*s);
@@ -1131,15 +1136,7 @@ fn stations_inside_elements_under_a_line_load() {
             ("modal tapered", modal("a", L, &taper, 8, true, &load)),
         ] {
             let scene = with_stations(header, &[seg], &stations_at(&at));
-            let st: Vec<_> = if spatial {
-                let mut sim = Simulator::<Spatial>::new(scene).unwrap();
-                sim.solve_static().unwrap();
-                sim.outputs().stations.to_vec()
-            } else {
-                let mut sim = Simulator::<Planar>::new(scene).unwrap();
-                sim.solve_static().unwrap();
-                sim.outputs().stations.to_vec()
-            };
+            let st = static_stations(scene);
             for (k, s) in at.iter().enumerate() {
                 let (m, v) = (-q * (L - s).powi(2) / 2.0, -q * (L - s));
                 let (em, ev) = (
