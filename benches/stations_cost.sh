@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What the loads output costs per communication step (issue 40): the FMU of
-# scenes/sprayer_boom.toml with 4 stations (its 3 and one at the end piece's joint) and
-# `outputs.stress` against the same scene without them,
+# scenes/sprayer_boom.toml with 4 stations (its 3 and a fourth at the end piece's joint, or
+# inside the modal root segment) and `outputs.stress` against the same scene without them,
 # each driven by the native host (benches/realtime: fmi2SetReal of a tip-force sine, fmi2DoStep
 # of 1 ms, fmi2GetReal of every output) for STEPS steps, the instructions of those calls alone
 # counted by callgrind (--toggle-collect on the harness's step function; valgrind required).
@@ -21,11 +21,16 @@ s = s.replace("stress = true", "stress = false").replace('name = "sprayer_boom"'
 assert "[[stations]]" not in s and "stress = false" in s
 open(sys.argv[1], "w").write(s)
 EOF
-# the equipped scene: the shipped one and a fourth station at the end piece's joint
-cp scenes/sprayer_boom.toml "$work/sprayer_boom.toml"
-printf '\n[[stations]]\nname = "tip_joint"\nsegment = "tip"\nat = 0.0\n' >>"$work/sprayer_boom.toml"
+# the equipped scenes: the shipped one and a fourth station at the end piece's joint (a node)
+# or inside the modal root segment (its part [0, 0.5 m] integrated at each output)
+mkdir -p "$work/joint" "$work/modal"
+cp scenes/sprayer_boom.toml "$work/joint/sprayer_boom.toml"
+printf '\n[[stations]]\nname = "tip_joint"\nsegment = "tip"\nat = 0.0\n' >>"$work/joint/sprayer_boom.toml"
+cp scenes/sprayer_boom.toml "$work/modal/sprayer_boom.toml"
+printf '\n[[stations]]\nname = "root_mid"\nsegment = "root"\nat = 0.5\n' >>"$work/modal/sprayer_boom.toml"
 cargo build --release -q -p hybeam-realtime
-with=$(cargo fmu-build "$work/sprayer_boom.toml" --out "$work" --platforms linux64 | tail -n 1)
+joint=$(cargo fmu-build "$work/joint/sprayer_boom.toml" --out "$work/joint" --platforms linux64 | tail -n 1)
+modal=$(cargo fmu-build "$work/modal/sprayer_boom.toml" --out "$work/modal" --platforms linux64 | tail -n 1)
 bare=$(cargo fmu-build "$work/sprayer_bare.toml" --out "$work" --platforms linux64 | tail -n 1)
 count() { # FMU: instructions of STEPS steps (SetReal + DoStep + GetReal)
     valgrind --tool=callgrind --collect-atstart=no --toggle-collect=hybeam_realtime_step \
@@ -33,8 +38,12 @@ count() { # FMU: instructions of STEPS steps (SetReal + DoStep + GetReal)
         --warmup 0 --amplitude 1 2>&1 >/dev/null | grep -o 'Collected : [0-9]*' | grep -o '[0-9]*$'
 }
 a=$(count "$bare")
-b=$(count "$with")
-echo "| FMU step (1 ms, $STEPS steps) | without [instructions/step] | 4 stations + outputs.stress | extra |"
-echo "|---|---|---|---|"
-awk -v n="$STEPS" -v a="$a" -v b="$b" \
-    'BEGIN { printf "| sprayer_boom | %.4g | %.4g | %+.1f %% |\n", a / n, b / n, 100 * b / a - 100 }'
+b=$(count "$joint")
+c=$(count "$modal")
+echo "| sprayer_boom FMU, 1 ms steps ($STEPS) | instructions per step | extra |"
+echo "|---|--:|--:|"
+awk -v n="$STEPS" -v a="$a" -v b="$b" -v c="$c" 'BEGIN {
+    printf "| without stations, outputs.stress = false | %.4g | |\n", a / n
+    printf "| 4 stations (3 + the end piece joint) + outputs.stress | %.4g | %+.1f %% |\n", b / n, 100 * b / a - 100
+    printf "| 4 stations (3 + inside the modal root) + outputs.stress | %.4g | %+.1f %% |\n", c / n, 100 * c / a - 100
+}'

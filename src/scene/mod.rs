@@ -498,16 +498,6 @@ impl Segment {
         (k != [0.0, 0.0]).then_some(k)
     }
 
-    /// The arc lengths [m] where a station may cut this segment: its ends and, on an ANCF
-    /// segment, the nodes between its elements (valid after `validate`).
-    pub fn station_cuts(&self) -> Vec<f64> {
-        let n = match self.kind {
-            SegmentKind::Modal => 1,
-            SegmentKind::Ancf => self.elements.unwrap_or(1).max(1),
-        };
-        (0..=n).map(|k| self.length * k as f64 / n as f64).collect()
-    }
-
     fn default_poisson_ratio() -> f64 {
         0.3
     }
