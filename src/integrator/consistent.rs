@@ -4,6 +4,53 @@
 
 use super::{scaled_norm, Counters, EvalRequest, Integrable, State, StateRef, StepFailure};
 
+/// The working memory of [`initialize`] and [`change_inputs`], owned by the integrator's
+/// Newton solver: sized at the first call (the initialization), then reused, so that a jump of
+/// the inputs allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Work {
+    /// Zeros: the accelerations and multipliers of the evaluations (max(n, m); only ever zero).
+    zeros: Vec<f64>,
+    /// The right side of [`initialize`], the residual before the change of [`change_inputs`]
+    /// (n + m).
+    rhs: Vec<f64>,
+    /// The acceleration-level constraint before the change, and [`initialize`]'s (m).
+    before: Vec<f64>,
+    /// The acceleration-level constraint after the change (m).
+    after: Vec<f64>,
+    /// [`constraint_drift_with`]'s.
+    drift: DriftWork,
+}
+
+/// The working memory of [`constraint_drift_with`]: the displaced coordinates (n) and the
+/// constraint values at them (m).
+#[derive(Debug, Clone, Default)]
+struct DriftWork {
+    qp: Vec<f64>,
+    qm: Vec<f64>,
+    pp: Vec<f64>,
+    p0: Vec<f64>,
+    pm: Vec<f64>,
+}
+
+impl Work {
+    /// Sizes the buffers for `n` coordinates and `m` constraint rows (no allocation once
+    /// sized).
+    fn size(&mut self, n: usize, m: usize) {
+        self.zeros.resize(n.max(m), 0.0);
+        self.rhs.resize(n + m, 0.0);
+        self.before.resize(m, 0.0);
+        self.after.resize(m, 0.0);
+        let d = &mut self.drift;
+        for v in [&mut d.qp, &mut d.qm] {
+            v.resize(n, 0.0);
+        }
+        for v in [&mut d.pp, &mut d.p0, &mut d.pm] {
+            v.resize(m, 0.0);
+        }
+    }
+}
+
 /// Consistent initial accelerations and multipliers at `s` (q, q̇ given): sets q̈, the
 /// algorithmic acceleration a = q̈ and λ. The model's matrix storage is used (a held Newton
 /// matrix is gone).
@@ -12,24 +59,33 @@ pub(super) fn initialize<M: Integrable + ?Sized>(
     s: &mut State,
     res: &mut [f64],
     counters: &mut Counters,
+    work: &mut Work,
 ) -> Result<(), StepFailure> {
     let n = model.coordinates();
     let m = model.constraints();
-    let zeros_n = vec![0.0; n];
-    let zeros_m = vec![0.0; m];
+    work.size(n, m);
+    let Work {
+        zeros,
+        rhs,
+        before: drift,
+        drift: drift_work,
+        ..
+    } = work;
     let req = EvalRequest {
         sd: 1.0,
         matrix: Some((1.0, 0.0, 0.0)),
         lambda_hessian: false,
     };
-    let x = StateRef::new(&s.q, &s.v, &zeros_n, &zeros_m);
+    let x = StateRef::new(&s.q, &s.v, &zeros[..n], &zeros[..m]);
     model.eval(x, req, res);
-    let mut rhs: Vec<f64> = res.iter().map(|r| -r).collect();
+    for (o, r) in rhs.iter_mut().zip(res.iter()) {
+        *o = -r;
+    }
     // acceleration-level constraint: Φ_q q̈ = −d²Φ/dt² at q̈ = 0 (second difference along q̇
     // and the held coordinates' motion)
-    if let Some(c) = constraint_drift(model, &s.q, &s.v) {
+    if constraint_drift(model, &s.q, &s.v, drift_work, drift) {
         for i in 0..m {
-            rhs[n + i] = -c[i];
+            rhs[n + i] = -drift[i];
         }
     } else {
         for r in rhs.iter_mut().skip(n) {
@@ -40,7 +96,7 @@ pub(super) fn initialize<M: Integrable + ?Sized>(
         .factorize()
         .map_err(|_| StepFailure::Singular { h: 0.0 })?;
     counters.factorizations += 1;
-    if !model.solve(&mut rhs) {
+    if !model.solve(rhs) {
         return Err(StepFailure::Singular { h: 0.0 });
     }
     s.acc.copy_from_slice(&rhs[..n]);
@@ -56,35 +112,36 @@ pub(super) fn change_inputs<M: Integrable + ?Sized>(
     s: &mut State,
     res: &mut [f64],
     counters: &mut Counters,
+    work: &mut Work,
     change: impl FnOnce(&mut M),
 ) -> Result<(), StepFailure> {
     let n = model.coordinates();
     let m = model.constraints();
-    let zeros_n = vec![0.0; n];
-    let zeros_m = vec![0.0; m];
-    let x = StateRef::new(&s.q, &s.v, &zeros_n, &zeros_m);
-    let mut before = vec![0.0; n + m];
+    work.size(n, m);
+    let Work {
+        zeros,
+        rhs: before,
+        before: drift_before,
+        after: drift_after,
+        drift: drift_work,
+    } = work;
+    let x = StateRef::new(&s.q, &s.v, &zeros[..n], &zeros[..m]);
+    before.fill(0.0);
     let req = EvalRequest {
         sd: 1.0,
         matrix: None,
         lambda_hessian: false,
     };
-    model.eval(x, req, &mut before);
+    model.eval(x, req, before);
     // a driven support: the acceleration-level constraint before and after, with the same
     // difference step so that the velocity terms cancel
     let driven = model.is_driven();
     let eps = drift_step(model, &s.v);
-    let drift_before = if driven {
-        constraint_drift_with(model, &s.q, &s.v, eps)
-    } else {
-        None
-    };
+    let has_before =
+        driven && constraint_drift_with(model, &s.q, &s.v, eps, drift_work, drift_before);
     change(model);
-    let drift_after = if driven {
-        constraint_drift_with(model, &s.q, &s.v, eps)
-    } else {
-        None
-    };
+    let has_after =
+        driven && constraint_drift_with(model, &s.q, &s.v, eps, drift_work, drift_after);
     let req = EvalRequest {
         sd: 1.0,
         matrix: Some((1.0, 0.0, 0.0)),
@@ -95,20 +152,18 @@ pub(super) fn change_inputs<M: Integrable + ?Sized>(
         .factorize()
         .map_err(|_| StepFailure::Singular { h: 0.0 })?;
     counters.factorizations += 1;
-    for (r, b) in res.iter_mut().zip(&before).take(n) {
+    for (r, b) in res.iter_mut().zip(before.iter()).take(n) {
         *r = b - *r;
     }
     // Φ(q_n) is the same both times; a moving support changes the acceleration-level
     // constraint by Φ_h Δḧ: Φ_q Δq̈ = −(d²Φ/dt²⁺ − d²Φ/dt²⁻)
     res[n..].fill(0.0);
-    if drift_before.is_some() || drift_after.is_some() {
-        let zero = vec![0.0; m];
-        let (b, a) = (
-            drift_before.as_deref().unwrap_or(&zero),
-            drift_after.as_deref().unwrap_or(&zero),
-        );
+    if has_before || has_after {
+        // an absent side is zero
         for j in 0..m {
-            res[n + j] = b[j] - a[j];
+            let b = if has_before { drift_before[j] } else { 0.0 };
+            let a = if has_after { drift_after[j] } else { 0.0 };
+            res[n + j] = b - a;
         }
     }
     if !model.solve(res) || res.iter().any(|x| !x.is_finite()) {
@@ -125,14 +180,17 @@ pub(super) fn change_inputs<M: Integrable + ?Sized>(
 }
 
 /// d²Φ/dt² at q̈ = 0 along (q̇, the held coordinates' motion), by a central second
-/// difference; `None` without constraint rows or without motion.
+/// difference, into `out` (m); false (and `out` untouched) without constraint rows or without
+/// motion.
 fn constraint_drift<M: Integrable + ?Sized>(
     model: &mut M,
     q: &[f64],
     v: &[f64],
-) -> Option<Vec<f64>> {
+    work: &mut DriftWork,
+    out: &mut [f64],
+) -> bool {
     let eps = drift_step(model, v);
-    constraint_drift_with(model, q, v, eps)
+    constraint_drift_with(model, q, v, eps, work, out)
 }
 
 /// The time step of [`constraint_drift`]'s second difference: 1e-4 over the largest scaled
@@ -144,28 +202,37 @@ fn drift_step<M: Integrable + ?Sized>(model: &M, v: &[f64]) -> f64 {
     1e-4 / vmax.max(floor)
 }
 
-/// [`constraint_drift`] with the difference step `eps` [s].
+/// [`constraint_drift`] with the difference step `eps` [s] (working memory `work`, sized).
 fn constraint_drift_with<M: Integrable + ?Sized>(
     model: &mut M,
     q: &[f64],
     v: &[f64],
     eps: f64,
-) -> Option<Vec<f64>> {
+    work: &mut DriftWork,
+    out: &mut [f64],
+) -> bool {
     let m = model.constraints();
     if m == 0 || (model.held_rate() == 0.0 && v.iter().all(|x| *x == 0.0)) {
-        return None;
+        return false;
     }
-    let mut phi = |q: &[f64], dt: f64| {
-        let mut r = vec![0.0; m];
-        model.constraint_values(q, dt, &mut r);
-        r
-    };
-    let qp: Vec<f64> = q.iter().zip(v).map(|(q, v)| q + eps * v).collect();
-    let qm: Vec<f64> = q.iter().zip(v).map(|(q, v)| q - eps * v).collect();
-    let (pp, p0, pm) = (phi(&qp, eps), phi(q, 0.0), phi(&qm, -eps));
-    Some(
-        (0..m)
-            .map(|i| (pp[i] - 2.0 * p0[i] + pm[i]) / (eps * eps))
-            .collect(),
-    )
+    let DriftWork { qp, qm, pp, p0, pm } = work;
+    for ((o, q), v) in qp.iter_mut().zip(q).zip(v) {
+        *o = q + eps * v;
+    }
+    for ((o, q), v) in qm.iter_mut().zip(q).zip(v) {
+        *o = q - eps * v;
+    }
+    // each row set written whole by the model (fresh zeros before, as the rows were)
+    for (x, dt, p) in [
+        (&qp[..], eps, &mut *pp),
+        (q, 0.0, &mut *p0),
+        (&qm[..], -eps, &mut *pm),
+    ] {
+        p.fill(0.0);
+        model.constraint_values(x, dt, p);
+    }
+    for i in 0..m {
+        out[i] = (pp[i] - 2.0 * p0[i] + pm[i]) / (eps * eps);
+    }
+    true
 }

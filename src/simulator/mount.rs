@@ -3,6 +3,7 @@
 //! change if the host gives input derivatives), the input set for the next step, and the
 //! estimate of the accelerations from velocity inputs (`motion_input = "pose_velocity"`).
 
+use super::partner::PartnerMatrix;
 use super::*;
 use crate::error::Refusal;
 use crate::model::space::{moment_from, vec_from};
@@ -208,50 +209,51 @@ impl<S: Space> Simulator<S> {
     /// reaction's direct feedthrough is ([`Outputs::root_force`] after an acceleration input
     /// changes by Δa is the current one plus this matrix times Δa). Each column is the
     /// acceleration jump of a unit input change (`[M Φ_qᵀ; Φ_q 0]` solve, linear in it) on a
-    /// scratch state; the held Newton matrix is then rebuilt where it was, so the run continues
-    /// bit for bit. `None` for a fixed root or when the solve fails.
+    /// scratch state, with the held Newton matrix set aside ([`Model::set_matrix_aside`]), so
+    /// the run continues bit for bit. `None` for a fixed root or when the solve fails.
     pub fn apparent_mass(&mut self) -> Option<Vec<Vec<f64>>> {
+        let (a, n) = self.apparent_mass_matrix()?;
+        Some(a[..n].iter().map(|row| row[..n].to_vec()).collect())
+    }
+
+    /// [`Simulator::apparent_mass`] without allocating: the matrix in the upper left n × n of
+    /// a partner-sized array (n = 3 planar, 6 spatial), and n.
+    pub(super) fn apparent_mass_matrix(&mut self) -> Option<(PartnerMatrix, usize)> {
         let m0 = *self.model.mount_motion()?;
-        let mem = self.integ.memory();
-        let at_matrix = self.model.mount_at_matrix();
-        let base = self.outputs();
+        let base = self.reaction_now();
         let rot = S::moment_components(&m0.angular_velocity).len();
-        let mut cols = Vec::new();
-        for k in 0..S::DIM + rot {
+        let n = S::DIM + rot;
+        self.model.set_matrix_aside(true);
+        let mut out = [[0.0; PARTNER_COMPONENTS]; PARTNER_COMPONENTS];
+        let mut ok = true;
+        for k in 0..n {
             let mut m1 = m0;
             if k < S::DIM {
                 m1.acceleration[k] += 1.0;
             } else {
                 S::moment_components_mut(&mut m1.angular_acceleration)[k - S::DIM] += 1.0;
             }
-            let mut s = self.state.clone();
-            let ok = self
+            let s = &mut self.work.0;
+            s.copy_from(&self.state);
+            ok = self
                 .integ
-                .change_inputs(&mut self.model, &mut s, |m| m.set_mount(&m1))
+                .change_inputs(&mut self.model, s, |m| m.set_mount(&m1))
                 .is_ok();
-            let o = self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda);
+            let (f, mo) = self.model.reaction(&s.q, &s.v, &s.acc, &s.lambda);
             self.model.set_mount(&m0);
             if !ok {
-                self.rebuild_matrix(&mem, at_matrix);
-                return None;
+                break;
             }
-            let mut col: Vec<f64> = (0..S::DIM)
-                .map(|c| o.root_force[c] - base.root_force[c])
-                .collect();
-            let (mo, mb) = (
-                S::moment_components(&o.root_moment),
-                S::moment_components(&base.root_moment),
-            );
-            col.extend(mo.iter().zip(mb).map(|(a, b)| a - b));
-            cols.push(col);
+            for (r, x) in f.as_ref()[..S::DIM]
+                .iter()
+                .chain(S::moment_components(&mo))
+                .enumerate()
+            {
+                out[r][k] = x - base[r];
+            }
         }
-        self.rebuild_matrix(&mem, at_matrix);
-        let n = cols.len();
-        Some(
-            (0..n)
-                .map(|r| (0..n).map(|c| cols[c][r]).collect())
-                .collect(),
-        )
+        self.model.set_matrix_aside(false);
+        ok.then_some((out, n))
     }
 
     /// The mass matrix at the mount of the rigid inertia in `outputs` (this state's,
@@ -262,21 +264,6 @@ impl<S: Space> Simulator<S> {
     pub fn rigid_mass_matrix(&self, outputs: &Outputs<S>) -> Option<Vec<Vec<f64>>> {
         let m = self.model.mount_motion()?;
         Some(outputs.mount?.mass_matrix(&m.attitude))
-    }
-
-    /// Rebuilds the held Newton matrix of `mem` under the mount motion it was evaluated with
-    /// (and the applied inputs the model holds), then returns the model to the current motion.
-    pub(super) fn rebuild_matrix(&mut self, mem: &IntegratorMemory, at_matrix: Option<Motion<S>>) {
-        let now = self.model.mount_motion().copied();
-        if let Some(m) = &at_matrix {
-            self.model.set_mount(m);
-        }
-        if self.integ.restore_memory(&mut self.model, mem).is_err() {
-            self.integ.invalidate();
-        }
-        if let Some(m) = &now {
-            self.model.set_mount(m);
-        }
     }
 
     /// How the mount input set for the next step changes the accelerations now (the
