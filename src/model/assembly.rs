@@ -134,6 +134,8 @@ pub struct Model<S: Space> {
     aside: Option<Box<(NewtonLu, Vec<f64>)>>,
     /// Whether the held matrix is set aside now.
     matrix_aside: bool,
+    /// [`Model::mount_inertia`]'s working memory (sized at build for a mounted model).
+    pub(crate) mount_work: super::scratch::Scratch<super::inertia::MountWork>,
 }
 
 impl<S: Space> std::fmt::Debug for Model<S> {
@@ -285,8 +287,12 @@ impl<S: Space> Model<S> {
             rows_work: crate::integrator::RowsWork::sized(n, m),
             aside: None,
             matrix_aside: false,
+            mount_work: Default::default(),
         };
         if mounted {
+            let (n, nh) = (model.n, model.held.len());
+            model.mount_work =
+                super::scratch::Scratch::new(super::inertia::MountWork::sized(n, nh, dmax));
             model.aside = Some(Box::new((
                 NewtonLu::new(model.lu.pattern().clone()),
                 vec![0.0; nnz],

@@ -101,7 +101,13 @@ impl<S: Space> MountState<S> {
     pub fn checked(&self, input: MountInput<S>, t: f64) -> Result<MountInput<S>, Refusal> {
         let mut input = input;
         let m = &mut input.motion;
-        let finite = m.components().iter().all(|x| x.is_finite())
+        // every component (Motion::components, read in place)
+        let finite = [&m.position, &m.velocity, &m.acceleration]
+            .iter()
+            .flat_map(|v| v.as_ref())
+            .chain(S::moment_components(&m.angular_velocity))
+            .chain(S::moment_components(&m.angular_acceleration))
+            .all(|x| x.is_finite())
             && S::attitude_components(&m.attitude)
                 .iter()
                 .all(|x| x.is_finite());
@@ -131,10 +137,8 @@ impl<S: Space> MountState<S> {
                 for k in 0..S::DIM {
                     m.acceleration[k] = (m.velocity[k] - prev.velocity[k]) / dt;
                 }
-                let (w, wp) = (
-                    S::moment_components(&m.angular_velocity).to_vec(),
-                    S::moment_components(&prev.angular_velocity).to_vec(),
-                );
+                let (w, wp) = (m.angular_velocity, prev.angular_velocity);
+                let (w, wp) = (S::moment_components(&w), S::moment_components(&wp));
                 for (k, a) in S::moment_components_mut(&mut m.angular_acceleration)
                     .iter_mut()
                     .enumerate()
@@ -264,6 +268,16 @@ impl<S: Space> Simulator<S> {
     pub fn rigid_mass_matrix(&self, outputs: &Outputs<S>) -> Option<Vec<Vec<f64>>> {
         let m = self.model.mount_motion()?;
         Some(outputs.mount?.mass_matrix(&m.attitude))
+    }
+
+    /// [`Simulator::rigid_mass_matrix`] without allocating: the matrix in the upper left n × n
+    /// of a partner-sized array (n = 3 planar, 6 spatial), and n.
+    pub fn rigid_mass_array(
+        &self,
+        outputs: &Outputs<S>,
+    ) -> Option<([[f64; PARTNER_COMPONENTS]; PARTNER_COMPONENTS], usize)> {
+        let m = self.model.mount_motion()?;
+        Some(outputs.mount?.mass_matrix_array(&m.attitude))
     }
 
     /// How the mount input set for the next step changes the accelerations now (the
