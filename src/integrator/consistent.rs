@@ -26,6 +26,8 @@ pub(super) struct Work {
 /// constraint values at them (m).
 #[derive(Debug, Clone, Default)]
 struct DriftWork {
+    /// Whether `p0` holds Φ(q) of the q at hand already (jumps that leave it: [`input_jumps`]).
+    p0_known: bool,
     qp: Vec<f64>,
     qm: Vec<f64>,
     pp: Vec<f64>,
@@ -179,6 +181,114 @@ pub(super) fn change_inputs<M: Integrable + ?Sized>(
     Ok(())
 }
 
+/// The working memory of [`input_jumps`] (sized at build by [`JumpWork::sized`]: no
+/// allocation in a step).
+#[derive(Debug, Clone, Default)]
+pub struct JumpWork {
+    work: Work,
+    /// The residual and the jump (n + m).
+    res: Vec<f64>,
+}
+
+impl JumpWork {
+    /// Sized for `n` coordinates and `m` constraint rows.
+    pub fn sized(n: usize, m: usize) -> Self {
+        let mut w = Self::default();
+        w.work.size(n, m);
+        w.res.resize(n + m, 0.0);
+        w
+    }
+}
+
+/// Several jumps of the inputs from one state `s`, each as [`change_inputs`] solves it: for
+/// k < `count`, `change(model, k)` alters the inputs, the jump of q̈ and λ is added to a copy of
+/// `s` in `out`, and `read(model, out, k)` reads it and returns the model to the inputs of `s`.
+/// The residual and the acceleration-level constraint before the changes are evaluated once,
+/// and the matrix [M Φ_qᵀ; Φ_q 0] at (q, q̇) is factorized for the first jump only: the changes
+/// must leave it as it is, to the bit (accelerations of a mount, which enter it only times
+/// c_v = c_x = 0), and each jump is then the one [`change_inputs`] solves, bit for bit. The
+/// model's matrix storage is used. Returns the number of factorizations (one).
+pub fn input_jumps<M: Integrable + ?Sized>(
+    model: &mut M,
+    (s, out): (&State, &mut State),
+    jw: &mut JumpWork,
+    count: usize,
+    mut change: impl FnMut(&mut M, usize),
+    mut read: impl FnMut(&mut M, &State, usize),
+) -> Result<u64, StepFailure> {
+    let n = model.coordinates();
+    let m = model.constraints();
+    jw.work.size(n, m);
+    jw.res.resize(n + m, 0.0);
+    let Work {
+        zeros,
+        rhs: before,
+        before: drift_before,
+        after: drift_after,
+        drift: drift_work,
+    } = &mut jw.work;
+    let res = &mut jw.res[..];
+    let x = StateRef::new(&s.q, &s.v, &zeros[..n], &zeros[..m]);
+    before.fill(0.0);
+    let residual = EvalRequest {
+        sd: 1.0,
+        matrix: None,
+        lambda_hessian: false,
+    };
+    model.eval(x, residual, before);
+    let with_matrix = EvalRequest {
+        sd: 1.0,
+        matrix: Some((1.0, 0.0, 0.0)),
+        lambda_hessian: false,
+    };
+    let driven = model.is_driven();
+    let eps = drift_step(model, &s.v);
+    // Φ(q) (the held values) is the same under every change: evaluated once
+    drift_work.p0_known = false;
+    let has_before =
+        driven && constraint_drift_with(model, &s.q, &s.v, eps, drift_work, drift_before);
+    drift_work.p0_known = has_before;
+    for k in 0..count {
+        change(model, k);
+        let has_after =
+            driven && constraint_drift_with(model, &s.q, &s.v, eps, drift_work, drift_after);
+        drift_work.p0_known |= has_after;
+        // the residual with the matrix request, as [`change_inputs`] evaluates it (an
+        // element may compute its residual along another path with a matrix: not the same bits
+        // without); the matrix is the same for every change, factorized for the first
+        model.eval(x, with_matrix, res);
+        if k == 0 {
+            model
+                .factorize()
+                .map_err(|_| StepFailure::Singular { h: 0.0 })?;
+        }
+        for (r, b) in res.iter_mut().zip(before.iter()).take(n) {
+            *r = b - *r;
+        }
+        res[n..].fill(0.0);
+        if has_before || has_after {
+            for j in 0..m {
+                let b = if has_before { drift_before[j] } else { 0.0 };
+                let a = if has_after { drift_after[j] } else { 0.0 };
+                res[n + j] = b - a;
+            }
+        }
+        if !model.solve(res) || res.iter().any(|x| !x.is_finite()) {
+            return Err(StepFailure::Singular { h: 0.0 });
+        }
+        out.copy_from(s);
+        for i in 0..n {
+            out.acc[i] += res[i];
+            out.aux[i] += res[i];
+        }
+        for j in 0..m {
+            out.lambda[j] += res[n + j];
+        }
+        read(model, out, k);
+    }
+    Ok(1)
+}
+
 /// d²Φ/dt² at q̈ = 0 along (q̇, the held coordinates' motion), by a central second
 /// difference, into `out` (m); false (and `out` untouched) without constraint rows or without
 /// motion.
@@ -215,7 +325,14 @@ fn constraint_drift_with<M: Integrable + ?Sized>(
     if m == 0 || (model.held_rate() == 0.0 && v.iter().all(|x| *x == 0.0)) {
         return false;
     }
-    let DriftWork { qp, qm, pp, p0, pm } = work;
+    let DriftWork {
+        p0_known,
+        qp,
+        qm,
+        pp,
+        p0,
+        pm,
+    } = work;
     for ((o, q), v) in qp.iter_mut().zip(q).zip(v) {
         *o = q + eps * v;
     }
@@ -223,11 +340,17 @@ fn constraint_drift_with<M: Integrable + ?Sized>(
         *o = q - eps * v;
     }
     // each row set written whole by the model (fresh zeros before, as the rows were)
-    for (x, dt, p) in [
+    for (k, (x, dt, p)) in [
         (&qp[..], eps, &mut *pp),
         (q, 0.0, &mut *p0),
         (&qm[..], -eps, &mut *pm),
-    ] {
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        if k == 1 && *p0_known {
+            continue;
+        }
         p.fill(0.0);
         model.constraint_values(x, dt, p);
     }

@@ -10,6 +10,7 @@ mod parameters;
 mod seam;
 mod statics;
 
+pub use consistent::{input_jumps, JumpWork};
 pub use esdirk::{Esdirk, Tableau, ESDIRK4};
 pub use generalized_alpha::{AlphaParams, GeneralizedAlpha};
 pub use newton::{IntegratorMemory, JacobianPoint, StepFailure};

@@ -195,17 +195,14 @@ impl Newton {
     }
 
     /// The jump of q̈ and λ when `change` alters the inputs at t_n
-    /// ([`super::GeneralizedAlpha::change_inputs`]); the held matrix is dropped, unless the
-    /// model solves with its matrix set aside ([`Integrable::matrix_aside`]).
+    /// ([`super::GeneralizedAlpha::change_inputs`]); the held matrix is dropped.
     pub(super) fn jump<M: Integrable + ?Sized>(
         &mut self,
         model: &mut M,
         s: &mut State,
         change: impl FnOnce(&mut M),
     ) -> Result<(), StepFailure> {
-        if !model.matrix_aside() {
-            self.invalidate();
-        }
+        self.invalidate();
         change_inputs(
             model,
             s,

@@ -80,13 +80,6 @@ pub trait Integrable {
         constraint_rows(self, q, out);
     }
 
-    /// Whether matrix evaluations, factorizations and solves use a second storage now, the
-    /// held Newton matrix set aside intact (the side solves of an apparent mass): a jump of the
-    /// inputs then keeps the held matrix valid. Default: no.
-    fn matrix_aside(&self) -> bool {
-        false
-    }
-
     /// Whether held coordinates follow a prescribed motion (a driven support; default: no).
     fn is_driven(&self) -> bool {
         false

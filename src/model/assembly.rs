@@ -322,7 +322,8 @@ impl<S: Space> Model<S> {
     /// Sets the held Newton matrix aside (`on`) or takes it back: while it is aside, matrix
     /// evaluations, factorizations and solves use a second storage and leave the held matrix
     /// (its values, its factorization, [`Model::mount_at_matrix`]) as it was, so that solves
-    /// beside a step (an apparent mass) need not rebuild it ([`Integrable::matrix_aside`]).
+    /// beside a step (an apparent mass's, [`crate::integrator::input_jumps`]) need not rebuild
+    /// it.
     /// Returns whether it is aside now (a fixed root has no second storage: false).
     pub fn set_matrix_aside(&mut self, on: bool) -> bool {
         let Some(aside) = &mut self.aside else {
@@ -560,10 +561,6 @@ impl<S: Space> Integrable for Model<S> {
 
     fn is_driven(&self) -> bool {
         self.mount.is_some()
-    }
-
-    fn matrix_aside(&self) -> bool {
-        self.matrix_aside
     }
 
     fn held_rate(&self) -> f64 {

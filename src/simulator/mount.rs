@@ -227,37 +227,43 @@ impl<S: Space> Simulator<S> {
         let base = self.reaction_now();
         let rot = S::moment_components(&m0.angular_velocity).len();
         let n = S::DIM + rot;
-        self.model.set_matrix_aside(true);
-        let mut out = [[0.0; PARTNER_COMPONENTS]; PARTNER_COMPONENTS];
-        let mut ok = true;
-        for k in 0..n {
+        // a unit change of acceleration component k
+        let unit = |k: usize| {
             let mut m1 = m0;
             if k < S::DIM {
                 m1.acceleration[k] += 1.0;
             } else {
                 S::moment_components_mut(&mut m1.angular_acceleration)[k - S::DIM] += 1.0;
             }
-            let s = &mut self.work.0;
-            s.copy_from(&self.state);
-            ok = self
-                .integ
-                .change_inputs(&mut self.model, s, |m| m.set_mount(&m1))
-                .is_ok();
-            let (f, mo) = self.model.reaction(&s.q, &s.v, &s.acc, &s.lambda);
-            self.model.set_mount(&m0);
-            if !ok {
-                break;
-            }
-            for (r, x) in f.as_ref()[..S::DIM]
-                .iter()
-                .chain(S::moment_components(&mo))
-                .enumerate()
-            {
-                out[r][k] = x - base[r];
-            }
-        }
+            m1
+        };
+        let mut out = [[0.0; PARTNER_COMPONENTS]; PARTNER_COMPONENTS];
+        self.model.set_matrix_aside(true);
+        let (column, _, jumps) = &mut self.work;
+        let solved = crate::integrator::input_jumps(
+            &mut self.model,
+            (&self.state, column),
+            jumps,
+            n,
+            |model, k| model.set_mount(&unit(k)),
+            |model, s, k| {
+                let (f, mo) = model.reaction(&s.q, &s.v, &s.acc, &s.lambda);
+                model.set_mount(&m0);
+                for (r, x) in f.as_ref()[..S::DIM]
+                    .iter()
+                    .chain(S::moment_components(&mo))
+                    .enumerate()
+                {
+                    out[r][k] = x - base[r];
+                }
+            },
+        );
+        // back at the current motion (a failed solve may leave a changed one)
+        self.model.set_mount(&m0);
         self.model.set_matrix_aside(false);
-        ok.then_some((out, n))
+        let factorizations = solved.ok()?;
+        self.integ.counters_mut().factorizations += factorizations;
+        Some((out, n))
     }
 
     /// The mass matrix at the mount of the rigid inertia in `outputs` (this state's,
