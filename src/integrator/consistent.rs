@@ -4,6 +4,20 @@
 
 use super::{scaled_norm, Counters, EvalRequest, Integrable, State, StateRef, StepFailure};
 
+/// The evaluation of the residual alone, at unit row scale.
+const RESIDUAL: EvalRequest = EvalRequest {
+    sd: 1.0,
+    matrix: None,
+    lambda_hessian: false,
+};
+
+/// The evaluation with the matrix [M Φ_qᵀ; Φ_q 0] (c_a = 1, c_v = c_x = 0).
+const MATRIX: EvalRequest = EvalRequest {
+    sd: 1.0,
+    matrix: Some((1.0, 0.0, 0.0)),
+    lambda_hessian: false,
+};
+
 /// The working memory of [`initialize`] and [`change_inputs`], owned by the integrator's
 /// Newton solver: sized at the first call (the initialization), then reused, so that a jump of
 /// the inputs allocates nothing.
@@ -73,13 +87,8 @@ pub(super) fn initialize<M: Integrable + ?Sized>(
         drift: drift_work,
         ..
     } = work;
-    let req = EvalRequest {
-        sd: 1.0,
-        matrix: Some((1.0, 0.0, 0.0)),
-        lambda_hessian: false,
-    };
     let x = StateRef::new(&s.q, &s.v, &zeros[..n], &zeros[..m]);
-    model.eval(x, req, res);
+    model.eval(x, MATRIX, res);
     for (o, r) in rhs.iter_mut().zip(res.iter()) {
         *o = -r;
     }
@@ -129,12 +138,7 @@ pub(super) fn change_inputs<M: Integrable + ?Sized>(
     } = work;
     let x = StateRef::new(&s.q, &s.v, &zeros[..n], &zeros[..m]);
     before.fill(0.0);
-    let req = EvalRequest {
-        sd: 1.0,
-        matrix: None,
-        lambda_hessian: false,
-    };
-    model.eval(x, req, before);
+    model.eval(x, RESIDUAL, before);
     // a driven support: the acceleration-level constraint before and after, with the same
     // difference step so that the velocity terms cancel
     let driven = model.is_driven();
@@ -144,41 +148,61 @@ pub(super) fn change_inputs<M: Integrable + ?Sized>(
     change(model);
     let has_after =
         driven && constraint_drift_with(model, &s.q, &s.v, eps, drift_work, drift_after);
-    let req = EvalRequest {
-        sd: 1.0,
-        matrix: Some((1.0, 0.0, 0.0)),
-        lambda_hessian: false,
-    };
-    model.eval(x, req, res);
+    model.eval(x, MATRIX, res);
     model
         .factorize()
         .map_err(|_| StepFailure::Singular { h: 0.0 })?;
     counters.factorizations += 1;
-    for (r, b) in res.iter_mut().zip(before.iter()).take(n) {
+    let drifts = (
+        has_before.then_some(&drift_before[..]),
+        has_after.then_some(&drift_after[..]),
+    );
+    solve_jump(model, res, before, drifts)?;
+    add_jump(s, res);
+    Ok(())
+}
+
+/// The jump [Δq̈; Δλ] into `res` (n + m; the residual after the change on entry) with the held
+/// factorization: the dynamic rows f_ext⁺ − f_ext⁻ = r⁻ − r⁺ (`before` the residual before the
+/// change), the constraint rows from the acceleration-level constraint before and after
+/// (`drifts`, `None`: zero).
+fn solve_jump<M: Integrable + ?Sized>(
+    model: &mut M,
+    res: &mut [f64],
+    before: &[f64],
+    (drift_before, drift_after): (Option<&[f64]>, Option<&[f64]>),
+) -> Result<(), StepFailure> {
+    let n = model.coordinates();
+    for (r, b) in res.iter_mut().zip(before).take(n) {
         *r = b - *r;
     }
     // Φ(q_n) is the same both times; a moving support changes the acceleration-level
     // constraint by Φ_h Δḧ: Φ_q Δq̈ = −(d²Φ/dt²⁺ − d²Φ/dt²⁻)
     res[n..].fill(0.0);
-    if has_before || has_after {
+    if drift_before.is_some() || drift_after.is_some() {
         // an absent side is zero
-        for j in 0..m {
-            let b = if has_before { drift_before[j] } else { 0.0 };
-            let a = if has_after { drift_after[j] } else { 0.0 };
-            res[n + j] = b - a;
+        for (j, r) in res[n..].iter_mut().enumerate() {
+            let b = drift_before.map_or(0.0, |d| d[j]);
+            let a = drift_after.map_or(0.0, |d| d[j]);
+            *r = b - a;
         }
     }
     if !model.solve(res) || res.iter().any(|x| !x.is_finite()) {
         return Err(StepFailure::Singular { h: 0.0 });
     }
+    Ok(())
+}
+
+/// Adds the jump `res` ([Δq̈; Δλ]) to `s`: q̈, the algorithmic acceleration and λ.
+fn add_jump(s: &mut State, res: &[f64]) {
+    let n = s.acc.len();
     for i in 0..n {
         s.acc[i] += res[i];
         s.aux[i] += res[i];
     }
-    for j in 0..m {
-        s.lambda[j] += res[n + j];
+    for (l, r) in s.lambda.iter_mut().zip(&res[n..]) {
+        *l += r;
     }
-    Ok(())
 }
 
 /// The working memory of [`input_jumps`] (sized at build by [`JumpWork::sized`]: no
@@ -230,17 +254,7 @@ pub fn input_jumps<M: Integrable + ?Sized>(
     let res = &mut jw.res[..];
     let x = StateRef::new(&s.q, &s.v, &zeros[..n], &zeros[..m]);
     before.fill(0.0);
-    let residual = EvalRequest {
-        sd: 1.0,
-        matrix: None,
-        lambda_hessian: false,
-    };
-    model.eval(x, residual, before);
-    let with_matrix = EvalRequest {
-        sd: 1.0,
-        matrix: Some((1.0, 0.0, 0.0)),
-        lambda_hessian: false,
-    };
+    model.eval(x, RESIDUAL, before);
     let driven = model.is_driven();
     let eps = drift_step(model, &s.v);
     // Φ(q) (the held values) is the same under every change: evaluated once
@@ -256,34 +270,19 @@ pub fn input_jumps<M: Integrable + ?Sized>(
         // the residual with the matrix request, as [`change_inputs`] evaluates it (an
         // element may compute its residual along another path with a matrix: not the same bits
         // without); the matrix is the same for every change, factorized for the first
-        model.eval(x, with_matrix, res);
+        model.eval(x, MATRIX, res);
         if k == 0 {
             model
                 .factorize()
                 .map_err(|_| StepFailure::Singular { h: 0.0 })?;
         }
-        for (r, b) in res.iter_mut().zip(before.iter()).take(n) {
-            *r = b - *r;
-        }
-        res[n..].fill(0.0);
-        if has_before || has_after {
-            for j in 0..m {
-                let b = if has_before { drift_before[j] } else { 0.0 };
-                let a = if has_after { drift_after[j] } else { 0.0 };
-                res[n + j] = b - a;
-            }
-        }
-        if !model.solve(res) || res.iter().any(|x| !x.is_finite()) {
-            return Err(StepFailure::Singular { h: 0.0 });
-        }
+        let drifts = (
+            has_before.then_some(&drift_before[..]),
+            has_after.then_some(&drift_after[..]),
+        );
+        solve_jump(model, res, before, drifts)?;
         out.copy_from(s);
-        for i in 0..n {
-            out.acc[i] += res[i];
-            out.aux[i] += res[i];
-        }
-        for j in 0..m {
-            out.lambda[j] += res[n + j];
-        }
+        add_jump(out, res);
         read(model, out, k);
     }
     Ok(1)
