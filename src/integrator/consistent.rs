@@ -224,13 +224,13 @@ impl JumpWork {
     }
 }
 
-/// Several jumps of the inputs from one state `s`, each as [`change_inputs`] solves it: for
+/// Several jumps of the inputs from one state `s`, each as `change_inputs` (an integrator's) solves it: for
 /// k < `count`, `change(model, k)` alters the inputs, the jump of q̈ and λ is added to a copy of
 /// `s` in `out`, and `read(model, out, k)` reads it and returns the model to the inputs of `s`.
 /// The residual and the acceleration-level constraint before the changes are evaluated once,
-/// and the matrix [M Φ_qᵀ; Φ_q 0] at (q, q̇) is factorized for the first jump only: the changes
+/// and the matrix `[M Φ_qᵀ; Φ_q 0]` at (q, q̇) is factorized for the first jump only: the changes
 /// must leave it as it is, to the bit (accelerations of a mount, which enter it only times
-/// c_v = c_x = 0), and each jump is then the one [`change_inputs`] solves, bit for bit. The
+/// c_v = c_x = 0), and each jump is then the one `change_inputs` (an integrator's) solves, bit for bit. The
 /// model's matrix storage is used. Returns the number of factorizations (one).
 pub fn input_jumps<M: Integrable + ?Sized>(
     model: &mut M,

@@ -3,7 +3,6 @@
 //! change if the host gives input derivatives), the input set for the next step, and the
 //! estimate of the accelerations from velocity inputs (`motion_input = "pose_velocity"`).
 
-use super::partner::PartnerMatrix;
 use super::*;
 use crate::error::Refusal;
 use crate::model::space::{moment_from, vec_from};
@@ -216,13 +215,15 @@ impl<S: Space> Simulator<S> {
     /// scratch state, with the held Newton matrix set aside ([`Model::set_matrix_aside`]), so
     /// the run continues bit for bit. `None` for a fixed root or when the solve fails.
     pub fn apparent_mass(&mut self) -> Option<Vec<Vec<f64>>> {
-        let (a, n) = self.apparent_mass_matrix()?;
+        let (a, n) = self.apparent_mass_array()?;
         Some(a[..n].iter().map(|row| row[..n].to_vec()).collect())
     }
 
     /// [`Simulator::apparent_mass`] without allocating: the matrix in the upper left n × n of
     /// a partner-sized array (n = 3 planar, 6 spatial), and n.
-    pub(super) fn apparent_mass_matrix(&mut self) -> Option<(PartnerMatrix, usize)> {
+    pub fn apparent_mass_array(
+        &mut self,
+    ) -> Option<([[f64; PARTNER_COMPONENTS]; PARTNER_COMPONENTS], usize)> {
         let m0 = *self.model.mount_motion()?;
         let base = self.reaction_now();
         let rot = S::moment_components(&m0.angular_velocity).len();

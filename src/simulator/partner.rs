@@ -362,7 +362,7 @@ impl<S: Space> Simulator<S> {
             ));
         }
         let (apparent, n) = self
-            .apparent_mass_matrix()
+            .apparent_mass_array()
             .ok_or_else(|| refused("the beam's apparent mass at the mount could not be solved"))?;
         let scale = (self.scene.total_length(), S::DIM);
         PartnerStep::new(partner, (&apparent, n), self.scene.solver.tolerance, scale)
