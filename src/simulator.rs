@@ -57,6 +57,11 @@ pub struct Simulator<S: Space> {
     /// Where a communication step keeps the state and mount it returns to on failure (kept
     /// between steps: saving copies into it, no allocation in the step).
     backup: (State, Option<Box<MountState<S>>>),
+    /// Working states of a communication step, kept between steps (copied into: no allocation
+    /// in the step): the apparent mass's column ([`Simulator::apparent_mass`]) and the partner
+    /// model's internal step start ([`Simulator::step_with_partner`]), and the apparent mass's
+    /// solves' working memory.
+    work: (State, State, crate::integrator::JumpWork),
 }
 
 impl<S: Space> Simulator<S> {
@@ -136,6 +141,11 @@ impl<S: Space> Simulator<S> {
             model,
             integ,
             backup: (state.clone(), mount.clone()),
+            work: (
+                state.clone(),
+                state.clone(),
+                crate::integrator::JumpWork::sized(n, m),
+            ),
             state,
             step,
             applied,

@@ -2,7 +2,7 @@
 //! a trial state, with the Newton matrix held across iterations, stages and steps while it
 //! contracts well (refreshed at the current iterate otherwise).
 
-use super::consistent::{change_inputs, initialize};
+use super::consistent::{change_inputs, initialize, Work};
 use super::{scaled_norm, Counters, EvalRequest, Integrable, State, StateRef, REFRESH_RATE};
 
 /// Why a step failed.
@@ -101,6 +101,8 @@ pub(super) struct Newton {
     pub(super) fixed: Option<super::FixedWork>,
     /// Real-time mode: solves since the matrix was last refreshed.
     pub(super) solves_since_refresh: u32,
+    /// The consistent accelerations' working memory (sized at the first use).
+    work: Work,
 }
 
 /// How an increment Δq of the coordinates moves the trial's other unknowns: q̇ += dv·Δq,
@@ -123,6 +125,7 @@ impl Newton {
             counters: Counters::default(),
             fixed: None,
             solves_since_refresh: 0,
+            work: Work::default(),
         }
     }
 
@@ -132,10 +135,10 @@ impl Newton {
         self
     }
 
-    /// Forgets the held matrix.
+    /// Forgets the held matrix (the storage of its evaluation point is kept, to be refilled
+    /// without allocating; [`Newton::memory`] reads it only with a held matrix).
     pub(super) fn invalidate(&mut self) {
         self.factored_h = None;
-        self.jac_at = None;
     }
 
     /// The memory a snapshot must carry: `eta` and the held matrix's evaluation point.
@@ -165,7 +168,17 @@ impl Newton {
             model.eval(x, request(h), &mut self.res);
             model.factorize().map_err(|_| StepFailure::Singular { h })?;
             self.factored_h = Some(h);
-            self.jac_at = Some(jp.clone());
+            match &mut self.jac_at {
+                Some(held) => {
+                    // field by field (a derived clone_from would allocate anew)
+                    held.h = jp.h;
+                    held.q.clone_from(&jp.q);
+                    held.v.clone_from(&jp.v);
+                    held.acc.clone_from(&jp.acc);
+                    held.lam.clone_from(&jp.lam);
+                }
+                None => self.jac_at = Some(jp.clone()),
+            }
         }
         Ok(())
     }
@@ -178,7 +191,7 @@ impl Newton {
         s: &mut State,
     ) -> Result<(), StepFailure> {
         self.invalidate();
-        initialize(model, s, &mut self.res, &mut self.counters)
+        initialize(model, s, &mut self.res, &mut self.counters, &mut self.work)
     }
 
     /// The jump of q̈ and λ when `change` alters the inputs at t_n
@@ -190,7 +203,14 @@ impl Newton {
         change: impl FnOnce(&mut M),
     ) -> Result<(), StepFailure> {
         self.invalidate();
-        change_inputs(model, s, &mut self.res, &mut self.counters, change)
+        change_inputs(
+            model,
+            s,
+            &mut self.res,
+            &mut self.counters,
+            &mut self.work,
+            change,
+        )
     }
 
     /// Iterates on `t` (its coordinates, rates, accelerations and scaled multipliers) at step

@@ -125,6 +125,17 @@ pub struct Model<S: Space> {
     lu: NewtonLu,
     values: Vec<f64>,
     work: Work,
+    /// [`Integrable::constraint_values`]' held values while they are moved, and its rows'
+    /// working memory (sized at the first call).
+    held_saved: Vec<f64>,
+    rows_work: crate::integrator::RowsWork,
+    /// A mounted model's second matrix storage (LU and values), swapped in while the held
+    /// Newton matrix is set aside ([`Model::set_matrix_aside`]).
+    aside: Option<Box<(NewtonLu, Vec<f64>)>>,
+    /// Whether the held matrix is set aside now.
+    matrix_aside: bool,
+    /// [`Model::mount_inertia`]'s working memory (sized at build for a mounted model).
+    pub(crate) mount_work: super::scratch::Scratch<super::inertia::MountWork>,
 }
 
 impl<S: Space> std::fmt::Debug for Model<S> {
@@ -272,7 +283,22 @@ impl<S: Space> Model<S> {
             lu: NewtonLu::new(pattern),
             values: vec![0.0; nnz],
             work,
+            held_saved: Vec::new(),
+            rows_work: crate::integrator::RowsWork::sized(n, m),
+            aside: None,
+            matrix_aside: false,
+            mount_work: Default::default(),
         };
+        if mounted {
+            let (n, nh) = (model.n, model.held.len());
+            model.mount_work =
+                super::scratch::Scratch::new(super::inertia::MountWork::sized(n, nh, dmax));
+            model.aside = Some(Box::new((
+                NewtonLu::new(model.lu.pattern().clone()),
+                vec![0.0; nnz],
+            )));
+        }
+        model.held_saved.clone_from(&model.held);
         model.set_gravity(gravity);
         model
     }
@@ -287,7 +313,28 @@ impl<S: Space> Model<S> {
     /// caller's integrator must refactorize (`GeneralizedAlpha::invalidate`).
     pub fn set_lu_method(&mut self, method: LuMethod) {
         let pattern = self.lu.pattern().clone();
+        if let Some(aside) = &mut self.aside {
+            aside.0 = NewtonLu::with_method(pattern.clone(), method);
+        }
         self.lu = NewtonLu::with_method(pattern, method);
+    }
+
+    /// Sets the held Newton matrix aside (`on`) or takes it back: while it is aside, matrix
+    /// evaluations, factorizations and solves use a second storage and leave the held matrix
+    /// (its values, its factorization, [`Model::mount_at_matrix`]) as it was, so that solves
+    /// beside a step (an apparent mass's, [`crate::integrator::input_jumps`]) need not rebuild
+    /// it.
+    /// Returns whether it is aside now (a fixed root has no second storage: false).
+    pub fn set_matrix_aside(&mut self, on: bool) -> bool {
+        let Some(aside) = &mut self.aside else {
+            return false;
+        };
+        if on != self.matrix_aside {
+            std::mem::swap(&mut self.lu, &mut aside.0);
+            std::mem::swap(&mut self.values, &mut aside.1);
+            self.matrix_aside = on;
+        }
+        on
     }
 
     /// Whether any damping term is present.
@@ -394,7 +441,7 @@ impl<S: Space> Integrable for Model<S> {
         let matrix = req.matrix;
         if matrix.is_some() {
             self.values.fill(0.0);
-            if self.mount.is_some() {
+            if self.mount.is_some() && !self.matrix_aside {
                 self.mount_at_matrix.clone_from(&self.mount);
             }
         }
@@ -497,15 +544,18 @@ impl<S: Space> Integrable for Model<S> {
 
     fn constraint_values(&mut self, q: &[f64], dt: f64, out: &mut [f64]) {
         let moved = self.mount.is_some() && dt != 0.0;
-        let saved = moved.then(|| self.held.clone());
+        // the held values kept in `held_saved` (copied: no allocation once sized)
         if moved {
+            self.held_saved.clone_from(&self.held);
             for ((h, v), a) in self.held.iter_mut().zip(&self.held_v).zip(&self.held_a) {
                 *h += dt * v + 0.5 * dt * dt * a;
             }
         }
-        crate::integrator::constraint_rows(self, q, out);
-        if let Some(h) = saved {
-            self.held = h;
+        let mut rows = std::mem::take(&mut self.rows_work);
+        crate::integrator::constraint_rows_with(self, q, out, &mut rows);
+        self.rows_work = rows;
+        if moved {
+            std::mem::swap(&mut self.held, &mut self.held_saved);
         }
     }
 

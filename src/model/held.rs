@@ -9,7 +9,7 @@
 use super::assembly::Model;
 use super::component::{Env, LocalState};
 use super::dofs::{Dof, RigidGroup};
-use super::inertia::MountInertia;
+use super::inertia::{MountInertia, MountWork, MAX_FIELDS};
 use super::space::{Motion, Space};
 
 /// A fixed-size scratch of a group's coordinates.
@@ -196,54 +196,78 @@ impl<S: Space> Model<S> {
         let m = self.mount.as_deref()?;
         let (dim, rot) = (S::DIM, S::moment_components(&m.angular_velocity).len());
         let nf = dim + rot;
-        // fields: translations along each axis, rotations about each axis through the mount point
-        let fields: Vec<(Vec<f64>, Vec<f64>)> = (0..nf)
-            .map(|f| {
+        let n = q.len();
+        let nh = self.held.len();
+        let mut gram = [[0.0; MAX_FIELDS]; MAX_FIELDS];
+        self.mount_work.with(|w| {
+            w.size(n, nh);
+            let MountWork {
+                free,
+                held: held_fields,
+                zeros,
+                r0,
+                r1,
+                ul,
+            } = w;
+            // fields: translations along each axis, rotations about each axis through the
+            // mount point (field f: free[f n..], held[f nh..])
+            for f in 0..nf {
                 let mut w = Motion::<S>::at_rest(m.position, m.attitude);
                 if f < dim {
                     w.velocity[f] = 1.0;
                 } else {
                     S::moment_components_mut(&mut w.angular_velocity)[f - dim] = 1.0;
                 }
-                self.rigid_field(&w, q)
-            })
-            .collect();
-        let n = q.len();
-        let nh = self.held.len();
-        let zeros = (vec![0.0; n], vec![0.0; nh]);
-        let env = Env {
-            gravity: S::Vec::default(),
-            load: 1.0,
-        };
-        let mut gram = vec![vec![0.0; nf]; nf];
-        let mut r0 = Vec::new();
-        let mut r1 = Vec::new();
-        let mut ul = Vec::new();
-        for e in &self.elements {
-            let dofs = &e.at.dofs;
-            let held = (&self.held[..], &zeros.1[..], &zeros.1[..]);
-            let x0 = LocalState::moving(dofs, held, (q, &zeros.0, &zeros.0));
-            r0.resize(dofs.len(), 0.0);
-            r1.resize(dofs.len(), 0.0);
-            ul.resize(dofs.len(), 0.0);
-            e.at.part.residual(&x0, &env, &mut r0);
-            for (i, (ui, hi)) in fields.iter().enumerate() {
-                let held = (&self.held[..], &zeros.1[..], &hi[..]);
-                let xi = LocalState::moving(dofs, held, (q, &zeros.0, ui));
-                e.at.part.residual(&xi, &env, &mut r1);
-                for (j, (uj, hj)) in fields.iter().enumerate() {
-                    for (k, d) in dofs.dofs().iter().enumerate() {
-                        ul[k] = match *d {
-                            Dof::Free(a) => uj[a as usize],
-                            Dof::Held(b) => hj[b as usize],
-                        };
+                self.rigid_field(
+                    &w,
+                    q,
+                    &mut free[f * n..(f + 1) * n],
+                    &mut held_fields[f * nh..(f + 1) * nh],
+                );
+            }
+            let field = |f: usize| {
+                (
+                    &free[f * n..(f + 1) * n],
+                    &held_fields[f * nh..(f + 1) * nh],
+                )
+            };
+            let zeros = (&zeros[..n], &zeros[..nh]);
+            let env = Env {
+                gravity: S::Vec::default(),
+                load: 1.0,
+            };
+            // sized anew per element from empty, as fresh vectors would be
+            r0.clear();
+            r1.clear();
+            ul.clear();
+            for e in &self.elements {
+                let dofs = &e.at.dofs;
+                let held = (&self.held[..], zeros.1, zeros.1);
+                let x0 = LocalState::moving(dofs, held, (q, zeros.0, zeros.0));
+                r0.resize(dofs.len(), 0.0);
+                r1.resize(dofs.len(), 0.0);
+                ul.resize(dofs.len(), 0.0);
+                e.at.part.residual(&x0, &env, r0);
+                for i in 0..nf {
+                    let (ui, hi) = field(i);
+                    let held = (&self.held[..], zeros.1, hi);
+                    let xi = LocalState::moving(dofs, held, (q, zeros.0, ui));
+                    e.at.part.residual(&xi, &env, r1);
+                    for j in 0..nf {
+                        let (uj, hj) = field(j);
+                        for (k, d) in dofs.dofs().iter().enumerate() {
+                            ul[k] = match *d {
+                                Dof::Free(a) => uj[a as usize],
+                                Dof::Held(b) => hj[b as usize],
+                            };
+                        }
+                        gram[i][j] += (0..dofs.len())
+                            .map(|k| ul[k] * (r1[k] - r0[k]))
+                            .sum::<f64>();
                     }
-                    gram[i][j] += (0..dofs.len())
-                        .map(|k| ul[k] * (r1[k] - r0[k]))
-                        .sum::<f64>();
                 }
             }
-        }
+        });
         let mass = (0..dim).map(|i| gram[i][i]).sum::<f64>() / dim as f64;
         // Tᵢᵀ M Rⱼ = eᵢ·(eⱼ × S), S = m c: the static moment from the mixed entries
         let mut s = S::Vec::default();
@@ -296,11 +320,11 @@ impl<S: Space> Model<S> {
         })
     }
 
-    /// The velocity field of the rigid motion `w` (rates only) over all coordinates at `q`:
-    /// (free, held).
-    fn rigid_field(&self, w: &Motion<S>, q: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let mut uf = vec![0.0; q.len()];
-        let mut uh = vec![0.0; self.held.len()];
+    /// The velocity field of the rigid motion `w` (rates only) over all coordinates at `q`,
+    /// into `uf` (free, n) and `uh` (held); zero for coordinates in no rigid group.
+    fn rigid_field(&self, w: &Motion<S>, q: &[f64], uf: &mut [f64], uh: &mut [f64]) {
+        uf.fill(0.0);
+        uh.fill(0.0);
         let zero = [0.0; 4];
         for g in &self.groups {
             let k = S::rigid_len(g.kind);
@@ -330,7 +354,6 @@ impl<S: Space> Model<S> {
                 }
             }
         }
-        (uf, uh)
     }
 }
 

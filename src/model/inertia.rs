@@ -80,6 +80,13 @@ impl<S: Space> MountInertia<S> {
     /// columns acceleration then angular acceleration components (world axes):
     /// [m 1, −m [c]×; m [c]×, I].
     pub fn mass_matrix(&self, attitude: &S::Attitude) -> Vec<Vec<f64>> {
+        let (full, n) = self.mass_matrix_array(attitude);
+        full[..n].iter().map(|row| row[..n].to_vec()).collect()
+    }
+
+    /// [`MountInertia::mass_matrix`] without allocating: the matrix in the upper left n × n of
+    /// a 6 × 6 array (n = 3 in the plane, 6 in space), and n.
+    pub fn mass_matrix_array(&self, attitude: &S::Attitude) -> ([[f64; 6]; 6], usize) {
         let (c, iw) = self.world(attitude);
         let skew = [[0.0, -c[2], c[1]], [c[2], 0.0, -c[0]], [-c[1], c[0], 0.0]];
         let m = self.mass;
@@ -96,11 +103,59 @@ impl<S: Space> MountInertia<S> {
             (false, true) => m * skew[r - 3][k],
             (false, false) => iw[r - 3][k - 3],
         };
-        let idx: Vec<usize> = (0..S::DIM)
-            .chain(S::MOMENT_INDICES.iter().map(|k| k + 3))
-            .collect();
-        idx.iter()
-            .map(|&r| idx.iter().map(|&k| full(r, k)).collect())
-            .collect()
+        let n = S::DIM + S::MOMENT_INDICES.len();
+        let idx = |i: usize| {
+            if i < S::DIM {
+                i
+            } else {
+                S::MOMENT_INDICES[i - S::DIM] + 3
+            }
+        };
+        let mut out = [[0.0; 6]; 6];
+        for (r, row) in out.iter_mut().enumerate().take(n) {
+            for (k, x) in row.iter_mut().enumerate().take(n) {
+                *x = full(idx(r), idx(k));
+            }
+        }
+        (out, n)
+    }
+}
+
+/// The most rigid fields of a mount (3 translations, 3 rotations).
+pub(crate) const MAX_FIELDS: usize = 6;
+
+/// The working memory of `Model::mount_inertia` (a mounted model's own, sized at build: no
+/// allocation in a step).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct MountWork {
+    /// The rigid fields over the free coordinates, field by field (n each).
+    pub(crate) free: Vec<f64>,
+    /// The rigid fields over the held coordinates, field by field.
+    pub(crate) held: Vec<f64>,
+    /// Zeros: the rates and accelerations (only ever zero).
+    pub(crate) zeros: Vec<f64>,
+    /// An element's residual at rest, and moving with a field; a field's local values.
+    pub(crate) r0: Vec<f64>,
+    pub(crate) r1: Vec<f64>,
+    pub(crate) ul: Vec<f64>,
+}
+
+impl MountWork {
+    /// Sized for `n` free and `nh` held coordinates and elements of up to `local`
+    /// coordinates.
+    pub(crate) fn sized(n: usize, nh: usize, local: usize) -> Self {
+        let mut w = Self::default();
+        w.size(n, nh);
+        for v in [&mut w.r0, &mut w.r1, &mut w.ul] {
+            v.reserve(local);
+        }
+        w
+    }
+
+    /// Sizes the fields and zeros (no allocation once sized).
+    pub(crate) fn size(&mut self, n: usize, nh: usize) {
+        self.free.resize(MAX_FIELDS * n, 0.0);
+        self.held.resize(MAX_FIELDS * nh, 0.0);
+        self.zeros.resize(n.max(nh), 0.0);
     }
 }

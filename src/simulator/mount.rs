@@ -100,7 +100,13 @@ impl<S: Space> MountState<S> {
     pub fn checked(&self, input: MountInput<S>, t: f64) -> Result<MountInput<S>, Refusal> {
         let mut input = input;
         let m = &mut input.motion;
-        let finite = m.components().iter().all(|x| x.is_finite())
+        // every component (Motion::components, read in place)
+        let finite = [&m.position, &m.velocity, &m.acceleration]
+            .iter()
+            .flat_map(|v| v.as_ref())
+            .chain(S::moment_components(&m.angular_velocity))
+            .chain(S::moment_components(&m.angular_acceleration))
+            .all(|x| x.is_finite())
             && S::attitude_components(&m.attitude)
                 .iter()
                 .all(|x| x.is_finite());
@@ -130,10 +136,8 @@ impl<S: Space> MountState<S> {
                 for k in 0..S::DIM {
                     m.acceleration[k] = (m.velocity[k] - prev.velocity[k]) / dt;
                 }
-                let (w, wp) = (
-                    S::moment_components(&m.angular_velocity).to_vec(),
-                    S::moment_components(&prev.angular_velocity).to_vec(),
-                );
+                let (w, wp) = (m.angular_velocity, prev.angular_velocity);
+                let (w, wp) = (S::moment_components(&w), S::moment_components(&wp));
                 for (k, a) in S::moment_components_mut(&mut m.angular_acceleration)
                     .iter_mut()
                     .enumerate()
@@ -208,50 +212,59 @@ impl<S: Space> Simulator<S> {
     /// reaction's direct feedthrough is ([`Outputs::root_force`] after an acceleration input
     /// changes by Δa is the current one plus this matrix times Δa). Each column is the
     /// acceleration jump of a unit input change (`[M Φ_qᵀ; Φ_q 0]` solve, linear in it) on a
-    /// scratch state; the held Newton matrix is then rebuilt where it was, so the run continues
-    /// bit for bit. `None` for a fixed root or when the solve fails.
+    /// scratch state, with the held Newton matrix set aside ([`Model::set_matrix_aside`]), so
+    /// the run continues bit for bit. `None` for a fixed root or when the solve fails.
     pub fn apparent_mass(&mut self) -> Option<Vec<Vec<f64>>> {
+        let (a, n) = self.apparent_mass_array()?;
+        Some(a[..n].iter().map(|row| row[..n].to_vec()).collect())
+    }
+
+    /// [`Simulator::apparent_mass`] without allocating: the matrix in the upper left n × n of
+    /// a partner-sized array (n = 3 planar, 6 spatial), and n.
+    pub fn apparent_mass_array(
+        &mut self,
+    ) -> Option<([[f64; PARTNER_COMPONENTS]; PARTNER_COMPONENTS], usize)> {
         let m0 = *self.model.mount_motion()?;
-        let mem = self.integ.memory();
-        let at_matrix = self.model.mount_at_matrix();
-        let base = self.outputs();
+        let base = self.reaction_now();
         let rot = S::moment_components(&m0.angular_velocity).len();
-        let mut cols = Vec::new();
-        for k in 0..S::DIM + rot {
+        let n = S::DIM + rot;
+        // a unit change of acceleration component k
+        let unit = |k: usize| {
             let mut m1 = m0;
             if k < S::DIM {
                 m1.acceleration[k] += 1.0;
             } else {
                 S::moment_components_mut(&mut m1.angular_acceleration)[k - S::DIM] += 1.0;
             }
-            let mut s = self.state.clone();
-            let ok = self
-                .integ
-                .change_inputs(&mut self.model, &mut s, |m| m.set_mount(&m1))
-                .is_ok();
-            let o = self.model.outputs(&s.q, &s.v, &s.acc, &s.lambda);
-            self.model.set_mount(&m0);
-            if !ok {
-                self.rebuild_matrix(&mem, at_matrix);
-                return None;
-            }
-            let mut col: Vec<f64> = (0..S::DIM)
-                .map(|c| o.root_force[c] - base.root_force[c])
-                .collect();
-            let (mo, mb) = (
-                S::moment_components(&o.root_moment),
-                S::moment_components(&base.root_moment),
-            );
-            col.extend(mo.iter().zip(mb).map(|(a, b)| a - b));
-            cols.push(col);
-        }
-        self.rebuild_matrix(&mem, at_matrix);
-        let n = cols.len();
-        Some(
-            (0..n)
-                .map(|r| (0..n).map(|c| cols[c][r]).collect())
-                .collect(),
-        )
+            m1
+        };
+        let mut out = [[0.0; PARTNER_COMPONENTS]; PARTNER_COMPONENTS];
+        self.model.set_matrix_aside(true);
+        let (column, _, jumps) = &mut self.work;
+        let solved = crate::integrator::input_jumps(
+            &mut self.model,
+            (&self.state, column),
+            jumps,
+            n,
+            |model, k| model.set_mount(&unit(k)),
+            |model, s, k| {
+                let (f, mo) = model.reaction(&s.q, &s.v, &s.acc, &s.lambda);
+                model.set_mount(&m0);
+                for (r, x) in f.as_ref()[..S::DIM]
+                    .iter()
+                    .chain(S::moment_components(&mo))
+                    .enumerate()
+                {
+                    out[r][k] = x - base[r];
+                }
+            },
+        );
+        // back at the current motion (a failed solve may leave a changed one)
+        self.model.set_mount(&m0);
+        self.model.set_matrix_aside(false);
+        let factorizations = solved.ok()?;
+        self.integ.counters_mut().factorizations += factorizations;
+        Some((out, n))
     }
 
     /// The mass matrix at the mount of the rigid inertia in `outputs` (this state's,
@@ -264,19 +277,14 @@ impl<S: Space> Simulator<S> {
         Some(outputs.mount?.mass_matrix(&m.attitude))
     }
 
-    /// Rebuilds the held Newton matrix of `mem` under the mount motion it was evaluated with
-    /// (and the applied inputs the model holds), then returns the model to the current motion.
-    pub(super) fn rebuild_matrix(&mut self, mem: &IntegratorMemory, at_matrix: Option<Motion<S>>) {
-        let now = self.model.mount_motion().copied();
-        if let Some(m) = &at_matrix {
-            self.model.set_mount(m);
-        }
-        if self.integ.restore_memory(&mut self.model, mem).is_err() {
-            self.integ.invalidate();
-        }
-        if let Some(m) = &now {
-            self.model.set_mount(m);
-        }
+    /// [`Simulator::rigid_mass_matrix`] without allocating: the matrix in the upper left n × n
+    /// of a partner-sized array (n = 3 planar, 6 spatial), and n.
+    pub fn rigid_mass_array(
+        &self,
+        outputs: &Outputs<S>,
+    ) -> Option<([[f64; PARTNER_COMPONENTS]; PARTNER_COMPONENTS], usize)> {
+        let m = self.model.mount_motion()?;
+        Some(outputs.mount?.mass_matrix_array(&m.attitude))
     }
 
     /// How the mount input set for the next step changes the accelerations now (the

@@ -81,6 +81,9 @@ impl Partner {
     }
 }
 
+/// A matrix of the partner's components as rows (the plane's 3 × 3 in the upper left).
+pub(super) type PartnerMatrix = [[f64; PARTNER_COMPONENTS]; PARTNER_COMPONENTS];
+
 /// A vector of the partner's components (the plane's 3 in the first places, the others zero).
 type Vector = nalgebra::Vector6<f64>;
 
@@ -134,11 +137,10 @@ impl PartnerStep {
     /// dimensions; `None` if I − G M_app is singular (to rounding).
     fn new(
         partner: Partner,
-        apparent: &[Vec<f64>],
+        (apparent, n): (&PartnerMatrix, usize),
         newton_tolerance: f64,
         (length, dim): (f64, usize),
     ) -> Option<Self> {
-        let n = apparent.len();
         let jac = Matrix::from_fn(|i, j| {
             let gm: f64 = if i < n && j < n {
                 (0..n)
@@ -329,7 +331,7 @@ impl<S: Space> Simulator<S> {
     }
 
     /// The support's reaction on the beam at the current state, components as [`Partner`].
-    fn reaction_now(&self) -> [f64; PARTNER_COMPONENTS] {
+    pub(super) fn reaction_now(&self) -> [f64; PARTNER_COMPONENTS] {
         let s = &self.state;
         let (f, m) = self.model.reaction(&s.q, &s.v, &s.acc, &s.lambda);
         let mut out = [0.0; PARTNER_COMPONENTS];
@@ -359,11 +361,11 @@ impl<S: Space> Simulator<S> {
                 "a root.mobility or root.reaction_reference input is not finite",
             ));
         }
-        let apparent = self
-            .apparent_mass()
+        let (apparent, n) = self
+            .apparent_mass_array()
             .ok_or_else(|| refused("the beam's apparent mass at the mount could not be solved"))?;
         let scale = (self.scene.total_length(), S::DIM);
-        PartnerStep::new(partner, &apparent, self.scene.solver.tolerance, scale)
+        PartnerStep::new(partner, (&apparent, n), self.scene.solver.tolerance, scale)
             .map(Some)
             .ok_or_else(|| {
                 refused(
@@ -422,8 +424,29 @@ impl<S: Space> Simulator<S> {
         span: (f64, f64, f64),
         inputs: &Inputs<S>,
     ) -> Result<(), PartnerFailure> {
+        // the step's start, copied into a kept state (no allocation), taken out for the step
+        let mut start = std::mem::replace(&mut self.work.1, State::at_rest(0.0, Vec::new(), 0));
+        start.copy_from(&self.state);
+        let done = self.partner_iterations(p, dev, span, inputs, &start);
+        if done.is_err() {
+            // the state at the step's start (its vectors swapped, not moved: both stay sized)
+            std::mem::swap(&mut self.state, &mut start);
+        }
+        self.work.1 = start;
+        done
+    }
+
+    /// [`Simulator::step_with_partner`]'s iteration from the state `start` (on failure the
+    /// caller returns to it).
+    fn partner_iterations(
+        &mut self,
+        p: &mut PartnerStep,
+        dev: &mut Deviation,
+        span: (f64, f64, f64),
+        inputs: &Inputs<S>,
+        start: &State,
+    ) -> Result<(), PartnerFailure> {
         let h = span.2;
-        let start = self.state.clone();
         // each attempt repeats the step from the same state, its Newton iteration stopped by
         // the same rule
         let eta = self.integ.rate_estimate();
@@ -439,12 +462,9 @@ impl<S: Space> Simulator<S> {
         let (mut residual, mut correction) = (f64::NAN, f64::NAN);
         for it in 0..PARTNER_ITERATIONS {
             let (next, res, relative) =
-                match self.partner_attempt(p, dev, &a1, (&start, eta), span, inputs) {
+                match self.partner_attempt(p, dev, &a1, (start, eta), span, inputs) {
                     Ok(x) => x,
-                    Err(e) => {
-                        self.state = start;
-                        return Err(PartnerFailure::Step(e));
-                    }
+                    Err(e) => return Err(PartnerFailure::Step(e)),
                 };
             let x = Vector::from_column_slice(&a1);
             if let Some((x0, r0)) = &last {
@@ -462,7 +482,6 @@ impl<S: Space> Simulator<S> {
             }
             last = Some((x, res));
         }
-        self.state = start;
         Err(PartnerFailure::Unconverged {
             h,
             residual,
@@ -486,7 +505,7 @@ impl<S: Space> Simulator<S> {
     ) -> Result<(Deviation, Vector, f64), crate::integrator::StepFailure> {
         let varying = self.load_rates.any();
         let t_start = start.t;
-        self.state.clone_from(start);
+        self.state.copy_from(start);
         self.integ.set_rate_estimate(eta);
         let next = dev.advanced(a1, h);
         // the loads and the deviated mount at the step's end (each stage time of a
