@@ -15,7 +15,7 @@ mod snapshot;
 mod step;
 
 pub use crate::model::output_names::{OutputId, Quantity};
-pub use any::{AnyOutputs, AnySimulator};
+pub use any::{AnyOutputs, AnySimulator, MountMatrix};
 pub use inputs::{Inputs, LoadRates};
 pub use limits::*;
 pub use limits::{PARTNER_ITERATIONS, PARTNER_TOLERANCE};

@@ -3,7 +3,7 @@
 //! [`OutputId`] (the model's, [`crate::model::output_names`]) and [`InputId`] ([`super::names`]);
 //! what setting one input means is the simulator's ([`Simulator::set_input`]).
 
-use super::{InputId, Partner, Simulator};
+use super::{InputId, Partner, Simulator, PARTNER_COMPONENTS};
 use crate::error::SimError;
 use crate::integrator::Counters;
 use crate::model::{OutputId, Outputs, Planar, Spatial};
@@ -40,6 +40,10 @@ macro_rules! each {
         }
     };
 }
+
+/// A matrix at the mount, force then moment components by acceleration then angular
+/// acceleration components, in the first `n` rows and columns ([`PARTNER_COMPONENTS`]).
+pub type MountMatrix = [[f64; PARTNER_COMPONENTS]; PARTNER_COMPONENTS];
 
 impl AnySimulator {
     /// [`Simulator::start_at`] in the scene's space.
@@ -142,6 +146,22 @@ impl AnySimulator {
     /// [`Simulator::apparent_mass`].
     pub fn apparent_mass(&mut self) -> Option<Vec<Vec<f64>>> {
         each!(self, s => s.apparent_mass())
+    }
+
+    /// [`Simulator::apparent_mass_array`]: the apparent mass in a fixed array (rows and
+    /// columns `..n`), without allocating.
+    pub fn apparent_mass_array(&mut self) -> Option<(MountMatrix, usize)> {
+        each!(self, s => s.apparent_mass_array())
+    }
+
+    /// [`Simulator::rigid_mass_array`] of `outputs` (as [`AnySimulator::rigid_mass_matrix`]),
+    /// without allocating.
+    pub fn rigid_mass_array(&self, outputs: &AnyOutputs) -> Option<(MountMatrix, usize)> {
+        match (self, outputs) {
+            (Self::Planar(s), AnyOutputs::Planar(o)) => s.rigid_mass_array(o),
+            (Self::Spatial(s), AnyOutputs::Spatial(o)) => s.rigid_mass_array(o),
+            _ => None,
+        }
     }
 
     /// [`Simulator::rigid_mass_matrix`] of `outputs` (this state's, [`AnySimulator::outputs`];

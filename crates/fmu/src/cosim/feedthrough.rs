@@ -4,7 +4,10 @@
 //! of the outputs without an exact derivative. One reaction row per output
 //! ([`reaction_row`]).
 
-use hybeam::simulator::{AnyOutputs, AnySimulator, InputId, InputKind, OutputId, Quantity};
+use hybeam::simulator::{
+    AnyOutputs, AnySimulator, InputId, InputKind, MountMatrix, OutputId, Quantity,
+    PARTNER_COMPONENTS,
+};
 
 use super::variables::{Access, Table};
 
@@ -41,8 +44,8 @@ fn mount_column(id: InputId, dim: usize, h: f64) -> Option<(usize, f64)> {
 pub struct Evaluated {
     /// The outputs.
     pub outputs: AnyOutputs,
-    apparent: Option<Vec<Vec<f64>>>,
-    rigid: Option<Vec<Vec<f64>>>,
+    apparent: Option<(MountMatrix, usize)>,
+    rigid: Option<(MountMatrix, usize)>,
 }
 
 impl Evaluated {
@@ -50,7 +53,7 @@ impl Evaluated {
     /// [`Feedthrough::ensure_apparent`]).
     pub fn outputs_of(sim: &mut AnySimulator) -> Self {
         let outputs = sim.outputs();
-        let rigid = sim.rigid_mass_matrix(&outputs);
+        let rigid = sim.rigid_mass_array(&outputs);
         Self {
             outputs,
             apparent: None,
@@ -61,8 +64,8 @@ impl Evaluated {
     /// Evaluates `sim`'s current state with its apparent mass.
     pub fn of(sim: &mut AnySimulator) -> Self {
         let outputs = sim.outputs();
-        let apparent = sim.apparent_mass();
-        let rigid = sim.rigid_mass_matrix(&outputs);
+        let apparent = sim.apparent_mass_array();
+        let rigid = sim.rigid_mass_array(&outputs);
         Self {
             outputs,
             apparent,
@@ -72,23 +75,23 @@ impl Evaluated {
 
     /// Whether the apparent mass is finite (or absent).
     pub fn apparent_is_finite(&self) -> bool {
-        self.apparent
-            .iter()
-            .flatten()
-            .flatten()
-            .all(|x| x.is_finite())
+        self.apparent.as_ref().is_none_or(|(j, n)| {
+            j[..*n]
+                .iter()
+                .all(|r| r[..*n].iter().all(|x| x.is_finite()))
+        })
     }
 }
 
 /// The current state's feedthrough and the outputs' backward differences.
 #[derive(Debug, Clone)]
 pub struct Feedthrough {
-    apparent: Option<Vec<Vec<f64>>>,
+    apparent: Option<(MountMatrix, usize)>,
     /// The apparent mass is not yet computed for the current state (it takes one solve per
     /// mount acceleration component and a rebuilt Newton matrix: about three quarters of a
     /// mounted boom's step, so it is computed when a host needs it, not after every step).
     stale: bool,
-    rigid: Option<Vec<Vec<f64>>>,
+    rigid: Option<(MountMatrix, usize)>,
     /// The last communication step [s] (the velocity-input mode's partials divide by it).
     last_step: f64,
     /// Per variable (table order): the change of an output over the last communication step
@@ -121,7 +124,7 @@ impl Feedthrough {
     /// the run continues bit for bit: [`AnySimulator::apparent_mass`]).
     pub fn ensure_apparent(&mut self, sim: &mut AnySimulator) {
         if self.stale {
-            self.apparent = sim.apparent_mass();
+            self.apparent = sim.apparent_mass_array();
             self.stale = false;
         }
     }
@@ -161,13 +164,13 @@ impl Feedthrough {
 
     /// The partials of reaction `row` by the mount accelerations (columns): the apparent mass,
     /// minus the rigid inertia's mass matrix for the elastic part. `None` when not available.
-    fn row(&self, (row, elastic): (usize, bool)) -> Option<Vec<f64>> {
-        let j = self.apparent.as_ref()?;
+    fn row(&self, (row, elastic): (usize, bool)) -> Option<[f64; PARTNER_COMPONENTS]> {
+        let (j, _) = self.apparent.as_ref()?;
         if !elastic {
-            return Some(j[row].clone());
+            return Some(j[row]);
         }
-        let r = self.rigid.as_ref()?;
-        Some(j[row].iter().zip(&r[row]).map(|(a, b)| a - b).collect())
+        let (r, _) = self.rigid.as_ref()?;
+        Some(std::array::from_fn(|c| j[row][c] - r[row][c]))
     }
 
     /// Output `id`'s value `cached` with the direct feedthrough of the mount accelerations set
