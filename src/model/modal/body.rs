@@ -129,14 +129,15 @@ pub(super) struct CutTable {
     sub_w: [[f64; 5]; 5],
 }
 
-/// Panels of a cut's rule for n shapes: four per shape, at least 8. The k-th mode's
-/// wavenumber is λ ≈ (k − ½)π, the foreshortening's products of slopes twice that: over a panel
-/// of width ξ/P ≤ 1/4n they turn by at most about π/2 radians, where the 5-point rule (exact to
-/// degree 9) errs by less than 1e-12 of the load. Measured against an independent 100-panel
-/// rule with a nested foreshortening (`tests/stations.rs`, a strongly deflected, accelerated
-/// body of 8 modes and the interface shapes): 8.9e-13 with 4 panels per shape, 8.8e-10 with 2.
+/// Panels of a cut's rule for n shapes: two per shape, at least 8. The k-th mode's wavenumber
+/// is λ ≈ (k − ½)π, the foreshortening's products of slopes twice that: over a panel of width
+/// ξ/P ≤ 1/2n they turn by at most about π radians, where the 5-point rule (exact to degree 9)
+/// errs by about 1e-9 of the load. Measured against an independent 100-panel rule with a nested
+/// foreshortening (`tests/stations.rs`, a strongly deflected, accelerated body of 8 modes and
+/// the interface shapes): 8.8e-10 with 2 panels per shape, 8.9e-13 with 4 — far below the
+/// model's own errors, and half the cost per output of 4 (`benches/stations_cost.sh`).
 pub(super) fn cut_panels(n: usize) -> usize {
-    (4 * n).max(8)
+    (2 * n).max(8)
 }
 
 impl CutTable {
