@@ -233,73 +233,23 @@ impl Newton {
             return self.iterate_fixed(model, t, h, request, rates, fixed, eta);
         }
         let eta_start = eta;
-        let counters = &mut self.counters;
-        let n = t.q.len();
-        let m = t.lambda.len();
         let mut fresh = false;
         let mut last = f64::INFINITY;
         for it in 0..self.max_iter {
             // the held matrix steers modified Newton only: a step size that differs in its last
             // bits (t_end − t0 of consecutive communication steps) does not call for a new one
-            let refresh = !self.factored_h.is_some_and(|hf| (hf - h).abs() <= 1e-9 * h);
+            let refresh = !self.holds(h);
             model.eval(
                 StateRef::new(&t.q, &t.v, &t.acc, &t.lambda),
                 request(refresh),
                 &mut self.res,
             );
-            counters.iterations += 1;
+            self.counters.iterations += 1;
             if refresh {
-                if model.factorize().is_err() {
-                    self.factored_h = None;
-                    return Err(StepFailure::Singular { h });
-                }
-                counters.factorizations += 1;
-                self.factored_h = Some(h);
-                // refilled in place (no allocation once sized)
-                match &mut self.jac_at {
-                    Some(jp) => {
-                        jp.h = h;
-                        jp.q.clone_from(&t.q);
-                        jp.v.clone_from(&t.v);
-                        jp.acc.clone_from(&t.acc);
-                        jp.lam.clone_from(&t.lambda);
-                    }
-                    None => {
-                        self.jac_at = Some(JacobianPoint {
-                            h,
-                            q: t.q.clone(),
-                            v: t.v.clone(),
-                            acc: t.acc.clone(),
-                            lam: t.lambda.clone(),
-                        })
-                    }
-                }
+                self.factorize_at(model, t, h)?;
                 fresh = true;
             }
-            for r in self.res.iter_mut() {
-                *r = -*r;
-            }
-            if !model.solve(&mut self.res) {
-                self.factored_h = None;
-                return Err(StepFailure::Singular { h });
-            }
-            model.increment(&mut t.q, &self.res[..n]);
-            for i in 0..n {
-                let d = self.res[i];
-                t.v[i] += rates.dv * d;
-                t.acc[i] += rates.da * d;
-                if let Some(div) = rates.aux_div {
-                    t.aux[i] += d / div;
-                }
-            }
-            for j in 0..m {
-                t.lambda[j] += self.res[n + j];
-            }
-            let norm = scaled_norm(&self.res[..n], model.scales()) / self.tol;
-            if !norm.is_finite() {
-                self.factored_h = None;
-                return Err(StepFailure::Singular { h });
-            }
+            let norm = self.apply_increment(model, t, h, rates)?;
             if it > 0 {
                 let rate = norm / last;
                 eta = if rate < 1.0 {
@@ -345,10 +295,7 @@ impl Newton {
         fixed: super::FixedWork,
         eta: f64,
     ) -> Result<(usize, f64), StepFailure> {
-        let n = t.q.len();
-        let m = t.lambda.len();
-        let held = self.factored_h.is_some_and(|hf| (hf - h).abs() <= 1e-9 * h);
-        let due = !held || self.solves_since_refresh + 1 >= fixed.refresh;
+        let due = !self.holds(h) || self.solves_since_refresh + 1 >= fixed.refresh;
         let mut last = f64::INFINITY;
         for it in 0..fixed.iterations {
             let refresh = it == 0 && due;
@@ -359,53 +306,10 @@ impl Newton {
             );
             self.counters.iterations += 1;
             if refresh {
-                if model.factorize().is_err() {
-                    self.factored_h = None;
-                    return Err(StepFailure::Singular { h });
-                }
-                self.counters.factorizations += 1;
-                self.factored_h = Some(h);
+                self.factorize_at(model, t, h)?;
                 self.solves_since_refresh = 0;
-                if let Some(jp) = &mut self.jac_at {
-                    jp.h = h;
-                    jp.q.clone_from(&t.q);
-                    jp.v.clone_from(&t.v);
-                    jp.acc.clone_from(&t.acc);
-                    jp.lam.clone_from(&t.lambda);
-                } else {
-                    self.jac_at = Some(JacobianPoint {
-                        h,
-                        q: t.q.clone(),
-                        v: t.v.clone(),
-                        acc: t.acc.clone(),
-                        lam: t.lambda.clone(),
-                    });
-                }
             }
-            for r in self.res.iter_mut() {
-                *r = -*r;
-            }
-            if !model.solve(&mut self.res) {
-                self.factored_h = None;
-                return Err(StepFailure::Singular { h });
-            }
-            model.increment(&mut t.q, &self.res[..n]);
-            for i in 0..n {
-                let d = self.res[i];
-                t.v[i] += rates.dv * d;
-                t.acc[i] += rates.da * d;
-                if let Some(div) = rates.aux_div {
-                    t.aux[i] += d / div;
-                }
-            }
-            for j in 0..m {
-                t.lambda[j] += self.res[n + j];
-            }
-            last = scaled_norm(&self.res[..n], model.scales()) / self.tol;
-            if !last.is_finite() {
-                self.factored_h = None;
-                return Err(StepFailure::Singular { h });
-            }
+            last = self.apply_increment(model, t, h, rates)?;
         }
         if !due {
             self.solves_since_refresh += 1;
@@ -419,5 +323,84 @@ impl Newton {
             });
         }
         Ok((fixed.iterations, eta))
+    }
+
+    /// Whether the held matrix serves step size `h` (the same to 1e-9 relative).
+    fn holds(&self, h: f64) -> bool {
+        self.factored_h.is_some_and(|hf| (hf - h).abs() <= 1e-9 * h)
+    }
+
+    /// Factorizes the matrix the model just evaluated at the iterate `t` for step size `h`,
+    /// counts it and keeps its evaluation point (refilled in place: no allocation once sized).
+    fn factorize_at<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        t: &State,
+        h: f64,
+    ) -> Result<(), StepFailure> {
+        if model.factorize().is_err() {
+            self.factored_h = None;
+            return Err(StepFailure::Singular { h });
+        }
+        self.counters.factorizations += 1;
+        self.factored_h = Some(h);
+        match &mut self.jac_at {
+            Some(jp) => {
+                jp.h = h;
+                jp.q.clone_from(&t.q);
+                jp.v.clone_from(&t.v);
+                jp.acc.clone_from(&t.acc);
+                jp.lam.clone_from(&t.lambda);
+            }
+            None => {
+                self.jac_at = Some(JacobianPoint {
+                    h,
+                    q: t.q.clone(),
+                    v: t.v.clone(),
+                    acc: t.acc.clone(),
+                    lam: t.lambda.clone(),
+                })
+            }
+        }
+        Ok(())
+    }
+
+    /// Solves for the increment from the residual in `res` with the held matrix and applies it
+    /// to `t` (coordinates through the model's increment, rates and accelerations by `rates`,
+    /// multipliers); returns its scaled norm in units of the tolerance. A singular solve or a
+    /// non-finite increment drops the held matrix.
+    fn apply_increment<M: Integrable + ?Sized>(
+        &mut self,
+        model: &mut M,
+        t: &mut State,
+        h: f64,
+        rates: Rates,
+    ) -> Result<f64, StepFailure> {
+        let (n, m) = (t.q.len(), t.lambda.len());
+        for r in self.res.iter_mut() {
+            *r = -*r;
+        }
+        if !model.solve(&mut self.res) {
+            self.factored_h = None;
+            return Err(StepFailure::Singular { h });
+        }
+        model.increment(&mut t.q, &self.res[..n]);
+        for i in 0..n {
+            let d = self.res[i];
+            t.v[i] += rates.dv * d;
+            t.acc[i] += rates.da * d;
+            if let Some(div) = rates.aux_div {
+                t.aux[i] += d / div;
+            }
+        }
+        for j in 0..m {
+            t.lambda[j] += self.res[n + j];
+        }
+        let norm = scaled_norm(&self.res[..n], model.scales()) / self.tol;
+        if !norm.is_finite() {
+            self.factored_h = None;
+            return Err(StepFailure::Singular { h });
+        }
+        Ok(norm)
     }
 }
