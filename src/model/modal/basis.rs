@@ -96,12 +96,12 @@ pub struct ModalBasis {
     pub slope_gram: Vec<f64>,
     /// The shapes at the first [`SAMPLE_SETS`] sets of sample points asked for (a viewer's
     /// points, a station's cut, the stress points) and at the Gauss points between them
-    /// ([`ModalBasis::fields`], [`ModalBasis::slope_integrals`]): state-independent values,
+    /// ([`ModalBasis::sample_fields`]): state-independent values,
     /// computed once per set (the shapes cost exponentials and trigonometry).
     samples: [OnceLock<Samples>; SAMPLE_SETS],
 }
 
-/// How many sets of sample points a basis keeps ([`ModalBasis::fields`]); a further set is
+/// How many sets of sample points a basis keeps ([`ModalBasis::sample_fields`]); a further set is
 /// evaluated at each call.
 pub const SAMPLE_SETS: usize = 6;
 
@@ -306,31 +306,11 @@ impl ModalBasis {
         Cow::Owned(Samples::new(self, xi))
     }
 
-    /// The fields of the amplitude vectors `a[m]` at each ξ of `xi`: (Σφ_j a_j, Σφ_j′ a_j,
-    /// Σφ_j″ a_j) (ξ-derivatives), `[m][k]`.
-    pub fn fields(&self, a: &[&[f64]], xi: &[f64]) -> Vec<Vec<[f64; 3]>> {
-        let s = self.samples(xi);
-        a.iter()
-            .map(|am| {
-                s.at.iter()
-                    .map(|phi| {
-                        let mut f = [0.0; 3];
-                        for (p, aj) in phi.iter().zip(am.iter()) {
-                            for d in 0..3 {
-                                f[d] += p[d] * aj;
-                            }
-                        }
-                        f
-                    })
-                    .collect()
-            })
-            .collect()
-    }
-
-    /// At each ξ of the ascending `xi` (index k): the fields of each amplitude vector of `a`
-    /// ([`Self::fields`]) and ∫₀^ξ (φ′ᵀa)(φ′ᵀb) dξ for each pair of `pairs`
-    /// ([`Self::slope_integrals`]), the same values by the same operations, handed to
-    /// `each(k, fields, integrals)` (no allocation once the points' shapes are kept).
+    /// At each ξ of the ascending `xi` (index k): the fields of each amplitude vector am of `a`,
+    /// (Σφ_j am_j, Σφ_j′ am_j, Σφ_j″ am_j) (ξ-derivatives), and ∫₀^ξ (φ′ᵀx)(φ′ᵀy) dξ for each
+    /// pair (x, y) of `pairs` by the 5-point Gauss rule on every interval between consecutive
+    /// ξ (the foreshortening ½∫₀^ξ w′²dξ / L of the points inside a segment and its rate),
+    /// handed to `each(k, fields, integrals)` (no allocation once the points' shapes are kept).
     pub fn sample_fields<const A: usize, const P: usize>(
         &self,
         a: [&[f64]; A],
@@ -358,27 +338,6 @@ impl ModalBasis {
             }
             each(k, a.map(|am| field(at, am)), acc);
         }
-    }
-
-    /// ∫₀^ξ (φ′ᵀa)(φ′ᵀb) dξ at each ξ of the ascending `xi` for each pair (a, b) of `pairs`
-    /// (`[pair][k]`), by the 5-point Gauss rule on every interval between consecutive ξ: the
-    /// foreshortening ½∫₀^ξ w′²dξ / L of the points inside a segment and its rate.
-    pub fn slope_integrals(&self, pairs: &[(&[f64], &[f64])], xi: &[f64]) -> Vec<Vec<f64>> {
-        let s = self.samples(xi);
-        let mut out = vec![Vec::with_capacity(xi.len()); pairs.len()];
-        let mut acc = vec![0.0; pairs.len()];
-        for g in &s.gauss {
-            for (w, phi) in g {
-                let slope = |v: &[f64]| -> f64 { phi.iter().zip(v).map(|(p, x)| p[1] * x).sum() };
-                for (s, (a, b)) in acc.iter_mut().zip(pairs) {
-                    *s += w * slope(a) * slope(b);
-                }
-            }
-            for (o, s) in out.iter_mut().zip(&acc) {
-                o.push(*s);
-            }
-        }
-        out
     }
 
     /// (φ_j, φ_j′, φ_j″) at ξ.

@@ -1510,12 +1510,6 @@ impl ModalBody {
         self.tip_local_into(q, &mut LocalVec::from_elem(0.0, self.modes()))
     }
 
-    /// [`ModalBody::tip_local`] and [`ModalBody::foreshortening_gradient`] in one pass.
-    pub fn tip_local_and_gradient(&self, q: &[f64]) -> (Vector2<f64>, Vec<f64>) {
-        let mut g = vec![0.0; self.modes()];
-        (self.tip_local_into(q, &mut g), g)
-    }
-
     /// [`ModalBody::tip_local`], with the [`ModalBody::foreshortening_gradient`] into `g`
     /// (n values; no allocation).
     pub fn tip_local_into(&self, q: &[f64], g: &mut [f64]) -> Vector2<f64> {
