@@ -15,6 +15,7 @@ use hybeam::model::component::{ConstraintOut, Support};
 use hybeam::model::modal::basis::quadrature;
 use hybeam::model::modal::body3d::{euler_rotation, torsion_shapes};
 use hybeam::model::modal::{ModalBasis, ModalBody3, ModalProps3};
+use hybeam::model::space::Space;
 use hybeam::model::spatial::{
     EndKin3, EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3,
     NodePort3,
@@ -278,6 +279,12 @@ fn check_port(port: &dyn Port<Spatial>, b: &ModalBody3, seed: f64, name: &str) {
     for (a, b) in fields(&first).iter().zip(&fields(&kin)) {
         assert_eq!((a.v, &a.d), (b.v, &b.d));
     }
+    // the values alone (a joint's Φ) are the kinematics' values, to the bit
+    assert_eq!(
+        port.values(&q),
+        Spatial::port_values(&first),
+        "{name}: values"
+    );
     // fourth-order central differences (the directors are trigonometric in the amplitudes):
     // (8(f(h) − f(−h)) − (f(2h) − f(−2h)))/12h
     let h = 1e-5;

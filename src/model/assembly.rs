@@ -125,10 +125,8 @@ pub struct Model<S: Space> {
     lu: NewtonLu,
     values: Vec<f64>,
     work: Work,
-    /// [`Integrable::constraint_values`]' held values while they are moved, and its rows'
-    /// working memory (sized at the first call).
+    /// [`Integrable::constraint_values`]' held values while they are moved.
     held_saved: Vec<f64>,
-    rows_work: crate::integrator::RowsWork,
     /// A mounted model's second matrix storage (LU and values), swapped in while the held
     /// Newton matrix is set aside ([`Model::set_matrix_aside`]).
     aside: Option<Box<(NewtonLu, Vec<f64>)>>,
@@ -284,7 +282,6 @@ impl<S: Space> Model<S> {
             values: vec![0.0; nnz],
             work,
             held_saved: Vec::new(),
-            rows_work: crate::integrator::RowsWork::sized(n, m),
             aside: None,
             matrix_aside: false,
             mount_work: Default::default(),
@@ -551,9 +548,22 @@ impl<S: Space> Integrable for Model<S> {
                 *h += dt * v + 0.5 * dt * dt * a;
             }
         }
-        let mut rows = std::mem::take(&mut self.rows_work);
-        crate::integrator::constraint_rows_with(self, q, out, &mut rows);
-        self.rows_work = rows;
+        // Φ alone: only the constraint components (the elements add nothing to these rows)
+        let Self {
+            constraints,
+            held,
+            work,
+            ..
+        } = self;
+        for c in constraints.iter() {
+            let dofs = &c.at.dofs;
+            let d = dofs.len();
+            dofs.gather(q, held, &mut work.q[..d]);
+            let o = &mut work.con;
+            o.reset(c.rows, d);
+            c.at.part.values(&work.q[..d], o);
+            out[c.row..c.row + c.rows].copy_from_slice(&o.phi[..c.rows]);
+        }
         if moved {
             std::mem::swap(&mut self.held, &mut self.held_saved);
         }

@@ -271,6 +271,12 @@ pub trait Constraint: Debug + Send + Sync + 'static {
     /// Φ and Φ_q at the local coordinates `q` into `out` (after [`ConstraintOut::reset`]);
     /// with `lambda` (one multiplier per row) also Σλ_r ∂²Φ_r.
     fn eval(&self, q: &[f64], lambda: Option<&[f64]>, out: &mut ConstraintOut);
+
+    /// Φ alone into `out.phi` (after [`ConstraintOut::reset`]; `out.jac` may be left as it
+    /// is), bit for bit the Φ of [`Constraint::eval`] (its default).
+    fn values(&self, q: &[f64], out: &mut ConstraintOut) {
+        self.eval(q, None, out);
+    }
 }
 
 /// An attachment point on a component, evaluated from the component's local coordinates.
@@ -284,6 +290,13 @@ pub trait Port<S: Space>: Debug + Send + Sync + 'static {
     /// work). Default: [`Port::kinematics`].
     fn kinematics_first(&self, q: &[f64]) -> S::PortKin {
         self.kinematics(q)
+    }
+
+    /// Position and directors alone (no derivatives), for constraint values; bit for bit the
+    /// values of [`Port::kinematics_first`] (its default). A port whose kinematics are large
+    /// gives them without computing or moving the derivatives.
+    fn values(&self, q: &[f64]) -> S::PortValues {
+        S::port_values(&self.kinematics_first(q))
     }
 
     /// [`Port::kinematics_first`] into `out`, which a port whose kinematics hold vectors

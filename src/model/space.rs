@@ -58,6 +58,12 @@ pub trait Space: Copy + Default + Debug + PartialEq + Send + Sync + 'static {
     type Attitude: Copy + Default + Debug + PartialEq + Send + Sync + Serialize + DeserializeOwned;
     /// Kinematics of a port (an attachment point) at one state.
     type PortKin: PortKin<Self>;
+    /// A port's values alone (position and directors, no derivatives): what a constraint's
+    /// values Φ(q) need.
+    type PortValues: Debug;
+
+    /// The values of full kinematics.
+    fn port_values(k: &Self::PortKin) -> Self::PortValues;
 
     /// The components of a moment, in the order of [`Space::MOMENT_AXES`].
     fn moment_components(m: &Self::Moment) -> &[f64];

@@ -42,6 +42,12 @@ impl Space for Planar {
     type Moment = f64;
     type Attitude = f64;
     type PortKin = EndKin;
+    type PortValues = EndKin;
+
+    /// The planar kinematics are small: their values are a copy.
+    fn port_values(k: &EndKin) -> EndKin {
+        k.clone()
+    }
 
     fn moment_components(m: &f64) -> &[f64] {
         std::slice::from_ref(m)

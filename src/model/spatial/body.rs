@@ -9,7 +9,7 @@
 //! constant ∂²(Av̄)/∂p² (docs/references.md §7.2), valid for any p.
 
 use super::kin::{BarSecond, Coef, FrameSecond, Grad3, Second3, Sparse3};
-use super::{EndKin3, Field3, Spatial};
+use super::{EndKin3, EndValues3, Field3, Spatial};
 use crate::math;
 use crate::model::assembly::Model;
 use crate::model::component::{
@@ -536,6 +536,30 @@ impl ModalTipPort3 {
 impl Port<Spatial> for ModalTipPort3 {
     fn kinematics(&self, q: &[f64]) -> EndKin3 {
         self.end(q, true)
+    }
+
+    /// The values of [`ModalTipPort3::end`]'s fields, bit for bit, without their derivatives:
+    /// p = R + A ū_T, the directors A·[`tip_directors`] (evaluated on hyper-duals as `end` does,
+    /// whose real parts do not depend on the dual parts).
+    fn values(&self, q: &[f64]) -> EndValues3 {
+        let b = &*self.0;
+        let pe = [q[P0], q[P0 + 1], q[P0 + 2], q[P0 + 3]];
+        let e = euler_rotation(pe);
+        let a = Matrix3::from_fn(|i, j| e[i][j]);
+        let mut p = a * Vector3::from(b.tip_local(q));
+        for c in 0..3 {
+            p[c] += q[c];
+        }
+        let (_, slope, th) = b.tip_elastic(q);
+        let y = [slope[0], slope[1], th].map(HyperDual64::from_re);
+        let dirs = tip_directors(y[0], y[1], y[2], b.nonlinear)
+            .map(|r| a * Vector3::new(r[0].re, r[1].re, r[2].re));
+        EndValues3 {
+            p,
+            tangent: dirs[0],
+            section: Some(dirs[1]),
+            normals: Some([dirs[2], dirs[3], dirs[4]]),
+        }
     }
 
     fn kinematics_first(&self, q: &[f64]) -> EndKin3 {

@@ -12,7 +12,7 @@
 //! first and second derivatives, cross terms ∂u/∂q_i·∂w/∂q_j included. Two ANCF segments share
 //! their node instead (no joint).
 
-use super::kin::{EndKin3, Field3};
+use super::kin::{EndKin3, EndValues3, Field3};
 use super::Spatial;
 use crate::model::component::{Constraint, ConstraintOut, Port};
 
@@ -138,6 +138,35 @@ impl Constraint for RigidJoint3 {
                     jac,
                     w.map(|w| (w, &mut out.hess)),
                 );
+        }
+    }
+
+    fn values(&self, q: &[f64], out: &mut ConstraintOut) {
+        let (qu, qd) = q.split_at(self.up_len);
+        let (vu, vd) = (self.up.values(qu), self.down.values(qd));
+        self.phi_of(&vu, &vd, &mut out.phi);
+    }
+}
+
+impl RigidJoint3 {
+    /// Φ from the ends' values (no derivatives): the same products as [`Constraint::eval`]'s.
+    fn phi_of(&self, vu: &EndValues3, vd: &EndValues3, phi: &mut [f64]) {
+        for c in 0..3 {
+            phi[c] = vu.p[c] - vd.p[c];
+        }
+        let (vn, vo) = if self.normals_up { (vu, vd) } else { (vd, vu) };
+        let normals = vn
+            .normals
+            .as_ref()
+            .expect("the end found with normals at construction keeps them");
+        let section = || {
+            vo.section
+                .as_ref()
+                .expect("the end found with a section director at construction keeps it")
+        };
+        for r in 0..self.rows() - 3 {
+            let other = if r == 2 { section() } else { &vo.tangent };
+            phi[3 + r] = self.length * normals[r].dot(other);
         }
     }
 }
@@ -286,6 +315,11 @@ mod tests {
         let q: Vec<f64> = (0..d).map(|i| 0.4 * coef(3, 0, i, 7)).collect();
         let lam: Vec<f64> = (0..m).map(|r| coef(4, 0, r, 5)).collect();
         let out = eval(j, &q, Some(&lam));
+        // Φ alone (constraint values) is eval's Φ, to the bit
+        let mut only = ConstraintOut::default();
+        only.reset(m, d);
+        j.values(&q, &mut only);
+        assert_eq!(only.phi, out.phi);
         let mut hess = vec![0.0; d * d];
         for (a, b, v) in &out.hess {
             hess[a * d + b] += v;

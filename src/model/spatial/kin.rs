@@ -250,6 +250,20 @@ pub struct EndKin3 {
     pub normals: Option<[Field3; 3]>,
 }
 
+/// The values of an [`EndKin3`] alone (no derivatives): what the joint's Φ(q) needs, without
+/// the derivatives' work and without moving the large kinematics.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EndValues3 {
+    /// Position [m].
+    pub p: Vector3<f64>,
+    /// Axis direction (not normalized).
+    pub tangent: Vector3<f64>,
+    /// Section y-axis director, if the end carries one.
+    pub section: Option<Vector3<f64>>,
+    /// n1, n2, n3 of a modal end.
+    pub normals: Option<[Vector3<f64>; 3]>,
+}
+
 impl PortKin<Spatial> for EndKin3 {
     fn position(&self) -> [f64; 3] {
         self.p.v.into()

@@ -19,7 +19,7 @@ mod node;
 pub use angle::{AngleElement3, AnglePort3};
 pub use body::{EulerNormalization, FrameSupport3, ModalElement3, ModalRootPort3, ModalTipPort3};
 pub use joint::RigidJoint3;
-pub use kin::{EndKin3, Field3};
+pub use kin::{EndKin3, EndValues3, Field3};
 pub use node::{AncfElement3, NodePort3, NodeSupport3};
 
 use super::dofs::Rigid;
@@ -54,6 +54,16 @@ impl Space for Spatial {
     type Moment = [f64; 3];
     type Attitude = [f64; 4];
     type PortKin = EndKin3;
+    type PortValues = EndValues3;
+
+    fn port_values(k: &EndKin3) -> EndValues3 {
+        EndValues3 {
+            p: k.p.v,
+            tangent: k.tangent.v,
+            section: k.section.as_ref().map(|s| s.v),
+            normals: k.normals.as_ref().map(|n| n.each_ref().map(|f| f.v)),
+        }
+    }
 
     fn moment_components(m: &[f64; 3]) -> &[f64] {
         m

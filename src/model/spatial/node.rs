@@ -2,7 +2,7 @@
 //! ([`NodePort3`]) and the root support of an ANCF chain ([`NodeSupport3`]). Kernel:
 //! [`crate::model::ancf3d`].
 
-use super::kin::{EndKin3, Field3, Grad3};
+use super::kin::{EndKin3, EndValues3, Field3, Grad3};
 use super::Spatial;
 use crate::model::ancf3d::{Ancf3Props, MassPatterns, Tables3, DIRECTOR_DOFS};
 use crate::model::component::{
@@ -586,6 +586,17 @@ impl Port<Spatial> for NodePort3 {
         }
     }
 
+    /// The node's coordinates r, r_x (and r_y with a director).
+    fn values(&self, q: &[f64]) -> EndValues3 {
+        let v = |k: usize| Vector3::new(q[k], q[k + 1], q[k + 2]);
+        EndValues3 {
+            p: v(0),
+            tangent: v(3),
+            section: self.director.then(|| v(6)),
+            normals: None,
+        }
+    }
+
     fn add_moment_stiffness(
         &self,
         q: &[f64],
@@ -671,6 +682,17 @@ pub(super) mod tests {
             q.extend(ry.iter());
         }
         q
+    }
+
+    #[test]
+    fn values_are_the_kinematics_values() {
+        use crate::model::space::Space;
+        for torsion in [false, true] {
+            let port = NodePort3::new(torsion, reference());
+            let q = node(torsion);
+            let k = port.kinematics_first(&q);
+            assert_eq!(port.values(&q), Spatial::port_values(&k));
+        }
     }
 
     /// Axial vector of the skew part of (∂D/∂q_k) Dᵀ by central differences: the rotation of
