@@ -38,7 +38,7 @@ use crate::model::vector::{add, cross, dot, scale, Real, V3};
 use crate::scene::Segment;
 use crate::scene::MAX_MODES;
 use nalgebra::{Matrix2, Vector2};
-use num_dual::Dual64;
+use num_dual::{Derivative, DualSVec64};
 use smallvec::SmallVec;
 use std::f64::consts::{PI, SQRT_2};
 use std::sync::Arc;
@@ -230,8 +230,14 @@ type FieldBuf<T> = SmallVec<[T; FIELDS3 * MAX_POINTS]>;
 /// One value per bending amplitude of a plane (on the stack).
 pub type Amplitudes = SmallVec<[f64; MAX_MODES + 2]>;
 
+/// Columns of [`ModalBody3::newton_block`] per evaluation of the residual.
+const LANES: usize = 8;
+
+/// A dual number carrying [`LANES`] directional derivatives.
+type Lanes = DualSVec64<LANES>;
+
 /// Dual local coordinates (on the stack up to [`LOCAL_INLINE`]).
-type DualVec = SmallVec<[Dual64; LOCAL_INLINE]>;
+type LaneVec = SmallVec<[Lanes; LOCAL_INLINE]>;
 
 impl ModalBody3 {
     /// Builds the body from its bending basis and properties.
@@ -1238,7 +1244,9 @@ impl ModalBody3 {
 
     /// The Newton block `c_a ∂r/∂q̈ + c_v ∂r/∂q̇ + c_x ∂r/∂q` (row-major d × d) by forward-mode
     /// automatic differentiation of [`ModalBody3::residual`]: column j is the directional
-    /// derivative along (δq, δq̇, δq̈) = (c_x, c_v, c_a)·e_j. Exact; no allocation (up to
+    /// derivative along (δq, δq̇, δq̈) = (c_x, c_v, c_a)·e_j, [`LANES`] columns per evaluation
+    /// (vector duals: the residual's values computed once per group of columns instead of once
+    /// per column; each column's arithmetic is the scalar dual's). Exact; no allocation (up to
     /// [`LOCAL_INLINE`] coordinates).
     pub fn newton_block(
         &self,
@@ -1249,20 +1257,40 @@ impl ModalBody3 {
     ) {
         let g = g.into();
         let d = self.dim();
-        let lift = |x: &[f64]| -> DualVec { x.iter().map(|&x| Dual64::from_re(x)).collect() };
+        let lift = |x: &[f64]| -> LaneVec { x.iter().map(|&x| Lanes::from_re(x)).collect() };
         let (mut qd, mut vd, mut ad) = (lift(q), lift(v), lift(a));
-        let mut out = DualVec::from_elem(Dual64::from_re(0.0), d);
-        for j in 0..d {
-            qd[j].eps = cx;
-            vd[j].eps = cv;
-            ad[j].eps = ca;
-            self.residual(&qd, &vd, &ad, g, &mut out);
-            for i in 0..d {
-                block[i * d + j] = out[i].eps;
+        let mut out = LaneVec::from_elem(Lanes::from_re(0.0), d);
+        // c along lane w; none for c = 0, so that what depends only on coordinates that are
+        // not differentiated carries no derivative (the mass block alone, c_v = c_x = 0,
+        // differentiates along q̈ only)
+        let seed = |w: usize, c: f64| {
+            if c == 0.0 {
+                return Derivative::none();
             }
-            qd[j].eps = 0.0;
-            vd[j].eps = 0.0;
-            ad[j].eps = 0.0;
+            let mut e = nalgebra::SVector::<f64, LANES>::zeros();
+            e[w] = c;
+            Derivative::some(e)
+        };
+        for j0 in (0..d).step_by(LANES) {
+            let lanes = LANES.min(d - j0);
+            for w in 0..lanes {
+                qd[j0 + w].eps = seed(w, cx);
+                vd[j0 + w].eps = seed(w, cv);
+                ad[j0 + w].eps = seed(w, ca);
+            }
+            self.residual(&qd, &vd, &ad, g, &mut out);
+            for (i, o) in out.iter().enumerate() {
+                let row = &mut block[i * d + j0..i * d + j0 + lanes];
+                match &o.eps.0 {
+                    Some(e) => row.copy_from_slice(&e.as_slice()[..lanes]),
+                    None => row.fill(0.0),
+                }
+            }
+            for x in [&mut qd, &mut vd, &mut ad] {
+                for y in &mut x[j0..j0 + lanes] {
+                    y.eps = Derivative::none();
+                }
+            }
         }
     }
 

@@ -181,8 +181,19 @@ impl AncfElement3 {
     ) {
         let (e, ed, ea) = x.arrays::<D>();
         let p = &self.props;
-        let (force, matrices) = if out.matrix.is_some() {
-            let (mut f, mut k, mut c) = p.tangent(&self.tables, &e, &ed);
+        let (force, matrices) = if let Some((_, cv, cx)) = out.matrix {
+            // the stiffness and damping only where the request weighs them (a request for the
+            // mass matrix alone, c_v = c_x = 0, as for consistent accelerations, skips the
+            // tangent's differentiation; the force is the same function either way)
+            let (mut f, mut k, mut c) = if cv != 0.0 || cx != 0.0 {
+                p.tangent(&self.tables, &e, &ed)
+            } else {
+                (
+                    p.internal_force(&self.tables, &e, &ed),
+                    [[0.0; D]; D],
+                    [[0.0; D]; D],
+                )
+            };
             let (fi, mi) = p.director_tangent(&self.tables, (&e, &ed, &ea), &mut k, &mut c);
             for (f, fi) in f.iter_mut().zip(&fi) {
                 *f += fi;
