@@ -191,6 +191,14 @@ pub trait Element<S: Space>: Debug + Send + Sync + 'static {
     /// Kinetic, strain and gravity energies at a state.
     fn energies(&self, x: &LocalState<'_>, gravity: &S::Vec) -> Energies;
 
+    /// The inertia force of the accelerations `x.a` at rest, M(q)·q̈ (the velocities of `x`
+    /// zero; no elastic force, no gravity), into `out`; `false` (and `out` untouched) where the
+    /// element does not give it directly (the default): the caller then takes it as the
+    /// difference of two residuals. The mount inertia reads the rigid fields through it.
+    fn inertia_times(&self, _x: &LocalState<'_>, _out: &mut [f64]) -> bool {
+        false
+    }
+
     /// Called when gravity changes (elements may cache their gravity force).
     fn set_gravity(&mut self, _gravity: &S::Vec) {}
 

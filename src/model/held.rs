@@ -247,12 +247,22 @@ impl<S: Space> Model<S> {
                 r0.resize(dofs.len(), 0.0);
                 r1.resize(dofs.len(), 0.0);
                 ul.resize(dofs.len(), 0.0);
-                e.at.part.residual(&x0, &env, r0);
+                // M uᵢ directly where the element gives it, else r(q̈ = uᵢ) − r(0)
+                let mut direct = true;
                 for i in 0..nf {
                     let (ui, hi) = field(i);
                     let held = (&self.held[..], zeros.1, hi);
                     let xi = LocalState::moving(dofs, held, (q, zeros.0, ui));
-                    e.at.part.residual(&xi, &env, r1);
+                    if !(direct && e.at.part.inertia_times(&xi, r1)) {
+                        if direct {
+                            direct = false;
+                            e.at.part.residual(&x0, &env, r0);
+                        }
+                        e.at.part.residual(&xi, &env, r1);
+                        for (a, b) in r1.iter_mut().zip(r0.iter()) {
+                            *a -= b;
+                        }
+                    }
                     for j in 0..nf {
                         let (uj, hj) = field(j);
                         for (k, d) in dofs.dofs().iter().enumerate() {
@@ -261,9 +271,7 @@ impl<S: Space> Model<S> {
                                 Dof::Held(b) => hj[b as usize],
                             };
                         }
-                        gram[i][j] += (0..dofs.len())
-                            .map(|k| ul[k] * (r1[k] - r0[k]))
-                            .sum::<f64>();
+                        gram[i][j] += (0..dofs.len()).map(|k| ul[k] * r1[k]).sum::<f64>();
                     }
                 }
             }

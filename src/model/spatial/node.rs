@@ -318,7 +318,30 @@ impl AncfElement3 {
     }
 }
 
+impl AncfElement3 {
+    /// [`Element::inertia_times`] on `D` coordinates: M ë with the director's inertia and the
+    /// section bodies' (at ė = 0, without gravity).
+    fn inertia_d<const D: usize>(&self, x: &LocalState<'_>, out: &mut [f64]) {
+        let (e, ed, ea) = x.arrays::<D>();
+        let mut r = self.props.director_inertia(&self.tables, &e, &ed, &ea);
+        self.patterns.add_product(&ea, &mut r);
+        for (b, pose) in &self.bodies {
+            b.add_forces(pose, D, (&e[..], &ed[..], &ea[..]), [0.0; 3], &mut r);
+        }
+        out.copy_from_slice(&r);
+    }
+}
+
 impl Element<Spatial> for AncfElement3 {
+    fn inertia_times(&self, x: &LocalState<'_>, out: &mut [f64]) -> bool {
+        if self.props.director {
+            self.inertia_d::<18>(x, out)
+        } else {
+            self.inertia_d::<12>(x, out)
+        }
+        true
+    }
+
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Spatial>, out: ElementOut<'_>) {
         if self.props.director {
             self.eval_d::<18>(x, env, out)
