@@ -128,7 +128,8 @@ impl Ancf3Props {
 
     /// [`Ancf3Props::director_inertia`] and its exact Jacobians (forward-mode AD): adds ∂f/∂e
     /// to `k`, ∂f/∂ė to `c`, and returns the force and ∂f/∂ë (the configuration-dependent part
-    /// of the mass matrix, row-major D × D).
+    /// of the mass matrix, row-major D × D); of the three only those flagged in `active`
+    /// (the others stay zero and cost nothing).
     #[allow(clippy::type_complexity)]
     pub fn director_tangent<const D: usize>(
         &self,
@@ -136,6 +137,7 @@ impl Ancf3Props {
         x: (&[f64; D], &[f64; D], &[f64; D]),
         k: &mut [[f64; D]; D],
         c: &mut [[f64; D]; D],
+        active: [bool; 3],
     ) -> ([f64; D], [[f64; D]; D]) {
         let mut f = [0.0; D];
         let mut m = [[0.0; D]; D];
@@ -149,9 +151,10 @@ impl Ancf3Props {
             let (xs, yl) = ([xs], [yl]);
             let maps = [Map::new(&[1.0], &xs), Map::new(&[1.0], &yl)];
             let kw = p.w * self.rho_ip;
-            let [fa, fc] = point_tangent_acc::<2, 18, D>(&maps, x, k, c, &mut m, |u, ud, ua| {
-                director_point(kw, u, ud, ua)
-            });
+            let [fa, fc] =
+                point_tangent_acc::<2, 18, D>(&maps, x, k, c, &mut m, active, |u, ud, ua| {
+                    director_point(kw, u, ud, ua)
+                });
             for c in 0..3 {
                 f[xs[0] + c] += fa[c];
                 f[yl[0] + c] += fc[c];

@@ -373,7 +373,8 @@ pub(super) fn twist_gradient_ad<T: Real>(u: &[V<T>; 5]) -> (T, [V<T>; 5]) {
 
 /// Adds the Jacobians of one point's local inertial forces `g(u, u̇, ü)` (K local vectors) to the
 /// element stiffness `k`, damping `c` and mass `m` matrices: AD with N = 9K seeds (positions,
-/// rates, accelerations), then `mapsᵀ J maps`; returns the forces `g` (f64).
+/// rates, accelerations), then `mapsᵀ J maps`; returns the forces `g` (f64). Only the matrices
+/// flagged in `active` (k, c, m) are added to (the others' directions are not differentiated).
 #[allow(clippy::type_complexity)]
 pub(super) fn point_tangent_acc<const K: usize, const N: usize, const D: usize>(
     maps: &[Map<'_>; K],
@@ -381,6 +382,7 @@ pub(super) fn point_tangent_acc<const K: usize, const N: usize, const D: usize>(
     k: &mut [[f64; D]; D],
     c: &mut [[f64; D]; D],
     m: &mut [[f64; D]; D],
+    active: [bool; 3],
     g: impl FnOnce(
         &[V<DualSVec64<N>>; K],
         &[V<DualSVec64<N>>; K],
@@ -388,13 +390,18 @@ pub(super) fn point_tangent_acc<const K: usize, const N: usize, const D: usize>(
     ) -> [V<DualSVec64<N>>; K],
 ) -> [V<f64>; K] {
     debug_assert!(N == 9 * K);
+    // only the active directions carry derivatives (what depends on the others alone is
+    // differentiated for nothing): the same Jacobians where active, the same force
+    let lanes = |on: bool, off: usize| on.then_some(off);
     let out = g(
-        &seed(&gather(maps, e), Some(0)),
-        &seed(&gather(maps, ed), Some(3 * K)),
-        &seed(&gather(maps, ea), Some(6 * K)),
+        &seed(&gather(maps, e), lanes(active[0], 0)),
+        &seed(&gather(maps, ed), lanes(active[1], 3 * K)),
+        &seed(&gather(maps, ea), lanes(active[2], 6 * K)),
     );
-    for (mat, off) in [(k, 0), (c, 3 * K), (m, 6 * K)] {
-        add_jacobian(maps, &out, off, mat);
+    for ((mat, off), on) in [(k, 0), (c, 3 * K), (m, 6 * K)].into_iter().zip(active) {
+        if on {
+            add_jacobian(maps, &out, off, mat);
+        }
     }
     out.map(|v| v.map(|x| x.re))
 }

@@ -292,7 +292,7 @@ fn director_inertia_tangent_matches_central_differences() {
     let ea: [f64; 18] = std::array::from_fn(|k| 40.0 * r[k]);
     let mut k = Box::new([[0.0; 18]; 18]);
     let mut c = Box::new([[0.0; 18]; 18]);
-    let (f, m) = p.director_tangent(&tab, (&e, &ed, &ea), &mut k, &mut c);
+    let (f, m) = p.director_tangent(&tab, (&e, &ed, &ea), &mut k, &mut c, [true; 3]);
     let f0 = p.director_inertia(&tab, &e, &ed, &ea);
     let fmax = f0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     for i in 0..18 {

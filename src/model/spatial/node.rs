@@ -194,7 +194,8 @@ impl AncfElement3 {
                     [[0.0; D]; D],
                 )
             };
-            let (fi, mi) = p.director_tangent(&self.tables, (&e, &ed, &ea), &mut k, &mut c);
+            let active = [cx != 0.0, cv != 0.0, true];
+            let (fi, mi) = p.director_tangent(&self.tables, (&e, &ed, &ea), &mut k, &mut c, active);
             for (f, fi) in f.iter_mut().zip(&fi) {
                 *f += fi;
             }
