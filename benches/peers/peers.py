@@ -4,6 +4,8 @@ Runs the planar Sohn & Yoo Case 1 rod, its spatial twin (with a sideways tip for
 damped stepped rod of Case 3 in both codes over a grid of elements x time steps, measures each
 run's tip error against one shared converged reference and its run time, and writes the CSV of
 all runs, the ratio tables, one work-precision SVG per problem and docs/performance.md.
+The large-deformation suite (issue 42: the soft rod clamped, pinned and ball-jointed in 3D)
+runs the same way on its own grid and writes docs/report/peers_large_* and docs/peers-large.md.
 
 Start it through benches/peers/run.sh (builds hybeam, creates the Exudyn venv); see README.md.
 """
@@ -64,6 +66,8 @@ class Section:
     length: float  # m
     diameter: float  # m
     damping_time: float = 0.0  # Kelvin-Voigt tau_d [s]: sigma = E (eps + tau_d eps')
+    young: float = YOUNG  # Pa
+    density: float = DENSITY  # kg/m^3
 
     @property
     def area(self) -> float:
@@ -73,10 +77,19 @@ class Section:
     def inertia(self) -> float:
         return math.pi * self.diameter**4 / 64.0
 
+    @property
+    def weight(self) -> float:
+        return self.density * self.area * self.length * GRAVITY
+
 
 CASE1_ROD = (Section(LENGTH, DIAMETER),)
 # Sohn & Yoo, Case 3 (scenes/case3*.toml): 0.2 m of d = 2 mm, then 0.4 m of d = 1 mm, both damped.
 CASE3_ROD = (Section(0.2, 2e-3, 7e-4), Section(0.4, 1e-3, 7e-4))
+# The soft polymer rod of scenes/soft_rod.toml (d = 5 mm, L = 0.5 m, E = 50 MPa, rho = 1100,
+# gamma = q L^3 / EI = 17.3): the large-deformation problems (issue 42).
+SOFT_ROD = (Section(0.5, 5e-3, young=5e7, density=1100.0),)
+# whip3d: a constant sideways tip force, 3/8 of the rod's weight as the spatial Case 1 problem.
+SOFT_TIP_FORCE = 3.0 / 8.0 * SOFT_ROD[0].weight
 
 
 def shares(rod: tuple[Section, ...]) -> tuple[float, ...]:
@@ -115,6 +128,15 @@ class Family:
     # Grid steps below this are not run (the ESDIRK families: five solves per step, and at the
     # grid's finest steps their error is already the mesh's).
     min_step: float = 0.0
+    # A family on a feature this hybeam may not have yet (the --set key, e.g.
+    # "segments.0.degree"): a run refused for an unknown scene field marks the whole family
+    # "not available" (recorded, not fatal) instead of "failed".
+    pending: str = ""
+    # A family whose solver picks its steps: its grid axis is these error tolerances (passed as
+    # --set solver.error_tolerance=X) instead of the grid's steps, at solver.max_step =
+    # fixed_step.
+    error_tolerances: tuple[float, ...] = ()
+    fixed_step: float = 0.0
 
     def modes(self, n: int) -> int:
         """Modes of a modal family for a grid point of n elements: round(12 n / 32) in 1..=12
@@ -136,6 +158,32 @@ class Family:
         return sum(k for _, k in self.segment_elements(n))
 
 
+@dataclass(frozen=True)
+class Grid:
+    elements: tuple[int, ...]
+    steps: tuple[float, ...]
+    t_end: float
+    ref_elements: int
+    ref_step: float
+    repeats: int
+
+
+FULL = Grid((4, 8, 16, 32), (1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2.5e-5), 2.0, 64, 1e-5, 3)
+QUICK = Grid((4, 8), (1e-3, 2e-4), 0.5, 32, 5e-5, 1)
+# The large-deformation problems (soft rod): mostly mesh-limited (soft_rod, 1 s: 16 el. 1.8e-3 m,
+# 32 el. 5e-5 m, 64 el. 1.5e-6 m at h = 1e-4 s, ESDIRK4), generalized-alpha's step error at 64
+# el. about 1e-5 m at h = 1e-4 s (whip3d: 5e-6 m at 2.5e-5 s); steps above the 1 ms output step
+# run as 1 ms (README.md, "Large deformation").
+LARGE_GRID = Grid(
+    (8, 16, 24, 32, 48, 64), (1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2.5e-5), 1.0, 128, 1e-5, 3
+)
+LARGE_QUICK = Grid((8, 16), (1e-3, 2e-4), 0.3, 32, 5e-5, 1)
+LARGE_TOLERANCES = (1e-3, 1e-4, 1e-5)  # m
+
+# The root kinds: hybeam's `root` (the Exudyn root node's coordinate constraints follow it).
+ROOTS = ("clamped", "pinned", "ball")
+
+
 @dataclass
 class Problem:
     name: str
@@ -145,10 +193,39 @@ class Problem:
     peer_check: Family  # the other code's run at the reference's mesh and step
     rod: tuple[Section, ...] = CASE1_ROD  # the Exudyn model's sections
     note: str = ""  # how the grid's n maps onto the families' meshes, for the doc
+    description: str = ""  # the problem, for the doc (the small suite's: README.md)
+    # hybeam's `root` (given as --set root=... unless "clamped", the scenes' own): "clamped"
+    # (position and slope direction held), "pinned" (planar: position held) or "ball" (spatial:
+    # position held). Exudyn holds the root node's position and, clamped, its slope.
+    root: str = "clamped"
+    # Clamped: Exudyn holds the root slope's direction only, as hybeam's clamp does (its length,
+    # the root's stretch, free), instead of the whole slope (the small problems' clamp).
+    clamp_direction_only: bool = False
+    tip_force: tuple[float, float, float] | None = None  # Exudyn's dead tip force [N], world
+    tolerances: tuple[float, ...] = TOLERANCES  # m: the rows of the ratio tables
+    suite: str = "small"  # "small" (docs/performance.md) or "large" (docs/peers-large.md)
+    full: Grid = FULL
+    quick: Grid = QUICK
+
+    def __post_init__(self) -> None:
+        if self.root not in ROOTS:
+            raise ValueError(f"{self.name}: root {self.root!r} not in {ROOTS}")
+
+    def exudyn_root(self) -> list[bool]:
+        """fixedConstraintsNode0 of GenerateBeamElementsAlongLine: the root node's held
+        coordinates, planar [x, y, x', y'], spatial [x, y, z, x', y', z'] (the rod along x)."""
+        dims = 3 if self.spatial else 2
+        if self.root != "clamped":
+            return [True] * dims + [False] * dims
+        return [True] * dims + [not self.clamp_direction_only] + [True] * (dims - 1)
+
+    def grid(self, quick: bool) -> Grid:
+        return self.quick if quick else self.full
 
 
-def _tip_force_set() -> str:
-    return f"tip.force=[0.0, {TIP_FORCE!r}, 0.0]"
+def _tip_force_set(force: float = TIP_FORCE) -> str:
+    """hybeam's --set of a tip force `force` [N] along +y."""
+    return f"tip.force=[0.0, {force!r}, 0.0]"
 
 
 EXUDYN_PLANAR = Family("exudyn", "Exudyn ObjectANCFCable2D")
@@ -271,6 +348,7 @@ PROBLEMS = {
         ],
         HYBEAM_CABLE3D,
         EXUDYN_SPATIAL,
+        tip_force=(0.0, TIP_FORCE, 0.0),
         note="the ANCF families mesh the whole rod with the grid's elements; the hybrid (2 modes "
         "per plane) meshes its ANCF half (3D cable) with round(3 n / 8): 2, 3, 6, 12; the "
         "all-modal rod (scenes/case1_3d_modal.toml) gets round(12 n / 32) modes per bending "
@@ -300,19 +378,103 @@ PROBLEMS = {
     ),
 }
 
+# ------------------------------------------------------------ large deformation (issue 42)
 
-@dataclass(frozen=True)
-class Grid:
-    elements: tuple[int, ...]
-    steps: tuple[float, ...]
-    t_end: float
-    ref_elements: int
-    ref_step: float
-    repeats: int
+# Pending hybeam features (README.md, "Pending families"): a family using one is run, and
+# reported "not available" while the binary refuses its scene key.
+DEGREE5 = ("segments.0.degree=5",)  # the quintic ANCF element (scene key segments.<i>.degree)
+ERROR_TOLERANCES = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7)  # solver.error_tolerance of ESDIRK4
+ERROR_CONTROLLED_MAX_STEP = 1e-2  # s: the error-controlled ESDIRK4's solver.max_step
 
 
-FULL = Grid((4, 8, 16, 32), (1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2.5e-5), 2.0, 64, 1e-5, 3)
-QUICK = Grid((4, 8), (1e-3, 2e-4), 0.5, 32, 5e-5, 1)
+def degree5(fam: Family) -> Family:
+    """The family with quintic ANCF elements (`segments.0.degree = 5`; pending)."""
+    return replace(
+        fam, name=f"{fam.name} degree 5", sets=fam.sets + DEGREE5, pending="segments.<i>.degree"
+    )
+
+
+def error_controlled(fam: Family) -> Family:
+    """The family integrated by ESDIRK4 with its own step control (`solver.error_tolerance`;
+    pending): its grid axis is ERROR_TOLERANCES, at solver.max_step =
+    ERROR_CONTROLLED_MAX_STEP."""
+    return replace(
+        fam,
+        name=f"{fam.name}, ESDIRK4 error-controlled",
+        sets=fam.sets + ESDIRK,
+        pending="solver.error_tolerance",
+        error_tolerances=ERROR_TOLERANCES,
+        fixed_step=ERROR_CONTROLLED_MAX_STEP,
+    )
+
+
+def large_families(fam: Family, peer: Family) -> list[Family]:
+    """A large-deformation problem's families: hybeam's ANCF family and its ESDIRK4 twin, the
+    Exudyn peer, and the pending ones (degree 5 and its ESDIRK4 twin, the error-controlled
+    ESDIRK4)."""
+    return [
+        fam,
+        peer,
+        esdirk(fam),
+        degree5(fam),
+        esdirk(degree5(fam)),
+        error_controlled(fam),
+    ]
+
+
+SOFT_PLANAR = Family("hybeam", "hybeam all-ANCF", "scenes/soft_rod.toml", "segments.0.elements")
+SOFT_CABLE3D = Family(
+    "hybeam",
+    "hybeam 3D cable (torsion = false)",
+    "benches/peers/soft_rod_3d.toml",
+    "segments.0.elements",
+    ("torsion=false", _tip_force_set(SOFT_TIP_FORCE)),
+)
+LARGE_NOTE = (
+    "every family meshes the whole rod with the grid's elements (the degree-5 families with "
+    "that many quintic elements)"
+)
+LARGE = dict(
+    rod=SOFT_ROD, tolerances=LARGE_TOLERANCES, suite="large", full=LARGE_GRID, quick=LARGE_QUICK
+)
+
+PROBLEMS |= {
+    "soft_rod": Problem(
+        "soft_rod",
+        False,
+        large_families(SOFT_PLANAR, EXUDYN_PLANAR),
+        SOFT_PLANAR,
+        EXUDYN_PLANAR,
+        note=LARGE_NOTE,
+        clamp_direction_only=True,
+        **LARGE,
+    ),
+    "pendulum": Problem(
+        "pendulum",
+        False,
+        large_families(SOFT_PLANAR, EXUDYN_PLANAR),
+        SOFT_PLANAR,
+        EXUDYN_PLANAR,
+        note=LARGE_NOTE,
+        root="pinned",
+        **LARGE,
+    ),
+    "whip3d": Problem(
+        "whip3d",
+        True,
+        large_families(SOFT_CABLE3D, EXUDYN_SPATIAL),
+        SOFT_CABLE3D,
+        EXUDYN_SPATIAL,
+        note=LARGE_NOTE,
+        root="ball",
+        tip_force=(0.0, SOFT_TIP_FORCE, 0.0),
+        **LARGE,
+    ),
+}
+SUITES = {
+    suite: [name for name, prob in PROBLEMS.items() if prob.suite == suite]
+    for suite in ("small", "large")
+}
 
 
 @dataclass
@@ -327,6 +489,7 @@ class Run:
     times_s: list[float] = field(default_factory=list)
     status: str = "ok"
     error_m: float = math.nan
+    error_tolerance: float | None = None  # an error-controlled family's solver.error_tolerance
     t: np.ndarray | None = None
     tip: np.ndarray | None = None
 
@@ -346,10 +509,14 @@ def run_hybeam(
     t_end: float,
     spatial: bool,
     tolerance: float | None = None,
+    root: str = "clamped",
+    error_tolerance: float | None = None,
 ) -> tuple[float, np.ndarray, np.ndarray]:
     """Runs the hybeam CLI for a grid point of n elements, at the Newton tolerance
-    `tolerance` (None: the scene's); returns (its reported wall time, sample times, tip
-    positions)."""
+    `tolerance` (None: the scene's), with the root `root` (a --set unless "clamped", the
+    scenes' own) and the ESDIRK4 step control's `error_tolerance` (None: fixed steps); returns
+    (its reported wall time, sample times, tip positions). A refused run raises
+    RuntimeError with hybeam's message."""
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "tip.csv"
         sets = [
@@ -360,6 +527,8 @@ def run_hybeam(
             f"simulation.output_step={OUTPUT_STEP!r}",
             *([f"solver.tolerance={tolerance!r}"] if tolerance is not None else []),
             *fam.sets,
+            *([f'root="{root}"'] if root != "clamped" else []),
+            *([f"solver.error_tolerance={error_tolerance!r}"] if error_tolerance else []),
         ]
         cmd = [str(binary), "run", str(ROOT / fam.scene), "--out", str(out), "--quiet"]
         for s in sets:
@@ -410,12 +579,12 @@ def exudyn_settings(t_end: float, h: float):
 
 
 def run_exudyn(
-    n: int, h: float, t_end: float, spatial: bool, rod: tuple[Section, ...]
+    n: int, h: float, t_end: float, prob: Problem
 ) -> tuple[float, np.ndarray, np.ndarray]:
-    """Builds the rod from ANCF cable elements in Exudyn (n elements split over its sections by
-    length, consecutive sections sharing their junction's node) and solves it with index-3
-    generalized-alpha at the fixed step h; returns (time of exu.SolveDynamic, sample times, tip
-    positions)."""
+    """Builds the problem's rod from ANCF cable elements in Exudyn (n elements split over its
+    sections by length, consecutive sections sharing their junction's node; the root node held
+    by Problem.exudyn_root, the tip force if any) and solves it with index-3 generalized-alpha at
+    the fixed step h; returns (time of exu.SolveDynamic, sample times, tip positions)."""
     import exudyn as exu
     from exudyn.beams import GenerateBeamElementsAlongLine
     from exudyn.itemInterface import (
@@ -428,12 +597,13 @@ def run_exudyn(
 
     sc = exu.SystemContainer()
     mbs = sc.AddSystem()
+    spatial, rod = prob.spatial, prob.rod
     cable = ObjectANCFCable if spatial else ObjectANCFCable2D
     gravity = [0.0, 0.0, -GRAVITY] if spatial else [0.0, -GRAVITY, 0.0]
-    clamp = [True] * (6 if spatial else 4)  # position and slope of the root node
+    clamp = prob.exudyn_root()  # the root node's held coordinates
     x0, tip_node = 0.0, None
     for sec, k in zip(rod, split_elements(n, shares(rod)), strict=True):
-        ea, ei = YOUNG * sec.area, YOUNG * sec.inertia
+        ea, ei = sec.young * sec.area, sec.young * sec.inertia
         damping = {}
         if sec.damping_time > 0.0:
             # Kelvin-Voigt sigma = E (eps + tau_d eps') on the axial strain and the curvature.
@@ -447,7 +617,10 @@ def run_exudyn(
                 "bendingDamping": ei * sec.damping_time,
             }
         template = cable(
-            massPerLength=DENSITY * sec.area, bendingStiffness=ei, axialStiffness=ea, **damping
+            massPerLength=sec.density * sec.area,
+            bendingStiffness=ei,
+            axialStiffness=ea,
+            **damping,
         )
         x1 = x0 + sec.length
         beam = GenerateBeamElementsAlongLine(
@@ -461,9 +634,10 @@ def run_exudyn(
             nodeNumberStart=tip_node,  # the previous section's last node: shared at the junction
         )
         x0, tip_node = x1, beam["nodes"][-1]
-    if spatial:
+    if prob.tip_force is not None:
         marker = mbs.AddMarker(MarkerNodePosition(nodeNumber=tip_node))
-        mbs.AddLoad(Force(markerNumber=marker, loadVector=[0.0, TIP_FORCE, 0.0]))
+        force = list(prob.tip_force) if spatial else [*prob.tip_force[:2], 0.0]
+        mbs.AddLoad(Force(markerNumber=marker, loadVector=force))
     sensor = mbs.AddSensor(
         SensorNode(
             nodeNumber=tip_node,
@@ -497,11 +671,15 @@ def solve(
     h: float,
     t_end: float,
     tolerance: float | None = None,
+    error_tolerance: float | None = None,
 ):
-    """One run of either code; `tolerance` is hybeam's Newton tolerance (None: the scene's)."""
+    """One run of either code; `tolerance` is hybeam's Newton tolerance (None: the scene's),
+    `error_tolerance` an error-controlled hybeam family's."""
     if fam.code == "hybeam":
-        return run_hybeam(binary, fam, n, h, t_end, prob.spatial, tolerance)
-    return run_exudyn(n, h, t_end, prob.spatial, prob.rod)
+        return run_hybeam(
+            binary, fam, n, h, t_end, prob.spatial, tolerance, prob.root, error_tolerance
+        )
+    return run_exudyn(n, h, t_end, prob)
 
 
 def on_grid(t: np.ndarray, tip: np.ndarray, t_end: float) -> np.ndarray:
@@ -514,6 +692,14 @@ def on_grid(t: np.ndarray, tip: np.ndarray, t_end: float) -> np.ndarray:
 
 def max_distance(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.max(np.linalg.norm(a - b, axis=1)))
+
+
+def motion(tip: np.ndarray) -> tuple[float, float]:
+    """How large a run's motion is: the tip's largest distance from its start [m] and the
+    largest angle of the root-to-tip chord (the root at the origin) from its start [deg]."""
+    disp = float(np.max(np.linalg.norm(tip - tip[0], axis=1)))
+    cos = tip @ tip[0] / (np.linalg.norm(tip, axis=1) * np.linalg.norm(tip[0]))
+    return disp, float(np.degrees(np.max(np.arccos(np.clip(cos, -1.0, 1.0)))))
 
 
 def reference(binary: Path, prob: Problem, grid: Grid, cache: Path, log) -> dict:
@@ -546,6 +732,14 @@ def reference(binary: Path, prob: Problem, grid: Grid, cache: Path, log) -> dict
     return out
 
 
+NOT_AVAILABLE = "not available"
+
+
+def unknown_key(err: Exception) -> bool:
+    """Whether hybeam refused the run for a scene field it does not know (a pending feature)."""
+    return "unknown field" in str(err)
+
+
 def sweep(
     binary: Path,
     prob: Problem,
@@ -555,40 +749,78 @@ def sweep(
     tolerance: float | None,
 ) -> list[Run]:
     """Every family at every grid point, the codes alternating, hybeam at the Newton tolerance
-    `tolerance` (None: the scenes'); median of grid.repeats."""
+    `tolerance` (None: the scenes'); median of grid.repeats. The error-controlled families run
+    their error tolerances at each grid point's elements after the steps. A pending family
+    whose key this hybeam refuses is marked "not available" at every point, after one try."""
+    stepped = [f for f in prob.families if not f.error_tolerances]
+    controlled = [f for f in prob.families if f.error_tolerances]
     runs = {
         (fam, n, h): Run(prob.name, fam, fam.elements(n), h, fam.modes(n))
         for n in grid.elements
         for h in grid.steps
-        for fam in prob.families
+        for fam in stepped
     }
+    runs |= {
+        (fam, n, tol): Run(
+            prob.name, fam, fam.elements(n), fam.fixed_step, fam.modes(n), error_tolerance=tol
+        )
+        for n in grid.elements
+        for fam in controlled
+        for tol in fam.error_tolerances
+    }
+    missing: dict[Family, str] = {}  # pending families this hybeam does not have
+
+    def attempt(run: Run, fam: Family, n: int, rep: int) -> None:
+        h, tol = run.step, run.error_tolerance
+        if fam in missing:
+            run.status = missing[fam]
+        if h < fam.min_step:
+            run.status = f"not run: h below the family's min_step {fam.min_step:g}"
+        if run.status != "ok":
+            return
+        try:
+            wall, t, tip = solve(binary, prob, fam, n, h, grid.t_end, tolerance, tol)
+        except Exception as e:  # a failed run is recorded, not fatal
+            if fam.pending and unknown_key(e):
+                missing[fam] = f"{NOT_AVAILABLE}: this hybeam has no {fam.pending}"
+                run.status = missing[fam]
+                why = re.search(r"unknown field `[^`]*`", str(e))
+                log(f"[{prob.name}] {fam.name}: {run.status} (hybeam: {why and why.group(0)})")
+                return
+            run.status = f"failed: {e}".replace("\n", " ")[:300]
+            log(f"[{prob.name}] {fam.name} n={run.elements} h={h:g}: {run.status}")
+            return
+        run.times_s.append(wall)
+        if rep == 0:
+            run.error_m = max_distance(on_grid(t, tip, grid.t_end), ref)
+
     for rep in range(grid.repeats):
-        order = prob.families if rep % 2 == 0 else prob.families[::-1]
+        order = stepped if rep % 2 == 0 else stepped[::-1]
         for n in grid.elements:
             for h in grid.steps:
                 for fam in order:
-                    run = runs[(fam, n, h)]
-                    if h < fam.min_step:
-                        run.status = f"not run: h below the family's min_step {fam.min_step:g}"
-                    if run.status != "ok":
-                        continue
-                    try:
-                        wall, t, tip = solve(binary, prob, fam, n, h, grid.t_end, tolerance)
-                    except Exception as e:  # a failed run is recorded, not fatal
-                        run.status = f"failed: {e}".replace("\n", " ")[:300]
-                        log(f"[{prob.name}] {fam.name} n={run.elements} h={h:g}: {run.status}")
-                        continue
-                    run.times_s.append(wall)
-                    if rep == 0:
-                        run.error_m = max_distance(on_grid(t, tip, grid.t_end), ref)
+                    attempt(runs[(fam, n, h)], fam, n, rep)
                 log(
                     f"[{prob.name}] repeat {rep + 1}/{grid.repeats} n={n} h={h:g}: "
                     + ", ".join(
                         f"{f.name} {runs[(f, n, h)].time_s:.3g} s "
                         f"err {runs[(f, n, h)].error_m:.2e} m"
-                        for f in prob.families
+                        for f in stepped
+                        if f not in missing
                     )
                 )
+            for fam in controlled:
+                for tol in fam.error_tolerances:
+                    attempt(runs[(fam, n, tol)], fam, n, rep)
+                if fam not in missing:
+                    log(
+                        f"[{prob.name}] repeat {rep + 1}/{grid.repeats} n={n} {fam.name}: "
+                        + ", ".join(
+                            f"tol {tol:g} {runs[(fam, n, tol)].time_s:.3g} s "
+                            f"err {runs[(fam, n, tol)].error_m:.2e} m"
+                            for tol in fam.error_tolerances
+                        )
+                    )
     return list(runs.values())
 
 
@@ -601,7 +833,7 @@ def write_csv(path: Path, runs: list[Run], repeats: int) -> None:
         w.writerow(
             ["problem", "code", "family", "elements", "modes", "step_s", "error_m", "time_s"]
             + [f"time_{k + 1}_s" for k in range(repeats)]
-            + ["status"]
+            + ["status", "error_tolerance"]
         )
         for r in runs:
             times = [f"{x:.6g}" for x in r.times_s] + [""] * (repeats - len(r.times_s))
@@ -609,7 +841,7 @@ def write_csv(path: Path, runs: list[Run], repeats: int) -> None:
                 [r.problem, r.family.code, r.family.name, r.elements, r.modes, f"{r.step:g}"]
                 + [f"{r.error_m:.6e}", f"{r.time_s:.6g}"]
                 + times
-                + [r.status]
+                + [r.status, "" if r.error_tolerance is None else f"{r.error_tolerance:g}"]
             )
 
 
@@ -637,19 +869,26 @@ def size(r: Run) -> str:
     return f"{r.modes} modes" if r.family.modes_key else f"n = {r.elements}"
 
 
+def stepping(r: Run, unit: str = " s") -> str:
+    """The run's time stepping: "h = 0.0001 s" or, error-controlled, "error tol. 1e-05"."""
+    if r.error_tolerance is not None:
+        return f"error tol. {r.error_tolerance:g}"
+    return f"h = {r.step:g}{unit}"
+
+
 def describe(r: Run | None) -> str:
     if r is None:
         return "none reaches it"
-    return f"{r.family.name}, {size(r)}, h = {r.step:g} s: {r.time_s:.3g} s, {r.error_m:.2e} m"
+    return f"{r.family.name}, {size(r)}, {stepping(r)}: {r.time_s:.3g} s, {r.error_m:.2e} m"
 
 
-def ratio_table(runs: list[Run]) -> str:
+def ratio_table(runs: list[Run], tolerances: tuple[float, ...] = TOLERANCES) -> str:
     """Markdown: per tolerance the cheapest run of each code and Exudyn's time / hybeam's."""
     lines = [
         "| tolerance [m] | cheapest hybeam run | cheapest Exudyn run | Exudyn time / hybeam time |",
         "|---|---|---|---|",
     ]
-    for tol in TOLERANCES:
+    for tol in tolerances:
         hy = cheapest([r for r in runs if r.family.code == "hybeam"], tol)
         ex = cheapest([r for r in runs if r.family.code == "exudyn"], tol)
         ratio = f"{ex.time_s / hy.time_s:.1f}" if hy and ex else "n/a"
@@ -657,17 +896,19 @@ def ratio_table(runs: list[Run]) -> str:
     return "\n".join(lines)
 
 
-def family_table(runs: list[Run], families: list[Family]) -> str:
+def family_table(
+    runs: list[Run], families: list[Family], tolerances: tuple[float, ...] = TOLERANCES
+) -> str:
     """Markdown: per tolerance the cheapest run of each family (seconds; - if none)."""
     lines = [
         "| tolerance [m] | " + " | ".join(f.name for f in families) + " |",
         "|---|" + "---|" * len(families),
     ]
-    for tol in TOLERANCES:
+    for tol in tolerances:
         cells = []
         for fam in families:
             r = cheapest([x for x in runs if x.family == fam], tol)
-            cells.append("-" if r is None else f"{r.time_s:.3g} s ({size(r)}, h = {r.step:g})")
+            cells.append("-" if r is None else f"{r.time_s:.3g} s ({size(r)}, {stepping(r, '')})")
         lines.append(f"| {tol:g} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
@@ -689,7 +930,7 @@ def summary_table(sections: list[tuple[Problem, list[Run]]], tol: float = 1e-5) 
                 hits.append(r)
         for r in sorted(hits, key=lambda r: r.time_s):
             ratio = f"{ex.time_s / r.time_s:.1f}×" if ex else "n/a"
-            setting = f"{size(r)}, h = {r.step:g} s"
+            setting = f"{size(r)}, {stepping(r)}"
             lines.append(f"| {label} | {r.family.name} | {setting} | {r.time_s:.3g} s | {ratio} |")
             label = ""
     return "\n".join(lines)
@@ -711,6 +952,7 @@ def read_csv(path: Path) -> dict[str, list[Run]]:
                 [float(row["time_s"])] if row["time_s"] else [],
                 row["status"],
                 float(row["error_m"]),
+                float(row["error_tolerance"]) if row.get("error_tolerance") else None,
             )
             out.setdefault(r.problem, []).append(r)
     return out
@@ -758,7 +1000,7 @@ def figure(path: Path, prob: Problem, runs: list[Run], title: str) -> None:
         style = {"color": color, "marker": marker}
         ax.scatter(*xy(mine), alpha=0.45, s=28, label=f"{fam.name}: every grid point", **style)
         ax.plot(*xy(pareto(mine)), lw=1.6, label=f"{fam.name}: Pareto front", **style)
-    for tol in TOLERANCES:
+    for tol in prob.tolerances:
         ax.axhline(tol, color="0.6", lw=0.8, ls=":")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -789,7 +1031,11 @@ def machine() -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="small grid, t_end 0.5 s, 1 repeat")
+    ap.add_argument(
+        "--quick",
+        action="store_true",
+        help="small grid, short t_end (0.5 s; large: 0.3 s), 1 repeat",
+    )
     ap.add_argument(
         "--summary",
         type=Path,
@@ -799,13 +1045,19 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--hybeam", type=Path, default=ROOT / "target/release/hybeam")
     ap.add_argument(
         "--problems",
-        default=",".join(PROBLEMS),
-        help=f"comma-separated subset of {','.join(PROBLEMS)} (default: all)",
+        default="small",
+        help=f"comma-separated problems of one suite, or a suite's name: small = "
+        f"{','.join(SUITES['small'])} (the default; docs/performance.md), large = "
+        f"{','.join(SUITES['large'])} (docs/peers-large.md)",
     )
     ap.add_argument("--t-end", type=float, help="override the grid's end time [s]")
     ap.add_argument("--repeats", type=int, help="override the number of timing repeats")
     ap.add_argument("--out-dir", type=Path, help="default docs/report (quick: target/peers-quick)")
-    ap.add_argument("--doc", type=Path, help="default docs/performance.md (quick: in --out-dir)")
+    ap.add_argument(
+        "--doc",
+        type=Path,
+        help="default docs/performance.md, large suite docs/peers-large.md (quick: in --out-dir)",
+    )
     ap.add_argument("--shared", default="", help="note on the machine's other load, for the doc")
     ap.add_argument(
         "--hybeam-tolerance",
@@ -830,12 +1082,24 @@ def main(argv: list[str] | None = None) -> int:
                 f"--hybeam-tolerance {args.hybeam_tolerance}: give a number in [1e-15, 0.01) "
                 "(hybeam's solver.tolerance) or 'scene'"
             )
-    names = [x.strip() for x in args.problems.split(",") if x.strip()]
+    names = [
+        y for x in args.problems.split(",") if x.strip() for y in SUITES.get(x.strip(), [x.strip()])
+    ]
     unknown = [x for x in names if x not in PROBLEMS]
     if unknown or not names:
-        ap.error(f"--problems: unknown {unknown or names}; choose from {', '.join(PROBLEMS)}")
-
-    grid = QUICK if args.quick else FULL
+        ap.error(
+            f"--problems: unknown {unknown or names}; choose from {', '.join(PROBLEMS)} "
+            f"or a suite ({', '.join(SUITES)})"
+        )
+    suites = {PROBLEMS[x].suite for x in names}
+    if len(suites) > 1:
+        ap.error(f"--problems: {names} mixes the suites {sorted(suites)}; run each on its own")
+    (suite,) = suites
+    large = suite == "large"
+    grids = {PROBLEMS[x].grid(args.quick) for x in names}
+    if len(grids) > 1:
+        ap.error(f"--problems: {names} have different grids; run them separately")
+    (grid,) = grids
     if args.t_end or args.repeats:
         grid = Grid(
             grid.elements,
@@ -846,7 +1110,8 @@ def main(argv: list[str] | None = None) -> int:
             args.repeats or grid.repeats,
         )
     out_dir = args.out_dir or (ROOT / ("target/peers-quick" if args.quick else "docs/report"))
-    doc = args.doc or (out_dir / "performance.md" if args.quick else ROOT / "docs/performance.md")
+    page = "peers-large.md" if large else "performance.md"
+    doc = args.doc or (out_dir / page if args.quick else ROOT / "docs" / page)
     out_dir.mkdir(parents=True, exist_ok=True)
     cache_dir = ROOT / "target/peers-cache"
 
@@ -871,7 +1136,8 @@ def main(argv: list[str] | None = None) -> int:
         peer_gap = max_distance(refs["ref"], refs["peer"])
         log(
             f"[{name}] fine runs of the two codes differ by {peer_gap:.3e} m; the reference lies "
-            f"{max_distance(refs['ref'], refs['half']):.3e} m from its half-refined run"
+            f"{max_distance(refs['ref'], refs['half']):.3e} m from its half-refined run; its tip "
+            "moves up to {:.3f} m, its chord turns up to {:.0f} deg".format(*motion(refs["ref"]))
         )
         runs = sweep(args.hybeam, prob, grid, refs["ref"], log, hybeam_tol)
         all_runs += runs
@@ -884,13 +1150,13 @@ def main(argv: list[str] | None = None) -> int:
             f"reference {prob.reference.name} n = {grid.ref_elements}, h = {grid.ref_step:g} s",
         )
         sections.append((prob, runs, refs, peer_gap, svg))
-    csv_path = out_dir / "peers_runs.csv"
+    csv_path = out_dir / ("peers_large_runs.csv" if large else "peers_runs.csv")
     write_csv(csv_path, all_runs, grid.repeats)
     minutes = (time.perf_counter() - clock) / 60.0
     load_after = os.getloadavg()
 
     for prob, runs, _, _, _ in sections:
-        print(f"\n{prob.name}\n{ratio_table(runs)}")
+        print(f"\n{prob.name}\n{ratio_table(runs, prob.tolerances)}")
     command = os.environ.get("PEERS_COMMAND") or shlex.join(["python", *sys.argv])
     write_doc(
         doc,
@@ -929,11 +1195,15 @@ def write_doc(
         "The machine was shared with other work during the run: treat the times as indicative."
     )
     here = doc.parent
+    large = any(prob.suite == "large" for prob, *_ in sections)
     parts = [
-        "# Performance: hybeam against Exudyn",
+        "# Performance, large deformation: hybeam against Exudyn"
+        if large
+        else "# Performance: hybeam against Exudyn",
         "",
-        "Generated by `benches/peers/peers.py` (issue 23); the numbers below are those of the "
-        "run that wrote this page. Method, settings and caveats: `benches/peers/README.md`.",
+        f"Generated by `benches/peers/peers.py` (issue {42 if large else 23}); the numbers below "
+        "are those of the run that wrote this page. Method, settings and caveats: "
+        f"`benches/peers/README.md`{', section Large deformation' if large else ''}.",
         "",
         f"- Command: `{command}`",
         f"- Started {started}, took {minutes:.1f} min.",
@@ -962,9 +1232,18 @@ def write_doc(
     ]
     for prob, runs, refs, gap, svg in sections:
         ref_t, peer_t = float(refs["ref_time"]), float(refs["peer_time"])
+        parts += [f"## {prob.name}", ""]
+        if prob.description:
+            parts += [prob.description, ""]
+        if large:
+            disp, turn = motion(refs["ref"])
+            parts += [
+                f"Motion (the reference): the tip moves up to {disp:.3f} m from its start "
+                f"({disp / sum(x.length for x in prob.rod):.2f} L), the root-to-tip chord "
+                f"turns up to {turn:.0f}° from its start.",
+                "",
+            ]
         parts += [
-            f"## {prob.name}",
-            "",
             f"Elements: {prob.note}.",
             "",
             f"Reference: {prob.reference.name}, n = {mesh(prob.reference, grid.ref_elements)}, "
@@ -977,15 +1256,23 @@ def write_doc(
             "",
             "Cheapest run of each code reaching each tolerance:",
             "",
-            ratio_table(runs),
+            ratio_table(runs, prob.tolerances),
             "",
             "Cheapest run of each family:",
             "",
-            family_table(runs, prob.families),
+            family_table(runs, prob.families, prob.tolerances),
             "",
             f"![{prob.name}]({rel(svg, here)})",
             "",
         ]
+        missing = {r.family.name: r.status for r in runs if r.status.startswith(NOT_AVAILABLE)}
+        if missing:
+            parts += [
+                "Not run: "
+                + "; ".join(f"{name} ({status})" for name, status in missing.items())
+                + " (pending families, `benches/peers/README.md`).",
+                "",
+            ]
     parts += summary_section([(prob, runs) for prob, runs, *_ in sections])
     doc.write_text("\n".join(parts))
 

@@ -2,6 +2,7 @@
 # Peer comparison of hybeam with Exudyn 1.13.6 (issue 23); see benches/peers/README.md.
 #   bash benches/peers/run.sh            # full grid: docs/report/peers_*, docs/performance.md
 #   bash benches/peers/run.sh --quick    # smoke check, a few minutes: target/peers-quick/
+#   bash benches/peers/run.sh --problems large   # large deformation: docs/peers-large.md
 # Builds hybeam (release) and creates the venv with Exudyn if missing; further arguments go to
 # peers.py (--problems planar, --t-end 0.5, --repeats 1, --shared "note", ...).
 set -euo pipefail
