@@ -30,6 +30,7 @@
 
 pub mod ancf;
 pub mod ancf3d;
+pub mod ancf_p;
 pub mod assembly;
 pub mod build;
 pub mod component;
@@ -37,6 +38,7 @@ pub(crate) mod cut;
 pub mod direction;
 pub mod dofs;
 pub mod held;
+pub mod hierarchic;
 pub mod inertia;
 pub mod load;
 pub mod modal;

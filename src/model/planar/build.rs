@@ -2,6 +2,7 @@
 //! modal segment as a floating frame [R, θ, a], ANCF nodes [r, r′], the rigid joint (position
 //! + angle–slope row) and the root support.
 
+use super::cable_p::AncfElementP;
 use super::elements::{AncfElement, ModalElement};
 use super::ends::{ModalRootPort, ModalTipPort, NodePort, RootSupport};
 use super::joint::RigidJoint;
@@ -156,6 +157,15 @@ impl SegmentParts<Planar> for PlanarParts {
         _bodies3: &[SectionBody3],
         seg: &Segment,
     ) -> Box<dyn Element<Planar>> {
+        if seg.degree > 3 {
+            // uniform, straight, point masses only (the scene's validation)
+            return Box::new(AncfElementP::new(
+                *props,
+                seg.degree,
+                points,
+                seg.line_load_vec(),
+            ));
+        }
         let mut props = *props;
         if seg.is_tapered() {
             let (e, rho) = (seg.youngs_modulus, seg.density);

@@ -1,0 +1,458 @@
+//! Planar ANCF cable element of degree p = 4 … [`MAX_DEGREE`] (a segment's `degree`): the cubic
+//! element's nodes [r, r′] and hierarchic C¹ bubbles ([`super::hierarchic`]), coordinates
+//! `e = [r0, r0′, r1, r1′, a_4, …, a_p]` (x, y each; 2(p + 1)).
+//!
+//! The strain measures, damping and energies are the cubic element's ([`super::ancf`]):
+//! U = ½∫EA ε² dx + ½∫EI K² dx, for [`StrainModel::Exact`] ε = |r′| − 1 and K =
+//! e₃·(r′×r″)/|r′|², for [`StrainModel::Paper`] ε = ½(r′ᵀr′ − 1) and r″ for the curvature;
+//! Kelvin–Voigt damping EAτ ε̇ δε + EIτ K̇ δK. Quadrature: p + 1 Gauss points axial, p for
+//! bending ([`PTables`]). Each point's local forces on (r′, r″) and their Jacobians are
+//! scattered onto the element by [`add_point_jacobian`]. Uniform straight elements only
+//! (no taper, no initial curvature: the scene refuses those with degree > 3).
+
+use super::ancf::{cross, AncfProps};
+use super::hierarchic::{
+    add_point_jacobian, combine, scatter, PShape, PTables, MAX_DEGREE, MAX_SHAPES,
+};
+use super::sample::ShapePoint;
+use crate::scene::StrainModel;
+
+/// The most coordinates of a planar element of degree p (2(p + 1)).
+pub const PD: usize = 2 * MAX_SHAPES;
+/// Element coordinates (the first 2(p + 1) used).
+pub type PVec = [f64; PD];
+/// An element matrix (the leading 2(p + 1) square used).
+pub type PMat = [[f64; PD]; PD];
+
+type B2 = [[f64; 2]; 2];
+
+// [`CableP::forces`] has an instance for each number of shapes up to 8
+const _: () = assert!(MAX_SHAPES <= 8);
+
+/// The planar element of degree p: the cubic element's properties (uniform, straight) and the
+/// degree's tables.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CableP {
+    /// Length, ρA, EA, EI, damping, strain measures (`reference` and `taper` unused: `None`).
+    pub props: AncfProps,
+    /// Shapes at the quadrature points, mass pattern, load weights.
+    pub tables: PTables,
+}
+
+/// (ε, dε/dr′, d²ε/dr′²) of the axial strain measure at slope `r1`.
+fn axial_measure(strain: StrainModel, r1: [f64; 2]) -> (f64, [f64; 2], B2) {
+    match strain {
+        StrainModel::Exact => {
+            let n = (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
+            let t = [r1[0] / n, r1[1] / n];
+            let h = [
+                [(1.0 - t[0] * t[0]) / n, -t[0] * t[1] / n],
+                [-t[1] * t[0] / n, (1.0 - t[1] * t[1]) / n],
+            ];
+            (n - 1.0, t, h)
+        }
+        StrainModel::Paper => (
+            0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0),
+            r1,
+            [[1.0, 0.0], [0.0, 1.0]],
+        ),
+    }
+}
+
+/// The exact material curvature K = e₃·(r′×r″)/|r′|² at (r′, r″) = (`a`, `b`): (K, ∂K/∂r′,
+/// ∂K/∂r″, ∂²K/∂r′², ∂²K/∂r′∂r″) (∂²K/∂r″² = 0).
+fn curvature(a: [f64; 2], b: [f64; 2]) -> (f64, [f64; 2], [f64; 2], B2, B2) {
+    let gg = a[0] * a[0] + a[1] * a[1];
+    let c = a[0] * b[1] - a[1] * b[0];
+    let k = c / gg;
+    let c1 = [b[1], -b[0]];
+    let c2 = [-a[1], a[0]];
+    let dk1 = [
+        c1[0] / gg - 2.0 * k / gg * a[0],
+        c1[1] / gg - 2.0 * k / gg * a[1],
+    ];
+    let dk2 = [c2[0] / gg, c2[1] / gg];
+    let dg = [2.0 * a[0], 2.0 * a[1]];
+    let (g2, g3) = (gg * gg, gg * gg * gg);
+    let mut h11 = [[0.0; 2]; 2];
+    let mut h12 = [[0.0; 2]; 2];
+    let jt = [[0.0, 1.0], [-1.0, 0.0]];
+    for i in 0..2 {
+        for j in 0..2 {
+            let id = if i == j { 1.0 } else { 0.0 };
+            h11[i][j] = -(c1[i] * dg[j] + dg[i] * c1[j]) / g2 - 2.0 * c / g2 * id
+                + 2.0 * c / g3 * dg[i] * dg[j];
+            h12[i][j] = jt[i][j] / gg - dg[i] * c2[j] / g2;
+        }
+    }
+    (k, dk1, dk2, h11, h12)
+}
+
+fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+fn mul2(m: &B2, v: [f64; 2]) -> [f64; 2] {
+    [dot2(m[0], v), dot2(m[1], v)]
+}
+
+fn transpose(m: &B2) -> B2 {
+    [[m[0][0], m[1][0]], [m[0][1], m[1][1]]]
+}
+
+/// s·(a bᵀ) + t·m.
+fn outer_plus(s: f64, a: [f64; 2], b: [f64; 2], t: f64, m: &B2) -> B2 {
+    std::array::from_fn(|i| std::array::from_fn(|j| s * a[i] * b[j] + t * m[i][j]))
+}
+
+/// Where [`CableP::forces`] writes the element's stiffness ∂f/∂e and damping ∂f/∂ė.
+pub type Matrices<'a> = (&'a mut PMat, &'a mut PMat);
+
+impl CableP {
+    /// The element of `props` (uniform and straight) and degree `degree` (3 … [`MAX_DEGREE`]).
+    pub fn new(props: AncfProps, degree: usize) -> Self {
+        assert!(props.reference.is_none() && props.taper.is_none());
+        Self {
+            tables: PTables::new(degree, props.length),
+            props,
+        }
+    }
+
+    /// Number of element coordinates 2(p + 1).
+    pub fn dofs(&self) -> usize {
+        2 * self.tables.n
+    }
+
+    /// Internal (elastic + damping) force at (e, ė) and, with `mats`, its stiffness and damping
+    /// matrices (added to, on the leading 2(p + 1) square).
+    pub fn forces(&self, e: &PVec, ed: &PVec, mats: Option<Matrices<'_>>) -> PVec {
+        // one instance per number of shapes: the loops over them unrolled
+        match self.tables.n {
+            4 => self.forces_of::<4>(e, ed, mats),
+            5 => self.forces_of::<5>(e, ed, mats),
+            6 => self.forces_of::<6>(e, ed, mats),
+            7 => self.forces_of::<7>(e, ed, mats),
+            8 => self.forces_of::<8>(e, ed, mats),
+            n => unreachable!("{n} shapes: degree beyond {MAX_DEGREE}"),
+        }
+    }
+
+    /// [`CableP::forces`] of an element of `N` shapes.
+    #[inline(always)]
+    fn forces_of<const N: usize>(
+        &self,
+        e: &PVec,
+        ed: &PVec,
+        mut mats: Option<Matrices<'_>>,
+    ) -> PVec {
+        let n = N;
+        debug_assert_eq!(n, self.tables.n);
+        let p = &self.props;
+        let tau = p.damping_time;
+        let mut f = [0.0; PD];
+        for q in &self.tables.axial {
+            let w = q.w * p.ea;
+            let r1 = combine::<2>(n, &q.ds, e);
+            let (eps, g, h) = axial_measure(p.strain, r1);
+            let r1d = if tau > 0.0 {
+                combine::<2>(n, &q.ds, ed)
+            } else {
+                [0.0; 2]
+            };
+            let stress = eps + tau * dot2(g, r1d);
+            scatter::<2>(n, &q.ds, w * stress, &g, &mut f);
+            if let Some((k, c)) = mats.as_mut() {
+                let hd = mul2(&h, r1d);
+                let mut j = outer_plus(w, g, g, w * stress, &h);
+                if tau > 0.0 {
+                    j = outer_plus(w * tau, g, hd, 1.0, &j);
+                    let cj = outer_plus(w * tau, g, g, 0.0, &h);
+                    add_point_jacobian::<2, 1, PD>(n, [&q.ds], &[[cj]], c);
+                }
+                add_point_jacobian::<2, 1, PD>(n, [&q.ds], &[[j]], k);
+            }
+        }
+        for q in &self.tables.bending {
+            let w = q.w * p.ei;
+            let r2 = combine::<2>(n, &q.dds, e);
+            let rate = |w: &[f64; MAX_SHAPES]| {
+                if tau > 0.0 {
+                    combine::<2>(n, w, ed)
+                } else {
+                    [0.0; 2]
+                }
+            };
+            let r2d = rate(&q.dds);
+            match p.strain {
+                StrainModel::Paper => {
+                    let m = [r2[0] + tau * r2d[0], r2[1] + tau * r2d[1]];
+                    scatter::<2>(n, &q.dds, w, &m, &mut f);
+                    if let Some((k, c)) = mats.as_mut() {
+                        let id = [[w, 0.0], [0.0, w]];
+                        add_point_jacobian::<2, 1, PD>(n, [&q.dds], &[[id]], k);
+                        if tau > 0.0 {
+                            let cd = [[w * tau, 0.0], [0.0, w * tau]];
+                            add_point_jacobian::<2, 1, PD>(n, [&q.dds], &[[cd]], c);
+                        }
+                    }
+                }
+                StrainModel::Exact => {
+                    let r1 = combine::<2>(n, &q.ds, e);
+                    let r1d = rate(&q.ds);
+                    let (kappa, dk1, dk2, h11, h12) = curvature(r1, r2);
+                    let moment = kappa + tau * (dot2(dk1, r1d) + dot2(dk2, r2d));
+                    scatter::<2>(n, &q.ds, w * moment, &dk1, &mut f);
+                    scatter::<2>(n, &q.dds, w * moment, &dk2, &mut f);
+                    if let Some((k, c)) = mats.as_mut() {
+                        let h21 = transpose(&h12);
+                        let zero = [[0.0; 2]; 2];
+                        let wm = w * moment;
+                        let mut jac = [
+                            [
+                                outer_plus(w, dk1, dk1, wm, &h11),
+                                outer_plus(w, dk1, dk2, wm, &h12),
+                            ],
+                            [
+                                outer_plus(w, dk2, dk1, wm, &h21),
+                                outer_plus(w, dk2, dk2, 0.0, &zero),
+                            ],
+                        ];
+                        if tau > 0.0 {
+                            // ∂K̇/∂(r′, r″) = (H11 ṙ′ + H12 ṙ″, H21 ṙ′)
+                            let (a, b) = (mul2(&h11, r1d), mul2(&h12, r2d));
+                            let u = [[a[0] + b[0], a[1] + b[1]], mul2(&h21, r1d)];
+                            let d = [dk1, dk2];
+                            let mut cj = [[zero; 2]; 2];
+                            for x in 0..2 {
+                                for y in 0..2 {
+                                    jac[x][y] = outer_plus(w * tau, d[x], u[y], 1.0, &jac[x][y]);
+                                    cj[x][y] = outer_plus(w * tau, d[x], d[y], 0.0, &zero);
+                                }
+                            }
+                            add_point_jacobian::<2, 2, PD>(n, [&q.ds, &q.dds], &cj, c);
+                        }
+                        add_point_jacobian::<2, 2, PD>(n, [&q.ds, &q.dds], &jac, k);
+                    }
+                }
+            }
+        }
+        f
+    }
+
+    /// Strain energy [J].
+    pub fn strain_energy(&self, e: &PVec) -> f64 {
+        let n = self.tables.n;
+        let p = &self.props;
+        let mut u = 0.0;
+        for q in &self.tables.axial {
+            let eps = axial_measure(p.strain, combine::<2>(n, &q.ds, e)).0;
+            u += 0.5 * q.w * p.ea * eps * eps;
+        }
+        for q in &self.tables.bending {
+            let r2 = combine::<2>(n, &q.dds, e);
+            let k2 = match p.strain {
+                StrainModel::Exact => {
+                    let r1 = combine::<2>(n, &q.ds, e);
+                    let k = (r1[0] * r2[1] - r1[1] * r2[0]) / dot2(r1, r1);
+                    k * k
+                }
+                StrainModel::Paper => dot2(r2, r2),
+            };
+            u += 0.5 * q.w * p.ei * k2;
+        }
+        u
+    }
+
+    /// Largest |ε| over the axial points at `e`.
+    pub fn max_axial_strain(&self, e: &[f64]) -> f64 {
+        let n = self.tables.n;
+        (self.tables.axial.iter())
+            .map(|q| {
+                let r1 = combine::<2>(n, &q.ds, e);
+                (dot2(r1, r1).sqrt() - 1.0).abs()
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// The centreline at ξ ∈ [0, 1] ([`super::ancf::AncfProps::sample`]'s measures).
+    pub fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
+        let sh = PShape::at(self.tables.degree, xi, self.props.length);
+        let r: [f64; 2] = sh.combine(&sh.s, e);
+        let v: [f64; 2] = sh.combine(&sh.s, ed);
+        let r1 = nalgebra::Vector2::from(sh.combine::<2>(&sh.ds, e));
+        let r2 = nalgebra::Vector2::from(sh.combine::<2>(&sh.dds, e));
+        let (eps, k) = match self.props.strain {
+            StrainModel::Exact => (r1.norm() - 1.0, cross(&r1, &r2) / r1.norm_squared()),
+            StrainModel::Paper => (
+                0.5 * (r1.norm_squared() - 1.0),
+                r2.norm().copysign(cross(&r1, &r2)),
+            ),
+        };
+        let t = r1.normalize();
+        ShapePoint {
+            position: [r[0], r[1], 0.0],
+            velocity: [v[0], v[1], 0.0],
+            frame: [[t.x, t.y, 0.0], [-t.y, t.x, 0.0], [0.0, 0.0, 1.0]],
+            axial_strain: eps,
+            curvature: [0.0, k],
+            ..ShapePoint::default()
+        }
+    }
+}
+
+/// The coordinates of a straight unstretched element of degree `degree` from `p0` along the
+/// unit direction `d`, length `l` (bubble amplitudes zero).
+pub fn straight(p0: [f64; 2], d: [f64; 2], l: f64, degree: usize) -> PVec {
+    debug_assert!(degree <= MAX_DEGREE);
+    let mut e = [0.0; PD];
+    e[..8].copy_from_slice(&[
+        p0[0],
+        p0[1],
+        d[0],
+        d[1],
+        p0[0] + l * d[0],
+        p0[1] + l * d[1],
+        d[0],
+        d[1],
+    ]);
+    e
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ancf::Vec8;
+
+    fn props(strain: StrainModel, tau: f64) -> AncfProps {
+        AncfProps {
+            length: 0.05,
+            rho_a: 0.0247,
+            ea: 6.6e5,
+            ei: 0.165,
+            damping_time: tau,
+            strain,
+            reference: None,
+            taper: None,
+        }
+    }
+
+    /// A bent, stretched, moving state of an element of degree p.
+    fn state(p: usize) -> (PVec, PVec) {
+        let mut e = [0.0; PD];
+        let mut ed = [0.0; PD];
+        e[..8].copy_from_slice(&[0.01, -0.02, 0.9, 0.3, 0.055, 0.01, 0.7, 0.75]);
+        ed[..8].copy_from_slice(&[0.1, -0.3, 0.5, 0.2, -0.4, 0.6, 0.3, -0.2]);
+        for k in 8..2 * (p + 1) {
+            e[k] = 0.002 * ((k as f64) * 1.3).sin();
+            ed[k] = 0.05 * ((k as f64) * 0.7).cos();
+        }
+        (e, ed)
+    }
+
+    /// With the bubble amplitudes zero, the element of degree p is the cubic element on other
+    /// quadrature rules: its nodal forces agree with the cubic's on a state both integrate
+    /// nearly exactly (a slightly bent, stretched element).
+    #[test]
+    fn zero_bubbles_give_the_cubic_element() {
+        for strain in [StrainModel::Exact, StrainModel::Paper] {
+            let p3 = props(strain, 0.0);
+            let e8 = [0.0, 0.0, 1.001, 0.002, 0.05005, 0.0001, 1.001, 0.003];
+            let cubic = p3.elastic(&Vec8::from(e8), &Vec8::zeros(), false).force;
+            for degree in 3..=MAX_DEGREE {
+                let el = CableP::new(p3, degree);
+                let mut e = [0.0; PD];
+                e[..8].copy_from_slice(&e8);
+                let f = el.forces(&e, &[0.0; PD], None);
+                let scale = cubic.amax();
+                for k in 0..8 {
+                    assert!(
+                        (f[k] - cubic[k]).abs() < 1e-6 * scale,
+                        "{strain:?} p {degree} {k}: {} vs {}",
+                        f[k],
+                        cubic[k]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn tangent_and_damping_match_central_differences() {
+        for strain in [StrainModel::Exact, StrainModel::Paper] {
+            for tau in [0.0, 1e-3] {
+                for degree in [4, 5, MAX_DEGREE] {
+                    let el = CableP::new(props(strain, tau), degree);
+                    let d = el.dofs();
+                    let (e, ed) = state(degree);
+                    let (mut k, mut c) = ([[0.0; PD]; PD], [[0.0; PD]; PD]);
+                    let f0 = el.forces(&e, &ed, Some((&mut k, &mut c)));
+                    let f1 = el.forces(&e, &ed, None);
+                    assert_eq!(f0, f1);
+                    let scale = k.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+                    let h = 1e-7;
+                    for j in 0..d {
+                        let (mut ep, mut em) = (e, e);
+                        ep[j] += h;
+                        em[j] -= h;
+                        let (fp, fm) = (el.forces(&ep, &ed, None), el.forces(&em, &ed, None));
+                        let (mut vp, mut vm) = (ed, ed);
+                        vp[j] += h;
+                        vm[j] -= h;
+                        let (gp, gm) = (el.forces(&e, &vp, None), el.forces(&e, &vm, None));
+                        for i in 0..d {
+                            let fd = (fp[i] - fm[i]) / (2.0 * h);
+                            assert!(
+                                (fd - k[i][j]).abs() <= 1e-6 * scale,
+                                "{strain:?} tau {tau} p {degree} K[{i},{j}]: {fd} vs {}",
+                                k[i][j]
+                            );
+                            let gd = (gp[i] - gm[i]) / (2.0 * h);
+                            assert!(
+                                (gd - c[i][j]).abs() <= 1e-6 * scale * tau.max(1e-12) + 1e-12,
+                                "C[{i},{j}]"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn force_is_the_gradient_of_the_energy_and_rigid_motion_is_free() {
+        for strain in [StrainModel::Exact, StrainModel::Paper] {
+            let el = CableP::new(props(strain, 0.0), 5);
+            let (e, _) = state(5);
+            let f = el.forces(&e, &[0.0; PD], None);
+            let h = 1e-7;
+            for j in 0..el.dofs() {
+                let (mut ep, mut em) = (e, e);
+                ep[j] += h;
+                em[j] -= h;
+                let fd = (el.strain_energy(&ep) - el.strain_energy(&em)) / (2.0 * h);
+                let scale = f.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                assert!((fd - f[j]).abs() <= 1e-6 * scale, "{strain:?} {j}");
+            }
+            let el = CableP::new(props(strain, 1e-3), 5);
+            for angle in [0.0f64, 0.7, -2.5] {
+                let (s, c) = (angle.sin(), angle.cos());
+                let e = straight([0.3, -0.1], [c, s], 0.05, 5);
+                let w = 2.0;
+                let mut ed = [0.0; PD];
+                ed[..8].copy_from_slice(&[
+                    0.0,
+                    0.0,
+                    -w * s,
+                    w * c,
+                    -w * 0.05 * s,
+                    w * 0.05 * c,
+                    -w * s,
+                    w * c,
+                ]);
+                let f = el.forces(&e, &ed, None);
+                assert!(f.iter().all(|x| x.abs() < 1e-14 * 6.6e5), "{f:?}");
+                assert!(el.strain_energy(&e) < 1e-20);
+            }
+        }
+    }
+}
