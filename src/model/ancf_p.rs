@@ -11,18 +11,14 @@
 //! (no taper, no initial curvature: the scene refuses those with degree > 3).
 
 use super::ancf::{cross, AncfProps};
+use super::element_p::PKernel;
 use super::hierarchic::{
-    add_point_jacobian, combine, scatter, PShape, PTables, MAX_DEGREE, MAX_SHAPES,
+    add_point_jacobian, combine, scatter, PMat, PShape, PTables, PVec, MAX_DEGREE, MAX_DOFS,
+    MAX_SHAPES,
 };
+use super::planar::Planar;
 use super::sample::ShapePoint;
 use crate::scene::StrainModel;
-
-/// The most coordinates of a planar element of degree p (2(p + 1)).
-pub const PD: usize = 2 * MAX_SHAPES;
-/// Element coordinates (the first 2(p + 1) used).
-pub type PVec = [f64; PD];
-/// An element matrix (the leading 2(p + 1) square used).
-pub type PMat = [[f64; PD]; PD];
 
 type B2 = [[f64; 2]; 2];
 
@@ -149,7 +145,7 @@ impl CableP {
         debug_assert_eq!(n, self.tables.n);
         let p = &self.props;
         let tau = p.damping_time;
-        let mut f = [0.0; PD];
+        let mut f = [0.0; MAX_DOFS];
         for q in &self.tables.axial {
             let w = q.w * p.ea;
             let r1 = combine::<2>(n, &q.ds, e);
@@ -167,9 +163,9 @@ impl CableP {
                 if tau > 0.0 {
                     j = outer_plus(w * tau, g, hd, 1.0, &j);
                     let cj = outer_plus(w * tau, g, g, 0.0, &h);
-                    add_point_jacobian::<2, 1, PD>(n, [&q.ds], &[[cj]], c);
+                    add_point_jacobian::<2, 1, MAX_DOFS>(n, [&q.ds], &[[cj]], c);
                 }
-                add_point_jacobian::<2, 1, PD>(n, [&q.ds], &[[j]], k);
+                add_point_jacobian::<2, 1, MAX_DOFS>(n, [&q.ds], &[[j]], k);
             }
         }
         for q in &self.tables.bending {
@@ -189,10 +185,10 @@ impl CableP {
                     scatter::<2>(n, &q.dds, w, &m, &mut f);
                     if let Some((k, c)) = mats.as_mut() {
                         let id = [[w, 0.0], [0.0, w]];
-                        add_point_jacobian::<2, 1, PD>(n, [&q.dds], &[[id]], k);
+                        add_point_jacobian::<2, 1, MAX_DOFS>(n, [&q.dds], &[[id]], k);
                         if tau > 0.0 {
                             let cd = [[w * tau, 0.0], [0.0, w * tau]];
-                            add_point_jacobian::<2, 1, PD>(n, [&q.dds], &[[cd]], c);
+                            add_point_jacobian::<2, 1, MAX_DOFS>(n, [&q.dds], &[[cd]], c);
                         }
                     }
                 }
@@ -229,9 +225,9 @@ impl CableP {
                                     cj[x][y] = outer_plus(w * tau, d[x], d[y], 0.0, &zero);
                                 }
                             }
-                            add_point_jacobian::<2, 2, PD>(n, [&q.ds, &q.dds], &cj, c);
+                            add_point_jacobian::<2, 2, MAX_DOFS>(n, [&q.ds, &q.dds], &cj, c);
                         }
-                        add_point_jacobian::<2, 2, PD>(n, [&q.ds, &q.dds], &jac, k);
+                        add_point_jacobian::<2, 2, MAX_DOFS>(n, [&q.ds, &q.dds], &jac, k);
                     }
                 }
             }
@@ -239,8 +235,8 @@ impl CableP {
         f
     }
 
-    /// Strain energy [J].
-    pub fn strain_energy(&self, e: &PVec) -> f64 {
+    /// Strain energy [J] (2(p + 1) coordinates).
+    pub fn strain_energy(&self, e: &[f64]) -> f64 {
         let n = self.tables.n;
         let p = &self.props;
         let mut u = 0.0;
@@ -300,11 +296,43 @@ impl CableP {
     }
 }
 
+impl PKernel for CableP {
+    type S = Planar;
+
+    fn tables(&self) -> &PTables {
+        &self.tables
+    }
+
+    fn rho_a(&self) -> f64 {
+        self.props.rho_a
+    }
+
+    fn damping_time(&self) -> f64 {
+        self.props.damping_time
+    }
+
+    fn forces(&self, e: &PVec, ed: &PVec, mats: Option<Matrices<'_>>) -> PVec {
+        CableP::forces(self, e, ed, mats)
+    }
+
+    fn strain_energy(&self, e: &[f64]) -> f64 {
+        CableP::strain_energy(self, e)
+    }
+
+    fn max_axial_strain(&self, e: &[f64]) -> f64 {
+        CableP::max_axial_strain(self, e)
+    }
+
+    fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
+        CableP::sample(self, e, ed, xi)
+    }
+}
+
 /// The coordinates of a straight unstretched element of degree `degree` from `p0` along the
 /// unit direction `d`, length `l` (bubble amplitudes zero).
 pub fn straight(p0: [f64; 2], d: [f64; 2], l: f64, degree: usize) -> PVec {
     debug_assert!(degree <= MAX_DEGREE);
-    let mut e = [0.0; PD];
+    let mut e = [0.0; MAX_DOFS];
     e[..8].copy_from_slice(&[
         p0[0],
         p0[1],
@@ -338,8 +366,8 @@ mod tests {
 
     /// A bent, stretched, moving state of an element of degree p.
     fn state(p: usize) -> (PVec, PVec) {
-        let mut e = [0.0; PD];
-        let mut ed = [0.0; PD];
+        let mut e = [0.0; MAX_DOFS];
+        let mut ed = [0.0; MAX_DOFS];
         e[..8].copy_from_slice(&[0.01, -0.02, 0.9, 0.3, 0.055, 0.01, 0.7, 0.75]);
         ed[..8].copy_from_slice(&[0.1, -0.3, 0.5, 0.2, -0.4, 0.6, 0.3, -0.2]);
         for k in 8..2 * (p + 1) {
@@ -360,9 +388,9 @@ mod tests {
             let cubic = p3.elastic(&Vec8::from(e8), &Vec8::zeros(), false).force;
             for degree in 3..=MAX_DEGREE {
                 let el = CableP::new(p3, degree);
-                let mut e = [0.0; PD];
+                let mut e = [0.0; MAX_DOFS];
                 e[..8].copy_from_slice(&e8);
-                let f = el.forces(&e, &[0.0; PD], None);
+                let f = el.forces(&e, &[0.0; MAX_DOFS], None);
                 let scale = cubic.amax();
                 for k in 0..8 {
                     assert!(
@@ -384,7 +412,7 @@ mod tests {
                     let el = CableP::new(props(strain, tau), degree);
                     let d = el.dofs();
                     let (e, ed) = state(degree);
-                    let (mut k, mut c) = ([[0.0; PD]; PD], [[0.0; PD]; PD]);
+                    let (mut k, mut c) = ([[0.0; MAX_DOFS]; MAX_DOFS], [[0.0; MAX_DOFS]; MAX_DOFS]);
                     let f0 = el.forces(&e, &ed, Some((&mut k, &mut c)));
                     let f1 = el.forces(&e, &ed, None);
                     assert_eq!(f0, f1);
@@ -423,7 +451,7 @@ mod tests {
         for strain in [StrainModel::Exact, StrainModel::Paper] {
             let el = CableP::new(props(strain, 0.0), 5);
             let (e, _) = state(5);
-            let f = el.forces(&e, &[0.0; PD], None);
+            let f = el.forces(&e, &[0.0; MAX_DOFS], None);
             let h = 1e-7;
             for j in 0..el.dofs() {
                 let (mut ep, mut em) = (e, e);
@@ -438,7 +466,7 @@ mod tests {
                 let (s, c) = (angle.sin(), angle.cos());
                 let e = straight([0.3, -0.1], [c, s], 0.05, 5);
                 let w = 2.0;
-                let mut ed = [0.0; PD];
+                let mut ed = [0.0; MAX_DOFS];
                 ed[..8].copy_from_slice(&[
                     0.0,
                     0.0,

@@ -32,8 +32,15 @@ use crate::math;
 pub const MAX_DEGREE: usize = crate::scene::MAX_DEGREE;
 /// The most shape functions of an element (p + 1).
 pub const MAX_SHAPES: usize = MAX_DEGREE + 1;
-/// The most Gauss points of a rule (the axial rule of the highest degree).
+/// The most Gauss points of a rule (the axial rule of the highest degree, with room for one
+/// more).
 pub const MAX_POINTS: usize = MAX_DEGREE + 2;
+/// The most coordinates of an element (3 dimensions, [`MAX_SHAPES`] vectors).
+pub const MAX_DOFS: usize = 3 * MAX_SHAPES;
+/// An element's coordinates, forces (the first DIM·(p + 1) used).
+pub type PVec = [f64; MAX_DOFS];
+/// An element matrix (the leading DIM·(p + 1) square used).
+pub type PMat = [[f64; MAX_DOFS]; MAX_DOFS];
 
 /// P_0(t) … P_m(t) (Legendre polynomials by Bonnet's recurrence), m ≤ [`MAX_DEGREE`].
 pub fn legendre(t: f64, m: usize) -> [f64; MAX_DEGREE + 1] {
@@ -319,37 +326,39 @@ pub fn add_point_jacobian<const DIM: usize, const K: usize, const D: usize>(
     }
 }
 
-/// The d'Alembert load of the part ξ′ ∈ [0, ξ] of an element (Gauss on p + 1 points of [0, ξ]:
-/// exact for ρA(g + q/ρA − r̈) and its moment, of degree 2p) and the point masses (ξ_m, m) with
-/// ξ_m < ξ: the force ∫(f_ext − ρA r̈) dx and its moment about `about` (world axes, 3-vectors),
-/// at coordinates `e` and accelerations `ea`, ρA `rho_a`, field `field` = g + q/(ρA) on the
-/// distributed mass and `gravity` on the point masses.
+/// The d'Alembert load of the part ξ′ ∈ [0, ξ] of an element in `dim` dimensions (Gauss on
+/// p + 1 points of [0, ξ]: exact for ρA(g + q/ρA − r̈) and its moment, of degree 2p) and the
+/// point masses (ξ_m, m) with ξ_m < ξ: the force ∫(f_ext − ρA r̈) dx and its moment about
+/// `about` (world axes, 3-vectors), at coordinates `e` and accelerations `ea`, ρA `rho_a`, field
+/// `field` = g + q/(ρA) on the distributed mass and `gravity` on the point masses (3-vectors,
+/// zero beyond `dim`).
 #[allow(clippy::too_many_arguments)]
-pub fn partial_load<const DIM: usize>(
+pub fn partial_load(
     t: &PTables,
+    dim: usize,
     (e, ea): (&[f64], &[f64]),
     rho_a: f64,
-    field: [f64; DIM],
-    gravity: [f64; DIM],
+    field: [f64; 3],
+    gravity: [f64; 3],
     points: &[(f64, f64)],
     xi: f64,
     about: [f64; 3],
 ) -> ([f64; 3], [f64; 3]) {
     let (mut f, mut m) = ([0.0; 3], [0.0; 3]);
-    let mut add = |s: f64, mass: f64, g: [f64; DIM]| {
+    let mut add = |s: f64, mass: f64, g: [f64; 3]| {
         let sh = PShape::at(t.degree, s, t.length);
-        let (r, a): ([f64; DIM], [f64; DIM]) = (sh.combine(&sh.s, e), sh.combine(&sh.s, ea));
-        let mut load = [0.0; 3];
-        let mut arm = [0.0; 3];
-        for c in 0..DIM {
-            load[c] = mass * (g[c] - a[c]);
-            arm[c] = r[c] - about[c];
+        let (mut r, mut a) = ([0.0; 3], [0.0; 3]);
+        for j in 0..t.n {
+            for c in 0..dim {
+                r[c] += sh.s[j] * e[dim * j + c];
+                a[c] += sh.s[j] * ea[dim * j + c];
+            }
         }
-        for c in 0..3 {
-            f[c] += load[c];
-        }
+        let load: [f64; 3] = std::array::from_fn(|c| mass * (g[c] - a[c]));
+        let arm: [f64; 3] = std::array::from_fn(|c| r[c] - about[c]);
         let mo = crate::model::vector::cross(arm, load);
         for c in 0..3 {
+            f[c] += load[c];
             m[c] += mo[c];
         }
     };

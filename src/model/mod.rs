@@ -37,6 +37,7 @@ pub mod component;
 pub(crate) mod cut;
 pub mod direction;
 pub mod dofs;
+pub mod element_p;
 pub mod held;
 pub mod hierarchic;
 pub mod inertia;

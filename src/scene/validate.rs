@@ -443,9 +443,6 @@ impl Scene {
             if seg.kind == SegmentKind::Modal {
                 return refuse("a modal segment has no element degree (its shapes are its modes); remove degree, or make the segment kind = \"ancf\"");
             }
-            if self.space == SpaceKind::Spatial && !self.torsion {
-                return refuse("the 3D cable of degree > 3 is not built yet; set degree = 3");
-            }
             if self.space == SpaceKind::Spatial && self.torsion {
                 return refuse("with torsion = true the director and angle elements are cubic only; set torsion = false (the 3D cable takes degree 4..) or degree = 3");
             }

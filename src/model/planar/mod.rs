@@ -4,13 +4,11 @@
 //! [`super::modal::ModalBody`].
 
 mod build;
-mod cable_p;
 mod elements;
 mod ends;
 mod frame;
 mod joint;
 
-pub use cable_p::AncfElementP;
 pub use elements::{AncfElement, ModalElement};
 pub use ends::{
     EndKin, ModalRootPort, ModalTipPort, NodePort, Orientation, RootSupport, TipCurvature,
