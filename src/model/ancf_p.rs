@@ -11,19 +11,14 @@
 //! (no taper, no initial curvature: the scene refuses those with degree > 3).
 
 use super::ancf::{cross, AncfProps};
-use super::element_p::PKernel;
 use super::hierarchic::{
-    add_point_jacobian, combine, scatter, PMat, PShape, PTables, PVec, MAX_DEGREE, MAX_DOFS,
-    MAX_SHAPES,
+    add_point_jacobian, combine, scatter, PKernel, PMat, PShape, PTables, PVec, MAX_DEGREE,
+    MAX_DOFS, MAX_SHAPES,
 };
-use super::planar::Planar;
 use super::sample::ShapePoint;
 use crate::scene::StrainModel;
 
 type B2 = [[f64; 2]; 2];
-
-// [`CableP::forces`] has an instance for each number of shapes up to 8
-const _: () = assert!(MAX_SHAPES <= 8);
 
 /// The planar element of degree p: the cubic element's properties (uniform, straight) and the
 /// degree's tables.
@@ -35,39 +30,53 @@ pub struct CableP {
     pub tables: PTables,
 }
 
-/// (ε, dε/dr′, d²ε/dr′²) of the axial strain measure at slope `r1`.
-fn axial_measure(strain: StrainModel, r1: [f64; 2]) -> (f64, [f64; 2], B2) {
+/// (ε, dε/dr′) of the axial strain measure at slope `r1`.
+#[inline(always)]
+fn axial_measure(strain: StrainModel, r1: [f64; 2]) -> (f64, [f64; 2]) {
     match strain {
         StrainModel::Exact => {
             let n = (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
-            let t = [r1[0] / n, r1[1] / n];
-            let h = [
-                [(1.0 - t[0] * t[0]) / n, -t[0] * t[1] / n],
-                [-t[1] * t[0] / n, (1.0 - t[1] * t[1]) / n],
-            ];
-            (n - 1.0, t, h)
+            let inv = 1.0 / n;
+            (n - 1.0, [r1[0] * inv, r1[1] * inv])
         }
-        StrainModel::Paper => (
-            0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0),
-            r1,
-            [[1.0, 0.0], [0.0, 1.0]],
-        ),
+        StrainModel::Paper => (0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0), r1),
     }
 }
 
-/// The exact material curvature K = e₃·(r′×r″)/|r′|² at (r′, r″) = (`a`, `b`): (K, ∂K/∂r′,
-/// ∂K/∂r″, ∂²K/∂r′², ∂²K/∂r′∂r″) (∂²K/∂r″² = 0).
-fn curvature(a: [f64; 2], b: [f64; 2]) -> (f64, [f64; 2], [f64; 2], B2, B2) {
+/// d²ε/dr′² of the axial strain measure at slope `r1` (unit tangent `t` of the exact one).
+fn axial_hessian(strain: StrainModel, r1: [f64; 2], t: [f64; 2]) -> B2 {
+    match strain {
+        StrainModel::Exact => {
+            let inv = 1.0 / (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
+            [
+                [(1.0 - t[0] * t[0]) * inv, -t[0] * t[1] * inv],
+                [-t[1] * t[0] * inv, (1.0 - t[1] * t[1]) * inv],
+            ]
+        }
+        StrainModel::Paper => [[1.0, 0.0], [0.0, 1.0]],
+    }
+}
+
+/// The exact material curvature K = e₃·(r′×r″)/|r′|² at (r′, r″) = (`a`, `b`) with ∂K/∂r′ and
+/// ∂K/∂r″.
+#[inline(always)]
+fn curvature(a: [f64; 2], b: [f64; 2]) -> (f64, [f64; 2], [f64; 2]) {
+    let inv = 1.0 / (a[0] * a[0] + a[1] * a[1]);
+    let k = (a[0] * b[1] - a[1] * b[0]) * inv;
+    let dk1 = [
+        (b[1] - 2.0 * k * a[0]) * inv,
+        (-b[0] - 2.0 * k * a[1]) * inv,
+    ];
+    let dk2 = [-a[1] * inv, a[0] * inv];
+    (k, dk1, dk2)
+}
+
+/// (∂²K/∂r′², ∂²K/∂r′∂r″) of [`curvature`] (∂²K/∂r″² = 0).
+fn curvature_hessian(a: [f64; 2], b: [f64; 2]) -> (B2, B2) {
     let gg = a[0] * a[0] + a[1] * a[1];
     let c = a[0] * b[1] - a[1] * b[0];
-    let k = c / gg;
     let c1 = [b[1], -b[0]];
     let c2 = [-a[1], a[0]];
-    let dk1 = [
-        c1[0] / gg - 2.0 * k / gg * a[0],
-        c1[1] / gg - 2.0 * k / gg * a[1],
-    ];
-    let dk2 = [c2[0] / gg, c2[1] / gg];
     let dg = [2.0 * a[0], 2.0 * a[1]];
     let (g2, g3) = (gg * gg, gg * gg * gg);
     let mut h11 = [[0.0; 2]; 2];
@@ -81,7 +90,7 @@ fn curvature(a: [f64; 2], b: [f64; 2]) -> (f64, [f64; 2], [f64; 2], B2, B2) {
             h12[i][j] = jt[i][j] / gg - dg[i] * c2[j] / g2;
         }
     }
-    (k, dk1, dk2, h11, h12)
+    (h11, h12)
 }
 
 fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -113,24 +122,21 @@ impl CableP {
             props,
         }
     }
+}
 
-    /// Number of element coordinates 2(p + 1).
-    pub fn dofs(&self) -> usize {
-        2 * self.tables.n
+impl PKernel for CableP {
+    const DIM: usize = 2;
+
+    fn tables(&self) -> &PTables {
+        &self.tables
     }
 
-    /// Internal (elastic + damping) force at (e, ė) and, with `mats`, its stiffness and damping
-    /// matrices (added to, on the leading 2(p + 1) square).
-    pub fn forces(&self, e: &PVec, ed: &PVec, mats: Option<Matrices<'_>>) -> PVec {
-        // one instance per number of shapes: the loops over them unrolled
-        match self.tables.n {
-            4 => self.forces_of::<4>(e, ed, mats),
-            5 => self.forces_of::<5>(e, ed, mats),
-            6 => self.forces_of::<6>(e, ed, mats),
-            7 => self.forces_of::<7>(e, ed, mats),
-            8 => self.forces_of::<8>(e, ed, mats),
-            n => unreachable!("{n} shapes: degree beyond {MAX_DEGREE}"),
-        }
+    fn rho_a(&self) -> f64 {
+        self.props.rho_a
+    }
+
+    fn damping_time(&self) -> f64 {
+        self.props.damping_time
     }
 
     /// [`CableP::forces`] of an element of `N` shapes.
@@ -149,7 +155,7 @@ impl CableP {
         for q in &self.tables.axial {
             let w = q.w * p.ea;
             let r1 = combine::<2>(n, &q.ds, e);
-            let (eps, g, h) = axial_measure(p.strain, r1);
+            let (eps, g) = axial_measure(p.strain, r1);
             let r1d = if tau > 0.0 {
                 combine::<2>(n, &q.ds, ed)
             } else {
@@ -158,6 +164,7 @@ impl CableP {
             let stress = eps + tau * dot2(g, r1d);
             scatter::<2>(n, &q.ds, w * stress, &g, &mut f);
             if let Some((k, c)) = mats.as_mut() {
+                let h = axial_hessian(p.strain, r1, g);
                 let hd = mul2(&h, r1d);
                 let mut j = outer_plus(w, g, g, w * stress, &h);
                 if tau > 0.0 {
@@ -195,11 +202,12 @@ impl CableP {
                 StrainModel::Exact => {
                     let r1 = combine::<2>(n, &q.ds, e);
                     let r1d = rate(&q.ds);
-                    let (kappa, dk1, dk2, h11, h12) = curvature(r1, r2);
+                    let (kappa, dk1, dk2) = curvature(r1, r2);
                     let moment = kappa + tau * (dot2(dk1, r1d) + dot2(dk2, r2d));
                     scatter::<2>(n, &q.ds, w * moment, &dk1, &mut f);
                     scatter::<2>(n, &q.dds, w * moment, &dk2, &mut f);
                     if let Some((k, c)) = mats.as_mut() {
+                        let (h11, h12) = curvature_hessian(r1, r2);
                         let h21 = transpose(&h12);
                         let zero = [[0.0; 2]; 2];
                         let wm = w * moment;
@@ -236,7 +244,7 @@ impl CableP {
     }
 
     /// Strain energy [J] (2(p + 1) coordinates).
-    pub fn strain_energy(&self, e: &[f64]) -> f64 {
+    fn strain_energy(&self, e: &[f64]) -> f64 {
         let n = self.tables.n;
         let p = &self.props;
         let mut u = 0.0;
@@ -259,19 +267,8 @@ impl CableP {
         u
     }
 
-    /// Largest |ε| over the axial points at `e`.
-    pub fn max_axial_strain(&self, e: &[f64]) -> f64 {
-        let n = self.tables.n;
-        (self.tables.axial.iter())
-            .map(|q| {
-                let r1 = combine::<2>(n, &q.ds, e);
-                (dot2(r1, r1).sqrt() - 1.0).abs()
-            })
-            .fold(0.0, f64::max)
-    }
-
     /// The centreline at ξ ∈ [0, 1] ([`super::ancf::AncfProps::sample`]'s measures).
-    pub fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
+    fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
         let sh = PShape::at(self.tables.degree, xi, self.props.length);
         let r: [f64; 2] = sh.combine(&sh.s, e);
         let v: [f64; 2] = sh.combine(&sh.s, ed);
@@ -296,38 +293,6 @@ impl CableP {
     }
 }
 
-impl PKernel for CableP {
-    type S = Planar;
-
-    fn tables(&self) -> &PTables {
-        &self.tables
-    }
-
-    fn rho_a(&self) -> f64 {
-        self.props.rho_a
-    }
-
-    fn damping_time(&self) -> f64 {
-        self.props.damping_time
-    }
-
-    fn forces(&self, e: &PVec, ed: &PVec, mats: Option<Matrices<'_>>) -> PVec {
-        CableP::forces(self, e, ed, mats)
-    }
-
-    fn strain_energy(&self, e: &[f64]) -> f64 {
-        CableP::strain_energy(self, e)
-    }
-
-    fn max_axial_strain(&self, e: &[f64]) -> f64 {
-        CableP::max_axial_strain(self, e)
-    }
-
-    fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
-        CableP::sample(self, e, ed, xi)
-    }
-}
-
 /// The coordinates of a straight unstretched element of degree `degree` from `p0` along the
 /// unit direction `d`, length `l` (bubble amplitudes zero).
 pub fn straight(p0: [f64; 2], d: [f64; 2], l: f64, degree: usize) -> PVec {
@@ -349,20 +314,8 @@ pub fn straight(p0: [f64; 2], d: [f64; 2], l: f64, degree: usize) -> PVec {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::ancf::tests::props;
     use crate::model::ancf::Vec8;
-
-    fn props(strain: StrainModel, tau: f64) -> AncfProps {
-        AncfProps {
-            length: 0.05,
-            rho_a: 0.0247,
-            ea: 6.6e5,
-            ei: 0.165,
-            damping_time: tau,
-            strain,
-            reference: None,
-            taper: None,
-        }
-    }
 
     /// A bent, stretched, moving state of an element of degree p.
     fn state(p: usize) -> (PVec, PVec) {
@@ -404,63 +357,25 @@ mod tests {
         }
     }
 
+    /// The exact tangent and damping matrices and the energy's gradient
+    /// ([`crate::model::hierarchic::checks::jacobians`]).
     #[test]
     fn tangent_and_damping_match_central_differences() {
         for strain in [StrainModel::Exact, StrainModel::Paper] {
             for tau in [0.0, 1e-3] {
                 for degree in [4, 5, MAX_DEGREE] {
                     let el = CableP::new(props(strain, tau), degree);
-                    let d = el.dofs();
                     let (e, ed) = state(degree);
-                    let (mut k, mut c) = ([[0.0; MAX_DOFS]; MAX_DOFS], [[0.0; MAX_DOFS]; MAX_DOFS]);
-                    let f0 = el.forces(&e, &ed, Some((&mut k, &mut c)));
-                    let f1 = el.forces(&e, &ed, None);
-                    assert_eq!(f0, f1);
-                    let scale = k.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-                    let h = 1e-7;
-                    for j in 0..d {
-                        let (mut ep, mut em) = (e, e);
-                        ep[j] += h;
-                        em[j] -= h;
-                        let (fp, fm) = (el.forces(&ep, &ed, None), el.forces(&em, &ed, None));
-                        let (mut vp, mut vm) = (ed, ed);
-                        vp[j] += h;
-                        vm[j] -= h;
-                        let (gp, gm) = (el.forces(&e, &vp, None), el.forces(&e, &vm, None));
-                        for i in 0..d {
-                            let fd = (fp[i] - fm[i]) / (2.0 * h);
-                            assert!(
-                                (fd - k[i][j]).abs() <= 1e-6 * scale,
-                                "{strain:?} tau {tau} p {degree} K[{i},{j}]: {fd} vs {}",
-                                k[i][j]
-                            );
-                            let gd = (gp[i] - gm[i]) / (2.0 * h);
-                            assert!(
-                                (gd - c[i][j]).abs() <= 1e-6 * scale * tau.max(1e-12) + 1e-12,
-                                "C[{i},{j}]"
-                            );
-                        }
-                    }
+                    let label = format!("{strain:?} tau {tau} p {degree}");
+                    crate::model::hierarchic::checks::jacobians(&el, &e, &ed, tau, &label);
                 }
             }
         }
     }
 
     #[test]
-    fn force_is_the_gradient_of_the_energy_and_rigid_motion_is_free() {
+    fn rigid_motion_is_free() {
         for strain in [StrainModel::Exact, StrainModel::Paper] {
-            let el = CableP::new(props(strain, 0.0), 5);
-            let (e, _) = state(5);
-            let f = el.forces(&e, &[0.0; MAX_DOFS], None);
-            let h = 1e-7;
-            for j in 0..el.dofs() {
-                let (mut ep, mut em) = (e, e);
-                ep[j] += h;
-                em[j] -= h;
-                let fd = (el.strain_energy(&ep) - el.strain_energy(&em)) / (2.0 * h);
-                let scale = f.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                assert!((fd - f[j]).abs() <= 1e-6 * scale, "{strain:?} {j}");
-            }
             let el = CableP::new(props(strain, 1e-3), 5);
             for angle in [0.0f64, 0.7, -2.5] {
                 let (s, c) = (angle.sin(), angle.cos());

@@ -1,42 +1,20 @@
 //! The ANCF cable elements of degree p > 3 as components, written once over the space: an
-//! element kernel ([`PKernel`]: the planar [`super::ancf_p::CableP`], the spatial 3D cable
-//! [`super::ancf3d::cable_p::Cable3P`]) with the mass, gravity, line load and point masses of
-//! its hierarchic shapes ([`super::hierarchic`]). Local coordinates `[r0, r0′, r1, r1′, a_4, …,
+//! element kernel ([`PKernel`]: the planar `ancf_p::CableP`, the spatial 3D cable
+//! `ancf3d::cable_p::Cable3P`) with the mass, gravity, line load and point masses of its
+//! hierarchic shapes ([`super::hierarchic`]). Local coordinates `[r0, r0′, r1, r1′, a_4, …,
 //! a_p]` (DIM each), the bubble amplitudes a_k element-internal. Section bodies (an offset or a
 //! rotary inertia) are not carried (the scene refuses them on such a segment).
 
 use super::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
-use super::hierarchic::{partial_load, PMat, PShape, PTables, PVec, MAX_DOFS, MAX_SHAPES};
+use super::hierarchic::{partial_load, PKernel, PShape, PVec, MAX_DOFS, MAX_SHAPES};
 use super::sample::ShapePoint;
 use super::space::Space;
 use std::any::Any;
-use std::fmt::Debug;
+use std::marker::PhantomData;
 
-/// What a kernel of degree p supplies: its tables and section, and the internal forces,
-/// energies and samples at element coordinates (DIM·(p + 1) entries used).
-pub trait PKernel: Debug + Clone + Send + Sync + 'static {
-    /// The space of the element.
-    type S: Space;
-    /// Shapes at the quadrature points, mass pattern, load weights.
-    fn tables(&self) -> &PTables;
-    /// Mass per length ρA [kg/m].
-    fn rho_a(&self) -> f64;
-    /// Kelvin–Voigt retardation time τ [s] (0: undamped).
-    fn damping_time(&self) -> f64;
-    /// Internal (elastic + damping) force at (e, ė) and, with `mats`, its stiffness ∂f/∂e and
-    /// damping ∂f/∂ė added to the two matrices.
-    fn forces(&self, e: &PVec, ed: &PVec, mats: Option<(&mut PMat, &mut PMat)>) -> PVec;
-    /// Strain energy [J].
-    fn strain_energy(&self, e: &[f64]) -> f64;
-    /// Largest |ε| over the axial points.
-    fn max_axial_strain(&self, e: &[f64]) -> f64;
-    /// The centreline at ξ ∈ [0, 1].
-    fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint;
-}
-
-/// An ANCF cable element of degree p > 3 on its kernel `K`.
+/// An ANCF cable element of degree p > 3 on its kernel `K` in the space `S` (K::DIM = S::DIM).
 #[derive(Debug, Clone)]
-pub struct ElementP<K> {
+pub struct ElementP<K, S> {
     /// The kernel.
     pub kernel: K,
     /// The scalar mass pattern ρA∫S_j S_k dx + Σ m S_j(ξ_m) S_k(ξ_m) (M = pattern ⊗ I_DIM).
@@ -51,6 +29,7 @@ pub struct ElementP<K> {
     g: [f64; 3],
     /// The segment's line load q [N/m] (zero without one, and beyond DIM).
     line: [f64; 3],
+    space: PhantomData<S>,
 }
 
 /// The first components of a vector of the space as a 3-vector.
@@ -58,10 +37,11 @@ fn vec3(v: &[f64]) -> [f64; 3] {
     std::array::from_fn(|k| v.get(k).copied().unwrap_or(0.0))
 }
 
-impl<K: PKernel> ElementP<K> {
+impl<K: PKernel, S: Space> ElementP<K, S> {
     /// The element of `kernel` carrying the point masses `points` (ξ ∈ [0, 1], mass [kg]) under
     /// the segment's line load `line` [N/m] (world axes; `None`: none).
     pub fn new(kernel: K, points: &[(f64, f64)], line: Option<&[f64]>) -> Self {
+        assert_eq!(K::DIM, S::DIM, "a kernel of the element's space");
         let t = kernel.tables();
         let n = t.n;
         let mut mass = t.mass.map(|row| row.map(|x| x * kernel.rho_a()));
@@ -83,6 +63,7 @@ impl<K: PKernel> ElementP<K> {
             gravity_force: [0.0; MAX_DOFS],
             g: [0.0; 3],
             line: line.map_or([0.0; 3], vec3),
+            space: PhantomData,
         }
     }
 
@@ -91,7 +72,7 @@ impl<K: PKernel> ElementP<K> {
     }
 
     fn dofs(&self) -> usize {
-        K::S::DIM * self.n()
+        self.kernel.dofs()
     }
 
     /// (e, ė, ë) of the element.
@@ -104,7 +85,7 @@ impl<K: PKernel> ElementP<K> {
 
     /// M ë + f − load·f_ext into `res` (d entries).
     fn residual_at(&self, ea: &PVec, force: &PVec, load: f64, res: &mut [f64]) {
-        let (n, dim) = (self.n(), K::S::DIM);
+        let (n, dim) = (self.n(), S::DIM);
         for j in 0..n {
             for c in 0..dim {
                 let mut m = 0.0;
@@ -118,8 +99,8 @@ impl<K: PKernel> ElementP<K> {
     }
 }
 
-impl<K: PKernel> Element<K::S> for ElementP<K> {
-    fn eval(&mut self, x: &LocalState<'_>, env: &Env<K::S>, mut out: ElementOut<'_>) {
+impl<K: PKernel, S: Space> Element<S> for ElementP<K, S> {
+    fn eval(&mut self, x: &LocalState<'_>, env: &Env<S>, mut out: ElementOut<'_>) {
         let (e, ed, ea) = self.state(x);
         let d = self.dofs();
         let mut res = [0.0; MAX_DOFS];
@@ -134,7 +115,7 @@ impl<K: PKernel> Element<K::S> for ElementP<K> {
                 let f = self.kernel.forces(&e, &ed, Some((&mut k, &mut c)));
                 self.residual_at(&ea, &f, env.load, &mut res);
                 out.add_residual(&res[..d]);
-                let (mass, dim) = (&self.mass, K::S::DIM);
+                let (mass, dim) = (&self.mass, S::DIM);
                 out.add_block(|r, col| {
                     let m = if r % dim == col % dim {
                         mass[r / dim][col / dim]
@@ -147,15 +128,15 @@ impl<K: PKernel> Element<K::S> for ElementP<K> {
         }
     }
 
-    fn residual(&self, x: &LocalState<'_>, _env: &Env<K::S>, res: &mut [f64]) {
+    fn residual(&self, x: &LocalState<'_>, _env: &Env<S>, res: &mut [f64]) {
         let (e, ed, ea) = self.state(x);
         let f = self.kernel.forces(&e, &ed, None);
         self.residual_at(&ea, &f, 1.0, res);
     }
 
-    fn energies(&self, x: &LocalState<'_>, _gravity: &<K::S as Space>::Vec) -> Energies {
+    fn energies(&self, x: &LocalState<'_>, _gravity: &S::Vec) -> Energies {
         let (e, ed, _) = self.state(x);
-        let (n, dim) = (self.n(), K::S::DIM);
+        let (n, dim) = (self.n(), S::DIM);
         let mut kinetic = 0.0;
         for j in 0..n {
             for k in 0..n {
@@ -171,9 +152,9 @@ impl<K: PKernel> Element<K::S> for ElementP<K> {
         }
     }
 
-    fn set_gravity(&mut self, g: &<K::S as Space>::Vec) {
+    fn set_gravity(&mut self, g: &S::Vec) {
         let t = self.kernel.tables();
-        let (ra, dim) = (self.kernel.rho_a(), K::S::DIM);
+        let (ra, dim) = (self.kernel.rho_a(), S::DIM);
         self.g = vec3(g.as_ref());
         self.gravity_force = [0.0; MAX_DOFS];
         for j in 0..t.n {
@@ -184,7 +165,7 @@ impl<K: PKernel> Element<K::S> for ElementP<K> {
         }
     }
 
-    fn set_line_load(&mut self, q: &<K::S as Space>::Vec) {
+    fn set_line_load(&mut self, q: &S::Vec) {
         self.line = vec3(q.as_ref());
     }
 
@@ -207,7 +188,7 @@ impl<K: PKernel> Element<K::S> for ElementP<K> {
     fn partial_load(
         &self,
         x: &LocalState<'_>,
-        gravity: &<K::S as Space>::Vec,
+        gravity: &S::Vec,
         xi: f64,
         about: [f64; 3],
     ) -> Option<([f64; 3], [f64; 3])> {
@@ -217,7 +198,7 @@ impl<K: PKernel> Element<K::S> for ElementP<K> {
         let field = std::array::from_fn(|c| g[c] + self.line[c] / ra);
         let t = self.kernel.tables();
         let state = (&e[..], &ea[..]);
-        let dim = K::S::DIM;
+        let dim = S::DIM;
         Some(partial_load(
             t,
             dim,

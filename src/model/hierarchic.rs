@@ -1,9 +1,11 @@
 //! The ANCF cable elements of degree p > 3 (a segment's `degree`, docs/elements.md): the cubic
 //! Hermite interpolation of the nodes [r, r′] plus hierarchic C¹ bubbles, each with one vector
 //! amplitude that is an element-internal coordinate. Dimension-free: the shape functions, the
-//! Gauss rules, an element's quadrature tables, its mass pattern and load weights, and the
-//! scatter of a quadrature point's local forces and Jacobians onto the element coordinates; the
-//! planar ([`super::ancf_p`]) and spatial kernels supply the strain measures.
+//! Gauss rules, an element's quadrature tables, its mass pattern and load weights, the scatter
+//! of a quadrature point's local forces and Jacobians onto the element coordinates, and what a
+//! kernel answers ([`PKernel`]); the planar ([`super::ancf_p`]) and spatial
+//! ([`super::ancf3d::cable_p`]) kernels supply the strain measures, [`super::element_p`] the
+//! component.
 //!
 //! Coordinates of an element of `n = p + 1` shapes in DIM dimensions: `e = [r0, r0′, r1, r1′,
 //! a_4, …, a_p]`, shape j at `e[DIM·j..DIM·j + DIM]`, and `r(x) = Σ_j S_j(ξ) e_j`, ξ = x/l: the
@@ -26,6 +28,7 @@
 //! axial point changes nothing. The mass matrix, the load weights and a partial element's loads
 //! on p + 1 points (exact for the products of two shapes, of degree 2p).
 
+use super::sample::ShapePoint;
 use crate::math;
 
 /// The highest element degree (the scene's limit).
@@ -195,6 +198,65 @@ pub fn scatter<const DIM: usize>(
         }
     }
 }
+
+/// What a kernel of degree p supplies: its tables and section, and the internal forces,
+/// energies and samples at element coordinates (DIM·(p + 1) entries used).
+pub trait PKernel: std::fmt::Debug + Clone + Send + Sync + 'static {
+    /// Number of components of a vector of the element's space (2 planar, 3 spatial).
+    const DIM: usize;
+    /// Shapes at the quadrature points, mass pattern, load weights.
+    fn tables(&self) -> &PTables;
+    /// Number of element coordinates DIM·(p + 1).
+    fn dofs(&self) -> usize {
+        Self::DIM * self.tables().n
+    }
+    /// Mass per length ρA [kg/m].
+    fn rho_a(&self) -> f64;
+    /// Kelvin–Voigt retardation time τ [s] (0: undamped).
+    fn damping_time(&self) -> f64;
+    /// [`PKernel::forces`] of an element of `N` = p + 1 shapes (the loops over them unrolled).
+    fn forces_of<const N: usize>(
+        &self,
+        e: &PVec,
+        ed: &PVec,
+        mats: Option<(&mut PMat, &mut PMat)>,
+    ) -> PVec;
+    /// Internal (elastic + damping) force at (e, ė) and, with `mats`, its stiffness ∂f/∂e and
+    /// damping ∂f/∂ė added to the two matrices: [`PKernel::forces_of`] of the element's number
+    /// of shapes.
+    fn forces(&self, e: &PVec, ed: &PVec, mats: Option<(&mut PMat, &mut PMat)>) -> PVec {
+        match self.tables().n {
+            4 => self.forces_of::<4>(e, ed, mats),
+            5 => self.forces_of::<5>(e, ed, mats),
+            6 => self.forces_of::<6>(e, ed, mats),
+            7 => self.forces_of::<7>(e, ed, mats),
+            8 => self.forces_of::<8>(e, ed, mats),
+            n => unreachable!("{n} shapes: an element degree beyond {MAX_SHAPES} − 1"),
+        }
+    }
+    /// Strain energy [J].
+    fn strain_energy(&self, e: &[f64]) -> f64;
+    /// Largest |ε| = ||r′| − 1| over the axial points at `e`.
+    fn max_axial_strain(&self, e: &[f64]) -> f64 {
+        let (t, dim) = (self.tables(), Self::DIM);
+        (t.axial.iter())
+            .map(|q| {
+                let mut r1 = [0.0; 3];
+                for (j, w) in q.ds.iter().enumerate().take(t.n) {
+                    for c in 0..dim {
+                        r1[c] += w * e[dim * j + c];
+                    }
+                }
+                (r1.iter().map(|x| x * x).sum::<f64>().sqrt() - 1.0).abs()
+            })
+            .fold(0.0, f64::max)
+    }
+    /// The centreline at ξ ∈ [0, 1].
+    fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint;
+}
+
+// [`PKernel::forces`] has an instance for each number of shapes up to 8
+const _: () = assert!(MAX_SHAPES <= 8);
 
 /// A quadrature point of an element: weight × l/2 [m] and the shapes' x-derivatives there.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -373,6 +435,60 @@ pub fn partial_load(
         add(xm, mass, gravity);
     }
     (f, m)
+}
+
+/// Checks of a kernel shared by the planar and spatial tests.
+#[cfg(test)]
+pub(crate) mod checks {
+    use super::*;
+
+    /// The kernel's stiffness and damping matrices against central differences of its forces
+    /// at (e, ė), its residual path equal to its matrix path, and (undamped) its force the
+    /// gradient of its strain energy; `label` names the case in a failure.
+    pub(crate) fn jacobians<K: PKernel>(el: &K, e: &PVec, ed: &PVec, tau: f64, label: &str) {
+        let d = el.dofs();
+        let (mut k, mut c) = ([[0.0; MAX_DOFS]; MAX_DOFS], [[0.0; MAX_DOFS]; MAX_DOFS]);
+        let f0 = el.forces(e, ed, Some((&mut k, &mut c)));
+        assert_eq!(f0, el.forces(e, ed, None), "{label}");
+        let scale = k.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        let fs = f0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let h = 1e-7;
+        let diff = |j: usize, rates: bool| {
+            let (mut p, mut m) = if rates { (*ed, *ed) } else { (*e, *e) };
+            p[j] += h;
+            m[j] -= h;
+            let (fp, fm) = if rates {
+                (el.forces(e, &p, None), el.forces(e, &m, None))
+            } else {
+                (el.forces(&p, ed, None), el.forces(&m, ed, None))
+            };
+            let du = (el.strain_energy(&p) - el.strain_energy(&m)) / (2.0 * h);
+            (
+                std::array::from_fn::<f64, MAX_DOFS, _>(|i| (fp[i] - fm[i]) / (2.0 * h)),
+                du,
+            )
+        };
+        for j in 0..d {
+            let ((fd, du), (gd, _)) = (diff(j, false), diff(j, true));
+            for i in 0..d {
+                let err = (fd[i] - k[i][j]).abs();
+                assert!(
+                    err <= 1e-6 * scale,
+                    "{label} K[{i},{j}]: {} vs {}",
+                    fd[i],
+                    k[i][j]
+                );
+                let err = (gd[i] - c[i][j]).abs();
+                assert!(
+                    err <= 1e-6 * scale * tau.max(1e-12) + 1e-12,
+                    "{label} C[{i},{j}]"
+                );
+            }
+            if tau == 0.0 {
+                assert!((du - f0[j]).abs() <= 1e-6 * fs, "{label} dU/de[{j}]");
+            }
+        }
+    }
 }
 
 #[cfg(test)]

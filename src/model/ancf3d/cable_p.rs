@@ -1,24 +1,22 @@
-//! The 3D cable of degree p = 4 … [`MAX_DEGREE`] (`torsion = false`, a segment's `degree`): the
+//! The 3D cable of degree p = 4 … [`crate::model::hierarchic::MAX_DEGREE`] (`torsion = false`, a segment's `degree`): the
 //! 3D cable's nodes [r, r_x] and hierarchic C¹ bubbles ([`crate::model::hierarchic`]),
 //! coordinates `[r0, r0_x, r1, r1_x, a_4, …, a_p]` (3 each; 3(p + 1)).
 //!
 //! The strain measures and damping are the 3D cable's ([`super::cable`]): stretching ε = |r_x| − 1
-//! ([`Ancf3Props::axial_point`]), bending ½EI|r_x × r_xx|²/|r_x|⁴ with the rate of the curvature
-//! vector relative to the tangent's rotation ([`Ancf3Props::cable_point`]), on p + 1 axial and
+//! (`Ancf3Props::axial_point`), bending ½EI|r_x × r_xx|²/|r_x|⁴ with the rate of the curvature
+//! vector relative to the tangent's rotation (`Ancf3Props::cable_point`), on p + 1 axial and
 //! p bending Gauss points ([`PTables`]). The tangent and damping matrices are the exact
 //! Jacobians of the same point functions by forward-mode AD on each point's local vectors
-//! ([`local_jacobian`]), mapped onto the element ([`add_point_jacobian`]). Uniform straight
+//! (`local_jacobian`), mapped onto the element ([`add_point_jacobian`]). Uniform straight
 //! cables only (no taper, no initial curvature; the scene refuses those with degree > 3).
 
 use super::kernel::{local_jacobian, Blocks};
 use super::Ancf3Props;
-use crate::model::element_p::PKernel;
 use crate::model::hierarchic::{
-    add_point_jacobian, combine, scatter, PMat, PShape, PTables, PVec, MAX_DEGREE, MAX_DOFS,
+    add_point_jacobian, combine, scatter, PKernel, PMat, PShape, PTables, PVec, MAX_DOFS,
     MAX_SHAPES,
 };
 use crate::model::sample::{minimal_frame, ShapePoint};
-use crate::model::spatial::Spatial;
 use crate::model::vector::{cross, dot};
 
 /// The 3D cable of degree p: the cable's properties (uniform, straight, no torsion) and the
@@ -30,9 +28,6 @@ pub struct Cable3P {
     /// Shapes at the quadrature points, mass pattern, load weights.
     pub tables: PTables,
 }
-
-// [`Cable3P::forces`] has an instance for each number of shapes up to 8
-const _: () = assert!(MAX_SHAPES <= 8);
 
 /// Adds the local Jacobians `jac` (and the rate Jacobians `rate` to `c`) of a point whose local
 /// vectors are Σ_j maps[a][j] e_j.
@@ -50,7 +45,7 @@ fn add_blocks<const K: usize>(
 
 impl Cable3P {
     /// The cable of `props` (the 3D cable: `director` false; uniform, straight) and degree
-    /// `degree` (3 … [`MAX_DEGREE`]).
+    /// `degree` (3 … [`crate::model::hierarchic::MAX_DEGREE`]).
     pub fn new(props: Ancf3Props, degree: usize) -> Self {
         assert!(!props.director && props.reference.is_none() && props.taper.is_none());
         Self {
@@ -58,24 +53,21 @@ impl Cable3P {
             props,
         }
     }
+}
 
-    /// Number of element coordinates 3(p + 1).
-    pub fn dofs(&self) -> usize {
-        3 * self.tables.n
+impl PKernel for Cable3P {
+    const DIM: usize = 3;
+
+    fn tables(&self) -> &PTables {
+        &self.tables
     }
 
-    /// Internal (elastic + damping) force at (e, ė) and, with `mats`, its stiffness and damping
-    /// matrices (added to, on the leading 3(p + 1) square).
-    pub fn forces(&self, e: &PVec, ed: &PVec, mats: Option<(&mut PMat, &mut PMat)>) -> PVec {
-        // one instance per number of shapes: the loops over them unrolled
-        match self.tables.n {
-            4 => self.forces_of::<4>(e, ed, mats),
-            5 => self.forces_of::<5>(e, ed, mats),
-            6 => self.forces_of::<6>(e, ed, mats),
-            7 => self.forces_of::<7>(e, ed, mats),
-            8 => self.forces_of::<8>(e, ed, mats),
-            n => unreachable!("{n} shapes: degree beyond {MAX_DEGREE}"),
-        }
+    fn rho_a(&self) -> f64 {
+        self.props.rho_a
+    }
+
+    fn damping_time(&self) -> f64 {
+        self.props.damping_time
     }
 
     #[inline(always)]
@@ -133,7 +125,7 @@ impl Cable3P {
     }
 
     /// Strain energy [J] (3(p + 1) coordinates).
-    pub fn strain_energy(&self, e: &[f64]) -> f64 {
+    fn strain_energy(&self, e: &[f64]) -> f64 {
         let (n, p) = (self.tables.n, &self.props);
         let mut u = 0.0;
         for q in &self.tables.axial {
@@ -149,20 +141,9 @@ impl Cable3P {
         u
     }
 
-    /// Largest |ε| over the axial points at `e`.
-    pub fn max_axial_strain(&self, e: &[f64]) -> f64 {
-        let n = self.tables.n;
-        (self.tables.axial.iter())
-            .map(|q| {
-                let a = combine::<3>(n, &q.ds, e);
-                (dot(a, a).sqrt() - 1.0).abs()
-            })
-            .fold(0.0, f64::max)
-    }
-
     /// The centreline at ξ ∈ [0, 1] ([`Ancf3Props::sample`]'s measures of the 3D cable: the
     /// smallest rotation's section frame, the curvature vector on it, no twist).
-    pub fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
+    fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
         let sh = PShape::at(self.tables.degree, xi, self.props.length);
         let (a, b): ([f64; 3], [f64; 3]) = (sh.combine(&sh.ds, e), sh.combine(&sh.dds, e));
         let frame = minimal_frame(a);
@@ -178,42 +159,11 @@ impl Cable3P {
     }
 }
 
-impl PKernel for Cable3P {
-    type S = Spatial;
-
-    fn tables(&self) -> &PTables {
-        &self.tables
-    }
-
-    fn rho_a(&self) -> f64 {
-        self.props.rho_a
-    }
-
-    fn damping_time(&self) -> f64 {
-        self.props.damping_time
-    }
-
-    fn forces(&self, e: &PVec, ed: &PVec, mats: Option<(&mut PMat, &mut PMat)>) -> PVec {
-        Cable3P::forces(self, e, ed, mats)
-    }
-
-    fn strain_energy(&self, e: &[f64]) -> f64 {
-        Cable3P::strain_energy(self, e)
-    }
-
-    fn max_axial_strain(&self, e: &[f64]) -> f64 {
-        Cable3P::max_axial_strain(self, e)
-    }
-
-    fn sample(&self, e: &[f64], ed: &[f64], xi: f64) -> ShapePoint {
-        Cable3P::sample(self, e, ed, xi)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::ancf3d::CABLE_DOFS;
+    use crate::model::hierarchic::MAX_DEGREE;
 
     fn props(tau: f64) -> Ancf3Props {
         Ancf3Props {
@@ -253,42 +203,11 @@ mod tests {
     #[test]
     fn tangent_damping_and_energy_agree_with_the_forces() {
         for tau in [0.0, 1e-3] {
-            for degree in [4, 5, super::MAX_DEGREE] {
+            for degree in [4, 5, MAX_DEGREE] {
                 let el = Cable3P::new(props(tau), degree);
-                let d = el.dofs();
                 let (e, ed) = state(degree);
-                let (mut k, mut c) = ([[0.0; MAX_DOFS]; MAX_DOFS], [[0.0; MAX_DOFS]; MAX_DOFS]);
-                let f0 = el.forces(&e, &ed, Some((&mut k, &mut c)));
-                assert_eq!(f0, el.forces(&e, &ed, None));
-                let scale = k.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-                let h = 1e-7;
-                for j in 0..d {
-                    let (mut ep, mut em) = (e, e);
-                    ep[j] += h;
-                    em[j] -= h;
-                    let (fp, fm) = (el.forces(&ep, &ed, None), el.forces(&em, &ed, None));
-                    let (mut vp, mut vm) = (ed, ed);
-                    vp[j] += h;
-                    vm[j] -= h;
-                    let (gp, gm) = (el.forces(&e, &vp, None), el.forces(&e, &vm, None));
-                    for i in 0..d {
-                        let fd = (fp[i] - fm[i]) / (2.0 * h);
-                        assert!(
-                            (fd - k[i][j]).abs() <= 1e-6 * scale,
-                            "tau {tau} p {degree} K[{i},{j}]"
-                        );
-                        let gd = (gp[i] - gm[i]) / (2.0 * h);
-                        assert!(
-                            (gd - c[i][j]).abs() <= 1e-6 * scale * tau.max(1e-12) + 1e-12,
-                            "C[{i},{j}]"
-                        );
-                    }
-                    if tau == 0.0 {
-                        let fd = (el.strain_energy(&ep) - el.strain_energy(&em)) / (2.0 * h);
-                        let fs = f0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                        assert!((fd - f0[j]).abs() <= 1e-6 * fs, "p {degree} dU/de[{j}]");
-                    }
-                }
+                let label = format!("tau {tau} p {degree}");
+                crate::model::hierarchic::checks::jacobians(&el, &e, &ed, tau, &label);
             }
         }
     }
@@ -305,7 +224,7 @@ mod tests {
         let tab = p.tables();
         let cubic = p.internal_force::<CABLE_DOFS>(&tab, &e12, &[0.0; CABLE_DOFS]);
         let scale = cubic.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        for degree in 3..=super::MAX_DEGREE {
+        for degree in 3..=MAX_DEGREE {
             let mut e = [0.0; MAX_DOFS];
             e[..12].copy_from_slice(&e12);
             let f = Cable3P::new(p, degree).forces(&e, &[0.0; MAX_DOFS], None);
