@@ -3,6 +3,8 @@
 //! cannot converge in its fixed iterations (the FMU's fmi2Discard is tested in
 //! crates/fmu/tests/fmi_hardening.rs).
 
+mod common;
+use common::max_distance;
 use hybeam::integrator::Mode;
 use hybeam::scene::{Scene, Solver};
 use hybeam::simulator::{AnySimulator, OutputId};
@@ -33,13 +35,6 @@ fn run(scene: Scene, t_end: f64) -> (Vec<[f64; 2]>, hybeam::integrator::Counters
         out.push([o.value(x).unwrap(), o.value(y).unwrap()]);
     }
     (out, sim.counters())
-}
-
-fn max_distance(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt())
-        .fold(0.0, f64::max)
 }
 
 /// The real-time mode at the normal mode's step is as accurate as the normal mode against a

@@ -771,10 +771,11 @@ pub fn straight(p0: [f64; 2], angle: f64, l: f64) -> Vec8 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn props(strain: StrainModel, tau: f64) -> AncfProps {
+    /// A short stiff element (the element tests' and those of the higher degrees).
+    pub(crate) fn props(strain: StrainModel, tau: f64) -> AncfProps {
         AncfProps {
             length: 0.05,
             rho_a: 0.0247,

@@ -30,13 +30,16 @@
 
 pub mod ancf;
 pub mod ancf3d;
+pub mod ancf_p;
 pub mod assembly;
 pub mod build;
 pub mod component;
 pub(crate) mod cut;
 pub mod direction;
 pub mod dofs;
+pub mod element_p;
 pub mod held;
+pub mod hierarchic;
 pub mod inertia;
 pub mod load;
 pub mod modal;

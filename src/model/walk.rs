@@ -9,7 +9,7 @@
 use super::ancf::SectionMass;
 use super::assembly::{Model, Parts};
 use super::component::{Constraint, Element, Port, Support};
-use super::dofs::{Dof, LocalDofs, Numbering};
+use super::dofs::{Dof, LocalDofs, Numbering, Rigid};
 use super::section3::SectionBody3;
 use super::space::{moment_from, vec_from, Space};
 use crate::scene::{Root, Scene, SceneError, Segment, SegmentKind, SpaceKind};
@@ -242,6 +242,20 @@ fn section_bodies<S: Space>(
     (planar, spatial)
 }
 
+/// The element-internal coordinates of an ANCF element of degree `degree` and length `le`
+/// [m] (none for the cubic element, 3): one vector amplitude per hierarchic bubble
+/// ([`super::hierarchic`]), free, 0 on a straight segment, Newton scale `le`, each a rigid
+/// direction (a moving mount turns it, a translation leaves it).
+fn bubbles<S: Space>(num: &mut Numbering, degree: usize, le: f64) -> Vec<Dof> {
+    let mut out = Vec::new();
+    for _ in 4..=degree {
+        let a: Vec<Dof> = (0..S::DIM).map(|_| num.free(0.0, le)).collect();
+        num.rigid(Rigid::Direction, &a);
+        out.extend(a);
+    }
+    out
+}
+
 /// The bodies of `bodies` on element `k`.
 fn on_element<B: Copy>(bodies: &[(usize, B)], k: usize) -> Vec<B> {
     bodies.iter().filter(|b| b.0 == k).map(|b| b.1).collect()
@@ -337,8 +351,12 @@ pub fn walk<S: Space, P: SegmentParts<S>>(
                 };
                 for k in 0..ne {
                     let next = parts.node(&mut num, s_pos + (k + 1) as f64 * le, Hold::Free);
-                    let dofs =
-                        LocalDofs::new(last.dofs.iter().chain(&next.dofs).copied().collect());
+                    let inner = bubbles::<S>(&mut num, seg.degree, le);
+                    let dofs = LocalDofs::new(
+                        (last.dofs.iter().chain(&next.dofs).chain(&inner))
+                            .copied()
+                            .collect(),
+                    );
                     let on: Vec<(f64, f64)> = points
                         .iter()
                         .filter_map(|&(at, m)| {

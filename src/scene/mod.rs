@@ -15,7 +15,7 @@ use std::fmt;
 pub use crate::integrator::{IntegrationParameters, MIN_STEP, MIN_TOLERANCE};
 pub use overrides::apply_override;
 pub use section::{rectangle_torsion_constant, Dim, Section, SectionProps};
-pub use validate::{MAX_ELEMENTS, MAX_MODES};
+pub use validate::{MAX_DEGREE, MAX_ELEMENTS, MAX_MODES};
 
 /// A scene error: a message that names the field and what to change.
 #[derive(Debug, Clone, PartialEq)]
@@ -215,6 +215,14 @@ pub struct Segment {
     /// Strain model of the ANCF elements.
     #[serde(default)]
     pub strain: StrainModel,
+    /// Polynomial degree of the ANCF elements (ANCF segments only): 3 (the default) is the
+    /// cubic Hermite cable element; 4 … [`MAX_DEGREE`] add hierarchic C¹ bubbles, one vector
+    /// amplitude each, as element-internal coordinates (the nodes stay [r, r′]).
+    #[serde(
+        default = "Segment::default_degree",
+        skip_serializing_if = "Segment::is_cubic"
+    )]
+    pub degree: usize,
     /// Uniform distributed dead load on the segment [N/m], world axes: `[qx, qy]` or
     /// `[qx, qy, qz]` (none: zero). It enters every element of the segment as gravity does (a
     /// dead load of density q per unit length beside ρA g). A segment that sets it (zero
@@ -500,6 +508,14 @@ impl Segment {
 
     fn default_poisson_ratio() -> f64 {
         0.3
+    }
+
+    fn default_degree() -> usize {
+        3
+    }
+
+    fn is_cubic(degree: &usize) -> bool {
+        *degree == 3
     }
 }
 

@@ -69,6 +69,8 @@ fn check_finite(field: &str, v: f64) -> Result<(), SceneError> {
 pub const MAX_MODES: usize = 12;
 /// Largest number of ANCF elements accepted per segment.
 pub const MAX_ELEMENTS: usize = 4096;
+/// Highest polynomial degree of an ANCF element (a segment's `degree`).
+pub const MAX_DEGREE: usize = 7;
 
 impl Scene {
     /// Checks every value; the error names the field, its value and what is allowed.
@@ -417,7 +419,58 @@ impl Scene {
             )));
         }
         self.validate_masses()?;
+        self.validate_degrees()?;
         self.validate_stations()
+    }
+
+    /// The segments' `degree`: 3 (the cubic element) anywhere; 4..=[`MAX_DEGREE`] on a
+    /// uniform, straight ANCF segment of a planar scene or a 3D cable (`torsion = false`),
+    /// without masses that have an offset or a rotary inertia. An error names the field, its
+    /// value and the fix.
+    fn validate_degrees(&self) -> Result<(), SceneError> {
+        for (i, seg) in self.segments.iter().enumerate() {
+            let d = seg.degree;
+            if d == 3 {
+                continue;
+            }
+            let f = format!("segments[{i}].degree = {d}");
+            if !(3..=MAX_DEGREE).contains(&d) {
+                return Err(SceneError(format!(
+                    "{f}: must be in 3..={MAX_DEGREE} (3, the default: the cubic ANCF cable element; 4..={MAX_DEGREE}: hierarchic bubbles inside each element)"
+                )));
+            }
+            let refuse = |why: &str| Err(SceneError(format!("{f}: {why}")));
+            if seg.kind == SegmentKind::Modal {
+                return refuse("a modal segment has no element degree (its shapes are its modes); remove degree, or make the segment kind = \"ancf\"");
+            }
+            if self.space == SpaceKind::Spatial && self.torsion {
+                return refuse("with torsion = true the director and angle elements are cubic only; set torsion = false (the 3D cable takes degree 4..) or degree = 3");
+            }
+            if seg.is_tapered() {
+                return refuse("a tapered segment takes the cubic element only; set degree = 3 or give the segment uniform dimensions");
+            }
+            if seg.curvature().is_some() {
+                return refuse("an initially curved segment takes the cubic element only; set degree = 3 or remove initial_curvature");
+            }
+            for (k, m) in self.masses.iter().enumerate() {
+                if m.segment == seg.name && !m.is_point() {
+                    let field = if m
+                        .inertia
+                        .as_ref()
+                        .is_some_and(|v| v.iter().any(|x| *x != 0.0))
+                    {
+                        "inertia"
+                    } else {
+                        "offset"
+                    };
+                    return Err(SceneError(format!(
+                        "masses[{k}].{field}: segment {:?} has elements of degree {d}, which carry point masses only (no offset, no rotary inertia); set segments[{i}].degree = 3 or remove `{field}`",
+                        seg.name
+                    )));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The segment named `segment` of an item `p` (`masses[i]`, `stations[i]`) of kind `what`

@@ -66,6 +66,14 @@ pub fn tip_history(scene: Scene, t_end: f64, dt: f64) -> Vec<[f64; 2]> {
     out
 }
 
+/// The largest distance between two tip histories of equal sampling [m].
+pub fn max_distance(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt())
+        .fold(0.0, f64::max)
+}
+
 /// The modes of a model linearized at its initial state (at rest, λ = 0): M and K from the
 /// assembled Newton matrix, restricted to the null space of Φ_q (projector
 /// I − Φ_qᵀ(Φ_qΦ_qᵀ)⁻¹Φ_q), generalized symmetric eigenproblem. Returns (frequency [Hz],

@@ -1,7 +1,7 @@
 //! Nothing allocated in the step (issue 41 §2): after fmi2ExitInitializationMode, the calls a
 //! real-time host makes every communication step — fmi2SetReal, fmi2SetRealInputDerivatives,
 //! fmi2DoStep, fmi2GetReal and, where the FMU declares them (mounted scenes),
-//! fmi2GetRealOutputDerivatives — allocate no heap memory, on every shipped scene (planar, spatial, mounted with the mount on a smooth path, with the partner
+//! fmi2GetRealOutputDerivatives — allocate no heap memory, on every shipped scene and three with elements of degree 5 (planar, spatial, mounted with the mount on a smooth path, with the partner
 //! inputs, `visualization.directory` empty): none allocates.
 //!
 //! The FMI functions are called in-process through the library's Rust exports
@@ -277,6 +277,27 @@ fn scenes() -> Vec<(String, String)> {
             })
         })
         .collect();
+    // elements of degree 5 (element-internal bubble coordinates): the soft rod, the mounted
+    // boom's ANCF tip segment with its root station, the spatial mounted Case 1 rod's ANCF half
+    // as a 3D cable
+    let variant = |id: &str, edits: &[(&str, &str)]| {
+        let (_, text) = out.iter().find(|(i, _)| i == id).unwrap();
+        let mut text = text.clone();
+        for (from, to) in edits {
+            assert!(text.contains(from), "{id}: {from}");
+            text = text.replacen(from, to, 1);
+        }
+        (format!("{id}_degree5"), text)
+    };
+    let degree5 = |n: &str| ("elements = ".to_string() + n, "elements = 2\ndegree = 5");
+    let (soft, boom, cable) = (degree5("16"), degree5("8"), degree5("8"));
+    let cable3d = ("root = \"mounted\"", "root = \"mounted\"\ntorsion = false");
+    let extra = [
+        variant("soft_rod", &[(&soft.0, soft.1)]),
+        variant("boom", &[(&boom.0, boom.1)]),
+        variant("case1_3d_mounted", &[cable3d, (&cable.0, cable.1)]),
+    ];
+    out.extend(extra);
     out.sort();
     out
 }

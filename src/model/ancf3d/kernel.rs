@@ -135,6 +135,37 @@ pub(super) fn point_tangent<const K: usize, const N: usize, const D: usize>(
     }
 }
 
+/// DIM × DIM blocks [a][b] of a point's local Jacobian ∂g_a/∂u_b (3-vectors).
+pub(super) type Blocks<const K: usize> = [[[[f64; 3]; 3]; K]; K];
+
+/// The Jacobians of one point's local forces `g(u, u̇)` (K local vectors `u`, rates `ud`):
+/// ∂g/∂u and, with N = 6K seeds, ∂g/∂u̇ (N = 3K: `None`), as 3 × 3 blocks, by forward-mode AD
+/// (the element of degree p maps them onto its coordinates, [`crate::model::hierarchic`]).
+pub(super) fn local_jacobian<const K: usize, const N: usize>(
+    u: &[V<f64>; K],
+    ud: &[V<f64>; K],
+    g: impl FnOnce(&[V<DualSVec64<N>>; K], &[V<DualSVec64<N>>; K]) -> [V<DualSVec64<N>>; K],
+) -> (Blocks<K>, Option<Blocks<K>>) {
+    debug_assert!(N == 3 * K || N == 6 * K);
+    let rates = N == 6 * K;
+    let out = g(&seed(u, Some(0)), &seed(ud, rates.then_some(3 * K)));
+    let blocks = |off: usize| {
+        let mut b = [[[[0.0; 3]; 3]; K]; K];
+        for (al, ga) in out.iter().enumerate() {
+            for ci in 0..3 {
+                let Some(eps) = &ga[ci].eps.0 else { continue };
+                for (be, blk) in b[al].iter_mut().enumerate() {
+                    for cj in 0..3 {
+                        blk[ci][cj] = eps[off + 3 * be + cj];
+                    }
+                }
+            }
+        }
+        b
+    };
+    (blocks(0), rates.then(|| blocks(3 * K)))
+}
+
 /// Local vectors as dual numbers, derivative `off + 3α + i` seeded on component i of vector α
 /// (`None`: constants).
 fn seed<const K: usize, const N: usize>(

@@ -44,6 +44,7 @@ use num_dual::DualSVec64;
 
 pub mod angle;
 pub mod cable;
+pub mod cable_p;
 pub mod director;
 mod kernel;
 mod mass;

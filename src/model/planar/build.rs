@@ -8,10 +8,12 @@ use super::joint::RigidJoint;
 use super::Planar;
 use crate::math;
 use crate::model::ancf::{arc_end, AncfProps, AncfReference, SectionMass, SectionTable};
+use crate::model::ancf_p::CableP;
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
+use crate::model::element_p::ElementP;
 use crate::model::modal::{ModalBasis, ModalBody};
 use crate::model::section3::SectionBody3;
 use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
@@ -156,6 +158,12 @@ impl SegmentParts<Planar> for PlanarParts {
         _bodies3: &[SectionBody3],
         seg: &Segment,
     ) -> Box<dyn Element<Planar>> {
+        if seg.degree > 3 {
+            // uniform, straight, point masses only (the scene's validation)
+            let line = seg.line_load_vec::<2>();
+            let kernel = CableP::new(*props, seg.degree);
+            return Box::new(ElementP::new(kernel, points, line.as_ref().map(|q| &q[..])));
+        }
         let mut props = *props;
         if seg.is_tapered() {
             let (e, rho) = (seg.youngs_modulus, seg.density);

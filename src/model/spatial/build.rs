@@ -15,11 +15,13 @@ use super::{
 };
 use crate::model::ancf::SectionMass;
 use crate::model::ancf3d::angle::Angle3;
+use crate::model::ancf3d::cable_p::Cable3P;
 use crate::model::ancf3d::{arc_frame, Ancf3Props, Reference3};
 use crate::model::assembly::Model;
 use crate::model::component::{Constraint, Element, Port, Support};
 use crate::model::direction::SlopeDirection;
 use crate::model::dofs::{LocalDofs, Numbering, Rigid};
+use crate::model::element_p::ElementP;
 use crate::model::modal::{ModalBasis, ModalBody3, ModalProps3};
 use crate::model::section3::SectionBody3;
 use crate::model::walk::{walk, Coords, End, Hold, ModalSegment, SegmentMasses, SegmentParts};
@@ -197,6 +199,11 @@ impl SegmentParts<Spatial> for SpatialParts {
         seg: &Segment,
     ) -> Box<dyn Element<Spatial>> {
         let line = seg.line_load_vec();
+        if seg.degree > 3 {
+            // the 3D cable, uniform and straight, point masses only (the scene's validation)
+            let kernel = Cable3P::new(*props, seg.degree);
+            return Box::new(ElementP::new(kernel, points, line.as_ref().map(|q| &q[..])));
+        }
         let tapered = seg.is_tapered().then(|| props.tapered(seg, x0));
         let props = tapered.as_ref().unwrap_or(props);
         if self.angle {
