@@ -39,6 +39,9 @@ pub struct Tableau {
     pub a: [[f64; MAX_STAGES]; MAX_STAGES],
     /// First stage explicit (a₁ⱼ = 0): its acceleration is q̈ₙ, the previous step's last stage.
     pub explicit_first: bool,
+    /// The weights b̂ of the embedded solution of lower order, if the tableau has one: the
+    /// error estimate of `solver.error_tolerance` ([`Esdirk::step`]).
+    pub embedded: Option<[f64; MAX_STAGES]>,
     /// The stages' Newton tolerance as a fraction of `solver.tolerance`.
     pub tolerance_factor: f64,
 }
@@ -46,7 +49,8 @@ pub struct Tableau {
 /// Kennedy & Carpenter's ESDIRK4(3)6L[2]SA (the implicit half of ARK4(3)6L[2]SA, Appl. Numer.
 /// Math. 44 (2003) 139–181; SUNDIALS' ARK436L2SA_DIRK_6_3_4): six stages, the first explicit
 /// (first same as last: no solve), L-stable, stiffly accurate, order 4 with an embedded order
-/// 3 (not used here), **stage order 2** (Σⱼ aᵢⱼ cⱼ = cᵢ²/2), all weights below 1 in magnitude.
+/// 3 (b̂, the error estimate of `solver.error_tolerance`; SUNDIALS' `d` of the table),
+/// **stage order 2** (Σⱼ aᵢⱼ cⱼ = cᵢ²/2), all weights below 1 in magnitude.
 /// Stage tolerance = `solver.tolerance`: its small weights carry a stage's error into the step
 /// as generalized-α's own does; measured on the spatial Case 1 cable (16 elements, h = 5e-4 s),
 /// the tip error against the reference is 9.018e-6 m at stage tolerance 1e-13 and 9.017e-6 m
@@ -80,7 +84,15 @@ pub const ESDIRK4: Tableau = Tableau::from_rows(
     ],
     true,
     1.0,
-);
+)
+.with_embedded([
+    4586570599.0 / 29645900160.0,
+    0.0,
+    178811875.0 / 945068544.0,
+    814220225.0 / 1159782912.0,
+    -3700637.0 / 11593932.0,
+    61727.0 / 225920.0,
+]);
 
 impl Tableau {
     /// The tableau of the lower-triangular rows `rows` (the last is b).
@@ -99,7 +111,16 @@ impl Tableau {
             stages: rows.len(),
             a,
             explicit_first,
+            embedded: None,
             tolerance_factor,
+        }
+    }
+
+    /// With the embedded weights `b_hat`.
+    const fn with_embedded(self, b_hat: [f64; MAX_STAGES]) -> Self {
+        Self {
+            embedded: Some(b_hat),
+            ..self
         }
     }
 
@@ -127,6 +148,47 @@ impl Tableau {
         }
         a2
     }
+
+    /// The error estimate's weights of the stage accelerations (`None` without an embedded
+    /// solution): with d = b − b̂, the positions' (dᵀ𝔄, times h²) and the velocities' (d, times
+    /// h). The step's solution is q = q_n + h q̇_n + h² Σ_k (bᵀ𝔄)_k A_k, q̇ = q̇_n + h Σ_k b_k
+    /// A_k (b the last row of 𝔄: the last stage), the embedded one the same with b̂ (Σ b̂ = 1,
+    /// so q̇_n enters both alike): their differences are these sums.
+    fn error_weights(&self) -> Option<ErrorWeights> {
+        let b_hat = self.embedded?;
+        let b = self.a[self.stages - 1];
+        let mut w = ErrorWeights {
+            q: [0.0; MAX_STAGES],
+            v: [0.0; MAX_STAGES],
+        };
+        for j in 0..self.stages {
+            let d = b[j] - b_hat[j];
+            w.v[j] = d;
+            for k in 0..self.stages {
+                w.q[k] += d * self.a[j][k];
+            }
+        }
+        Some(w)
+    }
+}
+
+/// The weights of the stage accelerations in the error estimate ([`Tableau::error_weights`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ErrorWeights {
+    /// Positions' (dᵀ𝔄), times h².
+    q: [f64; MAX_STAGES],
+    /// Velocities' (d), times h.
+    v: [f64; MAX_STAGES],
+}
+
+/// Error control: the tolerance and the estimate's weights.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ErrorControl {
+    /// `solver.error_tolerance`.
+    tolerance: f64,
+    weights: ErrorWeights,
+    /// The last step's estimate in units of the tolerance.
+    last: f64,
 }
 
 /// The integrator with its work arrays and Jacobian policy.
@@ -145,11 +207,14 @@ pub struct Esdirk {
     /// Stage accelerations A_j (n each).
     stage_acc: Vec<Vec<f64>>,
     trial: State,
+    /// With `solver.error_tolerance` (and an embedded solution): every step's error estimate.
+    control: Option<ErrorControl>,
 }
 
 impl Esdirk {
     /// New integrator of `tableau` for `n` coordinates and `m` constraints, with the Newton
-    /// tolerance and iteration limit of `params`.
+    /// tolerance and iteration limit of `params`, and its error control if `params` has an
+    /// `error_tolerance` and `tableau` an embedded solution.
     pub fn new(
         params: &IntegrationParameters,
         tableau: &'static Tableau,
@@ -164,7 +229,7 @@ impl Esdirk {
                 .map(|i| guess_weights(&tableau.nodes(), usize::from(tableau.explicit_first), i))
                 .collect(),
             newton: Newton::new(
-                (params.tolerance * tableau.tolerance_factor).max(MIN_TOLERANCE),
+                (params.newton_tolerance() * tableau.tolerance_factor).max(MIN_TOLERANCE),
                 params.max_iterations,
                 n + m,
             )
@@ -172,7 +237,20 @@ impl Esdirk {
             eta: 1.0,
             stage_acc: vec![vec![0.0; n]; tableau.stages],
             trial: State::at_rest(0.0, vec![0.0; n], m),
+            control: params.error_tolerance.and_then(|tolerance| {
+                tableau.error_weights().map(|weights| ErrorControl {
+                    tolerance,
+                    weights,
+                    last: 0.0,
+                })
+            }),
         }
+    }
+
+    /// The last step's local error estimate in units of `solver.error_tolerance` (`None`
+    /// without error control). Of an accepted step, or of the rejected attempt after it.
+    pub fn step_error(&self) -> Option<f64> {
+        self.control.map(|c| c.last)
     }
 
     /// Work counters.
@@ -233,7 +311,8 @@ impl Esdirk {
     /// of the last stage); on failure `s` is untouched (the model holds the inputs of the stage
     /// that failed). An ESDIRK's explicit first stage is q̈ₙ of `s`: consistent at t_n, as the
     /// last stage of a stiffly accurate step, [`Self::initialize`] and [`Self::change_inputs`]
-    /// leave it.
+    /// leave it. With error control the step fails, `s` untouched, when its error estimate
+    /// ([`Self::error_estimate`]) is above the tolerance.
     pub fn step<M: Integrable + ?Sized>(
         &mut self,
         model: &mut M,
@@ -282,6 +361,16 @@ impl Esdirk {
             eta = rate;
             self.stage_acc[i].copy_from_slice(&self.trial.acc);
         }
+        if let Some(c) = self.control {
+            let error = self.error_estimate(&c, h, model.scales()) / c.tolerance;
+            if let Some(c) = &mut self.control {
+                c.last = error;
+            }
+            // a NaN estimate fails too
+            if !(error <= 1.0) {
+                return Err(StepFailure::ErrorEstimate { h, error });
+            }
+        }
         self.eta = eta;
         let t = &mut self.trial;
         t.t = s.t + h;
@@ -292,6 +381,30 @@ impl Esdirk {
         std::mem::swap(s, t);
         self.newton.counters.steps += 1;
         Ok(iterations)
+    }
+
+    /// The local error estimate of the step of size `h` just solved: the largest difference
+    /// between its solution and the embedded one over the coordinates, relative to each
+    /// coordinate's `scales`, positions' and velocities' times h alike (a velocity's error
+    /// moves the position by h times it over a step; velocities are the index-2 unknowns of the
+    /// index-3 system, whose error Hairer & Wanner's RADAU5 scales by h likewise): max_k
+    /// max(|h² Σ_j (dᵀ𝔄)_j A_jk|, h |h Σ_j d_j A_jk|) / scale_k, d = b − b̂.
+    fn error_estimate(&self, c: &ErrorControl, h: f64, scales: &[f64]) -> f64 {
+        let h2 = h * h;
+        let mut worst = 0.0f64;
+        for (k, scale) in scales.iter().enumerate() {
+            let (mut eq, mut ev) = (0.0, 0.0);
+            for (j, acc) in self.stage_acc.iter().enumerate() {
+                eq += c.weights.q[j] * acc[k];
+                ev += c.weights.v[j] * acc[k];
+            }
+            let e = (h2 * eq).abs().max((h2 * ev).abs()) / scale;
+            // a NaN stays (f64::max would drop it)
+            if e > worst || e.is_nan() {
+                worst = e;
+            }
+        }
+        worst
     }
 
     /// Newton on one stage from the trial state's guess; returns its iterations and the
@@ -425,7 +538,7 @@ mod tests {
 
     fn params() -> IntegrationParameters {
         IntegrationParameters {
-            tolerance: 1e-14,
+            tolerance: Some(1e-14),
             max_iterations: 20,
             ..Default::default()
         }

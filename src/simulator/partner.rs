@@ -365,7 +365,7 @@ impl<S: Space> Simulator<S> {
             .apparent_mass_array()
             .ok_or_else(|| refused("the beam's apparent mass at the mount could not be solved"))?;
         let scale = (self.scene.total_length(), S::DIM);
-        PartnerStep::new(partner, (&apparent, n), self.scene.solver.tolerance, scale)
+        PartnerStep::new(partner, (&apparent, n), self.scene.solver.newton_tolerance(), scale)
             .map(Some)
             .ok_or_else(|| {
                 refused(
