@@ -789,4 +789,39 @@ mod tests {
         }
         assert!((SDIRK4.nodes()[2] - 11.0 / 20.0).abs() < 1e-15);
     }
+
+    /// The embedded weights b̂ (SUNDIALS' `d` of ARK436L2SA_DIRK_6_3_4) meet the order
+    /// conditions up to 3 and miss one of order 4 (else the estimate would vanish at h⁴).
+    #[test]
+    fn explore_estimate_order() {
+        for model_kind in 0..2 {
+            for k in [1usize, 2, 4, 8, 16] {
+                let h = 0.01 / k as f64;
+                let p = IntegrationParameters { error_tolerance: Some(1.0), ..params() };
+                let (mut integ, mut s, mut model): (Esdirk, State, Box<dyn Forced>) = if model_kind == 0 {
+                    (Esdirk::new(&p, &ESDIRK4, 1, 0), State::at_rest(0.0, vec![0.5], 0), Box::new(Swing { force: 0.0, k: 0.0 }))
+                } else {
+                    (Esdirk::new(&p, &ESDIRK4, 2, 1), State::at_rest(0.0, vec![L * 0.5f64.sin(), -L * 0.5f64.cos()], 1), Box::new(Rod { force: 0.0, k: [[0.0; 3]; 3] }))
+                };
+                model.set_force(force(0.0));
+                integ.initialize(&mut *model, &mut s).unwrap();
+                let mut worst = 0.0f64;
+                while s.t < 0.1 - 1e-12 {
+                    let t0 = s.t;
+                    integ.step(&mut *model, &mut s, h, |m, dt| m.set_force(force(t0 + dt))).unwrap();
+                    worst = worst.max(integ.step_error().unwrap());
+                }
+                println!("model {model_kind} h {h:e}: max estimate {worst:e}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_embedded_solution_is_of_order_three() {
+        let b_hat = ESDIRK4.embedded.unwrap();
+        order_conditions(&ESDIRK4, &b_hat, 3);
+        let c = ESDIRK4.nodes();
+        let fourth: f64 = (0..6).map(|i| b_hat[i] * c[i].powi(3)).sum();
+        assert!((fourth - 0.25).abs() > 1e-4, "{fourth}");
+    }
 }

@@ -294,5 +294,26 @@ mod tests {
             documented("max_internal_steps")
         );
         assert_eq!(p.max_axial_strain, documented("max_axial_strain"));
+        assert_eq!(p.error_tolerance, None);
+    }
+
+    /// The Newton tolerance in use: a given `tolerance` wins; without it, 1e-2 ×
+    /// `error_tolerance` (not below the floor) or the default; a scene written back out keeps
+    /// a tolerance it did not give as not given.
+    #[test]
+    fn the_newton_tolerance_follows_the_error_tolerance_unless_given() {
+        let p = |text: &str| toml::from_str::<IntegrationParameters>(text).unwrap();
+        assert_eq!(p("").newton_tolerance(), 1e-11);
+        assert_eq!(p("error_tolerance = 1e-6").newton_tolerance(), 1e-8);
+        assert_eq!(p("error_tolerance = 1e-14").newton_tolerance(), MIN_TOLERANCE);
+        let given = p("tolerance = 1e-11
+error_tolerance = 1e-6");
+        assert_eq!(given.newton_tolerance(), 1e-11);
+        assert_eq!(given.static_tolerance(), 1e-11 * STATIC_TOLERANCE_FACTOR);
+        let tied = p("error_tolerance = 1e-6");
+        let text = toml::to_string(&tied).unwrap();
+        assert!(!text.contains("tolerance = 1e-8"), "{text}");
+        assert_eq!(p(&text), tied);
+        assert_eq!(toml::from_str::<IntegrationParameters>(&toml::to_string(&given).unwrap()).unwrap(), given);
     }
 }
