@@ -289,3 +289,18 @@ fn a_newton_failure_halves_the_controlled_step() {
     assert!(r1 > r0 + 10, "{r0} {r1}");
     assert!(e1 < 10.0 * tol * ROD, "{e1:e}");
 }
+
+#[test]
+fn scratch_jump() {
+    let text = include_str!("../scenes/case1.toml").replace(
+        "max_step = 1e-4\ntolerance = 1e-11",
+        "method = \"esdirk4\"\nmax_step = 1e-3\nerror_tolerance = 1e-7",
+    );
+    for (fx, fy) in [(0.03, 0.0), (0.0, 0.005), (0.0, 0.0)] {
+        eprintln!("force {fx} {fy}");
+        let mut sim = Simulator::<Planar>::new(Scene::from_toml(&text).unwrap()).unwrap();
+        sim.set_tip_force([fx, fy]);
+        let r = sim.advance(1e-3);
+        eprintln!("{r:?}");
+    }
+}

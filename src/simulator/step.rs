@@ -238,6 +238,9 @@ impl<S: Space> Simulator<S> {
                     self.min_step_used = self.min_step_used.min(h);
                     self.state.t = t_next;
                     let err = self.integ.step_error().unwrap_or(0.0);
+                    if std::env::var("HYBEAM_DEBUG_STEPS").is_ok() {
+                        eprintln!("acc t={t_next:.6e} h={h:.4e} err={err:.3e} prop={proposed:.4e}");
+                    }
                     proposed = control::after_accepted(h, err, proposed, rejections > 0, h_max)
                         .max(MIN_STEP);
                     rejections = 0;
@@ -256,6 +259,9 @@ impl<S: Space> Simulator<S> {
                         _ => None,
                     };
                     let next = control::after_rejected(h, estimate);
+                    if std::env::var("HYBEAM_DEBUG_STEPS").is_ok() {
+                        eprintln!("rej t={t:.6e} h={h:.4e} err={estimate:?} next={next:.4e}");
+                    }
                     let work = attempts + (left / next).ceil() as u64;
                     if let Some(limit) = self.limit(rejections, h, next, work) {
                         return Err(failed(t0, rejections - 1, limit, e));
