@@ -118,7 +118,10 @@ fn the_error_falls_with_the_tolerance_on_a_linear_oscillator() {
             err / sum
         );
         assert!(*err < 10.0 * sum, "{err:e} vs {sum:e}");
-        assert!(*err > 0.1 * sum, "{err:e} vs {sum:e}: the estimate is far too cautious");
+        assert!(
+            *err > 0.1 * sum,
+            "{err:e} vs {sum:e}: the estimate is far too cautious"
+        );
     }
     for w in runs.windows(2) {
         let ratio = w[0].0 / w[1].0;
@@ -290,17 +293,20 @@ fn a_newton_failure_halves_the_controlled_step() {
     assert!(e1 < 10.0 * tol * ROD, "{e1:e}");
 }
 
+/// An axial tip force switched on at a communication point excites the rod's axial modes
+/// (1e5 Hz), which the L-stable step damps: the filtered estimate does not see them, and the
+/// step stays 1 ms. (Unfiltered, the estimate stayed at 1.26 × the tolerance whatever the
+/// step, down to 3.8e-5 s, where the step failed after 12 reductions.) The hybrid Case 1: a
+/// modal segment jointed to an ANCF one (index-3 joint rows).
 #[test]
-fn scratch_jump() {
+fn an_axial_force_jump_keeps_the_step() {
     let text = include_str!("../scenes/case1.toml").replace(
         "max_step = 1e-4\ntolerance = 1e-11",
         "method = \"esdirk4\"\nmax_step = 1e-3\nerror_tolerance = 1e-7",
     );
-    for (fx, fy) in [(0.03, 0.0), (0.0, 0.005), (0.0, 0.0)] {
-        eprintln!("force {fx} {fy}");
-        let mut sim = Simulator::<Planar>::new(Scene::from_toml(&text).unwrap()).unwrap();
-        sim.set_tip_force([fx, fy]);
-        let r = sim.advance(1e-3);
-        eprintln!("{r:?}");
-    }
+    let mut sim = Simulator::<Planar>::new(Scene::from_toml(&text).unwrap()).unwrap();
+    sim.set_tip_force([0.03, 0.0]);
+    sim.advance(1e-3).unwrap();
+    let c = sim.counters();
+    assert_eq!((c.steps, c.rejected), (1, 0), "{c:?}");
 }

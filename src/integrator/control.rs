@@ -26,7 +26,10 @@ pub fn after_accepted(h: f64, err: f64, proposed: f64, after_rejection: bool, h_
     } else {
         STEP_GROWTH_MAX * proposed
     };
-    let next = (h * factor(err)).max(STEP_SHRINK_MIN * h).min(most).min(h_max);
+    let next = (h * factor(err))
+        .max(STEP_SHRINK_MIN * h)
+        .min(most)
+        .min(h_max);
     if next >= proposed && next <= STEP_KEEP_BAND * proposed {
         proposed
     } else {

@@ -874,16 +874,30 @@ mod tests {
     #[test]
     fn the_estimate_goes_as_the_fourth_power_of_the_step() {
         let ks = [1, 2, 4, 8, 16];
-        let orders = |e: &[f64]| -> Vec<f64> { e.windows(2).map(|w| (w[0] / w[1]).log2()).collect() };
+        let orders =
+            |e: &[f64]| -> Vec<f64> { e.windows(2).map(|w| (w[0] / w[1]).log2()).collect() };
         let swing: Vec<f64> = ks
             .iter()
-            .map(|&k| largest_estimate(Swing { force: 0.0, k: 0.0 }, State::at_rest(0.0, vec![0.5], 0), k))
+            .map(|&k| {
+                largest_estimate(
+                    Swing { force: 0.0, k: 0.0 },
+                    State::at_rest(0.0, vec![0.5], 0),
+                    k,
+                )
+            })
             .collect();
         let rod: Vec<f64> = ks
             .iter()
             .map(|&k| {
                 let q = vec![L * 0.5f64.sin(), -L * 0.5f64.cos()];
-                largest_estimate(Rod { force: 0.0, k: [[0.0; 3]; 3] }, State::at_rest(0.0, q, 1), k)
+                largest_estimate(
+                    Rod {
+                        force: 0.0,
+                        k: [[0.0; 3]; 3],
+                    },
+                    State::at_rest(0.0, q, 1),
+                    k,
+                )
             })
             .collect();
         let (os, or) = (orders(&swing), orders(&rod));

@@ -168,7 +168,10 @@ impl Scene {
                 s.max_step
             )));
         }
-        if let Some(t) = s.tolerance.filter(|t| !(t.is_finite() && *t >= MIN_TOLERANCE && *t < 1e-2)) {
+        if let Some(t) = s
+            .tolerance
+            .filter(|t| !(t.is_finite() && *t >= MIN_TOLERANCE && *t < 1e-2))
+        {
             return Err(SceneError(format!(
                 "solver.tolerance = {t}: must be in [{MIN_TOLERANCE:e}, 0.01) (relative Newton tolerance; 1e-11 is the default)"
             )));

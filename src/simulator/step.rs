@@ -184,19 +184,12 @@ impl<S: Space> Simulator<S> {
                 t0 + span * ((done + 1) as f64 / steps as f64)
             };
             match self.attempt(partner, dev, (t0, t_next, h), inputs) {
-                Ok(()) => {
-                    done += 1;
-                    self.min_step_used = self.min_step_used.min(h);
-                    self.state.t = t0 + span * (done as f64 / steps as f64);
-                }
+                Ok(()) => done += 1,
                 Err(e) => {
-                    self.integ.counters_mut().rejected += 1;
                     halvings += 1;
                     // a halving doubles the steps still to go
                     let work = attempts + 2 * (steps - done);
-                    if let Some(limit) = self.limit(halvings, h, 0.5 * h, work) {
-                        return Err(failed(t0, halvings - 1, limit, e));
-                    }
+                    self.rejected(t0, halvings, (h, 0.5 * h), work, e)?;
                     steps *= 2;
                     done *= 2;
                 }
@@ -235,12 +228,7 @@ impl<S: Space> Simulator<S> {
             match self.attempt(partner, dev, (t0, t_next, h), inputs) {
                 Ok(()) => {
                     steps += 1;
-                    self.min_step_used = self.min_step_used.min(h);
-                    self.state.t = t_next;
                     let err = self.integ.step_error().unwrap_or(0.0);
-                    if std::env::var("HYBEAM_DEBUG_STEPS").is_ok() {
-                        eprintln!("acc t={t_next:.6e} h={h:.4e} err={err:.3e} prop={proposed:.4e}");
-                    }
                     proposed = control::after_accepted(h, err, proposed, rejections > 0, h_max)
                         .max(MIN_STEP);
                     rejections = 0;
@@ -250,7 +238,6 @@ impl<S: Space> Simulator<S> {
                     }
                 }
                 Err(e) => {
-                    self.integ.counters_mut().rejected += 1;
                     rejections += 1;
                     let estimate = match &e {
                         PartnerFailure::Step(StepFailure::ErrorEstimate { error, .. }) => {
@@ -259,13 +246,8 @@ impl<S: Space> Simulator<S> {
                         _ => None,
                     };
                     let next = control::after_rejected(h, estimate);
-                    if std::env::var("HYBEAM_DEBUG_STEPS").is_ok() {
-                        eprintln!("rej t={t:.6e} h={h:.4e} err={estimate:?} next={next:.4e}");
-                    }
                     let work = attempts + (left / next).ceil() as u64;
-                    if let Some(limit) = self.limit(rejections, h, next, work) {
-                        return Err(failed(t0, rejections - 1, limit, e));
-                    }
+                    self.rejected(t0, rejections, (h, next), work, e)?;
                     proposed = next;
                 }
             }
@@ -275,7 +257,7 @@ impl<S: Space> Simulator<S> {
     /// One internal step attempt of size `h` from the current state to `t_next` (in the
     /// communication step from `t0`), with the partner model if it acts: the time-dependent
     /// inputs set where the step's equations hold (its end; each stage time of a multi-stage
-    /// method). On failure the state is the step's start.
+    /// method). On success the state is at `t_next`; on failure at the step's start.
     fn attempt(
         &mut self,
         partner: &mut Option<PartnerStep>,
@@ -283,47 +265,63 @@ impl<S: Space> Simulator<S> {
         (t0, t_next, h): (f64, f64, f64),
         inputs: &Inputs<S>,
     ) -> Result<(), PartnerFailure> {
-        if let Some(p) = partner {
-            return self.step_with_partner(p, dev, (t0, t_next, h), inputs);
-        }
-        let varying = self.load_rates.any();
-        let t_start = self.state.t;
-        let (mount, rates) = (self.mount.as_deref(), &self.load_rates);
-        let at = |m: &mut Model<S>, dt: f64| {
-            let t = inputs::stage_time(t_start, t_next, h, dt);
-            if let Some(ms) = mount {
-                m.set_mount(&ms.at(t));
-            }
-            if varying {
-                rates.advanced(inputs, t - t0).apply(m);
+        let stepped = match partner {
+            Some(p) => self.step_with_partner(p, dev, (t0, t_next, h), inputs),
+            None => {
+                let varying = self.load_rates.any();
+                let t_start = self.state.t;
+                let (mount, rates) = (self.mount.as_deref(), &self.load_rates);
+                let at = |m: &mut Model<S>, dt: f64| {
+                    let t = inputs::stage_time(t_start, t_next, h, dt);
+                    if let Some(ms) = mount {
+                        m.set_mount(&ms.at(t));
+                    }
+                    if varying {
+                        rates.advanced(inputs, t - t0).apply(m);
+                    }
+                };
+                self.integ
+                    .step(&mut self.model, &mut self.state, h, at)
+                    .map(|_| ())
+                    .map_err(PartnerFailure::Step)
             }
         };
-        self.integ
-            .step(&mut self.model, &mut self.state, h, at)
-            .map(|_| ())
-            .map_err(PartnerFailure::Step)
+        if stepped.is_ok() {
+            self.min_step_used = self.min_step_used.min(h);
+            self.state.t = t_next;
+        }
+        stepped
     }
 
-    /// The limit that stops retrying a failed step of size `h` with `next` after `halvings`
-    /// failed attempts in a row (this one counted), `work` the attempts done and still to do:
-    /// the real-time mode never retries; [`MAX_HALVINGS`], [`MIN_STEP`],
-    /// `solver.max_internal_steps`.
-    fn limit(&self, halvings: u32, h: f64, next: f64, work: u64) -> Option<StepLimit> {
+    /// A failed attempt (`e`) of size `h` in the communication step from `t0`, the `tries`-th
+    /// in a row, counted as a rejection; the communication step's error if it may not be
+    /// retried with `next`, `work` the attempts done and still to do then: the real-time mode
+    /// never retries; [`MAX_HALVINGS`], [`MIN_STEP`], `solver.max_internal_steps`.
+    fn rejected(
+        &mut self,
+        t0: f64,
+        tries: u32,
+        (h, next): (f64, f64),
+        work: u64,
+        e: PartnerFailure,
+    ) -> Result<(), SimError> {
+        self.integ.counters_mut().rejected += 1;
         let cap = self.scene.solver.max_internal_steps;
-        if self.scene.solver.mode == crate::integrator::Mode::Realtime {
-            Some(StepLimit::Realtime)
-        } else if halvings > MAX_HALVINGS {
-            Some(StepLimit::MaxHalvings)
+        let limit = if self.scene.solver.mode == crate::integrator::Mode::Realtime {
+            StepLimit::Realtime
+        } else if tries > MAX_HALVINGS {
+            StepLimit::MaxHalvings
         } else if next < MIN_STEP {
-            Some(StepLimit::MinStep { h })
+            StepLimit::MinStep { h }
         } else if work > cap {
-            Some(StepLimit::WorkCap {
-                halvings: halvings - 1,
+            StepLimit::WorkCap {
+                halvings: tries - 1,
                 cap,
-            })
+            }
         } else {
-            None
-        }
+            return Ok(());
+        };
+        Err(failed(t0, tries - 1, limit, e))
     }
 
     /// The refusal of the state reached at `t_end`, if the model cannot accept it: non-finite,
