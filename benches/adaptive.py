@@ -2,12 +2,13 @@
 
 Runs `hybeam run` on the soft rod and the Case 1 all-ANCF rod at 16 and 32 elements over 2 s
 (communication and output step 1 ms): the error-controlled ESDIRK4 at a grid of tolerances,
-with the scene's Newton tolerance (1e-11) and with the tied one (1e-3 x error_tolerance), beside
-the fixed-step ESDIRK4 at the steps of docs/accuracy.md up to the communication step. Prints a markdown table: wall time (one
-run on a shared machine: compare within a table), accepted and rejected steps, Newton
-iterations, factorizations, the max tip error against the physical reference (docs/accuracy.md:
-all-ANCF with 8x (soft rod) or 4x (Case 1) the elements, h = 1e-5 s, Newton tolerance 1e-12)
-and against the same mesh with the ESDIRK4 at h = 1e-5 s (the time integration's error alone).
+with the scene's Newton tolerance (1e-11) and with the tied one (1e-3 x error_tolerance),
+beside the fixed-step ESDIRK4 at the steps of docs/accuracy.md up to the communication step.
+Prints a markdown table: wall time (one run on a shared machine: compare within a table),
+accepted and rejected steps, Newton iterations, factorizations, the max tip error against the
+physical reference (docs/accuracy.md: all-ANCF with 8x (soft rod) or 4x (Case 1) the elements,
+h = 1e-5 s, Newton tolerance 1e-12) and against the same mesh with the ESDIRK4 at h = 1e-5 s
+(the time integration's error alone). docs/report/error_control.md holds its last table.
 
     cargo build --release --bin hybeam
     python3 benches/adaptive.py > target/adaptive.md   # about 10 minutes here

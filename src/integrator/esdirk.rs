@@ -218,7 +218,7 @@ pub struct Esdirk {
     stage_acc: Vec<Vec<f64>>,
     trial: State,
     /// With `solver.error_tolerance` (and an embedded solution): every step's error estimate.
-    control: Option<ErrorControl>,
+    control: Option<Box<ErrorControl>>,
 }
 
 impl Esdirk {
@@ -248,15 +248,17 @@ impl Esdirk {
             stage_acc: vec![vec![0.0; n]; tableau.stages],
             trial: State::at_rest(0.0, vec![0.0; n], m),
             control: params.error_tolerance.and_then(|tolerance| {
-                tableau.error_weights().map(|weights| ErrorControl {
-                    tolerance,
-                    weights,
-                    last: 0.0,
-                    e_q: vec![0.0; n],
-                    e_v: vec![0.0; n],
-                    q: vec![0.0; n],
-                    r0: vec![0.0; n + m],
-                    r1: vec![0.0; n + m],
+                tableau.error_weights().map(|weights| {
+                    Box::new(ErrorControl {
+                        tolerance,
+                        weights,
+                        last: 0.0,
+                        e_q: vec![0.0; n],
+                        e_v: vec![0.0; n],
+                        q: vec![0.0; n],
+                        r0: vec![0.0; n + m],
+                        r1: vec![0.0; n + m],
+                    })
                 })
             }),
         }
@@ -381,7 +383,7 @@ impl Esdirk {
             c.last = error;
             self.control = Some(c);
             // a NaN estimate fails too
-            if !(error <= 1.0) {
+            if error.is_nan() || error > 1.0 {
                 return Err(StepFailure::ErrorEstimate { h, error });
             }
         }
