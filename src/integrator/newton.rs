@@ -62,7 +62,7 @@ impl std::fmt::Display for StepFailure {
             }
             StepFailure::ErrorEstimate { h, error } => write!(
                 f,
-                "the local error estimate at step {h:.3e} s is {error:.2e} x solver.error_tolerance"
+                "the local error estimate at step {h:.3e} s is {error:.2e} x solver.error_tolerance (raise solver.error_tolerance)"
             ),
         }
     }

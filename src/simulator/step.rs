@@ -1,6 +1,6 @@
-//! The step: [`Simulator::advance`] to a time in equal internal steps with halving and one
-//! roll-back, the refusals of a converged state outside the model's validity, and the static
-//! solve.
+//! The step: [`Simulator::advance`] to a time in equal internal steps with halving, or in the
+//! steps the ESDIRK4's error control chooses (`solver.error_tolerance`), and one roll-back; the
+//! refusals of a converged state outside the model's validity, and the static solve.
 
 use super::partner::{PartnerFailure, PartnerStep};
 use super::*;
@@ -48,7 +48,9 @@ impl<S: Space> Simulator<S> {
     }
 
     /// Advances to `t_end` in equal internal steps no larger than `solver.max_step`, halving
-    /// a step that fails (at most [`MAX_HALVINGS`] times, never below [`MIN_STEP`]), with at
+    /// a step that fails (at most [`MAX_HALVINGS`] times, never below [`MIN_STEP`]) — with
+    /// `solver.error_tolerance`, in the steps its error control chooses up to
+    /// `solver.max_step`, the last ending on `t_end` ([`Simulator::controlled_steps`]) — with at
     /// most `solver.max_internal_steps` internal steps, accepted or rejected, in the call. A
     /// span that needs more steps of `solver.max_step` is refused before any work. On failure
     /// the state is the one at the start of the call and the error says why and what to
