@@ -131,8 +131,8 @@ pub enum StepLimit {
         crate::integrator::MAX_HALVINGS
     )]
     MaxHalvings,
-    /// Halving would go below [`MIN_STEP`].
-    #[error("at an internal step of {h:e} s (halving it would go below the smallest internal step {MIN_STEP:e} s)")]
+    /// Halving (or the error control's reduction) would go below [`MIN_STEP`].
+    #[error("at an internal step of {h:e} s (a smaller one would go below the smallest internal step {MIN_STEP:e} s)")]
     MinStep {
         /// The internal step that failed [s].
         h: f64,

@@ -275,7 +275,7 @@ fn esdirk_hybrid_meets_generalized_alpha_converged() {
     use hybeam::integrator::Method;
     let run = |h: f64, method: Method| {
         let mut s = hybrid(h, 2, 2);
-        s.solver.tolerance = 1e-11;
+        s.solver.tolerance = Some(1e-11);
         s.solver.method = method;
         tip_history(s, 0.2, 1e-3)
     };
@@ -328,7 +328,7 @@ fn damped_case3_converges_to_its_tolerance() {
         s.segments[0].elements = Some(11);
         s.segments[1].elements = Some(21);
         s.solver.max_step = 5e-4;
-        s.solver.tolerance = tol;
+        s.solver.tolerance = Some(tol);
         tip_history(s, 1.0, 5e-3)
     };
     let (shipped, tight) = (run(1e-11), run(1e-14));

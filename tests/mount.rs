@@ -39,7 +39,7 @@ fn shipped(name: &str) -> Scene {
 /// shipped tolerance), and the reactions, which carry the accelerations of an index-3
 /// integrator, to tolerance · length / (βh²).
 fn tight(mut scene: Scene) -> Scene {
-    scene.solver.tolerance = 1e-14;
+    scene.solver.tolerance = Some(1e-14);
     scene
 }
 

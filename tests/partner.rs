@@ -417,7 +417,7 @@ fn boom_3d() -> AnySimulator {
 /// 0.1) and 2.0e-3 of |G (R − R_ref)| (the plane, 0.01).
 #[test]
 fn a_light_host_meets_the_partner_equation_at_every_step() {
-    let tolerance = hybeam::simulator::PARTNER_TOLERANCE * boom().scene().solver.tolerance;
+    let tolerance = hybeam::simulator::PARTNER_TOLERANCE * boom().scene().solver.newton_tolerance();
     let mut runs = Vec::new();
     for spatial in [false, true] {
         for f in [0.1, 0.01] {
@@ -494,7 +494,8 @@ fn a_step_that_misses_the_partner_equation_is_refused_naming_the_residual() {
 #[test]
 fn a_spatial_host_that_holds_its_partner_inputs_steps_as_one_that_resends_them() {
     let port = Port::of(true);
-    let tolerance = hybeam::simulator::PARTNER_TOLERANCE * boom_3d().scene().solver.tolerance;
+    let tolerance =
+        hybeam::simulator::PARTNER_TOLERANCE * boom_3d().scene().solver.newton_tolerance();
     let all: Vec<String> = hybeam::simulator::OutputId::named_with(SpaceKind::Spatial, true)
         .into_iter()
         .map(|(n, _)| n)

@@ -46,7 +46,7 @@ fn realtime_mode_fixed_work_and_accuracy() {
     let (reference, _) = run(
         case1(|s| {
             s.max_step = 2.5e-5;
-            s.tolerance = 1e-13;
+            s.tolerance = Some(1e-13);
         }),
         t_end,
     );

@@ -891,7 +891,7 @@ fn precession(h: f64, t_end: f64) -> Precession {
         &IntegrationParameters {
             // the smallest allowed: with a looser one, the acceptance of a first iteration on the
             // rate of earlier steps lets |pᵀp − 1| ~ 1e-8 and Newton errors into the drifts
-            tolerance: 1e-15,
+            tolerance: Some(1e-15),
             max_iterations: 30,
             ..Default::default()
         },

@@ -849,7 +849,10 @@ pub fn run(opts: &Opts) -> Result<(), String> {
     let cost = cost_per_step(opts)?;
     let stat = statics::run(opts.quick)?;
     let page = md.replacen(METHOD, &format!("{head}{METHOD}"), 1);
-    let page = format!("{page}{cost}\n{stat}");
+    // the error control's section, measured by benches/adaptive.py (kept, not recomputed here)
+    let control = std::fs::read_to_string(common::root().join("docs/report/error_control.md"))
+        .unwrap_or_default();
+    let page = format!("{page}{control}{cost}\n{stat}");
     common::write_doc("accuracy.md", &page)?;
     eprintln!("wrote docs/accuracy.md");
     Ok(())

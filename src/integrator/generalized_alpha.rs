@@ -62,7 +62,7 @@ impl GeneralizedAlpha {
     pub fn new(params: &IntegrationParameters, n: usize, m: usize) -> Self {
         Self {
             p: AlphaParams::from_rho_inf(params.rho_inf),
-            newton: Newton::new(params.tolerance, params.max_iterations, n + m)
+            newton: Newton::new(params.newton_tolerance(), params.max_iterations, n + m)
                 .with_fixed(params.fixed_work()),
             eta: 1.0,
             trial: State::at_rest(0.0, vec![0.0; n], m),
@@ -304,7 +304,7 @@ mod tests {
         let (mut model, mut s) = Pendulum::at_rest(0.0);
         let mut integ = GeneralizedAlpha::new(
             &IntegrationParameters {
-                tolerance: 1e-13,
+                tolerance: Some(1e-13),
                 max_iterations: 20,
                 ..Default::default()
             },
@@ -373,7 +373,7 @@ mod tests {
         let (mut model, mut s) = Pendulum::at_rest(0.7);
         let mut integ = GeneralizedAlpha::new(
             &IntegrationParameters {
-                tolerance: 1e-12,
+                tolerance: Some(1e-12),
                 max_iterations: 20,
                 ..Default::default()
             },

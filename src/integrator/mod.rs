@@ -3,6 +3,7 @@
 //! the coordinate update. Nothing here imports the model.
 
 mod consistent;
+pub mod control;
 mod esdirk;
 mod generalized_alpha;
 mod newton;
@@ -117,6 +118,15 @@ impl Integrator {
         each!(self, i => i.eta)
     }
 
+    /// The last step's local error estimate in units of `solver.error_tolerance` (`None`
+    /// without error control: generalized-α, or the ESDIRK without `error_tolerance`).
+    pub fn step_error(&self) -> Option<f64> {
+        match self {
+            Self::Alpha(_) => None,
+            Self::Esdirk(k) => k.step_error(),
+        }
+    }
+
     /// Sets [`Integrator::rate_estimate`]: a step repeated from the same state then stops its
     /// Newton iteration by the same rule as the first attempt.
     pub fn set_rate_estimate(&mut self, eta: f64) {
@@ -154,7 +164,8 @@ impl Integrator {
 
     /// One step of size `h` from `s`; `at(model, dt)` sets the model's time-dependent inputs
     /// at t_n + dt: once at dt = h for generalized-α, before each implicit stage for the ESDIRK (the last
-    /// at dt = h). On failure `s` is untouched.
+    /// at dt = h). On failure `s` is untouched; with error control a step whose estimate is
+    /// above the tolerance fails ([`StepFailure::ErrorEstimate`]).
     pub fn step<M: Integrable + ?Sized>(
         &mut self,
         model: &mut M,

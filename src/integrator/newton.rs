@@ -31,6 +31,14 @@ pub enum StepFailure {
         /// Step size tried [s].
         h: f64,
     },
+    /// Error control (`solver.error_tolerance`): the step's local error estimate is above the
+    /// tolerance (the step is rejected and retried with a smaller one).
+    ErrorEstimate {
+        /// Step size tried [s].
+        h: f64,
+        /// The estimate in units of `solver.error_tolerance`.
+        error: f64,
+    },
 }
 
 impl std::fmt::Display for StepFailure {
@@ -52,6 +60,10 @@ impl std::fmt::Display for StepFailure {
             StepFailure::Singular { h } => {
                 write!(f, "singular or non-finite Newton matrix at step {h:.3e} s")
             }
+            StepFailure::ErrorEstimate { h, error } => write!(
+                f,
+                "the local error estimate at step {h:.3e} s is {error:.2e} x solver.error_tolerance (raise solver.error_tolerance)"
+            ),
         }
     }
 }

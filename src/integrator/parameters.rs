@@ -19,12 +19,26 @@ pub struct IntegrationParameters {
     /// Spectral radius at infinite frequency of generalized-α, in [0, 1): the numerical damping
     /// of the highest frequencies, needed by index-3 constraints (default: 0.9).
     pub rho_inf: f64,
-    /// Largest internal step [s], at least [`MIN_STEP`] (default: 1e-3).
+    /// Largest internal step [s], at least [`MIN_STEP`] (default: 1e-3); with
+    /// `error_tolerance`, the upper bound of the step the error control chooses, and its first
+    /// step.
     pub max_step: f64,
     /// Newton tolerance on scaled increments, relative to the beam length for positions and
-    /// modal amplitudes, to 1 for slopes and angles; in [[`MIN_TOLERANCE`], 0.01)
-    /// (default: 1e-11). The statics use [`STATIC_TOLERANCE_FACTOR`] times it.
-    pub tolerance: f64,
+    /// modal amplitudes, to 1 for slopes and angles; in [[`MIN_TOLERANCE`], 0.01). `None`
+    /// (not given): [`DEFAULT_TOLERANCE`], or with `error_tolerance`
+    /// [`NEWTON_FRACTION_OF_ERROR`] times it (not below [`MIN_TOLERANCE`]): the value in use is
+    /// [`IntegrationParameters::newton_tolerance`]. The statics use
+    /// [`STATIC_TOLERANCE_FACTOR`] times that.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<f64>,
+    /// The ESDIRK4's local error per internal step, relative to each coordinate's scale
+    /// (positions to the beam length, slopes and angles to 1; a velocity's error times the step
+    /// counts as a position's): with it the internal step is chosen by the error estimate of
+    /// the embedded order-3 solution ([`super::control`], docs/scene-format.md), up to
+    /// `max_step`, instead of equal steps of `max_step`. In [[`MIN_ERROR_TOLERANCE`], 1);
+    /// `method = "esdirk4"` only (default: none, the fixed step).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error_tolerance: Option<f64>,
     /// Newton iteration limit per step, in 1..=100 (default: 12).
     pub max_iterations: usize,
     /// Work cap: the largest number of internal steps, accepted or rejected (a halving doubles
@@ -133,9 +147,21 @@ pub enum Method {
 }
 
 impl IntegrationParameters {
-    /// Newton tolerance of the statics: `tolerance` × [`STATIC_TOLERANCE_FACTOR`].
+    /// The Newton tolerance in use: `tolerance` if given; else with `error_tolerance`
+    /// [`NEWTON_FRACTION_OF_ERROR`] × `error_tolerance` (not below [`MIN_TOLERANCE`]), else
+    /// [`DEFAULT_TOLERANCE`].
+    pub fn newton_tolerance(&self) -> f64 {
+        match (self.tolerance, self.error_tolerance) {
+            (Some(t), _) => t,
+            (None, Some(e)) => (NEWTON_FRACTION_OF_ERROR * e).max(MIN_TOLERANCE),
+            (None, None) => DEFAULT_TOLERANCE,
+        }
+    }
+
+    /// Newton tolerance of the statics: [`Self::newton_tolerance`] ×
+    /// [`STATIC_TOLERANCE_FACTOR`].
     pub fn static_tolerance(&self) -> f64 {
-        self.tolerance * STATIC_TOLERANCE_FACTOR
+        self.newton_tolerance() * STATIC_TOLERANCE_FACTOR
     }
 }
 
@@ -146,7 +172,8 @@ impl Default for IntegrationParameters {
             method: Method::GeneralizedAlpha,
             rho_inf: 0.9,
             max_step: 1e-3,
-            tolerance: 1e-11,
+            tolerance: None,
+            error_tolerance: None,
             max_iterations: 12,
             max_internal_steps: 20_000,
             max_axial_strain: DEFAULT_MAX_AXIAL_STRAIN,
@@ -174,6 +201,23 @@ pub const DEFAULT_MAX_AXIAL_STRAIN: f64 = 0.05;
 /// taken as one internal step of its own length and never halved.
 pub const MIN_STEP: f64 = 1e-8;
 
+/// The Newton tolerance when `solver.tolerance` is not given (and no `error_tolerance`).
+pub const DEFAULT_TOLERANCE: f64 = 1e-11;
+
+/// With `solver.error_tolerance` and no `solver.tolerance`, the Newton tolerance is this
+/// fraction of the error tolerance. A stage's unconverged coordinates ε become a velocity
+/// error of about 20 ε/h (docs/references.md §5), which moves the position by 20 ε within the
+/// step: 2 % of the local error the step may make. Measured on the Case 1 all-ANCF rod
+/// (16 elements, 2 s, docs/accuracy.md): at error tolerance 1e-7 the tip error is 5.1e-6 m
+/// with Newton 1e-10 (34 077 iterations), 4.7e-6 m with 1e-11 (40 960), 8.8e-6 m with 1e-9
+/// (24 837, the fraction 1e-2).
+pub const NEWTON_FRACTION_OF_ERROR: f64 = 1e-3;
+
+/// Smallest `solver.error_tolerance`: below it the error estimate, a difference of two
+/// solutions built from the same stage accelerations, is round-off and Newton residue (the
+/// stages' Newton tolerance is then [`MIN_TOLERANCE`]).
+pub const MIN_ERROR_TOLERANCE: f64 = 1e-12;
+
 /// Smallest Newton tolerance: about 4.5 machine epsilons, below which round-off in the
 /// coordinates (relative 2.2e-16) keeps Newton from ever converging.
 pub const MIN_TOLERANCE: f64 = 1e-15;
@@ -183,6 +227,26 @@ pub const MAX_HALVINGS: u32 = 12;
 
 /// Communication steps completed at a reduced internal step before it is doubled again.
 pub const CALM_BEFORE_GROWTH: u32 = 4;
+
+/// Error control (`solver.error_tolerance`, [`super::control`]): the step proposed after an
+/// accepted step of error `err` (in units of the tolerance) is h · [`STEP_SAFETY`] · err^(−1/4)
+/// (the embedded solution is of order 3: its local error goes as h⁴), at least
+/// [`STEP_SHRINK_MIN`] · h. Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.4, eq. (4.13), with
+/// their recommended safety factor 0.9.
+pub const STEP_SAFETY: f64 = 0.9;
+
+/// Error control: the most a step shrinks after one attempt (Hairer, Nørsett & Wanner's
+/// facmin, §II.4).
+pub const STEP_SHRINK_MIN: f64 = 0.2;
+
+/// Error control: the most the proposed step grows after an accepted step (facmax, §II.4,
+/// where 1.5 to 5 is recommended); none right after a rejection.
+pub const STEP_GROWTH_MAX: f64 = 2.0;
+
+/// Error control: a proposal up to this factor above the current one keeps the current one
+/// (and its factorized Newton matrix, which depends on the step): RADAU5's `quot2` (Hairer &
+/// Wanner, *Solving ODEs II*, §IV.8; its code's default 1.2).
+pub const STEP_KEEP_BAND: f64 = 1.2;
 
 /// Newton contraction rate above which a stale (held) Newton matrix is refreshed.
 pub const REFRESH_RATE: f64 = 0.25;
@@ -225,12 +289,40 @@ mod tests {
         assert_eq!(p, IntegrationParameters::default());
         assert_eq!(p.rho_inf, documented("rho_inf"));
         assert_eq!(p.max_step, documented("max_step"));
-        assert_eq!(p.tolerance, documented("tolerance"));
+        assert_eq!(p.tolerance, None);
+        assert_eq!(p.newton_tolerance(), documented("tolerance"));
         assert_eq!(p.max_iterations as f64, documented("max_iterations"));
         assert_eq!(
             p.max_internal_steps as f64,
             documented("max_internal_steps")
         );
         assert_eq!(p.max_axial_strain, documented("max_axial_strain"));
+        assert_eq!(p.error_tolerance, None);
+    }
+
+    /// The Newton tolerance in use: a given `tolerance` wins; without it, 1e-3 ×
+    /// `error_tolerance` (not below the floor) or the default; a scene written back out keeps
+    /// a tolerance it did not give as not given.
+    #[test]
+    fn the_newton_tolerance_follows_the_error_tolerance_unless_given() {
+        let p = |text: &str| toml::from_str::<IntegrationParameters>(text).unwrap();
+        assert_eq!(p("").newton_tolerance(), 1e-11);
+        assert_eq!(p("error_tolerance = 1e-6").newton_tolerance(), 1e-9);
+        assert_eq!(
+            p("error_tolerance = 1e-12").newton_tolerance(),
+            MIN_TOLERANCE
+        );
+        let given = p("tolerance = 1e-11
+error_tolerance = 1e-6");
+        assert_eq!(given.newton_tolerance(), 1e-11);
+        assert_eq!(given.static_tolerance(), 1e-11 * STATIC_TOLERANCE_FACTOR);
+        let tied = p("error_tolerance = 1e-6");
+        let text = toml::to_string(&tied).unwrap();
+        assert!(!text.contains("tolerance = 1e-9"), "{text}");
+        assert_eq!(p(&text), tied);
+        assert_eq!(
+            toml::from_str::<IntegrationParameters>(&toml::to_string(&given).unwrap()).unwrap(),
+            given
+        );
     }
 }

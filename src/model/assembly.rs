@@ -761,7 +761,7 @@ mod tests {
         let mut s = State::at_rest(0.0, model.initial_coordinates().to_vec(), m);
         let mut integ = GeneralizedAlpha::new(
             &IntegrationParameters {
-                tolerance: 1e-12,
+                tolerance: Some(1e-12),
                 max_iterations: 20,
                 ..Default::default()
             },

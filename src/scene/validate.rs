@@ -2,6 +2,7 @@
 //! what is allowed (or what to change).
 
 use super::*;
+use crate::integrator::{Method, Mode, MIN_ERROR_TOLERANCE};
 
 fn check_positive(field: &str, v: f64, what: &str) -> Result<(), SceneError> {
     if v.is_finite() && v > 0.0 {
@@ -169,11 +170,30 @@ impl Scene {
                 s.max_step
             )));
         }
-        if !(s.tolerance.is_finite() && s.tolerance >= MIN_TOLERANCE && s.tolerance < 1e-2) {
+        if let Some(t) = s
+            .tolerance
+            .filter(|t| !(t.is_finite() && *t >= MIN_TOLERANCE && *t < 1e-2))
+        {
             return Err(SceneError(format!(
-                "solver.tolerance = {}: must be in [{MIN_TOLERANCE:e}, 0.01) (relative Newton tolerance; 1e-11 is the default)",
-                s.tolerance
+                "solver.tolerance = {t}: must be in [{MIN_TOLERANCE:e}, 0.01) (relative Newton tolerance; 1e-11 is the default)"
             )));
+        }
+        if let Some(e) = s.error_tolerance {
+            if !(e.is_finite() && (MIN_ERROR_TOLERANCE..1.0).contains(&e)) {
+                return Err(SceneError(format!(
+                    "solver.error_tolerance = {e}: must be in [{MIN_ERROR_TOLERANCE:e}, 1) (the local error per internal step relative to each coordinate's scale, e.g. 1e-6; leave it out for equal steps of solver.max_step)"
+                )));
+            }
+            if s.method != Method::Esdirk4 {
+                return Err(SceneError(format!(
+                    "solver.error_tolerance = {e}: the error control needs the embedded solution of solver.method = \"esdirk4\"; generalized-alpha has none: set solver.method = \"esdirk4\" or remove solver.error_tolerance (generalized-alpha takes equal steps of solver.max_step)"
+                )));
+            }
+            if s.mode == Mode::Realtime {
+                return Err(SceneError(format!(
+                    "solver.error_tolerance = {e}: the real-time mode (solver.mode = \"realtime\") takes a fixed work per step, internal steps of solver.max_step: remove solver.error_tolerance or set solver.mode = \"normal\""
+                )));
+            }
         }
         if s.max_internal_steps == 0 {
             return Err(SceneError(

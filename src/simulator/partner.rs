@@ -365,14 +365,19 @@ impl<S: Space> Simulator<S> {
             .apparent_mass_array()
             .ok_or_else(|| refused("the beam's apparent mass at the mount could not be solved"))?;
         let scale = (self.scene.total_length(), S::DIM);
-        PartnerStep::new(partner, (&apparent, n), self.scene.solver.tolerance, scale)
-            .map(Some)
-            .ok_or_else(|| {
-                refused(
+        PartnerStep::new(
+            partner,
+            (&apparent, n),
+            self.scene.solver.newton_tolerance(),
+            scale,
+        )
+        .map(Some)
+        .ok_or_else(|| {
+            refused(
                 "I - root.mobility x apparent mass is singular: the host's mobility cancels the \
                  beam's inertia; give the host's own mobility (without the beam's inertia)",
             )
-            })
+        })
     }
 
     /// The start of a communication step with the partner model: the mount's acceleration

@@ -59,9 +59,12 @@ struct Snapshot<S: Space> {
 /// FNV-1a 64 of the canonical TOML of `scene` without its inputs (tip force, tip moment,
 /// gravity and the mount's start motion, which a snapshot carries, as inputs and as the mount's
 /// path, and a host may change; the model does not depend on them): what binds a snapshot to
-/// its model.
+/// its model. The Newton tolerance in use is written out: a scene that leaves
+/// `solver.tolerance` to its default or to `solver.error_tolerance` steps as one that gives the
+/// same value.
 pub(super) fn scene_key(scene: &Scene) -> u64 {
     let mut scene = scene.clone();
+    scene.solver.tolerance = Some(scene.solver.newton_tolerance());
     scene.tip.force.clear();
     scene.tip.moment.clear();
     scene.gravity.clear();

@@ -1,14 +1,17 @@
-//! The step: [`Simulator::advance`] to a time in equal internal steps with halving and one
-//! roll-back, the refusals of a converged state outside the model's validity, and the static
-//! solve.
+//! The step: [`Simulator::advance`] to a time in equal internal steps with halving, or in the
+//! steps the ESDIRK4's error control chooses (`solver.error_tolerance`), and one roll-back; the
+//! refusals of a converged state outside the model's validity, and the static solve.
 
-use super::partner::PartnerFailure;
+use super::partner::{PartnerFailure, PartnerStep};
 use super::*;
+use crate::integrator::{control, StepFailure};
 
 /// Internal step control carried from one communication step to the next.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct StepControl {
-    /// Largest internal step that recently succeeded [s] (≤ `solver.max_step`).
+    /// Largest internal step that recently succeeded [s] (≤ `solver.max_step`); with error
+    /// control (`solver.error_tolerance`) the step it proposes for the next internal step
+    /// (`solver.max_step` at the start).
     pub h_ok: f64,
     /// Communication steps completed without a rejected attempt since `h_ok` last changed.
     pub calm: u32,
@@ -45,7 +48,9 @@ impl<S: Space> Simulator<S> {
     }
 
     /// Advances to `t_end` in equal internal steps no larger than `solver.max_step`, halving
-    /// a step that fails (at most [`MAX_HALVINGS`] times, never below [`MIN_STEP`]), with at
+    /// a step that fails (at most [`MAX_HALVINGS`] times, never below [`MIN_STEP`]) — with
+    /// `solver.error_tolerance`, in the steps its error control chooses up to
+    /// `solver.max_step`, the last ending on `t_end` ([`Simulator::controlled_steps`]) — with at
     /// most `solver.max_internal_steps` internal steps, accepted or rejected, in the call. A
     /// span that needs more steps of `solver.max_step` is refused before any work. On failure
     /// the state is the one at the start of the call and the error says why and what to
@@ -73,8 +78,10 @@ impl<S: Space> Simulator<S> {
                 cap,
             });
         }
-        // start from the step that last worked; grow back after a few calm calls
-        if self.step.h_ok < h_max && self.step.calm >= CALM_BEFORE_GROWTH {
+        // start from the step that last worked; grow back after a few calm calls (the error
+        // control's proposal is its own)
+        let controlled = self.scene.solver.error_tolerance.is_some();
+        if !controlled && self.step.h_ok < h_max && self.step.calm >= CALM_BEFORE_GROWTH {
             self.step = StepControl {
                 h_ok: (2.0 * self.step.h_ok).min(h_max),
                 calm: 0,
@@ -125,13 +132,42 @@ impl<S: Space> Simulator<S> {
             .map_err(|source| SimError::InputJump { t: t0, source })
     }
 
-    /// The internal steps from `t0` to `t_end`, halving a failing one; returns the number of
-    /// steps the span ended in and the halvings.
+    /// The internal steps from `t0` to `t_end`: equal steps halving a failing one
+    /// ([`Simulator::equal_steps`]), or with `solver.error_tolerance` the steps the error
+    /// control chooses ([`Simulator::controlled_steps`]); returns the number of steps the span
+    /// ended in and the halvings (none with error control).
     fn internal_steps(
         &mut self,
         t0: f64,
         t_end: f64,
         inputs: &Inputs<S>,
+    ) -> Result<(u64, u32), SimError> {
+        // the partner model: its iteration's matrix from the apparent mass once per
+        // communication step
+        let mut partner = self.partner_step()?;
+        let mut dev = match &partner {
+            Some(p) => self.partner_start(p)?,
+            None => partner::Deviation::default(),
+        };
+        let done = if self.scene.solver.error_tolerance.is_some() {
+            self.controlled_steps(t0, t_end, inputs, (&mut partner, &mut dev))?
+        } else {
+            self.equal_steps(t0, t_end, inputs, (&mut partner, &mut dev))?
+        };
+        if partner.is_some() {
+            self.continue_deviated(&dev, t_end);
+        }
+        Ok(done)
+    }
+
+    /// Equal internal steps from `t0` to `t_end`, halving a failing one (which doubles the
+    /// steps still to go); returns the number of steps the span ended in and the halvings.
+    fn equal_steps(
+        &mut self,
+        t0: f64,
+        t_end: f64,
+        inputs: &Inputs<S>,
+        (partner, dev): (&mut Option<PartnerStep>, &mut partner::Deviation),
     ) -> Result<(u64, u32), SimError> {
         let span = t_end - t0;
         let cap = self.scene.solver.max_internal_steps;
@@ -141,14 +177,6 @@ impl<S: Space> Simulator<S> {
         let mut done = 0u64;
         let mut attempts = 0u64;
         let mut halvings = 0;
-        let varying = self.load_rates.any();
-        // the partner model: its iteration's matrix from the apparent mass once per
-        // communication step
-        let mut partner = self.partner_step()?;
-        let mut dev = match &partner {
-            Some(p) => self.partner_start(p)?,
-            None => partner::Deviation::default(),
-        };
         while done < steps {
             let h = span / steps as f64;
             attempts += 1;
@@ -157,87 +185,145 @@ impl<S: Space> Simulator<S> {
             } else {
                 t0 + span * ((done + 1) as f64 / steps as f64)
             };
-            // the time-dependent inputs where the step's equations hold (its end; each stage
-            // time of a multi-stage method)
-            let t_start = self.state.t;
-            let (mount, rates) = (self.mount.as_deref(), &self.load_rates);
-            let at = |m: &mut Model<S>, dt: f64| {
-                let t = inputs::stage_time(t_start, t_next, h, dt);
-                if let Some(ms) = mount {
-                    m.set_mount(&ms.at(t));
-                }
-                if varying {
-                    rates.advanced(inputs, t - t0).apply(m);
-                }
-            };
-            let stepped = match &mut partner {
-                Some(p) => self.step_with_partner(p, &mut dev, (t0, t_next, h), inputs),
-                None => self
-                    .integ
-                    .step(&mut self.model, &mut self.state, h, at)
-                    .map(|_| ())
-                    .map_err(PartnerFailure::Step),
-            };
-            match stepped {
-                Ok(()) => {
-                    done += 1;
-                    self.min_step_used = self.min_step_used.min(h);
-                    self.state.t = t0 + span * (done as f64 / steps as f64);
-                }
+            match self.attempt(partner, dev, (t0, t_next, h), inputs) {
+                Ok(()) => done += 1,
                 Err(e) => {
-                    self.integ.counters_mut().rejected += 1;
                     halvings += 1;
-                    // a halving doubles the steps still to go; the real-time mode never halves
-                    let realtime = self.scene.solver.mode == crate::integrator::Mode::Realtime;
-                    let limit = if realtime {
-                        Some(StepLimit::Realtime)
-                    } else if halvings > MAX_HALVINGS {
-                        Some(StepLimit::MaxHalvings)
-                    } else if 0.5 * h < MIN_STEP {
-                        Some(StepLimit::MinStep { h })
-                    } else if attempts + 2 * (steps - done) > cap {
-                        Some(StepLimit::WorkCap {
-                            halvings: halvings - 1,
-                            cap,
-                        })
-                    } else {
-                        None
-                    };
-                    if let Some(limit) = limit {
-                        // reported at the time the state returns to
-                        let halvings = halvings - 1;
-                        return Err(match e {
-                            PartnerFailure::Step(source) => SimError::Step {
-                                t: t0,
-                                halvings,
-                                limit,
-                                source,
-                            },
-                            PartnerFailure::Unconverged {
-                                h,
-                                residual,
-                                tolerance,
-                                correction,
-                            } => SimError::Partner {
-                                t: t0,
-                                halvings,
-                                limit,
-                                h,
-                                residual,
-                                tolerance,
-                                correction,
-                            },
-                        });
-                    }
+                    // a halving doubles the steps still to go
+                    let work = attempts + 2 * (steps - done);
+                    self.rejected(t0, halvings, (h, 0.5 * h), work, e)?;
                     steps *= 2;
                     done *= 2;
                 }
             }
         }
-        if partner.is_some() {
-            self.continue_deviated(&dev, t_end);
-        }
         Ok((steps, halvings))
+    }
+
+    /// The internal steps from `t0` to `t_end` that the error control chooses
+    /// (`solver.error_tolerance`, [`control`]): what is left of the span in equal steps no
+    /// larger than the proposed step (so the last lands on `t_end` exactly, and a proposal that
+    /// holds gives the same step, and Newton matrix, from one communication step to the next),
+    /// a step whose error estimate is above the tolerance retried smaller (a failing one
+    /// halved) from the same state, the proposal after each accepted step kept in the step
+    /// control (`h_ok`) for the next call. Returns the accepted steps and no halvings.
+    fn controlled_steps(
+        &mut self,
+        t0: f64,
+        t_end: f64,
+        inputs: &Inputs<S>,
+        (partner, dev): (&mut Option<PartnerStep>, &mut partner::Deviation),
+    ) -> Result<(u64, u32), SimError> {
+        let h_max = self.scene.solver.max_step;
+        let mut proposed = self.step.h_ok;
+        let (mut steps, mut attempts, mut rejections) = (0u64, 0u64, 0u32);
+        loop {
+            let t = self.state.t;
+            let left = t_end - t;
+            let n = (left / proposed * (1.0 - STEP_ROUNDING)).ceil().max(1.0);
+            let (h, t_next) = if n <= 1.0 {
+                (left, t_end)
+            } else {
+                (left / n, t + left / n)
+            };
+            attempts += 1;
+            match self.attempt(partner, dev, (t0, t_next, h), inputs) {
+                Ok(()) => {
+                    steps += 1;
+                    let err = self.integ.step_error().unwrap_or(0.0);
+                    proposed = control::after_accepted(h, err, proposed, rejections > 0, h_max)
+                        .max(MIN_STEP);
+                    rejections = 0;
+                    if t_next == t_end {
+                        self.step.h_ok = proposed;
+                        return Ok((steps, 0));
+                    }
+                }
+                Err(e) => {
+                    rejections += 1;
+                    let estimate = match &e {
+                        PartnerFailure::Step(StepFailure::ErrorEstimate { error, .. }) => {
+                            Some(*error)
+                        }
+                        _ => None,
+                    };
+                    let next = control::after_rejected(h, estimate);
+                    let work = attempts + (left / next).ceil() as u64;
+                    self.rejected(t0, rejections, (h, next), work, e)?;
+                    proposed = next;
+                }
+            }
+        }
+    }
+
+    /// One internal step attempt of size `h` from the current state to `t_next` (in the
+    /// communication step from `t0`), with the partner model if it acts: the time-dependent
+    /// inputs set where the step's equations hold (its end; each stage time of a multi-stage
+    /// method). On success the state is at `t_next`; on failure at the step's start.
+    fn attempt(
+        &mut self,
+        partner: &mut Option<PartnerStep>,
+        dev: &mut partner::Deviation,
+        (t0, t_next, h): (f64, f64, f64),
+        inputs: &Inputs<S>,
+    ) -> Result<(), PartnerFailure> {
+        let stepped = match partner {
+            Some(p) => self.step_with_partner(p, dev, (t0, t_next, h), inputs),
+            None => {
+                let varying = self.load_rates.any();
+                let t_start = self.state.t;
+                let (mount, rates) = (self.mount.as_deref(), &self.load_rates);
+                let at = |m: &mut Model<S>, dt: f64| {
+                    let t = inputs::stage_time(t_start, t_next, h, dt);
+                    if let Some(ms) = mount {
+                        m.set_mount(&ms.at(t));
+                    }
+                    if varying {
+                        rates.advanced(inputs, t - t0).apply(m);
+                    }
+                };
+                self.integ
+                    .step(&mut self.model, &mut self.state, h, at)
+                    .map(|_| ())
+                    .map_err(PartnerFailure::Step)
+            }
+        };
+        if stepped.is_ok() {
+            self.min_step_used = self.min_step_used.min(h);
+            self.state.t = t_next;
+        }
+        stepped
+    }
+
+    /// A failed attempt (`e`) of size `h` in the communication step from `t0`, the `tries`-th
+    /// in a row, counted as a rejection; the communication step's error if it may not be
+    /// retried with `next`, `work` the attempts done and still to do then: the real-time mode
+    /// never retries; [`MAX_HALVINGS`], [`MIN_STEP`], `solver.max_internal_steps`.
+    fn rejected(
+        &mut self,
+        t0: f64,
+        tries: u32,
+        (h, next): (f64, f64),
+        work: u64,
+        e: PartnerFailure,
+    ) -> Result<(), SimError> {
+        self.integ.counters_mut().rejected += 1;
+        let cap = self.scene.solver.max_internal_steps;
+        let limit = if self.scene.solver.mode == crate::integrator::Mode::Realtime {
+            StepLimit::Realtime
+        } else if tries > MAX_HALVINGS {
+            StepLimit::MaxHalvings
+        } else if next < MIN_STEP {
+            StepLimit::MinStep { h }
+        } else if work > cap {
+            StepLimit::WorkCap {
+                halvings: tries - 1,
+                cap,
+            }
+        } else {
+            return Ok(());
+        };
+        Err(failed(t0, tries - 1, limit, e))
     }
 
     /// The refusal of the state reached at `t_end`, if the model cannot accept it: non-finite,
@@ -298,7 +384,9 @@ impl<S: Space> Simulator<S> {
         } else {
             *inputs
         };
-        if halvings > 0 {
+        if self.scene.solver.error_tolerance.is_some() {
+            // the error control set its proposal
+        } else if halvings > 0 {
             self.step = StepControl {
                 h_ok: span / steps as f64,
                 calm: 0,
@@ -340,5 +428,32 @@ impl<S: Space> Simulator<S> {
         let it = solve_static(&mut self.model, &mut self.state, tol)?;
         self.integ.invalidate();
         Ok(it)
+    }
+}
+
+/// The error of a communication step from `t0` whose internal step failed with `e` and could
+/// not be retried (`limit`) after `halvings` (reported at the time the state returns to).
+fn failed(t0: f64, halvings: u32, limit: StepLimit, e: PartnerFailure) -> SimError {
+    match e {
+        PartnerFailure::Step(source) => SimError::Step {
+            t: t0,
+            halvings,
+            limit,
+            source,
+        },
+        PartnerFailure::Unconverged {
+            h,
+            residual,
+            tolerance,
+            correction,
+        } => SimError::Partner {
+            t: t0,
+            halvings,
+            limit,
+            h,
+            residual,
+            tolerance,
+            correction,
+        },
     }
 }

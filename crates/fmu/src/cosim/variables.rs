@@ -362,8 +362,8 @@ const SCENE_PARAMETERS: [SceneParameter; 5] = [
         vr: 112,
         unit: None,
         description: "relative Newton tolerance",
-        get: |s| s.solver.tolerance,
-        set: |s, x| s.solver.tolerance = x,
+        get: |s| s.solver.newton_tolerance(),
+        set: set_tolerance,
     },
     SceneParameter {
         name: "solver.max_axial_strain",
@@ -382,6 +382,16 @@ const SCENE_PARAMETERS: [SceneParameter; 5] = [
         set: set_realtime_iterations,
     },
 ];
+
+/// Sets `solver.tolerance` from the FMU parameter, whose value is the tolerance in use
+/// ([`hybeam::scene::Solver::newton_tolerance`]): the value it shows leaves the scene as it
+/// is (a host that sets every parameter to its start value, or a restored FMU state, keeps a
+/// tolerance the scene leaves to `solver.error_tolerance`); another value is given explicitly.
+fn set_tolerance(s: &mut Scene, x: f64) {
+    if x != s.solver.newton_tolerance() {
+        s.solver.tolerance = Some(x);
+    }
+}
 
 /// `solver.realtime_iterations` as the FMU parameter: 0 in the normal mode.
 fn realtime_iterations(s: &hybeam::scene::Solver) -> f64 {
