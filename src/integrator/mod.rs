@@ -16,9 +16,7 @@ pub use esdirk::{Esdirk, Tableau, ESDIRK4};
 pub use generalized_alpha::{AlphaParams, GeneralizedAlpha};
 pub use newton::{IntegratorMemory, JacobianPoint, StepFailure};
 pub use parameters::*;
-pub use seam::{
-    constraint_rows, constraint_rows_with, EvalRequest, Integrable, RowsWork, StateRef,
-};
+pub use seam::{constraint_rows, EvalRequest, Integrable, StateRef};
 pub use statics::{solve_relative_static, solve_static, StaticFailure};
 
 /// Dynamic state of the model.

@@ -107,49 +107,19 @@ pub trait Integrable {
     }
 }
 
-/// Φ(q) (m rows into `out`) through [`Integrable::eval`] at rest under no load.
+/// Φ(q) (m rows into `out`) through [`Integrable::eval`] at rest under no load (allocates its
+/// working memory: the default of [`Integrable::constraint_values`]; a model that evaluates
+/// its constraints in a step overrides that, as `Model` does).
 pub fn constraint_rows<M: Integrable + ?Sized>(model: &mut M, q: &[f64], out: &mut [f64]) {
-    constraint_rows_with(model, q, out, &mut RowsWork::default());
-}
-
-/// The working memory of [`constraint_rows_with`]: sized at the first call, then reused (no
-/// allocation once sized).
-#[derive(Debug, Clone, Default)]
-pub struct RowsWork {
-    /// Zeros: the rates, accelerations and multipliers (max(n, m); only ever zero).
-    zeros: Vec<f64>,
-    /// The residual (n + m).
-    r: Vec<f64>,
-}
-
-impl RowsWork {
-    /// Sized for `n` coordinates and `m` constraint rows.
-    pub fn sized(n: usize, m: usize) -> Self {
-        Self {
-            zeros: vec![0.0; n.max(m)],
-            r: vec![0.0; n + m],
-        }
-    }
-}
-
-/// [`constraint_rows`] with its working memory `work`.
-pub fn constraint_rows_with<M: Integrable + ?Sized>(
-    model: &mut M,
-    q: &[f64],
-    out: &mut [f64],
-    work: &mut RowsWork,
-) {
     let (n, m) = (model.coordinates(), model.constraints());
-    work.zeros.resize(n.max(m), 0.0);
-    work.r.resize(n + m, 0.0);
-    work.r.fill(0.0);
-    let zeros = &work.zeros;
+    let zeros = vec![0.0; n.max(m)];
+    let mut r = vec![0.0; n + m];
     let req = EvalRequest {
         sd: 0.0,
         matrix: None,
         lambda_hessian: false,
     };
     let x = StateRef::new(q, &zeros[..n], &zeros[..n], &zeros[..m]).with_load(0.0);
-    model.eval(x, req, &mut work.r);
-    out.copy_from_slice(&work.r[n..]);
+    model.eval(x, req, &mut r);
+    out.copy_from_slice(&r[n..]);
 }

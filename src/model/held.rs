@@ -248,14 +248,12 @@ impl<S: Space> Model<S> {
                 r1.resize(dofs.len(), 0.0);
                 ul.resize(dofs.len(), 0.0);
                 // M uᵢ directly where the element gives it, else r(q̈ = uᵢ) − r(0)
-                let mut direct = true;
                 for i in 0..nf {
                     let (ui, hi) = field(i);
                     let held = (&self.held[..], zeros.1, hi);
                     let xi = LocalState::moving(dofs, held, (q, zeros.0, ui));
-                    if !(direct && e.at.part.inertia_times(&xi, r1)) {
-                        if direct {
-                            direct = false;
+                    if !e.at.part.inertia_times(&xi, r1) {
+                        if i == 0 {
                             e.at.part.residual(&x0, &env, r0);
                         }
                         e.at.part.residual(&xi, &env, r1);

@@ -15,6 +15,7 @@
 use super::kin::{EndKin3, EndValues3, Field3};
 use super::Spatial;
 use crate::model::component::{Constraint, ConstraintOut, Port};
+use crate::model::space::Space;
 
 /// Σλ∂²Φ triplets (local i, local j, value), as in [`ConstraintOut::hess`].
 type Hessian = Vec<(usize, usize, f64)>;
@@ -93,7 +94,6 @@ impl Constraint for RigidJoint3 {
         let (ou, od) = (0, self.up_len);
         // position rows
         for c in 0..3 {
-            out.phi[c] = ku.p.v[c] - kd.p.v[c];
             let row = &mut out.jac[c * d..(c + 1) * d];
             for (k, v) in ku.p.d.iter().enumerate() {
                 row[ou + k] += v[c];
@@ -130,15 +130,17 @@ impl Constraint for RigidJoint3 {
             let row = 3 + r;
             let w = lambda.map(|l| l[row] * self.length);
             let jac = &mut out.jac[row * d..(row + 1) * d];
-            out.phi[row] = self.length
-                * product(
-                    (a, on),
-                    (b, oo),
-                    self.length,
-                    jac,
-                    w.map(|w| (w, &mut out.hess)),
-                );
+            product(
+                (a, on),
+                (b, oo),
+                self.length,
+                jac,
+                w.map(|w| (w, &mut out.hess)),
+            );
         }
+        // Φ from the ends' values, as `values` gives it
+        let (vu, vd) = (Spatial::port_values(&ku), Spatial::port_values(&kd));
+        self.phi_of(&vu, &vd, &mut out.phi);
     }
 
     fn values(&self, q: &[f64], out: &mut ConstraintOut) {
@@ -178,16 +180,17 @@ fn section(k: &EndKin3) -> &Field3 {
         .expect("the end found with a section director at construction keeps it")
 }
 
-/// a·b for fields `a`, `b` on the local coordinates starting at the given offsets (disjoint
-/// blocks): adds `scale·∂(a·b)/∂q` to `jac` and, with `(w, hess)`, `w·∂²(a·b)/∂q∂q` to `hess`
-/// (both orders of every off-diagonal pair, cross terms ∂a/∂q_i·∂b/∂q_j included). Returns a·b.
+/// The derivatives of a·b for fields `a`, `b` on the local coordinates starting at the given
+/// offsets (disjoint blocks): adds `scale·∂(a·b)/∂q` to `jac` and, with `(w, hess)`,
+/// `w·∂²(a·b)/∂q∂q` to `hess` (both orders of every off-diagonal pair, cross terms
+/// ∂a/∂q_i·∂b/∂q_j included).
 fn product(
     (a, oa): (&Field3, usize),
     (b, ob): (&Field3, usize),
     scale: f64,
     jac: &mut [f64],
     hess: Option<(f64, &mut Hessian)>,
-) -> f64 {
+) {
     for (k, v) in a.d.iter().enumerate() {
         jac[oa + k] += scale * v.dot(&b.v);
     }
@@ -210,7 +213,6 @@ fn product(
             }
         }
     }
-    a.v.dot(&b.v)
 }
 
 #[cfg(test)]
