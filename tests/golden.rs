@@ -368,7 +368,7 @@ type Setting = (
 /// The shipped settings no scene file holds (issue 38): the angle element, the 3D cable
 /// (`torsion = false`) and ESDIRK4, planar and spatial: (recording, scene, overrides, t_end).
 /// Recorded at commit 6cf647b's engine; every later change keeps them bit for bit.
-const SETTINGS: [Setting; 5] = [
+const SETTINGS: [Setting; 8] = [
     (
         "setting_angle",
         "case1_3d_ancf",
@@ -414,6 +414,33 @@ const SETTINGS: [Setting; 5] = [
             ("tip.moment", "[0.001, 0.0, 0.0]"),
         ],
         0.2,
+    ),
+    (
+        "setting_degree5",
+        "soft_rod",
+        &[("segments.0.elements", "4"), ("segments.0.degree", "5")],
+        0.3,
+    ),
+    (
+        "setting_degree5_cable_3d",
+        "case1_3d_ancf",
+        &[
+            ("torsion", "false"),
+            ("segments.0.elements", "4"),
+            ("segments.0.degree", "5"),
+            ("tip.force", "[0.0, 0.0362894, 0.0]"),
+        ],
+        0.2,
+    ),
+    (
+        "setting_error_tolerance",
+        "soft_rod",
+        &[
+            ("solver.method", "\"esdirk4\""),
+            ("solver.max_step", "1e-2"),
+            ("solver.error_tolerance", "1e-8"),
+        ],
+        0.3,
     ),
 ];
 
