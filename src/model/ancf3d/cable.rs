@@ -70,3 +70,174 @@ impl Ancf3Props {
         ]
     }
 }
+
+/// A 3-vector per quadrature point: component, then point (one lane per point, so that the
+/// point-wise arithmetic runs on the points together).
+type Lv<const N: usize> = [[f64; N]; 3];
+
+/// The 3D cable's quadrature points as lanes, shape weights by function then point, for its
+/// residual ([`Ancf3Props::cable_force`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Lanes {
+    /// dS_j/dx at the axial points.
+    axial_ds: [[f64; 5]; 4],
+    /// Weight × l/2 × EA at the axial points [N m].
+    axial_w: [f64; 5],
+    /// dS_j/dx at the bending points.
+    ds: [[f64; 3]; 4],
+    /// d²S_j/dx² at the bending points.
+    dds: [[f64; 3]; 4],
+    /// Weight × l/2 × the cable's EI at the bending points [N m³] (as [`Ancf3Props::cable_point`]).
+    bend_w: [f64; 3],
+}
+
+impl Lanes {
+    /// The lanes of the tables `t`.
+    pub(super) fn of(t: &Tables3) -> Self {
+        let mut l = Self::default();
+        for (q, (w, ds)) in t.axial.iter().enumerate() {
+            l.axial_w[q] = *w;
+            for j in 0..4 {
+                l.axial_ds[j][q] = ds[j];
+            }
+        }
+        for (q, p) in t.bending.iter().enumerate() {
+            l.bend_w[q] = p.w * (0.5 * (p.ei[0] + p.ei[1]));
+            for j in 0..4 {
+                l.ds[j][q] = p.ds[j];
+                l.dds[j][q] = p.dds[j];
+            }
+        }
+        l
+    }
+}
+
+/// Σ_j w_j e[3j..3j + 3] at every point ([`comb`]'s operations, per lane).
+#[inline(always)]
+fn lane_comb<const N: usize>(w: &[[f64; N]; 4], e: &[f64; CABLE_DOFS]) -> Lv<N> {
+    let mut r = [[0.0; N]; 3];
+    for (c, rc) in r.iter_mut().enumerate() {
+        for (j, wj) in w.iter().enumerate() {
+            let x = e[3 * j + c];
+            for q in 0..N {
+                rc[q] += x * wj[q];
+            }
+        }
+    }
+    r
+}
+
+/// a · b per lane ([`dot`]'s operations).
+#[inline(always)]
+fn lane_dot<const N: usize>(a: &Lv<N>, b: &Lv<N>) -> [f64; N] {
+    let mut r = [0.0; N];
+    for q in 0..N {
+        r[q] = a[0][q] * b[0][q] + a[1][q] * b[1][q] + a[2][q] * b[2][q];
+    }
+    r
+}
+
+/// a × b per lane ([`cross`]'s operations).
+#[inline(always)]
+fn lane_cross<const N: usize>(a: &Lv<N>, b: &Lv<N>) -> Lv<N> {
+    let mut r = [[0.0; N]; 3];
+    for q in 0..N {
+        r[0][q] = a[1][q] * b[2][q] - a[2][q] * b[1][q];
+        r[1][q] = a[2][q] * b[0][q] - a[0][q] * b[2][q];
+        r[2][q] = a[0][q] * b[1][q] - a[1][q] * b[0][q];
+    }
+    r
+}
+
+/// x_c s per lane.
+#[inline(always)]
+fn lane_scale<const N: usize>(x: &Lv<N>, s: &[f64; N]) -> Lv<N> {
+    let mut r = *x;
+    for rc in &mut r {
+        for q in 0..N {
+            rc[q] *= s[q];
+        }
+    }
+    r
+}
+
+impl Ancf3Props {
+    /// [`Ancf3Props::internal_force`] of the 3D cable (f64): [`Ancf3Props::axial_point`] and
+    /// [`Ancf3Props::cable_point`] on all points at once (lanes, [`Lanes`]) and the sums into
+    /// each coordinate in the generic path's order, so the same operations and bits, without
+    /// its runtime slots and bounds checks.
+    pub(super) fn cable_force(
+        &self,
+        tab: &Tables3,
+        e: &[f64; CABLE_DOFS],
+        ed: &[f64; CABLE_DOFS],
+    ) -> [f64; CABLE_DOFS] {
+        let t = &tab.lanes;
+        let tau = self.damping_time;
+        let damped = tau > 0.0;
+        // axial points: g s on r_x, g = r_x/|r_x|, s = w (ε − ε₀ + τ_d g·ṙ_x)
+        let a = lane_comb(&t.axial_ds, e);
+        let n = lane_dot(&a, &a).map(f64::sqrt);
+        let g = lane_scale(&a, &n.map(f64::recip));
+        let e0 = self.reference.map_or([0.0; 5], |r| r.axial);
+        let mut s = [0.0; 5];
+        for q in 0..5 {
+            s[q] = n[q] - 1.0 - e0[q];
+        }
+        if damped {
+            let rate = lane_dot(&g, &lane_comb(&t.axial_ds, ed));
+            for q in 0..5 {
+                s[q] += rate[q] * tau;
+            }
+        }
+        for q in 0..5 {
+            s[q] *= t.axial_w[q];
+        }
+        let fx = lane_scale(&g, &s);
+        // bending points (`cable_point`): κ = a × b/|a|², μ = w EI (κ + rate terms)
+        let (a, b) = (lane_comb(&t.ds, e), lane_comb(&t.dds, e));
+        let inv = lane_dot(&a, &a).map(f64::recip);
+        let kap = lane_scale(&lane_cross(&a, &b), &inv);
+        let mut mv = kap;
+        if damped {
+            let (ad, bd) = (lane_comb(&t.ds, ed), lane_comb(&t.dds, ed));
+            let r1 = lane_cross(&ad, &b);
+            let r2 = lane_cross(&a, &bd);
+            let r3 = lane_cross(&lane_cross(&a, &ad), &kap);
+            let ada = lane_dot(&a, &ad);
+            for c in 0..3 {
+                for q in 0..3 {
+                    mv[c][q] += (r1[c][q] + r2[c][q] - r3[c][q] - kap[c][q] * (ada[q] * 2.0))
+                        * (inv[q] * tau);
+                }
+            }
+        }
+        let mv = lane_scale(&mv, &t.bend_w);
+        let bm = lane_cross(&b, &mv);
+        let fb = lane_scale(&lane_cross(&mv, &a), &inv);
+        let km = lane_dot(&kap, &mv);
+        let am = lane_dot(&a, &mv);
+        let mut fa = bm;
+        for c in 0..3 {
+            for q in 0..3 {
+                fa[c][q] = inv[q] * bm[c][q]
+                    + km[q] * (-2.0) * inv[q] * a[c][q]
+                    + am[q] * inv[q] * kap[c][q];
+            }
+        }
+        // f_{3j+c}: the axial points, then each bending point's r_x and r_xx parts
+        let mut f = [0.0; CABLE_DOFS];
+        for (j, fj) in f.chunks_exact_mut(3).enumerate() {
+            for (c, fc) in fj.iter_mut().enumerate() {
+                for q in 0..5 {
+                    *fc += fx[c][q] * t.axial_ds[j][q];
+                }
+                for q in 0..3 {
+                    *fc += fa[c][q] * t.ds[j][q];
+                    *fc += fb[c][q] * t.dds[j][q];
+                }
+            }
+        }
+        f
+    }
+}

@@ -20,7 +20,9 @@ impl MassPatterns {
     /// `res += M a`.
     #[inline]
     pub fn add_product<const D: usize>(&self, a: &[f64; D], res: &mut [f64; D]) {
-        let (rs, ys) = (&self.r_slots, &self.y_slots);
+        // the slots of D coordinates, constants (the fields hold the same)
+        let (rs, ys) = super::slots_of(D);
+        debug_assert_eq!((rs, ys), (self.r_slots, self.y_slots));
         for j in 0..4 {
             for k in 0..4 {
                 let m = self.hermite[j][k];

@@ -69,6 +69,14 @@ const TWIST_SLOTS: [usize; 4] = [3, 6, 12, 15];
 /// bending modes do not load it (the frame is normalized).
 pub const PENALTY_FACTOR: f64 = 1.0;
 
+/// [`Ancf3Props::slots`] of the element with `d` coordinates (18: the director element, 12:
+/// the 3D cable); of a const `D`, constants the fixed-size paths index without bounds checks.
+#[inline(always)]
+const fn slots_of(d: usize) -> ([usize; 4], [usize; 2]) {
+    let st = if d == DIRECTOR_DOFS { 9 } else { 6 };
+    ([0, 3, st, st + 3], [6, 15])
+}
+
 /// Element properties (constant).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ancf3Props {
@@ -235,6 +243,8 @@ pub struct Tables3 {
     director: [BendPoint; 2],
     /// dS/dx at the midpoint ξ = ½ (the element twist's midpoint tangent).
     mid: [f64; 4],
+    /// The same points laid out for the 3D cable's residual ([`cable::Lanes`]).
+    lanes: cable::Lanes,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -369,8 +379,7 @@ impl Ancf3Props {
 
     /// Start of each node's blocks: (r-slots of the Hermite functions S1..S4, r_y slots).
     fn slots(&self) -> ([usize; 4], [usize; 2]) {
-        let st = if self.director { 9 } else { 6 };
-        ([0, 3, st, st + 3], [6, 15])
+        slots_of(self.dofs())
     }
 
     /// Constant part of the consistent mass matrix, row-major d × d (d = [`Ancf3Props::dofs`])
@@ -521,6 +530,7 @@ impl Ancf3Props {
                 }
             }),
             mid: hermite(0.5, l).1,
+            lanes: cable::Lanes::default(),
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
             let (_, ds, _) = hermite(0.5 * (xg + 1.0), l);
@@ -538,6 +548,7 @@ impl Ancf3Props {
                 ny: [1.0 - xi, xi],
             };
         }
+        t.lanes = cable::Lanes::of(&t);
         t
     }
 
@@ -549,6 +560,13 @@ impl Ancf3Props {
         e: &[f64; D],
         ed: &[f64; D],
     ) -> [f64; D] {
+        if !self.director {
+            if let (Ok(e), Ok(ed)) = (e[..].try_into(), ed[..].try_into()) {
+                let mut f = [0.0; D];
+                f.copy_from_slice(&self.cable_force(tab, e, ed));
+                return f;
+            }
+        }
         self.force_generic(tab, e, ed)
     }
 
@@ -656,7 +674,7 @@ impl Ancf3Props {
     ) -> [T; D] {
         debug_assert_eq!(D, self.dofs());
         let damped = self.damping_time > 0.0;
-        let (rs, ys) = self.slots();
+        let (rs, ys) = slots_of(D);
         let mut f = [T::from(0.0); D];
         for (q, (w, ds)) in tab.axial.iter().enumerate() {
             let ud = damped.then(|| [comb(ds, &rs, ed)]);

@@ -202,9 +202,11 @@ impl AncfElement3 {
             (f, Some((k, c, mi)))
         } else {
             let mut f = p.internal_force(&self.tables, &e, &ed);
-            let fi = p.director_inertia(&self.tables, &e, &ed, &ea);
-            for (f, fi) in f.iter_mut().zip(&fi) {
-                *f += fi;
+            if p.director {
+                let fi = p.director_inertia(&self.tables, &e, &ed, &ea);
+                for (f, fi) in f.iter_mut().zip(&fi) {
+                    *f += fi;
+                }
             }
             (f, None)
         };
@@ -214,8 +216,9 @@ impl AncfElement3 {
             *r -= env.load * g;
         }
         self.patterns.add_product(&ea, &mut res);
-        let mut blk = [[0.0; D]; D];
-        if !self.bodies.is_empty() {
+        // the section bodies' block (none without bodies: no zeroed matrix per call)
+        let blk = (!self.bodies.is_empty()).then(|| {
+            let mut blk = [[0.0; D]; D];
             let g = self.g.map(|x| env.load * x);
             add_bodies(
                 &self.bodies,
@@ -225,19 +228,19 @@ impl AncfElement3 {
                 &mut res,
                 &mut blk,
             );
-        }
+            blk
+        });
         out.add_residual(&res);
         if let (Some((ca, cv, cx)), Some((k, c, mi))) = (out.matrix, matrices) {
             // the director inertia has velocity terms whether damped or not
             let rated = cv != 0.0 && (p.damping_time > 0.0 || p.director);
-            let bodies = !self.bodies.is_empty();
             let m = &self.mass;
             out.add_block(|r, col| {
                 let mut v = ca * (m[r * D + col] + mi[r][col]) + cx * k[r][col];
                 if rated {
                     v += cv * c[r][col];
                 }
-                if bodies {
+                if let Some(blk) = &blk {
                     v += blk[r][col];
                 }
                 v
