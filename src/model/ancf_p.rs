@@ -28,6 +28,8 @@ pub struct CableP {
     pub props: AncfProps,
     /// Shapes at the quadrature points, mass pattern, load weights.
     pub tables: PTables,
+    /// The tables by shape for the residual path.
+    pub lanes: PLanes,
 }
 
 /// (ε, dε/dr′) of the axial strain measure at slope `r1`.
@@ -117,10 +119,151 @@ impl CableP {
     /// The element of `props` (uniform and straight) and degree `degree` (3 … [`MAX_DEGREE`]).
     pub fn new(props: AncfProps, degree: usize) -> Self {
         assert!(props.reference.is_none() && props.taper.is_none());
+        let tables = PTables::new(degree, props.length);
         Self {
-            tables: PTables::new(degree, props.length),
+            lanes: PLanes::new(&tables, props.ea, props.ei),
+            tables,
             props,
         }
+    }
+}
+
+impl CableP {
+    /// The residual path of [`PKernel::forces_of`] (no matrices), the same operations in the
+    /// same order (the same bits) arranged by point: r′ (and r″) at every point at once, each
+    /// lane a point ([`PLanes`]: the sums over the shapes run in the same order), the points'
+    /// measures side by side (their square roots and divisions independent), then the forces
+    /// added up point by point in the order of [`PKernel::forces_of`].
+    #[inline(always)]
+    fn internal_force_of<const N: usize>(&self, e: &PVec, ed: &PVec) -> PVec {
+        let p = &self.props;
+        let (tau, damped) = (p.damping_time, p.damping_time > 0.0);
+        let l = &self.lanes;
+        // Σ_j w_j x_j from 0 in j order at every lane (as `combine`), x and y
+        let comb = |w: &[[f64; MAX_SHAPES]; MAX_SHAPES], x: &PVec| {
+            let mut r = [[0.0; N]; 2];
+            for j in 0..N {
+                let (xj, yj) = (x[2 * j], x[2 * j + 1]);
+                for q in 0..N {
+                    r[0][q] += w[j][q] * xj;
+                    r[1][q] += w[j][q] * yj;
+                }
+            }
+            r
+        };
+        let zero = [[0.0; N]; 2];
+        // the axial points: w·EA·(ε + τ ε̇) and dε/dr′
+        let r1 = comb(&l.axial_ds, e);
+        let r1d = if damped { comb(&l.axial_ds, ed) } else { zero };
+        let mut sa = [0.0; N];
+        let mut ga = [[0.0; 2]; N];
+        for q in 0..N {
+            let (eps, g) = axial_measure(p.strain, [r1[0][q], r1[1][q]]);
+            let stress = eps + tau * dot2(g, [r1d[0][q], r1d[1][q]]);
+            sa[q] = l.axial_w[q] * stress;
+            ga[q] = g;
+        }
+        let mut f = [[0.0; 2]; N];
+        // f_j += (s w_j) v (as `scatter`)
+        let scat = |f: &mut [[f64; 2]; N], s: f64, w: &[f64; MAX_SHAPES], v: [f64; 2]| {
+            for j in 0..N {
+                let c = s * w[j];
+                f[j][0] += c * v[0];
+                f[j][1] += c * v[1];
+            }
+        };
+        for q in 0..N {
+            scat(&mut f, sa[q], &self.tables.axial[q].ds, ga[q]);
+        }
+        // the bending points (p = N − 1 of them; the last lane unused)
+        let nb = N - 1;
+        let r2 = comb(&l.bending_dds, e);
+        let r2d = if damped {
+            comb(&l.bending_dds, ed)
+        } else {
+            zero
+        };
+        let bending = &self.tables.bending[..nb];
+        match p.strain {
+            StrainModel::Paper => {
+                for (q, pt) in bending.iter().enumerate() {
+                    let m = [r2[0][q] + tau * r2d[0][q], r2[1][q] + tau * r2d[1][q]];
+                    scat(&mut f, l.bending_w[q], &pt.dds, m);
+                }
+            }
+            StrainModel::Exact => {
+                let r1 = comb(&l.bending_ds, e);
+                let r1d = if damped {
+                    comb(&l.bending_ds, ed)
+                } else {
+                    zero
+                };
+                let mut m = [0.0; N];
+                let mut d1 = [[0.0; 2]; N];
+                let mut d2 = [[0.0; 2]; N];
+                for q in 0..nb {
+                    let (a, b) = ([r1[0][q], r1[1][q]], [r2[0][q], r2[1][q]]);
+                    let (kappa, dk1, dk2) = curvature(a, b);
+                    let rates =
+                        dot2(dk1, [r1d[0][q], r1d[1][q]]) + dot2(dk2, [r2d[0][q], r2d[1][q]]);
+                    m[q] = l.bending_w[q] * (kappa + tau * rates);
+                    (d1[q], d2[q]) = (dk1, dk2);
+                }
+                for (q, pt) in bending.iter().enumerate() {
+                    scat(&mut f, m[q], &pt.ds, d1[q]);
+                    scat(&mut f, m[q], &pt.dds, d2[q]);
+                }
+            }
+        }
+        let mut out = [0.0; MAX_DOFS];
+        for j in 0..N {
+            out[2 * j] = f[j][0];
+            out[2 * j + 1] = f[j][1];
+        }
+        out
+    }
+}
+
+/// The quadrature tables of [`CableP`] by shape, each lane a point (`[j][q]`: shape j's
+/// derivative at point q), and the points' weights × stiffness, for the residual path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PLanes {
+    /// dS_j/dx at the axial points.
+    pub axial_ds: [[f64; MAX_SHAPES]; MAX_SHAPES],
+    /// Gauss weight × l/2 × EA at the axial points [N m].
+    pub axial_w: [f64; MAX_SHAPES],
+    /// dS_j/dx at the bending points.
+    pub bending_ds: [[f64; MAX_SHAPES]; MAX_SHAPES],
+    /// d²S_j/dx² at the bending points.
+    pub bending_dds: [[f64; MAX_SHAPES]; MAX_SHAPES],
+    /// Gauss weight × l/2 × EI at the bending points [N m³].
+    pub bending_w: [f64; MAX_SHAPES],
+}
+
+impl PLanes {
+    /// The lanes of `tables` with the section's EA [N] and EI [N m²].
+    fn new(tables: &PTables, ea: f64, ei: f64) -> Self {
+        let mut out = Self {
+            axial_ds: [[0.0; MAX_SHAPES]; MAX_SHAPES],
+            axial_w: [0.0; MAX_SHAPES],
+            bending_ds: [[0.0; MAX_SHAPES]; MAX_SHAPES],
+            bending_dds: [[0.0; MAX_SHAPES]; MAX_SHAPES],
+            bending_w: [0.0; MAX_SHAPES],
+        };
+        for (q, pt) in tables.axial.iter().enumerate() {
+            out.axial_w[q] = pt.w * ea;
+            for j in 0..tables.n {
+                out.axial_ds[j][q] = pt.ds[j];
+            }
+        }
+        for (q, pt) in tables.bending.iter().enumerate() {
+            out.bending_w[q] = pt.w * ei;
+            for j in 0..tables.n {
+                out.bending_ds[j][q] = pt.ds[j];
+                out.bending_dds[j][q] = pt.dds[j];
+            }
+        }
+        out
     }
 }
 
@@ -149,6 +292,9 @@ impl PKernel for CableP {
     ) -> PVec {
         let n = N;
         debug_assert_eq!(n, self.tables.n);
+        if mats.is_none() {
+            return self.internal_force_of::<N>(e, ed);
+        }
         let p = &self.props;
         let tau = p.damping_time;
         let mut f = [0.0; MAX_DOFS];
@@ -333,6 +479,26 @@ mod tests {
     /// With the bubble amplitudes zero, the element of degree p is the cubic element on other
     /// quadrature rules: its nodal forces agree with the cubic's on a state both integrate
     /// nearly exactly (a slightly bent, stretched element).
+    /// The residual path (by point, [`PLanes`]) is the matrix path's force to the bit, for every
+    /// degree, both strain measures, damped and undamped.
+    #[test]
+    fn residual_path_is_the_matrix_paths_force_bit_for_bit() {
+        for p in 3..=MAX_DEGREE {
+            for strain in [StrainModel::Exact, StrainModel::Paper] {
+                for tau in [0.0, 2e-3] {
+                    let k = CableP::new(props(strain, tau), p);
+                    let (e, ed) = state(p);
+                    let fast = k.forces(&e, &ed, None);
+                    let (mut km, mut cm) =
+                        ([[0.0; MAX_DOFS]; MAX_DOFS], [[0.0; MAX_DOFS]; MAX_DOFS]);
+                    let full = k.forces(&e, &ed, Some((&mut km, &mut cm)));
+                    let bits = |f: &PVec| f.map(f64::to_bits);
+                    assert_eq!(bits(&fast), bits(&full), "degree {p} {strain:?} tau {tau}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn zero_bubbles_give_the_cubic_element() {
         for strain in [StrainModel::Exact, StrainModel::Paper] {
