@@ -292,9 +292,24 @@ impl AncfReference {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QuadTables {
     /// Axial points: (w·EA, ds/dx).
-    pub axial: [(f64, [f64; 4]); 5],
+    pub axial: [(f64, Lanes); 5],
     /// Bending points: (w·EI, ds/dx, d²s/dx²).
-    pub bending: [(f64, [f64; 4], [f64; 4]); 3],
+    pub bending: [(f64, Lanes, Lanes); 3],
+}
+
+/// Four shape-function values, each twice: the x and y lanes of the coordinate pairs they
+/// weight (pairs of f64 the compiler keeps in one SIMD register, no broadcast per use).
+pub type Lanes = [[f64; 2]; 4];
+
+/// The values of `s` in both lanes.
+fn lanes(s: [f64; 4]) -> Lanes {
+    s.map(|v| [v, v])
+}
+
+/// The values of `l` (its first lane).
+#[inline(always)]
+fn first(l: &Lanes) -> [f64; 4] {
+    l.map(|p| p[0])
 }
 
 /// Forces and matrices of one element at one state.
@@ -317,17 +332,16 @@ type Block2 = [[f64; 2]; 2];
 const I2: Block2 = [[1.0, 0.0], [0.0, 1.0]];
 
 /// Kronecker expansion of a 4×4 scalar pattern with a 2×2 block:
-/// `out[2k + i][2l + j] += (scale·pattern[k][l])·block[i][j]`, skipping zero coefficients.
+/// `out[2k + i][2l + j] += (scale·pattern[k][l])·block[i][j]` (a zero coefficient adds ±0).
 #[inline(always)]
 fn expand(pattern: &[[f64; 4]; 4], block: &Block2, out: &mut Block8, scale: f64) {
     for k in 0..4 {
-        for l in 0..4 {
-            let c = scale * pattern[k][l];
-            if c != 0.0 {
-                for i in 0..2 {
-                    for j in 0..2 {
-                        out[2 * k + i][2 * l + j] += c * block[i][j];
-                    }
+        for i in 0..2 {
+            let row = &mut out[2 * k + i];
+            for l in 0..4 {
+                let c = scale * pattern[k][l];
+                for j in 0..2 {
+                    row[2 * l + j] += c * block[i][j];
                 }
             }
         }
@@ -364,6 +378,18 @@ fn comb(w: &[f64; 4], x: &[f64; 8]) -> [f64; 2] {
     for k in 0..4 {
         r[0] += w[k] * x[2 * k];
         r[1] += w[k] * x[2 * k + 1];
+    }
+    r
+}
+
+/// [`comb`] with the weights in lanes.
+#[inline(always)]
+fn comb_lanes(w: &Lanes, x: &[f64; 8]) -> [f64; 2] {
+    let mut r = [0.0; 2];
+    for k in 0..4 {
+        for c in 0..2 {
+            r[c] += w[k][c] * x[2 * k + c];
+        }
     }
     r
 }
@@ -554,16 +580,16 @@ impl AncfProps {
     pub fn tables(&self) -> QuadTables {
         let l = self.length;
         let mut t = QuadTables {
-            axial: [(0.0, [0.0; 4]); 5],
-            bending: [(0.0, [0.0; 4], [0.0; 4]); 3],
+            axial: [(0.0, [[0.0; 2]; 4]); 5],
+            bending: [(0.0, [[0.0; 2]; 4], [[0.0; 2]; 4]); 3],
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
-            t.axial[k] = (wg * 0.5 * l * self.ea_at(k), sh.ds);
+            t.axial[k] = (wg * 0.5 * l * self.ea_at(k), lanes(sh.ds));
         }
         for (k, (xg, wg)) in GAUSS3.iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
-            t.bending[k] = (wg * 0.5 * l * self.ei_at(k), sh.ds, sh.dds);
+            t.bending[k] = (wg * 0.5 * l * self.ei_at(k), lanes(sh.ds), lanes(sh.dds));
         }
         t
     }
@@ -600,7 +626,7 @@ impl AncfProps {
         let mut f = [0.0; 8];
         let mut r1_mid = [0.0; 2];
         for (q, (w, ds)) in tab.axial.iter().enumerate() {
-            let r1 = comb(ds, e);
+            let r1 = comb_lanes(ds, e);
             if q == 2 {
                 r1_mid = r1;
             }
@@ -614,31 +640,33 @@ impl AncfProps {
             };
             let mut stress = eps - ref_a[q];
             if DAMPED {
-                let r1d = comb(ds, ed);
+                let r1d = comb_lanes(ds, ed);
                 stress += tau * (g[0] * r1d[0] + g[1] * r1d[1]);
             }
             let c = w * stress;
             for k in 0..4 {
-                f[2 * k] += c * ds[k] * g[0];
-                f[2 * k + 1] += c * ds[k] * g[1];
+                for j in 0..2 {
+                    f[2 * k + j] += c * ds[k][j] * g[j];
+                }
             }
         }
         for (q, (w, ds, dds)) in tab.bending.iter().enumerate() {
-            let r2 = comb(dds, e);
+            let r2 = comb_lanes(dds, e);
             if !EXACT {
                 let mut m = r2;
                 if DAMPED {
-                    let r2d = comb(dds, ed);
+                    let r2d = comb_lanes(dds, ed);
                     m[0] += tau * r2d[0];
                     m[1] += tau * r2d[1];
                 }
                 for k in 0..4 {
-                    f[2 * k] += w * dds[k] * m[0];
-                    f[2 * k + 1] += w * dds[k] * m[1];
+                    for j in 0..2 {
+                        f[2 * k + j] += w * dds[k][j] * m[j];
+                    }
                 }
                 continue;
             }
-            let r1 = if q == 1 { r1_mid } else { comb(ds, e) };
+            let r1 = if q == 1 { r1_mid } else { comb_lanes(ds, e) };
             let inv = 1.0 / (r1[0] * r1[0] + r1[1] * r1[1]);
             let kappa = (r1[0] * r2[1] - r1[1] * r2[0]) * inv;
             let dk1 = [
@@ -648,15 +676,16 @@ impl AncfProps {
             let dk2 = [-r1[1] * inv, r1[0] * inv];
             let mut moment = kappa - ref_b[q];
             if DAMPED {
-                let r1d = comb(ds, ed);
-                let r2d = comb(dds, ed);
+                let r1d = comb_lanes(ds, ed);
+                let r2d = comb_lanes(dds, ed);
                 moment +=
                     tau * (dk1[0] * r1d[0] + dk1[1] * r1d[1] + dk2[0] * r2d[0] + dk2[1] * r2d[1]);
             }
             let c = w * moment;
             for k in 0..4 {
-                f[2 * k] += c * (ds[k] * dk1[0] + dds[k] * dk2[0]);
-                f[2 * k + 1] += c * (ds[k] * dk1[1] + dds[k] * dk2[1]);
+                for j in 0..2 {
+                    f[2 * k + j] += c * (ds[k][j] * dk1[j] + dds[k][j] * dk2[j]);
+                }
             }
         }
         f
@@ -702,7 +731,8 @@ impl AncfProps {
         let damped = tau > 0.0;
         let (ref_a, ref_b) = self.reference_measures();
         // Axial part.
-        for (q, &(w, ref ds)) in tab.axial.iter().enumerate() {
+        for (q, (w, ds)) in tab.axial.iter().enumerate() {
+            let (w, ds) = (*w, &first(ds));
             let r1 = comb(ds, e);
             let nn = r1[0] * r1[0] + r1[1] * r1[1];
             // ε, dε/dr′ (2-vector), d²ε/dr′² (2×2)
@@ -724,8 +754,19 @@ impl AncfProps {
             }
             if let Some((k, d)) = matrices.as_mut() {
                 let pat = outer4(ds, ds);
-                add_outer(k, w, &de, &de);
-                expand(&pat, &h, k, ws);
+                // w dε/de dε/deᵀ, then σ d²ε/de² (pattern ⊗ h), added in that order
+                for a in 0..4 {
+                    for i in 0..2 {
+                        let (row, wde) = (&mut k[2 * a + i], w * de[2 * a + i]);
+                        for b in 0..4 {
+                            let cp = ws * pat[a][b];
+                            for j in 0..2 {
+                                let c = 2 * b + j;
+                                row[c] = row[c] + wde * de[c] + cp * h[i][j];
+                            }
+                        }
+                    }
+                }
                 if damped {
                     add_outer(d, w * tau, &de, &de);
                     // ∂ε̇/∂e = d²ε/de² ė
@@ -736,7 +777,8 @@ impl AncfProps {
             }
         }
         // Bending part.
-        for (q, &(w, ref ds, ref dds)) in tab.bending.iter().enumerate() {
+        for (q, (w, ds, dds)) in tab.bending.iter().enumerate() {
+            let (w, ds, dds) = (*w, &first(ds), &first(dds));
             match self.strain {
                 StrainModel::Paper => {
                     let (r2, r2d) = (comb(dds, e), comb(dds, ed));
@@ -790,14 +832,23 @@ impl AncfProps {
                         let h12 =
                             [0, 1].map(|i| [0, 1].map(|j| jt[i][j] / gg - dg[i] * c2[j] / g2));
                         let h21 = [0, 1].map(|i| [0, 1].map(|j| h12[j][i]));
+                        // d²K/de² = ds⊗ds ⊗ H11 + ds⊗dds ⊗ H12 + dds⊗ds ⊗ H21; K += w dK dKᵀ + wM d²K
                         let mut hk = [[0.0; 8]; 8];
-                        expand(&outer4(ds, ds), &h11, &mut hk, 1.0);
-                        expand(&outer4(ds, dds), &h12, &mut hk, 1.0);
-                        expand(&outer4(dds, ds), &h21, &mut hk, 1.0);
-                        for i in 0..8 {
-                            let wdk = w * dk[i];
-                            for j in 0..8 {
-                                k[i][j] += wdk * dk[j] + wm * hk[i][j];
+                        for a in 0..4 {
+                            for i in 0..2 {
+                                let r = 2 * a + i;
+                                let wdk = w * dk[r];
+                                for b in 0..4 {
+                                    let c11 = ds[a] * ds[b];
+                                    let (c12, c21) = (ds[a] * dds[b], dds[a] * ds[b]);
+                                    for j in 0..2 {
+                                        let c = 2 * b + j;
+                                        let hv =
+                                            c11 * h11[i][j] + c12 * h12[i][j] + c21 * h21[i][j];
+                                        hk[r][c] = hv;
+                                        k[r][c] += wdk * dk[c] + wm * hv;
+                                    }
+                                }
                             }
                         }
                         if damped {
@@ -1035,322 +1086,6 @@ pub(crate) mod tests {
                     o.force
                 );
                 assert!(p.strain_energy(&e) < 1e-20);
-            }
-        }
-    }
-}
-
-#[cfg(test)]
-mod old_tmp {
-    use super::*;
-    fn expand(pattern: &[[f64; 4]; 4], block: &nalgebra::Matrix2<f64>, out: &mut Mat8, scale: f64) {
-        for k in 0..4 {
-            for l in 0..4 {
-                let c = scale * pattern[k][l];
-                if c != 0.0 {
-                    for i in 0..2 {
-                        for j in 0..2 {
-                            out[(2 * k + i, 2 * l + j)] += c * block[(i, j)];
-                        }
-                    }
-                }
-            }
-        }
-    }
-    fn outer4(a: &[f64; 4], b: &[f64; 4]) -> [[f64; 4]; 4] {
-        let mut p = [[0.0; 4]; 4];
-        for k in 0..4 {
-            for l in 0..4 {
-                p[k][l] = a[k] * b[l];
-            }
-        }
-        p
-    }
-    impl AncfProps {
-        /// [`AncfProps::internal_force`] with precomputed tables.
-        pub fn old_internal_force_with(
-            &self,
-            tab: &QuadTables,
-            e: &[f64; 8],
-            ed: &[f64; 8],
-        ) -> [f64; 8] {
-            let tau = self.damping_time;
-            let mut f = [0.0; 8];
-            let comb = |w: &[f64; 4], x: &[f64; 8]| {
-                let mut r = [0.0; 2];
-                for k in 0..4 {
-                    r[0] += w[k] * x[2 * k];
-                    r[1] += w[k] * x[2 * k + 1];
-                }
-                r
-            };
-            for (q, (w, ds)) in tab.axial.iter().enumerate() {
-                let r1 = comb(ds, e);
-                // stress (per EA) and dε/dr′
-                let (mut eps, g) = match self.strain {
-                    StrainModel::Exact => {
-                        let n = (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
-                        let inv = 1.0 / n;
-                        (n - 1.0, [r1[0] * inv, r1[1] * inv])
-                    }
-                    StrainModel::Paper => (0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0), r1),
-                };
-                if let Some(r) = &self.reference {
-                    eps -= r.axial[q];
-                }
-                let mut stress = eps;
-                if tau > 0.0 {
-                    let r1d = comb(ds, ed);
-                    stress += tau * (g[0] * r1d[0] + g[1] * r1d[1]);
-                }
-                let c = w * stress;
-                for k in 0..4 {
-                    f[2 * k] += c * ds[k] * g[0];
-                    f[2 * k + 1] += c * ds[k] * g[1];
-                }
-            }
-            for (q, (w, ds, dds)) in tab.bending.iter().enumerate() {
-                let r2 = comb(dds, e);
-                match self.strain {
-                    StrainModel::Paper => {
-                        let mut m = r2;
-                        if tau > 0.0 {
-                            let r2d = comb(dds, ed);
-                            m[0] += tau * r2d[0];
-                            m[1] += tau * r2d[1];
-                        }
-                        for k in 0..4 {
-                            f[2 * k] += w * dds[k] * m[0];
-                            f[2 * k + 1] += w * dds[k] * m[1];
-                        }
-                    }
-                    StrainModel::Exact => {
-                        let r1 = comb(ds, e);
-                        let inv = 1.0 / (r1[0] * r1[0] + r1[1] * r1[1]);
-                        let kappa = (r1[0] * r2[1] - r1[1] * r2[0]) * inv;
-                        let dk1 = [
-                            (r2[1] - 2.0 * kappa * r1[0]) * inv,
-                            (-r2[0] - 2.0 * kappa * r1[1]) * inv,
-                        ];
-                        let dk2 = [-r1[1] * inv, r1[0] * inv];
-                        let mut moment = kappa;
-                        if let Some(r) = &self.reference {
-                            moment -= r.bending[q];
-                        }
-                        if tau > 0.0 {
-                            let r1d = comb(ds, ed);
-                            let r2d = comb(dds, ed);
-                            moment += tau
-                                * (dk1[0] * r1d[0]
-                                    + dk1[1] * r1d[1]
-                                    + dk2[0] * r2d[0]
-                                    + dk2[1] * r2d[1]);
-                        }
-                        let c = w * moment;
-                        for k in 0..4 {
-                            f[2 * k] += c * (ds[k] * dk1[0] + dds[k] * dk2[0]);
-                            f[2 * k + 1] += c * (ds[k] * dk1[1] + dds[k] * dk2[1]);
-                        }
-                    }
-                }
-            }
-            f
-        }
-
-        /// Internal force, tangent stiffness and damping matrix at (e, ė).
-        pub fn old_elastic(&self, e: &Vec8, ed: &Vec8, with_matrices: bool) -> ElasticOut {
-            let l = self.length;
-            let tau = self.damping_time;
-            let damped = tau > 0.0;
-            let mut out = ElasticOut {
-                force: Vec8::zeros(),
-                stiffness: Mat8::zeros(),
-                damping: Mat8::zeros(),
-            };
-            // Axial part.
-            for (q, (xg, wg)) in GAUSS5.into_iter().enumerate() {
-                let w = wg * 0.5 * l * self.ea_at(q);
-                let sh = Shape::at(0.5 * (xg + 1.0), l);
-                let r1 = sh.r1(e);
-                // ε, dε/dr′ (2-vector), d²ε/dr′² (2×2)
-                let (eps, g, h) = match self.strain {
-                    StrainModel::Exact => {
-                        let n = r1.norm();
-                        let t = r1 / n;
-                        (
-                            n - 1.0,
-                            t,
-                            (nalgebra::Matrix2::identity() - t * t.transpose()) / n,
-                        )
-                    }
-                    StrainModel::Paper => (
-                        0.5 * (r1.norm_squared() - 1.0),
-                        r1,
-                        nalgebra::Matrix2::identity(),
-                    ),
-                };
-                let mut de = Vec8::zeros(); // dε/de
-                for k in 0..4 {
-                    de[2 * k] = sh.ds[k] * g[0];
-                    de[2 * k + 1] = sh.ds[k] * g[1];
-                }
-                let eps_dot = if damped { de.dot(ed) } else { 0.0 };
-                let mut stress = eps + tau * eps_dot;
-                if let Some(r) = &self.reference {
-                    stress -= r.axial[q];
-                }
-                out.force += w * stress * de;
-                if with_matrices {
-                    let pat = outer4(&sh.ds, &sh.ds);
-                    out.stiffness += w * de * de.transpose();
-                    expand(&pat, &h, &mut out.stiffness, w * stress);
-                    if damped {
-                        out.damping += (w * tau) * de * de.transpose();
-                        // ∂ε̇/∂e = d²ε/de² ė
-                        let mut hed = Mat8::zeros();
-                        expand(&pat, &h, &mut hed, 1.0);
-                        let dedot = hed * ed;
-                        out.stiffness += (w * tau) * de * dedot.transpose();
-                    }
-                }
-            }
-            // Bending part.
-            for (q, (xg, wg)) in GAUSS3.into_iter().enumerate() {
-                let w = wg * 0.5 * l * self.ei_at(q);
-                let sh = Shape::at(0.5 * (xg + 1.0), l);
-                match self.strain {
-                    StrainModel::Paper => {
-                        let r2 = sh.r2(e);
-                        let r2d = sh.r2(ed);
-                        let m = r2 + tau * r2d;
-                        for k in 0..4 {
-                            out.force[2 * k] += w * sh.dds[k] * m[0];
-                            out.force[2 * k + 1] += w * sh.dds[k] * m[1];
-                        }
-                        if with_matrices {
-                            let pat = outer4(&sh.dds, &sh.dds);
-                            expand(&pat, &nalgebra::Matrix2::identity(), &mut out.stiffness, w);
-                            if damped {
-                                expand(
-                                    &pat,
-                                    &nalgebra::Matrix2::identity(),
-                                    &mut out.damping,
-                                    w * tau,
-                                );
-                            }
-                        }
-                    }
-                    StrainModel::Exact => {
-                        let (r1, r2) = (sh.r1(e), sh.r2(e));
-                        let gg = r1.norm_squared();
-                        let c = cross(&r1, &r2);
-                        let kappa = c / gg;
-                        // ∂c/∂r′ = (r2y, −r2x), ∂c/∂r″ = (−r1y, r1x)
-                        let c1 = Vector2::new(r2[1], -r2[0]);
-                        let c2 = Vector2::new(-r1[1], r1[0]);
-                        let dk1 = c1 / gg - (2.0 * kappa / gg) * r1; // ∂K/∂r′
-                        let dk2 = c2 / gg; // ∂K/∂r″
-                        let mut dk = Vec8::zeros();
-                        for k in 0..4 {
-                            let v = sh.ds[k] * dk1 + sh.dds[k] * dk2;
-                            dk[2 * k] = v[0];
-                            dk[2 * k + 1] = v[1];
-                        }
-                        let k_dot = if damped { dk.dot(ed) } else { 0.0 };
-                        let mut moment = kappa + tau * k_dot;
-                        if let Some(r) = &self.reference {
-                            moment -= r.bending[q];
-                        }
-                        out.force += w * moment * dk;
-                        if with_matrices {
-                            // Hessian of K in (r′, r″): blocks H11, H12, H21, H22.
-                            let i2 = nalgebra::Matrix2::identity();
-                            let jt = nalgebra::Matrix2::new(0.0, 1.0, -1.0, 0.0); // ∂c1/∂r″
-                            let dg = 2.0 * r1;
-                            let h11 = -(c1 * dg.transpose() + dg * c1.transpose()) / (gg * gg)
-                                - (2.0 * c / (gg * gg)) * i2
-                                + (2.0 * c / (gg * gg * gg)) * dg * dg.transpose();
-                            let h12 = jt / gg - (dg * c2.transpose()) / (gg * gg);
-                            let h21 = h12.transpose();
-                            let mut hk = Mat8::zeros();
-                            expand(&outer4(&sh.ds, &sh.ds), &h11, &mut hk, 1.0);
-                            expand(&outer4(&sh.ds, &sh.dds), &h12, &mut hk, 1.0);
-                            expand(&outer4(&sh.dds, &sh.ds), &h21, &mut hk, 1.0);
-                            out.stiffness += w * dk * dk.transpose() + (w * moment) * hk;
-                            if damped {
-                                out.damping += (w * tau) * dk * dk.transpose();
-                                let dkdot = hk * ed;
-                                out.stiffness += (w * tau) * dk * dkdot.transpose();
-                            }
-                        }
-                    }
-                }
-            }
-            out
-        }
-    }
-
-    #[test]
-    fn new_kernels_are_bit_identical_to_old() {
-        let mut seed = 12345u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
-        for strain in [StrainModel::Exact, StrainModel::Paper] {
-            for tau in [0.0, 1e-3] {
-                for variant in 0..3 {
-                    let mut p = tests::props(strain, tau);
-                    if variant >= 1 && strain == StrainModel::Exact {
-                        p.reference = Some(AncfReference::arc(p.length, 3.0));
-                    }
-                    if variant == 2 {
-                        p.taper = Some(SectionTable::of(0.0, p.length, |x| {
-                            (6.6e5 * (1.0 + x), 0.165 * (1.0 - x), 0.02)
-                        }));
-                    }
-                    for _ in 0..200 {
-                        let mut e = straight([0.1, 0.2], 0.7, p.length);
-                        let mut ed = Vec8::zeros();
-                        for i in 0..8 {
-                            e[i] += 0.1 * rnd() * if i % 4 < 2 { p.length } else { 1.0 };
-                            ed[i] = rnd();
-                        }
-                        let a = p.old_elastic(&e, &ed, true);
-                        let b = p.elastic(&e, &ed, true);
-                        for i in 0..8 {
-                            assert_eq!(
-                                a.force[i].to_bits(),
-                                b.force[i].to_bits(),
-                                "{strain:?} {tau} f{i}"
-                            );
-                            for j in 0..8 {
-                                assert_eq!(
-                                    a.stiffness[(i, j)].to_bits(),
-                                    b.stiffness[(i, j)].to_bits(),
-                                    "{strain:?} {tau} {variant} K{i}{j}"
-                                );
-                                assert_eq!(
-                                    a.damping[(i, j)].to_bits(),
-                                    b.damping[(i, j)].to_bits(),
-                                    "{strain:?} {tau} C{i}{j}"
-                                );
-                            }
-                        }
-                        let tab = p.tables();
-                        let fa = p.old_internal_force_with(&tab, &e.into(), &ed.into());
-                        let fb = p.internal_force_with(&tab, &e.into(), &ed.into());
-                        for i in 0..8 {
-                            assert_eq!(
-                                fa[i].to_bits(),
-                                fb[i].to_bits(),
-                                "{strain:?} {tau} {variant} r{i}"
-                            );
-                        }
-                    }
-                }
             }
         }
     }

@@ -197,7 +197,8 @@ impl AncfElement {
 
 impl Element<Planar> for AncfElement {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, mut out: ElementOut<'_>) {
-        let (e, ed, ea) = x.arrays::<8>();
+        let (mut e, mut ed, mut ea) = ([0.0; 8], [0.0; 8], [0.0; 8]);
+        x.gather(&mut e, &mut ed, &mut ea);
         // r = M ë + f_int − load·f_g, M = M4 ⊗ I₂
         let mut res = self.inertia(&ea);
         let gf = &self.gravity_force;
@@ -386,8 +387,8 @@ impl Element<Planar> for AncfElement {
         for (i, (_, ds)) in self.tables.axial.iter().enumerate() {
             let (mut x, mut y) = (0.0, 0.0);
             for k in 0..4 {
-                x += ds[k] * q[2 * k];
-                y += ds[k] * q[2 * k + 1];
+                x += ds[k][0] * q[2 * k];
+                y += ds[k][1] * q[2 * k + 1];
             }
             // from the curved reference's ε₀ (the strain the element's stress counts)
             let e0 = self.props.reference.map_or(0.0, |r| r.axial[i]);
