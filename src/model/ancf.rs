@@ -623,20 +623,31 @@ impl AncfProps {
         debug_assert_eq!(tab.axial[2].1, tab.bending[1].1);
         let tau = self.damping_time;
         let (ref_a, ref_b) = self.reference_measures();
-        let mut f = [0.0; 8];
-        let mut r1_mid = [0.0; 2];
-        for (q, (w, ds)) in tab.axial.iter().enumerate() {
-            let r1 = comb_lanes(ds, e);
-            if q == 2 {
-                r1_mid = r1;
+        // r′ at the 5 axial and 3 bending points (the middle one shared), r″ at the bending
+        // points; then every square root and reciprocal at once (independent, in pairs)
+        let mut r1 = [[0.0; 2]; 8];
+        for (q, (_, ds)) in tab.axial.iter().enumerate() {
+            r1[q] = comb_lanes(ds, e);
+        }
+        r1[5] = comb_lanes(&tab.bending[0].1, e);
+        r1[6] = r1[2];
+        r1[7] = comb_lanes(&tab.bending[2].1, e);
+        let sq = r1.map(|r| r[0] * r[0] + r[1] * r[1]);
+        let mut den = sq;
+        if EXACT {
+            for d in &mut den[..5] {
+                *d = d.sqrt();
             }
+        }
+        let inv = den.map(|d| 1.0 / d);
+        let mut f = [0.0; 8];
+        for (q, (w, ds)) in tab.axial.iter().enumerate() {
+            let r1 = r1[q];
             // stress (per EA) and dε/dr′
             let (eps, g) = if EXACT {
-                let n = (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
-                let inv = 1.0 / n;
-                (n - 1.0, [r1[0] * inv, r1[1] * inv])
+                (den[q] - 1.0, [r1[0] * inv[q], r1[1] * inv[q]])
             } else {
-                (0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0), r1)
+                (0.5 * (sq[q] - 1.0), r1)
             };
             let mut stress = eps - ref_a[q];
             if DAMPED {
@@ -666,8 +677,7 @@ impl AncfProps {
                 }
                 continue;
             }
-            let r1 = if q == 1 { r1_mid } else { comb_lanes(ds, e) };
-            let inv = 1.0 / (r1[0] * r1[0] + r1[1] * r1[1]);
+            let (r1, inv) = (r1[5 + q], inv[5 + q]);
             let kappa = (r1[0] * r2[1] - r1[1] * r2[0]) * inv;
             let dk1 = [
                 (r2[1] - 2.0 * kappa * r1[0]) * inv,
