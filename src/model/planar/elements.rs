@@ -197,8 +197,7 @@ impl AncfElement {
 
 impl Element<Planar> for AncfElement {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, mut out: ElementOut<'_>) {
-        let (mut e, mut ed, mut ea) = ([0.0; 8], [0.0; 8], [0.0; 8]);
-        x.gather(&mut e, &mut ed, &mut ea);
+        let (e, ed, ea) = x.arrays::<8>();
         // r = M ë + f_int − load·f_g, M = M4 ⊗ I₂
         let mut res = self.inertia(&ea);
         let gf = &self.gravity_force;
