@@ -292,9 +292,24 @@ impl AncfReference {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QuadTables {
     /// Axial points: (w·EA, ds/dx).
-    pub axial: [(f64, [f64; 4]); 5],
+    pub axial: [(f64, Lanes); 5],
     /// Bending points: (w·EI, ds/dx, d²s/dx²).
-    pub bending: [(f64, [f64; 4], [f64; 4]); 3],
+    pub bending: [(f64, Lanes, Lanes); 3],
+}
+
+/// Four shape-function values, each twice: the x and y lanes of the coordinate pairs they
+/// weight (pairs of f64 the compiler keeps in one SIMD register, no broadcast per use).
+pub type Lanes = [[f64; 2]; 4];
+
+/// The values of `s` in both lanes.
+fn lanes(s: [f64; 4]) -> Lanes {
+    s.map(|v| [v, v])
+}
+
+/// The values of `l` (its first lane).
+#[inline(always)]
+fn first(l: &Lanes) -> [f64; 4] {
+    l.map(|p| p[0])
 }
 
 /// Forces and matrices of one element at one state.
@@ -308,20 +323,103 @@ pub struct ElasticOut {
     pub damping: Mat8,
 }
 
-/// Kronecker expansion of a 4×4 scalar pattern with a 2×2 block.
-fn expand(pattern: &[[f64; 4]; 4], block: &nalgebra::Matrix2<f64>, out: &mut Mat8, scale: f64) {
+/// Row-major 8×8 element block.
+pub type Block8 = [[f64; 8]; 8];
+
+/// 2×2 block, row-major.
+type Block2 = [[f64; 2]; 2];
+
+const I2: Block2 = [[1.0, 0.0], [0.0, 1.0]];
+
+/// Kronecker expansion of a 4×4 scalar pattern with a 2×2 block:
+/// `out[2k + i][2l + j] += (scale·pattern[k][l])·block[i][j]` (a zero coefficient adds ±0).
+#[inline(always)]
+fn expand(pattern: &[[f64; 4]; 4], block: &Block2, out: &mut Block8, scale: f64) {
     for k in 0..4 {
-        for l in 0..4 {
-            let c = scale * pattern[k][l];
-            if c != 0.0 {
-                for i in 0..2 {
-                    for j in 0..2 {
-                        out[(2 * k + i, 2 * l + j)] += c * block[(i, j)];
-                    }
+        for i in 0..2 {
+            let row = &mut out[2 * k + i];
+            for l in 0..4 {
+                let c = scale * pattern[k][l];
+                for j in 0..2 {
+                    row[2 * l + j] += c * block[i][j];
                 }
             }
         }
     }
+}
+
+/// `out[i][j] += (s·u_i)·v_j`.
+#[inline(always)]
+fn add_outer(out: &mut Block8, s: f64, u: &[f64; 8], v: &[f64; 8]) {
+    for i in 0..8 {
+        let su = s * u[i];
+        for j in 0..8 {
+            out[i][j] += su * v[j];
+        }
+    }
+}
+
+/// `h·x`, summed left to right over the columns.
+#[inline(always)]
+fn mat_vec(h: &Block8, x: &[f64; 8]) -> [f64; 8] {
+    h.map(|row| {
+        let mut s = row[0] * x[0];
+        for j in 1..8 {
+            s += row[j] * x[j];
+        }
+        s
+    })
+}
+
+/// `Σ_k w_k x_{2k + c}` for c = 0, 1 (from zero, left to right).
+#[inline(always)]
+fn comb(w: &[f64; 4], x: &[f64; 8]) -> [f64; 2] {
+    let mut r = [0.0; 2];
+    for k in 0..4 {
+        r[0] += w[k] * x[2 * k];
+        r[1] += w[k] * x[2 * k + 1];
+    }
+    r
+}
+
+/// [`comb`] with the weights in lanes.
+#[inline(always)]
+fn comb_lanes(w: &Lanes, x: &[f64; 8]) -> [f64; 2] {
+    let mut r = [0.0; 2];
+    for k in 0..4 {
+        for c in 0..2 {
+            r[c] += w[k][c] * x[2 * k + c];
+        }
+    }
+    r
+}
+
+/// The 8-vector `[ds_k v_c]` (k = 0..4, c = 0, 1).
+#[inline(always)]
+fn spread(ds: &[f64; 4], v: [f64; 2]) -> [f64; 8] {
+    let mut o = [0.0; 8];
+    for k in 0..4 {
+        o[2 * k] = ds[k] * v[0];
+        o[2 * k + 1] = ds[k] * v[1];
+    }
+    o
+}
+
+/// `a·b` in nalgebra's order for an 8-vector (the full kernel's ε̇ and K̇).
+#[inline(always)]
+fn dot8(a: &[f64; 8], b: &[f64; 8]) -> f64 {
+    Vec8::from(*a).dot(&Vec8::from(*b))
+}
+
+/// The 4×4 pattern a bᵀ.
+#[inline(always)]
+fn outer4(a: &[f64; 4], b: &[f64; 4]) -> [[f64; 4]; 4] {
+    a.map(|ak| b.map(|bl| ak * bl))
+}
+
+/// A row-major block as a matrix.
+fn to_mat8(b: &Block8) -> Mat8 {
+    Mat8::from_fn(|r, c| b[r][c])
 }
 
 impl AncfProps {
@@ -339,9 +437,9 @@ impl AncfProps {
                     }
                 }
             }
-            let mut m = Mat8::zeros();
-            expand(&p, &nalgebra::Matrix2::identity(), &mut m, 1.0);
-            return m;
+            let mut m = [[0.0; 8]; 8];
+            expand(&p, &I2, &mut m, 1.0);
+            return to_mat8(&m);
         }
         let c = self.rho_a * l / 420.0;
         let p = [
@@ -350,9 +448,9 @@ impl AncfProps {
             [54.0, 13.0 * l, 156.0, -22.0 * l],
             [-13.0 * l, -3.0 * l * l, -22.0 * l, 4.0 * l * l],
         ];
-        let mut m = Mat8::zeros();
-        expand(&p, &nalgebra::Matrix2::identity(), &mut m, c);
-        m
+        let mut m = [[0.0; 8]; 8];
+        expand(&p, &I2, &mut m, c);
+        to_mat8(&m)
     }
 
     /// Generalized gravity force ∫ρA Sᵀ g dx (paper eq. 8) [N, N m].
@@ -482,16 +580,16 @@ impl AncfProps {
     pub fn tables(&self) -> QuadTables {
         let l = self.length;
         let mut t = QuadTables {
-            axial: [(0.0, [0.0; 4]); 5],
-            bending: [(0.0, [0.0; 4], [0.0; 4]); 3],
+            axial: [(0.0, [[0.0; 2]; 4]); 5],
+            bending: [(0.0, [[0.0; 2]; 4], [[0.0; 2]; 4]); 3],
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
-            t.axial[k] = (wg * 0.5 * l * self.ea_at(k), sh.ds);
+            t.axial[k] = (wg * 0.5 * l * self.ea_at(k), lanes(sh.ds));
         }
         for (k, (xg, wg)) in GAUSS3.iter().enumerate() {
             let sh = Shape::at(0.5 * (xg + 1.0), l);
-            t.bending[k] = (wg * 0.5 * l * self.ei_at(k), sh.ds, sh.dds);
+            t.bending[k] = (wg * 0.5 * l * self.ei_at(k), lanes(sh.ds), lanes(sh.dds));
         }
         t
     }
@@ -504,230 +602,274 @@ impl AncfProps {
 
     /// [`AncfProps::internal_force`] with precomputed tables.
     pub fn internal_force_with(&self, tab: &QuadTables, e: &[f64; 8], ed: &[f64; 8]) -> [f64; 8] {
+        match (self.strain, self.damping_time > 0.0) {
+            (StrainModel::Exact, false) => self.force_kernel::<true, false>(tab, e, ed),
+            (StrainModel::Exact, true) => self.force_kernel::<true, true>(tab, e, ed),
+            (StrainModel::Paper, false) => self.force_kernel::<false, false>(tab, e, ed),
+            (StrainModel::Paper, true) => self.force_kernel::<false, true>(tab, e, ed),
+        }
+    }
+
+    /// [`AncfProps::internal_force_with`] for exact (`EXACT`) or paper strains, with or
+    /// without damping: the branches resolved outside the quadrature loops. r′ at the middle
+    /// bending point is that of the middle axial point (both at ξ = ½).
+    #[inline(always)]
+    fn force_kernel<const EXACT: bool, const DAMPED: bool>(
+        &self,
+        tab: &QuadTables,
+        e: &[f64; 8],
+        ed: &[f64; 8],
+    ) -> [f64; 8] {
+        debug_assert_eq!(tab.axial[2].1, tab.bending[1].1);
         let tau = self.damping_time;
+        let (ref_a, ref_b) = self.reference_measures();
+        // r′ at the 5 axial and 3 bending points (the middle one shared), r″ at the bending
+        // points; then every square root and reciprocal at once (independent, in pairs)
+        let mut r1 = [[0.0; 2]; 8];
+        for (q, (_, ds)) in tab.axial.iter().enumerate() {
+            r1[q] = comb_lanes(ds, e);
+        }
+        r1[5] = comb_lanes(&tab.bending[0].1, e);
+        r1[6] = r1[2];
+        r1[7] = comb_lanes(&tab.bending[2].1, e);
+        let sq = r1.map(|r| r[0] * r[0] + r[1] * r[1]);
+        let mut den = sq;
+        if EXACT {
+            for d in &mut den[..5] {
+                *d = d.sqrt();
+            }
+        }
+        let inv = den.map(|d| 1.0 / d);
         let mut f = [0.0; 8];
-        let comb = |w: &[f64; 4], x: &[f64; 8]| {
-            let mut r = [0.0; 2];
-            for k in 0..4 {
-                r[0] += w[k] * x[2 * k];
-                r[1] += w[k] * x[2 * k + 1];
-            }
-            r
-        };
         for (q, (w, ds)) in tab.axial.iter().enumerate() {
-            let r1 = comb(ds, e);
+            let r1 = r1[q];
             // stress (per EA) and dε/dr′
-            let (mut eps, g) = match self.strain {
-                StrainModel::Exact => {
-                    let n = (r1[0] * r1[0] + r1[1] * r1[1]).sqrt();
-                    let inv = 1.0 / n;
-                    (n - 1.0, [r1[0] * inv, r1[1] * inv])
-                }
-                StrainModel::Paper => (0.5 * (r1[0] * r1[0] + r1[1] * r1[1] - 1.0), r1),
+            let (eps, g) = if EXACT {
+                (den[q] - 1.0, [r1[0] * inv[q], r1[1] * inv[q]])
+            } else {
+                (0.5 * (sq[q] - 1.0), r1)
             };
-            if let Some(r) = &self.reference {
-                eps -= r.axial[q];
-            }
-            let mut stress = eps;
-            if tau > 0.0 {
-                let r1d = comb(ds, ed);
+            let mut stress = eps - ref_a[q];
+            if DAMPED {
+                let r1d = comb_lanes(ds, ed);
                 stress += tau * (g[0] * r1d[0] + g[1] * r1d[1]);
             }
             let c = w * stress;
             for k in 0..4 {
-                f[2 * k] += c * ds[k] * g[0];
-                f[2 * k + 1] += c * ds[k] * g[1];
+                for j in 0..2 {
+                    f[2 * k + j] += c * ds[k][j] * g[j];
+                }
             }
         }
         for (q, (w, ds, dds)) in tab.bending.iter().enumerate() {
-            let r2 = comb(dds, e);
-            match self.strain {
-                StrainModel::Paper => {
-                    let mut m = r2;
-                    if tau > 0.0 {
-                        let r2d = comb(dds, ed);
-                        m[0] += tau * r2d[0];
-                        m[1] += tau * r2d[1];
-                    }
-                    for k in 0..4 {
-                        f[2 * k] += w * dds[k] * m[0];
-                        f[2 * k + 1] += w * dds[k] * m[1];
+            let r2 = comb_lanes(dds, e);
+            if !EXACT {
+                let mut m = r2;
+                if DAMPED {
+                    let r2d = comb_lanes(dds, ed);
+                    m[0] += tau * r2d[0];
+                    m[1] += tau * r2d[1];
+                }
+                for k in 0..4 {
+                    for j in 0..2 {
+                        f[2 * k + j] += w * dds[k][j] * m[j];
                     }
                 }
-                StrainModel::Exact => {
-                    let r1 = comb(ds, e);
-                    let inv = 1.0 / (r1[0] * r1[0] + r1[1] * r1[1]);
-                    let kappa = (r1[0] * r2[1] - r1[1] * r2[0]) * inv;
-                    let dk1 = [
-                        (r2[1] - 2.0 * kappa * r1[0]) * inv,
-                        (-r2[0] - 2.0 * kappa * r1[1]) * inv,
-                    ];
-                    let dk2 = [-r1[1] * inv, r1[0] * inv];
-                    let mut moment = kappa;
-                    if let Some(r) = &self.reference {
-                        moment -= r.bending[q];
-                    }
-                    if tau > 0.0 {
-                        let r1d = comb(ds, ed);
-                        let r2d = comb(dds, ed);
-                        moment += tau
-                            * (dk1[0] * r1d[0]
-                                + dk1[1] * r1d[1]
-                                + dk2[0] * r2d[0]
-                                + dk2[1] * r2d[1]);
-                    }
-                    let c = w * moment;
-                    for k in 0..4 {
-                        f[2 * k] += c * (ds[k] * dk1[0] + dds[k] * dk2[0]);
-                        f[2 * k + 1] += c * (ds[k] * dk1[1] + dds[k] * dk2[1]);
-                    }
+                continue;
+            }
+            let (r1, inv) = (r1[5 + q], inv[5 + q]);
+            let kappa = (r1[0] * r2[1] - r1[1] * r2[0]) * inv;
+            let dk1 = [
+                (r2[1] - 2.0 * kappa * r1[0]) * inv,
+                (-r2[0] - 2.0 * kappa * r1[1]) * inv,
+            ];
+            let dk2 = [-r1[1] * inv, r1[0] * inv];
+            let mut moment = kappa - ref_b[q];
+            if DAMPED {
+                let r1d = comb_lanes(ds, ed);
+                let r2d = comb_lanes(dds, ed);
+                moment +=
+                    tau * (dk1[0] * r1d[0] + dk1[1] * r1d[1] + dk2[0] * r2d[0] + dk2[1] * r2d[1]);
+            }
+            let c = w * moment;
+            for k in 0..4 {
+                for j in 0..2 {
+                    f[2 * k + j] += c * (ds[k][j] * dk1[j] + dds[k][j] * dk2[j]);
                 }
             }
         }
         f
     }
 
+    /// (ε₀, K₀) at the axial and bending points: the reference's, zero when straight
+    /// (subtracting zero is exact).
+    #[inline(always)]
+    fn reference_measures(&self) -> ([f64; 5], [f64; 3]) {
+        self.reference
+            .map_or(([0.0; 5], [0.0; 3]), |r| (r.axial, r.bending))
+    }
+
     /// Internal force, tangent stiffness and damping matrix at (e, ė).
     pub fn elastic(&self, e: &Vec8, ed: &Vec8, with_matrices: bool) -> ElasticOut {
-        let l = self.length;
+        let (mut f, mut k, mut d) = ([0.0; 8], [[0.0; 8]; 8], [[0.0; 8]; 8]);
+        let matrices = with_matrices.then_some((&mut k, &mut d));
+        self.elastic_into(
+            &self.tables(),
+            &(*e).into(),
+            &(*ed).into(),
+            &mut f,
+            matrices,
+        );
+        ElasticOut {
+            force: Vec8::from(f),
+            stiffness: to_mat8(&k),
+            damping: to_mat8(&d),
+        }
+    }
+
+    /// [`AncfProps::elastic`] with precomputed tables on arrays: the force added to `force`
+    /// and, with `matrices`, ∂f/∂e and ∂f/∂ė added to the two row-major blocks.
+    pub fn elastic_into(
+        &self,
+        tab: &QuadTables,
+        e: &[f64; 8],
+        ed: &[f64; 8],
+        force: &mut [f64; 8],
+        mut matrices: Option<(&mut Block8, &mut Block8)>,
+    ) {
         let tau = self.damping_time;
         let damped = tau > 0.0;
-        let mut out = ElasticOut {
-            force: Vec8::zeros(),
-            stiffness: Mat8::zeros(),
-            damping: Mat8::zeros(),
-        };
+        let (ref_a, ref_b) = self.reference_measures();
         // Axial part.
-        for (q, (xg, wg)) in GAUSS5.into_iter().enumerate() {
-            let w = wg * 0.5 * l * self.ea_at(q);
-            let sh = Shape::at(0.5 * (xg + 1.0), l);
-            let r1 = sh.r1(e);
+        for (q, (w, ds)) in tab.axial.iter().enumerate() {
+            let (w, ds) = (*w, &first(ds));
+            let r1 = comb(ds, e);
+            let nn = r1[0] * r1[0] + r1[1] * r1[1];
             // ε, dε/dr′ (2-vector), d²ε/dr′² (2×2)
             let (eps, g, h) = match self.strain {
                 StrainModel::Exact => {
-                    let n = r1.norm();
-                    let t = r1 / n;
-                    (
-                        n - 1.0,
-                        t,
-                        (nalgebra::Matrix2::identity() - t * t.transpose()) / n,
-                    )
+                    let n = nn.sqrt();
+                    let t = [r1[0] / n, r1[1] / n];
+                    let h = [0, 1].map(|i| [0, 1].map(|j| (I2[i][j] - t[i] * t[j]) / n));
+                    (n - 1.0, t, h)
                 }
-                StrainModel::Paper => (
-                    0.5 * (r1.norm_squared() - 1.0),
-                    r1,
-                    nalgebra::Matrix2::identity(),
-                ),
+                StrainModel::Paper => (0.5 * (nn - 1.0), r1, I2),
             };
-            let mut de = Vec8::zeros(); // dε/de
-            for k in 0..4 {
-                de[2 * k] = sh.ds[k] * g[0];
-                de[2 * k + 1] = sh.ds[k] * g[1];
+            let de = spread(ds, g); // dε/de
+            let eps_dot = if damped { dot8(&de, ed) } else { 0.0 };
+            let stress = eps + tau * eps_dot - ref_a[q];
+            let ws = w * stress;
+            for (f, d) in force.iter_mut().zip(de) {
+                *f += ws * d;
             }
-            let eps_dot = if damped { de.dot(ed) } else { 0.0 };
-            let mut stress = eps + tau * eps_dot;
-            if let Some(r) = &self.reference {
-                stress -= r.axial[q];
-            }
-            out.force += w * stress * de;
-            if with_matrices {
-                let pat = outer4(&sh.ds, &sh.ds);
-                out.stiffness += w * de * de.transpose();
-                expand(&pat, &h, &mut out.stiffness, w * stress);
+            if let Some((k, d)) = matrices.as_mut() {
+                let pat = outer4(ds, ds);
+                // w dε/de dε/deᵀ, then σ d²ε/de² (pattern ⊗ h), added in that order
+                for a in 0..4 {
+                    for i in 0..2 {
+                        let (row, wde) = (&mut k[2 * a + i], w * de[2 * a + i]);
+                        for b in 0..4 {
+                            let cp = ws * pat[a][b];
+                            for j in 0..2 {
+                                let c = 2 * b + j;
+                                row[c] = row[c] + wde * de[c] + cp * h[i][j];
+                            }
+                        }
+                    }
+                }
                 if damped {
-                    out.damping += (w * tau) * de * de.transpose();
+                    add_outer(d, w * tau, &de, &de);
                     // ∂ε̇/∂e = d²ε/de² ė
-                    let mut hed = Mat8::zeros();
+                    let mut hed = [[0.0; 8]; 8];
                     expand(&pat, &h, &mut hed, 1.0);
-                    let dedot = hed * ed;
-                    out.stiffness += (w * tau) * de * dedot.transpose();
+                    add_outer(k, w * tau, &de, &mat_vec(&hed, ed));
                 }
             }
         }
         // Bending part.
-        for (q, (xg, wg)) in GAUSS3.into_iter().enumerate() {
-            let w = wg * 0.5 * l * self.ei_at(q);
-            let sh = Shape::at(0.5 * (xg + 1.0), l);
+        for (q, (w, ds, dds)) in tab.bending.iter().enumerate() {
+            let (w, ds, dds) = (*w, &first(ds), &first(dds));
             match self.strain {
                 StrainModel::Paper => {
-                    let r2 = sh.r2(e);
-                    let r2d = sh.r2(ed);
-                    let m = r2 + tau * r2d;
+                    let (r2, r2d) = (comb(dds, e), comb(dds, ed));
+                    let m = [r2[0] + tau * r2d[0], r2[1] + tau * r2d[1]];
                     for k in 0..4 {
-                        out.force[2 * k] += w * sh.dds[k] * m[0];
-                        out.force[2 * k + 1] += w * sh.dds[k] * m[1];
+                        force[2 * k] += w * dds[k] * m[0];
+                        force[2 * k + 1] += w * dds[k] * m[1];
                     }
-                    if with_matrices {
-                        let pat = outer4(&sh.dds, &sh.dds);
-                        expand(&pat, &nalgebra::Matrix2::identity(), &mut out.stiffness, w);
+                    if let Some((k, d)) = matrices.as_mut() {
+                        let pat = outer4(dds, dds);
+                        expand(&pat, &I2, k, w);
                         if damped {
-                            expand(
-                                &pat,
-                                &nalgebra::Matrix2::identity(),
-                                &mut out.damping,
-                                w * tau,
-                            );
+                            expand(&pat, &I2, d, w * tau);
                         }
                     }
                 }
                 StrainModel::Exact => {
-                    let (r1, r2) = (sh.r1(e), sh.r2(e));
-                    let gg = r1.norm_squared();
-                    let c = cross(&r1, &r2);
+                    let (r1, r2) = (comb(ds, e), comb(dds, e));
+                    let gg = r1[0] * r1[0] + r1[1] * r1[1];
+                    let c = r1[0] * r2[1] - r1[1] * r2[0];
                     let kappa = c / gg;
                     // ∂c/∂r′ = (r2y, −r2x), ∂c/∂r″ = (−r1y, r1x)
-                    let c1 = Vector2::new(r2[1], -r2[0]);
-                    let c2 = Vector2::new(-r1[1], r1[0]);
-                    let dk1 = c1 / gg - (2.0 * kappa / gg) * r1; // ∂K/∂r′
-                    let dk2 = c2 / gg; // ∂K/∂r″
-                    let mut dk = Vec8::zeros();
+                    let c1 = [r2[1], -r2[0]];
+                    let c2 = [-r1[1], r1[0]];
+                    let s = 2.0 * kappa / gg;
+                    let dk1 = [c1[0] / gg - s * r1[0], c1[1] / gg - s * r1[1]]; // ∂K/∂r′
+                    let dk2 = [c2[0] / gg, c2[1] / gg]; // ∂K/∂r″
+                    let mut dk = [0.0; 8];
                     for k in 0..4 {
-                        let v = sh.ds[k] * dk1 + sh.dds[k] * dk2;
-                        dk[2 * k] = v[0];
-                        dk[2 * k + 1] = v[1];
+                        dk[2 * k] = ds[k] * dk1[0] + dds[k] * dk2[0];
+                        dk[2 * k + 1] = ds[k] * dk1[1] + dds[k] * dk2[1];
                     }
-                    let k_dot = if damped { dk.dot(ed) } else { 0.0 };
-                    let mut moment = kappa + tau * k_dot;
-                    if let Some(r) = &self.reference {
-                        moment -= r.bending[q];
+                    let k_dot = if damped { dot8(&dk, ed) } else { 0.0 };
+                    let moment = kappa + tau * k_dot - ref_b[q];
+                    let wm = w * moment;
+                    for (f, d) in force.iter_mut().zip(dk) {
+                        *f += wm * d;
                     }
-                    out.force += w * moment * dk;
-                    if with_matrices {
-                        // Hessian of K in (r′, r″): blocks H11, H12, H21, H22.
-                        let i2 = nalgebra::Matrix2::identity();
-                        let jt = nalgebra::Matrix2::new(0.0, 1.0, -1.0, 0.0); // ∂c1/∂r″
-                        let dg = 2.0 * r1;
-                        let h11 = -(c1 * dg.transpose() + dg * c1.transpose()) / (gg * gg)
-                            - (2.0 * c / (gg * gg)) * i2
-                            + (2.0 * c / (gg * gg * gg)) * dg * dg.transpose();
-                        let h12 = jt / gg - (dg * c2.transpose()) / (gg * gg);
-                        let h21 = h12.transpose();
-                        let mut hk = Mat8::zeros();
-                        expand(&outer4(&sh.ds, &sh.ds), &h11, &mut hk, 1.0);
-                        expand(&outer4(&sh.ds, &sh.dds), &h12, &mut hk, 1.0);
-                        expand(&outer4(&sh.dds, &sh.ds), &h21, &mut hk, 1.0);
-                        out.stiffness += w * dk * dk.transpose() + (w * moment) * hk;
+                    if let Some((k, d)) = matrices.as_mut() {
+                        // Hessian of K in (r′, r″): blocks H11, H12, H21 (H22 = 0).
+                        let dg = [2.0 * r1[0], 2.0 * r1[1]];
+                        let g2 = gg * gg;
+                        let (s1, s2) = (2.0 * c / g2, 2.0 * c / (g2 * gg));
+                        let jt = [[0.0, 1.0], [-1.0, 0.0]]; // ∂c1/∂r″
+                        let h11 = [0, 1].map(|i| {
+                            [0, 1].map(|j| {
+                                -(c1[i] * dg[j] + dg[i] * c1[j]) / g2 - s1 * I2[i][j]
+                                    + s2 * dg[i] * dg[j]
+                            })
+                        });
+                        let h12 =
+                            [0, 1].map(|i| [0, 1].map(|j| jt[i][j] / gg - dg[i] * c2[j] / g2));
+                        let h21 = [0, 1].map(|i| [0, 1].map(|j| h12[j][i]));
+                        // d²K/de² = ds⊗ds ⊗ H11 + ds⊗dds ⊗ H12 + dds⊗ds ⊗ H21; K += w dK dKᵀ + wM d²K
+                        let mut hk = [[0.0; 8]; 8];
+                        for a in 0..4 {
+                            for i in 0..2 {
+                                let r = 2 * a + i;
+                                let wdk = w * dk[r];
+                                for b in 0..4 {
+                                    let c11 = ds[a] * ds[b];
+                                    let (c12, c21) = (ds[a] * dds[b], dds[a] * ds[b]);
+                                    for j in 0..2 {
+                                        let c = 2 * b + j;
+                                        let hv =
+                                            c11 * h11[i][j] + c12 * h12[i][j] + c21 * h21[i][j];
+                                        hk[r][c] = hv;
+                                        k[r][c] += wdk * dk[c] + wm * hv;
+                                    }
+                                }
+                            }
+                        }
                         if damped {
-                            out.damping += (w * tau) * dk * dk.transpose();
-                            let dkdot = hk * ed;
-                            out.stiffness += (w * tau) * dk * dkdot.transpose();
+                            add_outer(d, w * tau, &dk, &dk);
+                            add_outer(k, w * tau, &dk, &mat_vec(&hk, ed));
                         }
                     }
                 }
             }
         }
-        out
     }
-}
-
-fn outer4(a: &[f64; 4], b: &[f64; 4]) -> [[f64; 4]; 4] {
-    let mut p = [[0.0; 4]; 4];
-    for k in 0..4 {
-        for l in 0..4 {
-            p[k][l] = a[k] * b[l];
-        }
-    }
-    p
 }
 
 /// z-component of the planar cross product a × b.

@@ -71,9 +71,7 @@ impl<'a> LocalState<'a> {
     /// (q, q̇, q̈) as arrays of a component with `D` local coordinates.
     #[inline]
     pub fn arrays<const D: usize>(&self) -> ([f64; D], [f64; D], [f64; D]) {
-        let (mut q, mut v, mut a) = ([0.0; D], [0.0; D], [0.0; D]);
-        self.gather(&mut q, &mut v, &mut a);
-        (q, v, a)
+        self.dofs.gather_arrays((self.q, self.v, self.a), self.held)
     }
 
     /// (q, q̇, q̈) as vectors (on the stack up to [`LOCAL_INLINE`] coordinates: no heap

@@ -168,18 +168,30 @@ impl LocalDofs {
         let (v, a) = (&v[..q.len()], &a[..q.len()]);
         let out = ql.iter_mut().zip(vl.iter_mut()).zip(al.iter_mut());
         for (((qk, vk), ak), d) in out.zip(&self.dofs) {
-            (*qk, *vk, *ak) = match *d {
-                Dof::Free(i) => {
-                    let i = i as usize;
-                    (q[i], v[i], a[i])
-                }
-                Dof::Held(j) => {
-                    let j = j as usize;
-                    let rate = |x: &[f64]| x.get(j).copied().unwrap_or(0.0);
-                    (held[j], rate(held_v), rate(held_a))
-                }
-            };
+            (*qk, *vk, *ak) = state_of(*d, (q, v, a), (held, held_v, held_a));
         }
+    }
+
+    /// [`LocalDofs::gather_state`] of a component with `D` local coordinates into arrays: a
+    /// fixed trip count, unrolled, so that the values reach the arrays in registers (the
+    /// kernels' paired loads then forward from whole stores).
+    #[inline(always)]
+    pub fn gather_arrays<const D: usize>(
+        &self,
+        (q, v, a): (&[f64], &[f64], &[f64]),
+        held: (&[f64], &[f64], &[f64]),
+    ) -> ([f64; D], [f64; D], [f64; D]) {
+        let dofs: &[Dof; D] = self
+            .dofs
+            .as_slice()
+            .try_into()
+            .expect("D local coordinates");
+        let (v, a) = (&v[..q.len()], &a[..q.len()]);
+        let mut out = ([0.0; D], [0.0; D], [0.0; D]);
+        for (k, d) in dofs.iter().enumerate() {
+            (out.0[k], out.1[k], out.2[k]) = state_of(*d, (q, v, a), held);
+        }
+        out
     }
 
     /// `global[i] += s·local[k]` for every free local coordinate k at global index i.
@@ -240,6 +252,27 @@ impl LocalDofs {
                     values[s as usize] += h(i, j);
                 }
             }
+        }
+    }
+}
+
+/// (q, q̇, q̈) of local coordinate `d` (`v`, `a` as long as `q`): a held one at its held value
+/// with its held rate and acceleration (0 where `held_v`, `held_a` are empty).
+#[inline(always)]
+fn state_of(
+    d: Dof,
+    (q, v, a): (&[f64], &[f64], &[f64]),
+    (held, held_v, held_a): (&[f64], &[f64], &[f64]),
+) -> (f64, f64, f64) {
+    match d {
+        Dof::Free(i) => {
+            let i = i as usize;
+            (q[i], v[i], a[i])
+        }
+        Dof::Held(j) => {
+            let j = j as usize;
+            let rate = |x: &[f64]| x.get(j).copied().unwrap_or(0.0);
+            (held[j], rate(held_v), rate(held_a))
         }
     }
 }

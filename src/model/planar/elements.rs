@@ -154,6 +154,21 @@ impl AncfElement {
         }
     }
 
+    /// M ë with M = M4 ⊗ I₂ (row by row, left to right).
+    #[inline]
+    fn inertia(&self, ea: &[f64; 8]) -> [f64; 8] {
+        let mut m = [0.0; 8];
+        for k in 0..4 {
+            let (mut mx, mut my) = (0.0, 0.0);
+            for j in 0..4 {
+                mx += self.mass4[k][j] * ea[2 * j];
+                my += self.mass4[k][j] * ea[2 * j + 1];
+            }
+            (m[2 * k], m[2 * k + 1]) = (mx, my);
+        }
+        m
+    }
+
     /// The element carrying point masses `points` (ξ ∈ [0, 1], mass [kg]): a point at ξ is at
     /// r = S(ξ)e, so it adds m S(ξ)ᵀS(ξ) to the constant mass matrix and m S(ξ)ᵀg to the
     /// gravity force.
@@ -183,46 +198,53 @@ impl AncfElement {
 impl Element<Planar> for AncfElement {
     fn eval(&mut self, x: &LocalState<'_>, env: &Env<Planar>, mut out: ElementOut<'_>) {
         let (e, ed, ea) = x.arrays::<8>();
-        let (force, matrices) = if out.matrix.is_some() {
-            let out = self.props.elastic(&Vec8::from(e), &Vec8::from(ed), true);
-            (out.force.into(), Some(out))
-        } else {
-            (self.props.internal_force_with(&self.tables, &e, &ed), None)
-        };
-        let gf = &self.gravity_force;
         // r = M ë + f_int − load·f_g, M = M4 ⊗ I₂
-        let mut res = [0.0; 8];
-        for k in 0..4 {
-            let (mut mx, mut my) = (0.0, 0.0);
-            for j in 0..4 {
-                mx += self.mass4[k][j] * ea[2 * j];
-                my += self.mass4[k][j] * ea[2 * j + 1];
+        let mut res = self.inertia(&ea);
+        let gf = &self.gravity_force;
+        let Some((ca, cv, cx)) = out.matrix else {
+            let force = self.props.internal_force_with(&self.tables, &e, &ed);
+            for i in 0..8 {
+                res[i] = res[i] + force[i] - env.load * gf[i];
             }
-            let (x, y) = (2 * k, 2 * k + 1);
-            res[x] = mx + force[x] - env.load * gf[x];
-            res[y] = my + force[y] - env.load * gf[y];
+            if !self.bodies.is_empty() {
+                let g = [env.load * self.g[0], env.load * self.g[1]];
+                self.add_bodies((&e, &ed, &ea), g, &mut res, None);
+            }
+            out.add_residual(&res);
+            return;
+        };
+        let (mut force, mut k, mut d) = ([0.0; 8], [[0.0; 8]; 8], [[0.0; 8]; 8]);
+        let matrices = Some((&mut k, &mut d));
+        self.props
+            .elastic_into(&self.tables, &e, &ed, &mut force, matrices);
+        for i in 0..8 {
+            res[i] = res[i] + force[i] - env.load * gf[i];
         }
-        let mut blk = [[0.0; 8]; 8];
+        // c_a M + c_x K (+ c_v C) (+ the section bodies' block), entry by entry in that order
+        for (r, row) in k.iter_mut().enumerate() {
+            for (c, v) in row.iter_mut().enumerate() {
+                *v = ca * self.mass[(r, c)] + cx * *v;
+            }
+        }
+        if cv != 0.0 && self.props.damping_time > 0.0 {
+            for (row, drow) in k.iter_mut().zip(&d) {
+                for (v, dv) in row.iter_mut().zip(drow) {
+                    *v += cv * dv;
+                }
+            }
+        }
         if !self.bodies.is_empty() {
+            let mut blk = [[0.0; 8]; 8];
             let g = [env.load * self.g[0], env.load * self.g[1]];
-            let b = out.matrix.map(|c| (c, &mut blk));
-            self.add_bodies((&e, &ed, &ea), g, &mut res, b);
+            self.add_bodies((&e, &ed, &ea), g, &mut res, Some(((ca, cv, cx), &mut blk)));
+            for (row, brow) in k.iter_mut().zip(&blk) {
+                for (v, bv) in row.iter_mut().zip(brow) {
+                    *v += bv;
+                }
+            }
         }
         out.add_residual(&res);
-        if let (Some((ca, cv, cx)), Some(m)) = (out.matrix, matrices) {
-            let damped = cv != 0.0 && self.props.damping_time > 0.0;
-            let bodies = !self.bodies.is_empty();
-            out.add_block(|r, c| {
-                let mut val = ca * self.mass[(r, c)] + cx * m.stiffness[(r, c)];
-                if damped {
-                    val += cv * m.damping[(r, c)];
-                }
-                if bodies {
-                    val += blk[r][c];
-                }
-                val
-            });
-        }
+        out.add_block(|r, c| k[r][c]);
     }
 
     fn residual(&self, x: &LocalState<'_>, _env: &Env<Planar>, res: &mut [f64]) {
@@ -364,8 +386,8 @@ impl Element<Planar> for AncfElement {
         for (i, (_, ds)) in self.tables.axial.iter().enumerate() {
             let (mut x, mut y) = (0.0, 0.0);
             for k in 0..4 {
-                x += ds[k] * q[2 * k];
-                y += ds[k] * q[2 * k + 1];
+                x += ds[k][0] * q[2 * k];
+                y += ds[k][1] * q[2 * k + 1];
             }
             // from the curved reference's ε₀ (the strain the element's stress counts)
             let e0 = self.props.reference.map_or(0.0, |r| r.axial[i]);
