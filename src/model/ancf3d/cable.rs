@@ -90,6 +90,13 @@ pub struct Lanes<const S: usize, const A: usize, const B: usize> {
     dds: [[f64; B]; S],
     /// Weight × l/2 × the cable's EI at the bending points [N m³] (as [`Ancf3Props::cable_point`]).
     bend_w: [f64; B],
+    /// The same shape weights by point then function (the sums into the coordinates, the
+    /// functions as lanes): dS_j/dx at the axial points,
+    axial_t: [[f64; S]; A],
+    /// dS_j/dx at the bending points,
+    ds_t: [[f64; S]; B],
+    /// d²S_j/dx² at the bending points.
+    dds_t: [[f64; S]; B],
 }
 
 impl<const S: usize, const A: usize, const B: usize> Default for Lanes<S, A, B> {
@@ -100,6 +107,9 @@ impl<const S: usize, const A: usize, const B: usize> Default for Lanes<S, A, B> 
             ds: [[0.0; B]; S],
             dds: [[0.0; B]; S],
             bend_w: [0.0; B],
+            axial_t: [[0.0; S]; A],
+            ds_t: [[0.0; S]; B],
+            dds_t: [[0.0; S]; B],
         }
     }
 }
@@ -116,6 +126,7 @@ impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
             l.axial_w[q] = w;
             for j in 0..S {
                 l.axial_ds[j][q] = ds[j];
+                l.axial_t[q][j] = ds[j];
             }
         }
         for (q, (w, ds, dds)) in bending.into_iter().enumerate() {
@@ -123,6 +134,8 @@ impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
             for j in 0..S {
                 l.ds[j][q] = ds[j];
                 l.dds[j][q] = dds[j];
+                l.ds_t[q][j] = ds[j];
+                l.dds_t[q][j] = dds[j];
             }
         }
         l
@@ -285,17 +298,28 @@ impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
                     + am[q] * inv[q] * kap[c][q];
             }
         }
-        // f_{3j+c}: the axial points, then each bending point's r_x and r_xx parts
+        // f_{3j+c}: the axial points, then each bending point's r_x and r_xx parts (the
+        // coordinates of a component as lanes)
+        let mut fc = [[0.0; S]; 3];
+        for (c, fc) in fc.iter_mut().enumerate() {
+            for q in 0..QA {
+                let x = fx[c][q];
+                for j in 0..M {
+                    fc[j] += x * t.axial_t[q][j];
+                }
+            }
+            for q in 0..QB {
+                let (xa, xb) = (fa[c][q], fb[c][q]);
+                for j in 0..M {
+                    fc[j] += xa * t.ds_t[q][j];
+                    fc[j] += xb * t.dds_t[q][j];
+                }
+            }
+        }
         let mut f = [0.0; D];
-        for (j, fj) in f.chunks_exact_mut(3).enumerate().take(M) {
-            for (c, fc) in fj.iter_mut().enumerate() {
-                for q in 0..QA {
-                    *fc += fx[c][q] * t.axial_ds[j][q];
-                }
-                for q in 0..QB {
-                    *fc += fa[c][q] * t.ds[j][q];
-                    *fc += fb[c][q] * t.dds[j][q];
-                }
+        for j in 0..M {
+            for c in 0..3 {
+                f[3 * j + c] = fc[c][j];
             }
         }
         f
