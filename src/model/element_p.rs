@@ -86,13 +86,28 @@ impl<K: PKernel, S: Space> ElementP<K, S> {
         (e, ed, ea)
     }
 
-    /// M ë + f − load·f_ext into `res` (d entries).
+    /// M ë + f − load·f_ext into `res` (d entries): [`ElementP::residual_of`] of the element's
+    /// number of shapes.
     fn residual_at(&self, ea: &PVec, force: &PVec, load: f64, res: &mut [f64]) {
-        let (n, dim) = (self.n(), S::DIM);
-        for j in 0..n {
+        match self.n() {
+            4 => self.residual_of::<4>(ea, force, load, res),
+            5 => self.residual_of::<5>(ea, force, load, res),
+            6 => self.residual_of::<6>(ea, force, load, res),
+            7 => self.residual_of::<7>(ea, force, load, res),
+            8 => self.residual_of::<8>(ea, force, load, res),
+            n => unreachable!("{n} shapes"),
+        }
+    }
+
+    /// [`ElementP::residual_at`] of an element of `N` shapes (the loops unrolled).
+    #[inline(always)]
+    fn residual_of<const N: usize>(&self, ea: &PVec, force: &PVec, load: f64, res: &mut [f64]) {
+        let dim = S::DIM;
+        let res = &mut res[..dim * N];
+        for j in 0..N {
             for c in 0..dim {
                 let mut m = 0.0;
-                for k in 0..n {
+                for k in 0..N {
                     m += self.mass[j][k] * ea[dim * k + c];
                 }
                 let i = dim * j + c;
