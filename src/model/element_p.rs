@@ -6,7 +6,7 @@
 //! rotary inertia) are not carried (the scene refuses them on such a segment).
 
 use super::component::{Element, ElementOut, Energies, Env, LocalState, Validity};
-use super::hierarchic::{partial_load, PKernel, PShape, PVec, MAX_DOFS, MAX_SHAPES};
+use super::hierarchic::{partial_load, PKernel, PMat, PShape, PVec, MAX_DOFS, MAX_SHAPES};
 use super::sample::ShapePoint;
 use super::space::Space;
 use std::any::Any;
@@ -29,6 +29,8 @@ pub struct ElementP<K, S> {
     g: [f64; 3],
     /// The segment's line load q [N/m] (zero without one, and beyond DIM).
     line: [f64; 3],
+    /// Room for the kernel's stiffness and damping matrices (the leading d × d zeroed per use).
+    mats: Box<(PMat, PMat)>,
     space: PhantomData<S>,
 }
 
@@ -63,6 +65,7 @@ impl<K: PKernel, S: Space> ElementP<K, S> {
             gravity_force: [0.0; MAX_DOFS],
             g: [0.0; 3],
             line: line.map_or([0.0; 3], vec3),
+            mats: Box::new(([[0.0; MAX_DOFS]; MAX_DOFS], [[0.0; MAX_DOFS]; MAX_DOFS])),
             space: PhantomData,
         }
     }
@@ -83,13 +86,28 @@ impl<K: PKernel, S: Space> ElementP<K, S> {
         (e, ed, ea)
     }
 
-    /// M ë + f − load·f_ext into `res` (d entries).
+    /// M ë + f − load·f_ext into `res` (d entries): [`ElementP::residual_of`] of the element's
+    /// number of shapes.
     fn residual_at(&self, ea: &PVec, force: &PVec, load: f64, res: &mut [f64]) {
-        let (n, dim) = (self.n(), S::DIM);
-        for j in 0..n {
+        match self.n() {
+            4 => self.residual_of::<4>(ea, force, load, res),
+            5 => self.residual_of::<5>(ea, force, load, res),
+            6 => self.residual_of::<6>(ea, force, load, res),
+            7 => self.residual_of::<7>(ea, force, load, res),
+            8 => self.residual_of::<8>(ea, force, load, res),
+            n => unreachable!("{n} shapes"),
+        }
+    }
+
+    /// [`ElementP::residual_at`] of an element of `N` shapes (the loops unrolled).
+    #[inline(always)]
+    fn residual_of<const N: usize>(&self, ea: &PVec, force: &PVec, load: f64, res: &mut [f64]) {
+        let dim = S::DIM;
+        let res = &mut res[..dim * N];
+        for j in 0..N {
             for c in 0..dim {
                 let mut m = 0.0;
-                for k in 0..n {
+                for k in 0..N {
                     m += self.mass[j][k] * ea[dim * k + c];
                 }
                 let i = dim * j + c;
@@ -111,11 +129,14 @@ impl<K: PKernel, S: Space> Element<S> for ElementP<K, S> {
                 out.add_residual(&res[..d]);
             }
             Some((ca, cv, cx)) => {
-                let (mut k, mut c) = ([[0.0; MAX_DOFS]; MAX_DOFS], [[0.0; MAX_DOFS]; MAX_DOFS]);
-                let f = self.kernel.forces(&e, &ed, Some((&mut k, &mut c)));
+                let (k, c) = &mut *self.mats;
+                for row in k[..d].iter_mut().chain(&mut c[..d]) {
+                    row[..d].fill(0.0);
+                }
+                let f = self.kernel.forces(&e, &ed, Some((k, c)));
                 self.residual_at(&ea, &f, env.load, &mut res);
                 out.add_residual(&res[..d]);
-                let (mass, dim) = (&self.mass, S::DIM);
+                let ((k, c), mass, dim) = (&*self.mats, &self.mass, S::DIM);
                 out.add_block(|r, col| {
                     let m = if r % dim == col % dim {
                         mass[r / dim][col / dim]

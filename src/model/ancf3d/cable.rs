@@ -75,51 +75,97 @@ impl Ancf3Props {
 /// point-wise arithmetic runs on the points together).
 type Lv<const N: usize> = [[f64; N]; 3];
 
-/// The 3D cable's quadrature points as lanes, shape weights by function then point, for its
-/// residual ([`Ancf3Props::cable_force`]).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Lanes {
+/// A cable's quadrature points as lanes: shape weights by function then point, for S shapes
+/// and room for A axial and B bending points (the unused ones zero), for its residual
+/// ([`Lanes::force`]: the cubic 3D cable's and the degree-p one's, [`super::cable_p`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lanes<const S: usize, const A: usize, const B: usize> {
     /// dS_j/dx at the axial points.
-    axial_ds: [[f64; 5]; 4],
+    axial_ds: [[f64; A]; S],
     /// Weight × l/2 × EA at the axial points [N m].
-    axial_w: [f64; 5],
+    axial_w: [f64; A],
     /// dS_j/dx at the bending points.
-    ds: [[f64; 3]; 4],
+    ds: [[f64; B]; S],
     /// d²S_j/dx² at the bending points.
-    dds: [[f64; 3]; 4],
+    dds: [[f64; B]; S],
     /// Weight × l/2 × the cable's EI at the bending points [N m³] (as [`Ancf3Props::cable_point`]).
-    bend_w: [f64; 3],
+    bend_w: [f64; B],
+    /// The same shape weights by point then function (the sums into the coordinates, the
+    /// functions as lanes): dS_j/dx at the axial points,
+    axial_t: [[f64; S]; A],
+    /// dS_j/dx at the bending points,
+    ds_t: [[f64; S]; B],
+    /// d²S_j/dx² at the bending points.
+    dds_t: [[f64; S]; B],
 }
 
-impl Lanes {
-    /// The lanes of the tables `t`.
-    pub(super) fn of(t: &Tables3) -> Self {
+impl<const S: usize, const A: usize, const B: usize> Default for Lanes<S, A, B> {
+    fn default() -> Self {
+        Self {
+            axial_ds: [[0.0; A]; S],
+            axial_w: [0.0; A],
+            ds: [[0.0; B]; S],
+            dds: [[0.0; B]; S],
+            bend_w: [0.0; B],
+            axial_t: [[0.0; S]; A],
+            ds_t: [[0.0; S]; B],
+            dds_t: [[0.0; S]; B],
+        }
+    }
+}
+
+impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
+    /// The lanes of the axial points (weight × EA, dS/dx) and the bending points (weight ×
+    /// EI, dS/dx, d²S/dx²), each given by its first S shapes.
+    pub(super) fn new<'a>(
+        axial: impl IntoIterator<Item = (f64, &'a [f64])>,
+        bending: impl IntoIterator<Item = (f64, &'a [f64], &'a [f64])>,
+    ) -> Self {
         let mut l = Self::default();
-        for (q, (w, ds)) in t.axial.iter().enumerate() {
-            l.axial_w[q] = *w;
-            for j in 0..4 {
+        for (q, (w, ds)) in axial.into_iter().enumerate() {
+            l.axial_w[q] = w;
+            for j in 0..S {
                 l.axial_ds[j][q] = ds[j];
+                l.axial_t[q][j] = ds[j];
             }
         }
-        for (q, p) in t.bending.iter().enumerate() {
-            l.bend_w[q] = p.w * (0.5 * (p.ei[0] + p.ei[1]));
-            for j in 0..4 {
-                l.ds[j][q] = p.ds[j];
-                l.dds[j][q] = p.dds[j];
+        for (q, (w, ds, dds)) in bending.into_iter().enumerate() {
+            l.bend_w[q] = w;
+            for j in 0..S {
+                l.ds[j][q] = ds[j];
+                l.dds[j][q] = dds[j];
+                l.ds_t[q][j] = ds[j];
+                l.dds_t[q][j] = dds[j];
             }
         }
         l
     }
 }
 
-/// Σ_j w_j e[3j..3j + 3] at every point ([`comb`]'s operations, per lane).
+/// The cubic cable's lanes ([`Tables3`]'s points).
+pub(super) type Lanes3 = Lanes<4, 5, 3>;
+
+impl Lanes3 {
+    /// The lanes of the tables `t`.
+    pub(super) fn of(t: &Tables3) -> Self {
+        Self::new(
+            t.axial.iter().map(|(w, ds)| (*w, &ds[..])),
+            (t.bending.iter()).map(|p| (p.w * (0.5 * (p.ei[0] + p.ei[1])), &p.ds[..], &p.dds[..])),
+        )
+    }
+}
+
+/// Σ_{j<M} w_j e[3j..3j + 3] at the first Q points ([`comb`]'s operations, per lane).
 #[inline(always)]
-fn lane_comb<const N: usize>(w: &[[f64; N]; 4], e: &[f64; CABLE_DOFS]) -> Lv<N> {
-    let mut r = [[0.0; N]; 3];
+fn lane_comb<const M: usize, const Q: usize, const S: usize, const W: usize, const D: usize>(
+    w: &[[f64; W]; S],
+    e: &[f64; D],
+) -> Lv<Q> {
+    let mut r = [[0.0; Q]; 3];
     for (c, rc) in r.iter_mut().enumerate() {
-        for (j, wj) in w.iter().enumerate() {
+        for (j, wj) in w.iter().enumerate().take(M) {
             let x = e[3 * j + c];
-            for q in 0..N {
+            for q in 0..Q {
                 rc[q] += x * wj[q];
             }
         }
@@ -162,80 +208,118 @@ fn lane_scale<const N: usize>(x: &Lv<N>, s: &[f64; N]) -> Lv<N> {
 }
 
 impl Ancf3Props {
-    /// [`Ancf3Props::internal_force`] of the 3D cable (f64): [`Ancf3Props::axial_point`] and
-    /// [`Ancf3Props::cable_point`] on all points at once (lanes, [`Lanes`]) and the sums into
-    /// each coordinate in the generic path's order, so the same operations and bits, without
-    /// its runtime slots and bounds checks.
+    /// [`Ancf3Props::internal_force`] of the 3D cable (f64): [`Lanes::force`] on its tables'
+    /// lanes, the generic path's operations and bits without its runtime slots and bounds
+    /// checks.
     pub(super) fn cable_force(
         &self,
         tab: &Tables3,
         e: &[f64; CABLE_DOFS],
         ed: &[f64; CABLE_DOFS],
     ) -> [f64; CABLE_DOFS] {
-        let t = &tab.lanes;
-        let tau = self.damping_time;
+        let e0 = self.reference.as_ref().map(|r| &r.axial);
+        tab.lanes
+            .force::<4, 5, 3, CABLE_DOFS>(self.damping_time, e0, e, ed)
+    }
+}
+
+impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
+    /// A cable's internal force at (e, ė) on its first M shapes, QA axial and QB bending
+    /// points ([`Ancf3Props::axial_point`] with the axial reference strains `e0`, and
+    /// [`Ancf3Props::cable_point`], with retardation time `tau`): the point functions on all
+    /// points at once (lanes) and the sums into each coordinate in the per-point path's order
+    /// (the axial points, then each bending point's r_x and r_xx parts), so the same
+    /// operations and bits.
+    #[inline(always)]
+    pub(super) fn force<const M: usize, const QA: usize, const QB: usize, const D: usize>(
+        &self,
+        tau: f64,
+        e0: Option<&[f64; A]>,
+        e: &[f64; D],
+        ed: &[f64; D],
+    ) -> [f64; D] {
+        const { assert!(M <= S && QA <= A && QB <= B && 3 * M <= D) };
+        let t = self;
         let damped = tau > 0.0;
         // axial points: g s on r_x, g = r_x/|r_x|, s = w (ε − ε₀ + τ_d g·ṙ_x)
-        let a = lane_comb(&t.axial_ds, e);
+        let a = lane_comb::<M, QA, S, A, D>(&t.axial_ds, e);
         let n = lane_dot(&a, &a).map(f64::sqrt);
         let g = lane_scale(&a, &n.map(f64::recip));
-        let e0 = self.reference.map_or([0.0; 5], |r| r.axial);
-        let mut s = [0.0; 5];
-        for q in 0..5 {
-            s[q] = n[q] - 1.0 - e0[q];
+        let mut s = [0.0; QA];
+        for q in 0..QA {
+            s[q] = n[q] - 1.0;
+        }
+        if let Some(e0) = e0 {
+            for q in 0..QA {
+                s[q] -= e0[q];
+            }
         }
         if damped {
-            let rate = lane_dot(&g, &lane_comb(&t.axial_ds, ed));
-            for q in 0..5 {
+            let rate = lane_dot(&g, &lane_comb::<M, QA, S, A, D>(&t.axial_ds, ed));
+            for q in 0..QA {
                 s[q] += rate[q] * tau;
             }
         }
-        for q in 0..5 {
+        for q in 0..QA {
             s[q] *= t.axial_w[q];
         }
         let fx = lane_scale(&g, &s);
         // bending points (`cable_point`): κ = a × b/|a|², μ = w EI (κ + rate terms)
-        let (a, b) = (lane_comb(&t.ds, e), lane_comb(&t.dds, e));
+        let comb = |w: &[[f64; B]; S], e: &[f64; D]| lane_comb::<M, QB, S, B, D>(w, e);
+        let (a, b) = (comb(&t.ds, e), comb(&t.dds, e));
         let inv = lane_dot(&a, &a).map(f64::recip);
         let kap = lane_scale(&lane_cross(&a, &b), &inv);
         let mut mv = kap;
         if damped {
-            let (ad, bd) = (lane_comb(&t.ds, ed), lane_comb(&t.dds, ed));
+            let (ad, bd) = (comb(&t.ds, ed), comb(&t.dds, ed));
             let r1 = lane_cross(&ad, &b);
             let r2 = lane_cross(&a, &bd);
             let r3 = lane_cross(&lane_cross(&a, &ad), &kap);
             let ada = lane_dot(&a, &ad);
             for c in 0..3 {
-                for q in 0..3 {
+                for q in 0..QB {
                     mv[c][q] += (r1[c][q] + r2[c][q] - r3[c][q] - kap[c][q] * (ada[q] * 2.0))
                         * (inv[q] * tau);
                 }
             }
         }
-        let mv = lane_scale(&mv, &t.bend_w);
+        let mut w = [0.0; QB];
+        w.copy_from_slice(&t.bend_w[..QB]);
+        let mv = lane_scale(&mv, &w);
         let bm = lane_cross(&b, &mv);
         let fb = lane_scale(&lane_cross(&mv, &a), &inv);
         let km = lane_dot(&kap, &mv);
         let am = lane_dot(&a, &mv);
         let mut fa = bm;
         for c in 0..3 {
-            for q in 0..3 {
+            for q in 0..QB {
                 fa[c][q] = inv[q] * bm[c][q]
                     + km[q] * (-2.0) * inv[q] * a[c][q]
                     + am[q] * inv[q] * kap[c][q];
             }
         }
-        // f_{3j+c}: the axial points, then each bending point's r_x and r_xx parts
-        let mut f = [0.0; CABLE_DOFS];
-        for (j, fj) in f.chunks_exact_mut(3).enumerate() {
-            for (c, fc) in fj.iter_mut().enumerate() {
-                for q in 0..5 {
-                    *fc += fx[c][q] * t.axial_ds[j][q];
+        // f_{3j+c}: the axial points, then each bending point's r_x and r_xx parts (the
+        // coordinates of a component as lanes)
+        let mut fc = [[0.0; S]; 3];
+        for (c, fc) in fc.iter_mut().enumerate() {
+            for q in 0..QA {
+                let x = fx[c][q];
+                for j in 0..M {
+                    fc[j] += x * t.axial_t[q][j];
                 }
-                for q in 0..3 {
-                    *fc += fa[c][q] * t.ds[j][q];
-                    *fc += fb[c][q] * t.dds[j][q];
+            }
+            for q in 0..QB {
+                let (xa, xb) = (fa[c][q], fb[c][q]);
+                for j in 0..M {
+                    fc[j] += xa * t.ds_t[q][j];
+                    fc[j] += xb * t.dds_t[q][j];
                 }
+            }
+        }
+        let mut f = [0.0; D];
+        for j in 0..M {
+            for c in 0..3 {
+                f[3 * j + c] = fc[c][j];
             }
         }
         f

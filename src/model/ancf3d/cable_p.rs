@@ -10,11 +10,12 @@
 //! (`local_jacobian`), mapped onto the element ([`add_point_jacobian`]). Uniform straight
 //! cables only (no taper, no initial curvature; the scene refuses those with degree > 3).
 
+use super::cable::Lanes;
 use super::kernel::{local_jacobian, Blocks};
 use super::Ancf3Props;
 use crate::model::hierarchic::{
-    add_point_jacobian, combine, scatter, PKernel, PMat, PShape, PTables, PVec, MAX_DOFS,
-    MAX_SHAPES,
+    add_point_jacobian, combine, scatter, PKernel, PMat, PShape, PTables, PVec, MAX_DEGREE,
+    MAX_DOFS, MAX_SHAPES,
 };
 use crate::model::sample::{minimal_frame, ShapePoint};
 use crate::model::vector::{cross, dot};
@@ -27,6 +28,8 @@ pub struct Cable3P {
     pub props: Ancf3Props,
     /// Shapes at the quadrature points, mass pattern, load weights.
     pub tables: PTables,
+    /// The same points laid out for the residual ([`Lanes::force`]).
+    lanes: Lanes<MAX_SHAPES, MAX_SHAPES, MAX_DEGREE>,
 }
 
 /// Adds the local Jacobians `jac` (and the rate Jacobians `rate` to `c`) of a point whose local
@@ -48,9 +51,38 @@ impl Cable3P {
     /// `degree` (3 … [`crate::model::hierarchic::MAX_DEGREE`]).
     pub fn new(props: Ancf3Props, degree: usize) -> Self {
         assert!(!props.director && props.reference.is_none() && props.taper.is_none());
+        let tables = PTables::new(degree, props.length);
+        let lanes = Lanes::new(
+            (tables.axial.iter()).map(|q| (q.w * props.ea, &q.ds[..])),
+            (tables.bending.iter()).map(|q| {
+                (
+                    q.w * (0.5 * (props.ei_y + props.ei_z)),
+                    &q.ds[..],
+                    &q.dds[..],
+                )
+            }),
+        );
         Self {
-            tables: PTables::new(degree, props.length),
+            tables,
+            lanes,
             props,
+        }
+    }
+}
+
+impl Cable3P {
+    /// The force of [`PKernel::forces_of`] without matrices: [`Lanes::force`] on the element's
+    /// p + 1 axial and p bending points (the same bits as the per-point path).
+    #[inline(always)]
+    fn residual<const N: usize>(&self, e: &PVec, ed: &PVec) -> PVec {
+        let (l, tau) = (&self.lanes, self.props.damping_time);
+        match N {
+            4 => l.force::<4, 4, 3, MAX_DOFS>(tau, None, e, ed),
+            5 => l.force::<5, 5, 4, MAX_DOFS>(tau, None, e, ed),
+            6 => l.force::<6, 6, 5, MAX_DOFS>(tau, None, e, ed),
+            7 => l.force::<7, 7, 6, MAX_DOFS>(tau, None, e, ed),
+            8 => l.force::<8, 8, 7, MAX_DOFS>(tau, None, e, ed),
+            n => unreachable!("{n} shapes"),
         }
     }
 }
@@ -77,6 +109,9 @@ impl PKernel for Cable3P {
         ed: &PVec,
         mut mats: Option<(&mut PMat, &mut PMat)>,
     ) -> PVec {
+        if mats.is_none() {
+            return self.residual::<N>(e, ed);
+        }
         let n = N;
         let p = &self.props;
         let damped = p.damping_time > 0.0;
@@ -208,6 +243,34 @@ mod tests {
                 let (e, ed) = state(degree);
                 let label = format!("tau {tau} p {degree}");
                 crate::model::hierarchic::checks::jacobians(&el, &e, &ed, tau, &label);
+            }
+        }
+    }
+
+    /// The residual on lanes ([`Lanes::force`]) is the per-point path of the matrices bit for
+    /// bit, undamped and damped, every degree, several states.
+    #[test]
+    fn residual_is_the_per_point_path_bit_for_bit() {
+        for tau in [0.0, 1e-3] {
+            for degree in 3..=MAX_DEGREE {
+                let el = Cable3P::new(props(tau), degree);
+                for seed in 0..4 {
+                    let (mut e, mut ed) = state(degree);
+                    for k in 0..3 * (degree + 1) {
+                        let x = (seed * 7 + k) as f64;
+                        e[k] += 0.01 * seed as f64 * (x * 0.9).sin();
+                        ed[k] += 0.2 * seed as f64 * (x * 1.7).cos();
+                    }
+                    let (mut k, mut c) = ([[0.0; MAX_DOFS]; MAX_DOFS], [[0.0; MAX_DOFS]; MAX_DOFS]);
+                    let per_point = el.forces(&e, &ed, Some((&mut k, &mut c)));
+                    let lanes = el.forces(&e, &ed, None);
+                    let label = format!("tau {tau} p {degree} seed {seed}");
+                    assert_eq!(
+                        lanes.map(f64::to_bits),
+                        per_point.map(f64::to_bits),
+                        "{label}"
+                    );
+                }
             }
         }
     }

@@ -244,7 +244,7 @@ pub struct Tables3 {
     /// dS/dx at the midpoint ξ = ½ (the element twist's midpoint tangent).
     mid: [f64; 4],
     /// The same points laid out for the 3D cable's residual ([`cable::Lanes`]).
-    lanes: cable::Lanes,
+    lanes: cable::Lanes3,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -530,7 +530,7 @@ impl Ancf3Props {
                 }
             }),
             mid: hermite(0.5, l).1,
-            lanes: cable::Lanes::default(),
+            lanes: cable::Lanes3::default(),
         };
         for (k, (xg, wg)) in GAUSS5.iter().enumerate() {
             let (_, ds, _) = hermite(0.5 * (xg + 1.0), l);
@@ -548,7 +548,7 @@ impl Ancf3Props {
                 ny: [1.0 - xi, xi],
             };
         }
-        t.lanes = cable::Lanes::of(&t);
+        t.lanes = cable::Lanes3::of(&t);
         t
     }
 
