@@ -19,5 +19,5 @@ if ! "$venv/bin/python" -c 'import exudyn, numpy, matplotlib' 2>/dev/null; then
     "$venv/bin/pip" install --quiet exudyn==1.13.6 numpy==2.4.6 matplotlib==3.11.2
 fi
 
-export PEERS_COMMAND="bash benches/peers/run.sh${*:+ $*}"
+export PEERS_COMMAND="bash benches/peers/run.sh$(printf ' %q' "$@")"
 exec "$venv/bin/python" benches/peers/peers.py --hybeam "$target/release/hybeam" "$@"
