@@ -15,6 +15,7 @@ use super::hierarchic::{
     add_point_jacobian, combine, scatter, PKernel, PMat, PShape, PTables, PVec, MAX_DEGREE,
     MAX_DOFS, MAX_SHAPES,
 };
+use super::lanes::{lane_comb, Lanes};
 use super::sample::ShapePoint;
 use crate::scene::StrainModel;
 
@@ -28,8 +29,8 @@ pub struct CableP {
     pub props: AncfProps,
     /// Shapes at the quadrature points, mass pattern, load weights.
     pub tables: PTables,
-    /// The tables by shape for the residual path.
-    pub lanes: PLanes,
+    /// The same points laid out for the residual path ([`CableP::internal_force_of`]).
+    pub lanes: Lanes<MAX_SHAPES, MAX_SHAPES, MAX_DEGREE>,
 }
 
 /// (ε, dε/dr′) of the axial strain measure at slope `r1`.
@@ -120,8 +121,12 @@ impl CableP {
     pub fn new(props: AncfProps, degree: usize) -> Self {
         assert!(props.reference.is_none() && props.taper.is_none());
         let tables = PTables::new(degree, props.length);
+        let lanes = Lanes::new(
+            (tables.axial.iter()).map(|q| (q.w * props.ea, &q.ds[..])),
+            (tables.bending.iter()).map(|q| (q.w * props.ei, &q.ds[..], &q.dds[..])),
+        );
         Self {
-            lanes: PLanes::new(&tables, props.ea, props.ei),
+            lanes,
             tables,
             props,
         }
@@ -129,32 +134,24 @@ impl CableP {
 }
 
 impl CableP {
-    /// The residual path of [`PKernel::forces_of`] (no matrices), the same operations in the
-    /// same order (the same bits) arranged by point: r′ (and r″) at every point at once, each
-    /// lane a point ([`PLanes`]: the sums over the shapes run in the same order), the points'
-    /// measures side by side (their square roots and divisions independent), then the forces
-    /// added up point by point in the order of [`PKernel::forces_of`].
+    /// The residual path of [`PKernel::forces_of`] (no matrices) of an element of N shapes,
+    /// NB = N − 1 bending points: the same operations in the same order (the same bits)
+    /// arranged by point ([`Lanes`]): r′ (and r″) at every point at once, the points' measures
+    /// side by side (their square roots and divisions independent), then the forces added up
+    /// point by point in the order of [`PKernel::forces_of`].
     #[inline(always)]
-    fn internal_force_of<const N: usize>(&self, e: &PVec, ed: &PVec) -> PVec {
+    fn internal_force_of<const N: usize, const NB: usize>(&self, e: &PVec, ed: &PVec) -> PVec {
         let p = &self.props;
         let (tau, damped) = (p.damping_time, p.damping_time > 0.0);
         let l = &self.lanes;
-        // Σ_j w_j x_j from 0 in j order at every lane (as `combine`), x and y
-        let comb = |w: &[[f64; MAX_SHAPES]; MAX_SHAPES], x: &PVec| {
-            let mut r = [[0.0; N]; 2];
-            for j in 0..N {
-                let (xj, yj) = (x[2 * j], x[2 * j + 1]);
-                for q in 0..N {
-                    r[0][q] += w[j][q] * xj;
-                    r[1][q] += w[j][q] * yj;
-                }
-            }
-            r
+        let axial =
+            |x: &PVec| lane_comb::<2, N, N, MAX_SHAPES, MAX_SHAPES, MAX_DOFS>(&l.axial_ds, x);
+        let bend = |w: &[[f64; MAX_DEGREE]; MAX_SHAPES], x: &PVec| {
+            lane_comb::<2, N, NB, MAX_SHAPES, MAX_DEGREE, MAX_DOFS>(w, x)
         };
-        let zero = [[0.0; N]; 2];
         // the axial points: w·EA·(ε + τ ε̇) and dε/dr′
-        let r1 = comb(&l.axial_ds, e);
-        let r1d = if damped { comb(&l.axial_ds, ed) } else { zero };
+        let r1 = axial(e);
+        let r1d = if damped { axial(ed) } else { [[0.0; N]; 2] };
         let mut sa = [0.0; N];
         let mut ga = [[0.0; 2]; N];
         for q in 0..N {
@@ -173,45 +170,36 @@ impl CableP {
             }
         };
         for q in 0..N {
-            scat(&mut f, sa[q], &self.tables.axial[q].ds, ga[q]);
+            scat(&mut f, sa[q], &l.axial_t[q], ga[q]);
         }
-        // the bending points (p = N − 1 of them; the last lane unused)
-        let nb = N - 1;
-        let r2 = comb(&l.bending_dds, e);
-        let r2d = if damped {
-            comb(&l.bending_dds, ed)
-        } else {
-            zero
-        };
-        let bending = &self.tables.bending[..nb];
+        // the bending points
+        let zero = [[0.0; NB]; 2];
+        let r2 = bend(&l.dds, e);
+        let r2d = if damped { bend(&l.dds, ed) } else { zero };
         match p.strain {
             StrainModel::Paper => {
-                for (q, pt) in bending.iter().enumerate() {
+                for q in 0..NB {
                     let m = [r2[0][q] + tau * r2d[0][q], r2[1][q] + tau * r2d[1][q]];
-                    scat(&mut f, l.bending_w[q], &pt.dds, m);
+                    scat(&mut f, l.bend_w[q], &l.dds_t[q], m);
                 }
             }
             StrainModel::Exact => {
-                let r1 = comb(&l.bending_ds, e);
-                let r1d = if damped {
-                    comb(&l.bending_ds, ed)
-                } else {
-                    zero
-                };
-                let mut m = [0.0; N];
-                let mut d1 = [[0.0; 2]; N];
-                let mut d2 = [[0.0; 2]; N];
-                for q in 0..nb {
+                let r1 = bend(&l.ds, e);
+                let r1d = if damped { bend(&l.ds, ed) } else { zero };
+                let mut m = [0.0; NB];
+                let mut d1 = [[0.0; 2]; NB];
+                let mut d2 = [[0.0; 2]; NB];
+                for q in 0..NB {
                     let (a, b) = ([r1[0][q], r1[1][q]], [r2[0][q], r2[1][q]]);
                     let (kappa, dk1, dk2) = curvature(a, b);
                     let rates =
                         dot2(dk1, [r1d[0][q], r1d[1][q]]) + dot2(dk2, [r2d[0][q], r2d[1][q]]);
-                    m[q] = l.bending_w[q] * (kappa + tau * rates);
+                    m[q] = l.bend_w[q] * (kappa + tau * rates);
                     (d1[q], d2[q]) = (dk1, dk2);
                 }
-                for (q, pt) in bending.iter().enumerate() {
-                    scat(&mut f, m[q], &pt.ds, d1[q]);
-                    scat(&mut f, m[q], &pt.dds, d2[q]);
+                for q in 0..NB {
+                    scat(&mut f, m[q], &l.ds_t[q], d1[q]);
+                    scat(&mut f, m[q], &l.dds_t[q], d2[q]);
                 }
             }
         }
@@ -219,49 +207,6 @@ impl CableP {
         for j in 0..N {
             out[2 * j] = f[j][0];
             out[2 * j + 1] = f[j][1];
-        }
-        out
-    }
-}
-
-/// The quadrature tables of [`CableP`] by shape, each lane a point (`[j][q]`: shape j's
-/// derivative at point q), and the points' weights × stiffness, for the residual path.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PLanes {
-    /// dS_j/dx at the axial points.
-    pub axial_ds: [[f64; MAX_SHAPES]; MAX_SHAPES],
-    /// Gauss weight × l/2 × EA at the axial points [N m].
-    pub axial_w: [f64; MAX_SHAPES],
-    /// dS_j/dx at the bending points.
-    pub bending_ds: [[f64; MAX_SHAPES]; MAX_SHAPES],
-    /// d²S_j/dx² at the bending points.
-    pub bending_dds: [[f64; MAX_SHAPES]; MAX_SHAPES],
-    /// Gauss weight × l/2 × EI at the bending points [N m³].
-    pub bending_w: [f64; MAX_SHAPES],
-}
-
-impl PLanes {
-    /// The lanes of `tables` with the section's EA [N] and EI [N m²].
-    fn new(tables: &PTables, ea: f64, ei: f64) -> Self {
-        let mut out = Self {
-            axial_ds: [[0.0; MAX_SHAPES]; MAX_SHAPES],
-            axial_w: [0.0; MAX_SHAPES],
-            bending_ds: [[0.0; MAX_SHAPES]; MAX_SHAPES],
-            bending_dds: [[0.0; MAX_SHAPES]; MAX_SHAPES],
-            bending_w: [0.0; MAX_SHAPES],
-        };
-        for (q, pt) in tables.axial.iter().enumerate() {
-            out.axial_w[q] = pt.w * ea;
-            for j in 0..tables.n {
-                out.axial_ds[j][q] = pt.ds[j];
-            }
-        }
-        for (q, pt) in tables.bending.iter().enumerate() {
-            out.bending_w[q] = pt.w * ei;
-            for j in 0..tables.n {
-                out.bending_ds[j][q] = pt.ds[j];
-                out.bending_dds[j][q] = pt.dds[j];
-            }
         }
         out
     }
@@ -293,7 +238,14 @@ impl PKernel for CableP {
         let n = N;
         debug_assert_eq!(n, self.tables.n);
         if mats.is_none() {
-            return self.internal_force_of::<N>(e, ed);
+            return match N {
+                4 => self.internal_force_of::<4, 3>(e, ed),
+                5 => self.internal_force_of::<5, 4>(e, ed),
+                6 => self.internal_force_of::<6, 5>(e, ed),
+                7 => self.internal_force_of::<7, 6>(e, ed),
+                8 => self.internal_force_of::<8, 7>(e, ed),
+                n => unreachable!("{n} shapes"),
+            };
         }
         let p = &self.props;
         let tau = p.damping_time;

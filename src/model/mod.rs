@@ -41,6 +41,7 @@ pub mod element_p;
 pub mod held;
 pub mod hierarchic;
 pub mod inertia;
+pub mod lanes;
 pub mod load;
 pub mod modal;
 pub mod output_names;

@@ -11,6 +11,8 @@
 //! No rotary inertia.
 
 use super::*;
+use crate::model::lanes::lane_comb;
+pub use crate::model::lanes::Lanes;
 
 impl Ancf3Props {
     /// Bending stiffness of the cable [N m²]: E·I_z (equal to E·I_y, see [`Ancf3Props::check`];
@@ -75,73 +77,6 @@ impl Ancf3Props {
 /// point-wise arithmetic runs on the points together).
 type Lv<const N: usize> = [[f64; N]; 3];
 
-/// A cable's quadrature points as lanes: shape weights by function then point, for S shapes
-/// and room for A axial and B bending points (the unused ones zero), for its residual
-/// ([`Lanes::force`]: the cubic 3D cable's and the degree-p one's, [`super::cable_p`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Lanes<const S: usize, const A: usize, const B: usize> {
-    /// dS_j/dx at the axial points.
-    axial_ds: [[f64; A]; S],
-    /// Weight × l/2 × EA at the axial points [N m].
-    axial_w: [f64; A],
-    /// dS_j/dx at the bending points.
-    ds: [[f64; B]; S],
-    /// d²S_j/dx² at the bending points.
-    dds: [[f64; B]; S],
-    /// Weight × l/2 × the cable's EI at the bending points [N m³] (as [`Ancf3Props::cable_point`]).
-    bend_w: [f64; B],
-    /// The same shape weights by point then function (the sums into the coordinates, the
-    /// functions as lanes): dS_j/dx at the axial points,
-    axial_t: [[f64; S]; A],
-    /// dS_j/dx at the bending points,
-    ds_t: [[f64; S]; B],
-    /// d²S_j/dx² at the bending points.
-    dds_t: [[f64; S]; B],
-}
-
-impl<const S: usize, const A: usize, const B: usize> Default for Lanes<S, A, B> {
-    fn default() -> Self {
-        Self {
-            axial_ds: [[0.0; A]; S],
-            axial_w: [0.0; A],
-            ds: [[0.0; B]; S],
-            dds: [[0.0; B]; S],
-            bend_w: [0.0; B],
-            axial_t: [[0.0; S]; A],
-            ds_t: [[0.0; S]; B],
-            dds_t: [[0.0; S]; B],
-        }
-    }
-}
-
-impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
-    /// The lanes of the axial points (weight × EA, dS/dx) and the bending points (weight ×
-    /// EI, dS/dx, d²S/dx²), each given by its first S shapes.
-    pub(super) fn new<'a>(
-        axial: impl IntoIterator<Item = (f64, &'a [f64])>,
-        bending: impl IntoIterator<Item = (f64, &'a [f64], &'a [f64])>,
-    ) -> Self {
-        let mut l = Self::default();
-        for (q, (w, ds)) in axial.into_iter().enumerate() {
-            l.axial_w[q] = w;
-            for j in 0..S {
-                l.axial_ds[j][q] = ds[j];
-                l.axial_t[q][j] = ds[j];
-            }
-        }
-        for (q, (w, ds, dds)) in bending.into_iter().enumerate() {
-            l.bend_w[q] = w;
-            for j in 0..S {
-                l.ds[j][q] = ds[j];
-                l.dds[j][q] = dds[j];
-                l.ds_t[q][j] = ds[j];
-                l.dds_t[q][j] = dds[j];
-            }
-        }
-        l
-    }
-}
-
 /// The cubic cable's lanes ([`Tables3`]'s points).
 pub(super) type Lanes3 = Lanes<4, 5, 3>;
 
@@ -153,24 +88,6 @@ impl Lanes3 {
             (t.bending.iter()).map(|p| (p.w * (0.5 * (p.ei[0] + p.ei[1])), &p.ds[..], &p.dds[..])),
         )
     }
-}
-
-/// Σ_{j<M} w_j e[3j..3j + 3] at the first Q points ([`comb`]'s operations, per lane).
-#[inline(always)]
-fn lane_comb<const M: usize, const Q: usize, const S: usize, const W: usize, const D: usize>(
-    w: &[[f64; W]; S],
-    e: &[f64; D],
-) -> Lv<Q> {
-    let mut r = [[0.0; Q]; 3];
-    for (c, rc) in r.iter_mut().enumerate() {
-        for (j, wj) in w.iter().enumerate().take(M) {
-            let x = e[3 * j + c];
-            for q in 0..Q {
-                rc[q] += x * wj[q];
-            }
-        }
-    }
-    r
 }
 
 /// a · b per lane ([`dot`]'s operations).
@@ -242,7 +159,7 @@ impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
         let t = self;
         let damped = tau > 0.0;
         // axial points: g s on r_x, g = r_x/|r_x|, s = w (ε − ε₀ + τ_d g·ṙ_x)
-        let a = lane_comb::<M, QA, S, A, D>(&t.axial_ds, e);
+        let a = lane_comb::<3, M, QA, S, A, D>(&t.axial_ds, e);
         let n = lane_dot(&a, &a).map(f64::sqrt);
         let g = lane_scale(&a, &n.map(f64::recip));
         let mut s = [0.0; QA];
@@ -255,7 +172,7 @@ impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
             }
         }
         if damped {
-            let rate = lane_dot(&g, &lane_comb::<M, QA, S, A, D>(&t.axial_ds, ed));
+            let rate = lane_dot(&g, &lane_comb::<3, M, QA, S, A, D>(&t.axial_ds, ed));
             for q in 0..QA {
                 s[q] += rate[q] * tau;
             }
@@ -265,7 +182,7 @@ impl<const S: usize, const A: usize, const B: usize> Lanes<S, A, B> {
         }
         let fx = lane_scale(&g, &s);
         // bending points (`cable_point`): κ = a × b/|a|², μ = w EI (κ + rate terms)
-        let comb = |w: &[[f64; B]; S], e: &[f64; D]| lane_comb::<M, QB, S, B, D>(w, e);
+        let comb = |w: &[[f64; B]; S], e: &[f64; D]| lane_comb::<3, M, QB, S, B, D>(w, e);
         let (a, b) = (comb(&t.ds, e), comb(&t.dds, e));
         let inv = lane_dot(&a, &a).map(f64::recip);
         let kap = lane_scale(&lane_cross(&a, &b), &inv);
