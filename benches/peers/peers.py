@@ -137,8 +137,8 @@ class Family:
     # fixed_step.
     error_tolerances: tuple[float, ...] = ()
     fixed_step: float = 0.0
-    # Grid points of more elements than this are not run (0: no cap): the higher-degree
-    # families, whose error at 24 elements and up is the time integrator's.
+    # Grid points of a larger n (the grid's, not the family's elements) are not run (0: no
+    # cap): the higher-degree families, whose error beyond is the time integrator's.
     max_elements: int = 0
 
     def modes(self, n: int) -> int:
@@ -178,7 +178,7 @@ QUICK = Grid((4, 8), (1e-3, 2e-4), 0.5, 32, 5e-5, 1)
 # el. about 1e-5 m at h = 1e-4 s (whip3d: 5e-6 m at 2.5e-5 s); steps above the 1 ms output step
 # run as 1 ms (README.md, "Large deformation").
 LARGE_GRID = Grid(
-    (8, 16, 24, 32, 48, 64), (1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2.5e-5), 1.0, 128, 1e-5, 3
+    (8, 12, 16, 24, 32, 48, 64), (1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2.5e-5), 1.0, 128, 1e-5, 3
 )
 LARGE_QUICK = Grid((8, 16), (1e-3, 2e-4), 0.3, 32, 5e-5, 1)
 LARGE_TOLERANCES = (1e-3, 1e-4, 1e-5)  # m
@@ -385,24 +385,30 @@ PROBLEMS = {
 
 # Pending hybeam features (README.md, "Pending families"): a family using one is run, and
 # reported "not available" while the binary refuses its scene key.
-DEGREE5 = ("segments.0.degree=5",)  # the quintic ANCF element (scene key segments.<i>.degree)
 ERROR_TOLERANCES = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7)  # solver.error_tolerance of ESDIRK4
 ERROR_CONTROLLED_MAX_STEP = 1e-2  # s: the error-controlled ESDIRK4's solver.max_step
 
 
-DEGREE_MAX_ELEMENTS = 24  # the degree-5 families' largest mesh (docs/elements.md: 16 quintic
-# elements are within 1e-6 m of the converged soft rod)
+# The higher-degree families mesh the rod with as many coordinates as the cubic family at the
+# grid's n: an element of degree p adds p - 3 bubble points (2 coordinates each planar, 3 in
+# space; docs/elements.md) to the cubic element's node (2 points), so n cubic elements have the
+# unknowns of 2n / (p - 1) elements of degree p (n/2 quintic, n/3 of degree 7), up to
+# DEGREE_MAX_GRID.
+DEGREE_MAX_GRID = 48  # the grid's largest n for those families (24 quintic elements, 16 of
+# degree 7; docs/elements.md: 16 quintic elements are within 1e-6 m of the converged soft rod)
 
 
-def degree5(fam: Family) -> Family:
-    """The family with quintic ANCF elements (`segments.0.degree = 5`; docs/elements.md), up to
-    DEGREE_MAX_ELEMENTS elements."""
+def degree(fam: Family, p: int) -> Family:
+    """The family with ANCF elements of degree p (`segments.0.degree = p`; docs/elements.md) at
+    the unknowns of the grid's n cubic elements: round(2 n / (p - 1)) of them, up to
+    DEGREE_MAX_GRID."""
     return replace(
         fam,
-        name=f"{fam.name} degree 5",
-        sets=fam.sets + DEGREE5,
+        name=f"{fam.name} degree {p}",
+        sets=fam.sets + (f"segments.0.degree={p}",),
+        element_fraction=fam.element_fraction * 2.0 / (p - 1),
         pending="segments.<i>.degree",
-        max_elements=DEGREE_MAX_ELEMENTS,
+        max_elements=DEGREE_MAX_GRID,
     )
 
 
@@ -422,16 +428,18 @@ def error_controlled(fam: Family) -> Family:
 
 def large_families(fam: Family, peer: Family) -> list[Family]:
     """A large-deformation problem's families: hybeam's ANCF family and its ESDIRK4 twin, the
-    Exudyn peer, and the pending ones (degree 5 and its ESDIRK4 twin, the error-controlled
-    ESDIRK4)."""
+    Exudyn peer, the elements of degree 5 and 7 and their ESDIRK4 twins, the error-controlled
+    ESDIRK4 (cubic and degree 5)."""
     return [
         fam,
         peer,
         esdirk(fam),
-        degree5(fam),
-        esdirk(degree5(fam)),
+        degree(fam, 5),
+        esdirk(degree(fam, 5)),
+        degree(fam, 7),
+        esdirk(degree(fam, 7)),
         error_controlled(fam),
-        error_controlled(degree5(fam)),
+        error_controlled(degree(fam, 5)),
     ]
 
 
@@ -444,8 +452,9 @@ SOFT_CABLE3D = Family(
     ("torsion=false", _tip_force_set(SOFT_TIP_FORCE)),
 )
 LARGE_NOTE = (
-    "every family meshes the whole rod with the grid's elements (the degree-5 families with "
-    "that many quintic elements)"
+    "the cubic families (and Exudyn) mesh the whole rod with the grid's n elements, the "
+    "families of degree p with round(2n / (p - 1)) elements of that degree (the same number of "
+    "coordinates: n/2 quintic, n/3 of degree 7), up to n = 48"
 )
 LARGE = dict(
     rod=SOFT_ROD, tolerances=LARGE_TOLERANCES, suite="large", full=LARGE_GRID, quick=LARGE_QUICK
