@@ -470,20 +470,19 @@ impl<S: Space> Integrable for Model<S> {
             let dofs = &tip.dofs;
             let d = dofs.len();
             dofs.gather(x.q, held, &mut work.q[..d]);
-            let kin = if matrix.is_some() {
-                tip.part.kinematics(&work.q[..d])
-            } else {
-                tip.part.kinematics_first(&work.q[..d])
-            };
-            point_force_residual::<S>(&kin, &f, &mut work.r[..d]);
-            dofs.scatter_add(req.sd, &work.r[..d], res);
             if let Some((_, _, cx)) = matrix {
+                let kin = tip.part.kinematics(&work.q[..d]);
+                point_force_residual::<S>(&kin, &f, &mut work.r[..d]);
                 point_force_stiffness::<S>(&kin, &f, |i, j, h| {
                     if let Some(s) = dofs.slot(i, j) {
                         values[s] += cx * h;
                     }
                 });
+            } else {
+                tip.part
+                    .point_force_residual(&work.q[..d], &f, &mut work.r[..d]);
             }
+            dofs.scatter_add(req.sd, &work.r[..d], res);
         }
         if is_nonzero_moment::<S>(&moment) {
             let mut m = moment;

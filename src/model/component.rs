@@ -298,6 +298,15 @@ pub trait Port<S: Space>: Debug + Send + Sync + 'static {
         self.kinematics(q)
     }
 
+    /// The residual of a dead point force `force` at the port, r_k = −F·∂p/∂q_k on the
+    /// `r.len()` local coordinates at `q` ([`crate::model::load::point_force_residual`] on
+    /// [`Port::kinematics_first`], the default). A port whose position is a selection of its
+    /// coordinates gives the same bits without building its kinematics (a Newton iteration
+    /// with a tip force calls this once).
+    fn point_force_residual(&self, q: &[f64], force: &S::Vec, r: &mut [f64]) {
+        crate::model::load::point_force_residual::<S>(&self.kinematics_first(q), force, r)
+    }
+
     /// Position and directors alone (no derivatives), for constraint values; bit for bit the
     /// values of [`Port::kinematics_first`] (its default). A port whose kinematics are large
     /// gives them without computing or moving the derivatives.

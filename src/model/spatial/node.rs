@@ -12,6 +12,7 @@ use crate::model::sample::ShapePoint;
 use crate::model::section3::{
     add_bodies, add_body_energies, gram_schmidt, SectionBody3, SectionPose,
 };
+use crate::model::space::dot;
 use crate::model::vector::{Real, V3};
 use nalgebra::{Matrix3, Vector3};
 use num_dual::{Dual2Vec, DualSVec64, HyperDual64};
@@ -624,6 +625,18 @@ impl Port<Spatial> for NodePort3 {
         }
     }
 
+    /// p = r, the node's first three coordinates ([`Field3::coordinates`]): ∂p/∂q_k is the
+    /// unit vector e_k for k < 3 and zero beyond, dotted with F as the default does.
+    fn point_force_residual(&self, _q: &[f64], force: &[f64; 3], r: &mut [f64]) {
+        for (k, rk) in r.iter_mut().enumerate() {
+            let mut e = [0.0; 3];
+            if k < 3 {
+                e[k] = 1.0;
+            }
+            *rk = -dot::<Spatial>(&e, force);
+        }
+    }
+
     /// The node's coordinates r, r_x (and r_y with a director).
     fn values(&self, q: &[f64]) -> EndValues3 {
         let v = |k: usize| Vector3::new(q[k], q[k + 1], q[k + 2]);
@@ -730,6 +743,28 @@ pub(super) mod tests {
             let q = node(torsion);
             let k = port.kinematics_first(&q);
             assert_eq!(port.values(&q), Spatial::port_values(&k));
+        }
+    }
+
+    /// The node's own point-force residual is the kinematics' one bit for bit (zeros' signs
+    /// included), for either node and a force with a negative zero and subnormal parts.
+    #[test]
+    fn point_force_residual_is_the_kinematics_one_bit_for_bit() {
+        for torsion in [false, true] {
+            let port = NodePort3::new(torsion, reference());
+            let q = node(torsion);
+            for f in [[0.7, -1.3, 0.4], [-0.0, 2.5e-310, -3.0], [0.0, 0.0, 0.0]] {
+                let mut want = vec![1.0; q.len()];
+                crate::model::load::point_force_residual::<Spatial>(
+                    &port.kinematics(&q),
+                    &f,
+                    &mut want,
+                );
+                let mut got = vec![1.0; q.len()];
+                port.point_force_residual(&q, &f, &mut got);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&got), bits(&want), "{torsion} {f:?}");
+            }
         }
     }
 
