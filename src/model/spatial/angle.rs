@@ -323,6 +323,11 @@ impl Port<Spatial> for AnglePort3 {
         self.end(q, false)
     }
 
+    /// p = r, the node's first three coordinates.
+    fn point_force_residual(&self, _q: &[f64], force: &[f64; 3], r: &mut [f64]) {
+        Field3::selection_force_residual(force, r)
+    }
+
     fn add_moment_stiffness(
         &self,
         q: &[f64],

@@ -7,7 +7,7 @@
 //! produced pair by pair where they are used.
 
 use super::Spatial;
-use crate::model::space::PortKin;
+use crate::model::space::{dot, PortKin};
 use crate::scene::MAX_MODES;
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use smallvec::SmallVec;
@@ -206,6 +206,20 @@ impl Field3 {
             v: Vector3::new(q[first], q[first + 1], q[first + 2]),
             d,
             dd: Second3::default(),
+        }
+    }
+
+    /// The residual r_k = −F·∂p/∂q_k of a dead force F at a position p that is coordinates
+    /// 0..3 ([`Self::coordinates`]`(q, 0, r.len())`): ∂p/∂q_k is the unit vector e_k for k < 3
+    /// and zero beyond, dotted with F as [`crate::model::load::point_force_residual`] does (the
+    /// same bits, without building the field).
+    pub fn selection_force_residual(force: &[f64; 3], r: &mut [f64]) {
+        for (k, rk) in r.iter_mut().enumerate() {
+            let mut e = [0.0; 3];
+            if k < 3 {
+                e[k] = 1.0;
+            }
+            *rk = -dot::<Spatial>(&e, force);
         }
     }
 

@@ -12,7 +12,6 @@ use crate::model::sample::ShapePoint;
 use crate::model::section3::{
     add_bodies, add_body_energies, gram_schmidt, SectionBody3, SectionPose,
 };
-use crate::model::space::dot;
 use crate::model::vector::{Real, V3};
 use nalgebra::{Matrix3, Vector3};
 use num_dual::{Dual2Vec, DualSVec64, HyperDual64};
@@ -625,16 +624,9 @@ impl Port<Spatial> for NodePort3 {
         }
     }
 
-    /// p = r, the node's first three coordinates ([`Field3::coordinates`]): ∂p/∂q_k is the
-    /// unit vector e_k for k < 3 and zero beyond, dotted with F as the default does.
+    /// p = r, the node's first three coordinates.
     fn point_force_residual(&self, _q: &[f64], force: &[f64; 3], r: &mut [f64]) {
-        for (k, rk) in r.iter_mut().enumerate() {
-            let mut e = [0.0; 3];
-            if k < 3 {
-                e[k] = 1.0;
-            }
-            *rk = -dot::<Spatial>(&e, force);
-        }
+        Field3::selection_force_residual(force, r)
     }
 
     /// The node's coordinates r, r_x (and r_y with a director).

@@ -93,3 +93,17 @@ fn rotations_section_field_and_moment_stiffness_match_central_differences() {
         }
     }
 }
+
+/// The node's point-force residual is the kinematics' one bit for bit (zeros' signs included).
+#[test]
+fn point_force_residual_is_the_kinematics_one_bit_for_bit() {
+    let (p, q) = (port(), node());
+    for f in [[0.7, -1.3, 0.4], [-0.0, 2.5e-310, -3.0]] {
+        let mut want = vec![1.0; q.len()];
+        crate::model::load::point_force_residual::<Spatial>(&p.kinematics_first(&q), &f, &mut want);
+        let mut got = vec![1.0; q.len()];
+        p.point_force_residual(&q, &f, &mut got);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&got), bits(&want), "{f:?}");
+    }
+}
