@@ -139,7 +139,7 @@ class Family:
     fixed_step: float = 0.0
     # Grid points of a larger n (the grid's, not the family's elements) are not run (0: no
     # cap): the higher-degree families, whose error beyond is the time integrator's.
-    max_elements: int = 0
+    max_grid_n: int = 0
 
     def modes(self, n: int) -> int:
         """Modes of a modal family for a grid point of n elements: round(12 n / 32) in 1..=12
@@ -408,7 +408,7 @@ def degree(fam: Family, p: int) -> Family:
         sets=fam.sets + (f"segments.0.degree={p}",),
         element_fraction=fam.element_fraction * 2.0 / (p - 1),
         pending="segments.<i>.degree",
-        max_elements=DEGREE_MAX_GRID,
+        max_grid_n=DEGREE_MAX_GRID,
     )
 
 
@@ -798,8 +798,8 @@ def sweep(
             run.status = missing[fam]
         if h < fam.min_step:
             run.status = f"not run: h below the family's min_step {fam.min_step:g}"
-        if fam.max_elements and n > fam.max_elements:
-            run.status = f"not run: more elements than the family's max_elements {fam.max_elements}"
+        if fam.max_grid_n and n > fam.max_grid_n:
+            run.status = f"not run: grid n above the family's max_grid_n {fam.max_grid_n}"
         if run.status != "ok":
             return
         try:
