@@ -738,25 +738,32 @@ pub(super) mod tests {
         }
     }
 
-    /// The node's own point-force residual is the kinematics' one bit for bit (zeros' signs
-    /// included), for either node and a force with a negative zero and subnormal parts.
+    /// Asserts that `port`'s point-force residual at `q` is the default's (on its
+    /// `kinematics_first`) bit for bit, zeros' signs included, for forces with a negative zero,
+    /// a subnormal part and all zeros.
+    pub(in crate::model::spatial) fn assert_point_force_residual_is_the_default(
+        port: &dyn Port<Spatial>,
+        q: &[f64],
+    ) {
+        for f in [[0.7, -1.3, 0.4], [-0.0, 2.5e-310, -3.0], [0.0, 0.0, 0.0]] {
+            let mut want = vec![1.0; q.len()];
+            crate::model::load::point_force_residual::<Spatial>(
+                &port.kinematics_first(q),
+                &f,
+                &mut want,
+            );
+            let mut got = vec![1.0; q.len()];
+            port.point_force_residual(q, &f, &mut got);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&got), bits(&want), "{f:?}");
+        }
+    }
+
     #[test]
     fn point_force_residual_is_the_kinematics_one_bit_for_bit() {
         for torsion in [false, true] {
             let port = NodePort3::new(torsion, reference());
-            let q = node(torsion);
-            for f in [[0.7, -1.3, 0.4], [-0.0, 2.5e-310, -3.0], [0.0, 0.0, 0.0]] {
-                let mut want = vec![1.0; q.len()];
-                crate::model::load::point_force_residual::<Spatial>(
-                    &port.kinematics(&q),
-                    &f,
-                    &mut want,
-                );
-                let mut got = vec![1.0; q.len()];
-                port.point_force_residual(&q, &f, &mut got);
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                assert_eq!(bits(&got), bits(&want), "{torsion} {f:?}");
-            }
+            assert_point_force_residual_is_the_default(&port, &node(torsion));
         }
     }
 

@@ -1,7 +1,7 @@
 //! The angle node's port against central differences of its own frame and section axis.
 
 use super::*;
-use crate::model::spatial::node::tests::fd_rotation;
+use crate::model::spatial::node::tests::{assert_point_force_residual_is_the_default, fd_rotation};
 use crate::model::PortKin;
 
 fn port() -> AnglePort3 {
@@ -97,13 +97,5 @@ fn rotations_section_field_and_moment_stiffness_match_central_differences() {
 /// The node's point-force residual is the kinematics' one bit for bit (zeros' signs included).
 #[test]
 fn point_force_residual_is_the_kinematics_one_bit_for_bit() {
-    let (p, q) = (port(), node());
-    for f in [[0.7, -1.3, 0.4], [-0.0, 2.5e-310, -3.0]] {
-        let mut want = vec![1.0; q.len()];
-        crate::model::load::point_force_residual::<Spatial>(&p.kinematics_first(&q), &f, &mut want);
-        let mut got = vec![1.0; q.len()];
-        p.point_force_residual(&q, &f, &mut got);
-        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-        assert_eq!(bits(&got), bits(&want), "{f:?}");
-    }
+    assert_point_force_residual_is_the_default(&port(), &node());
 }
